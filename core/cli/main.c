@@ -1,0 +1,397 @@
+/* voxrg: check, render and list plugins from the command line. Exit status:
+ * 0 success, 1 a graph, plugin or GPU error (or a validation message under
+ * --validate), 2 a usage error. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+#include "voxrg/voxrg.h"
+
+#define MAX_SETS 64
+#define MAX_DUMPS 32
+
+static const char *usage_main =
+    "usage: voxrg COMMAND [options]\n"
+    "commands:\n"
+    "  check GRAPH     validate a graph; print schedule, resources, barriers, memory\n"
+    "  render GRAPH    render frames headless; write PNGs and timings\n"
+    "  plugins [NAME]  list plugins, or one plugin's slots and parameters\n"
+    "'voxrg COMMAND --help' describes each.\n";
+
+static const char *usage_check =
+    "usage: voxrg check GRAPH [--dot FILE] [--set PASS.PARAM=VALUE]... [--size WxH]\n"
+    "                         [--no-device] [--device NAME|INDEX] [--validate]\n"
+    "Validates GRAPH and prints the schedule, culled passes, every resource (format,\n"
+    "size, lifetime, memory placement), the barriers of each pass and the memory\n"
+    "saved by aliasing. Errors name FILE:LINE. --dot writes a Graphviz file.\n"
+    "--no-device checks without Vulkan (memory sizes then are estimates).\n";
+
+static const char *usage_render =
+    "usage: voxrg render GRAPH [--frames N] [--size WxH] [--out DIR] [--set PASS.PARAM=VALUE]...\n"
+    "                          [--dump RES[,RES...]] [--json FILE] [--validate] [--device NAME|INDEX]\n"
+    "Renders N frames (default 1) headless and writes DIR/OUTPUT.png (default DIR: out),\n"
+    "plus DIR/RES.png for each dumped image (DIR/RES.bin for buffers). --json writes\n"
+    "per-pass GPU timings. --validate turns on the Khronos validation layer with\n"
+    "synchronization validation; any message fails the run.\n";
+
+static const char *usage_plugins =
+    "usage: voxrg plugins [NAME]\n"
+    "Lists the plugins on the search path ($VOXRG_PLUGIN_PATH, <exe>/plugins,\n"
+    "<exe>/../lib/voxrg/plugins), or NAME's slots and parameters.\n";
+
+typedef struct options {
+    const char *graph, *dot, *out, *json, *device;
+    const char *sets[MAX_SETS];
+    int set_count;
+    const char *dumps[MAX_DUMPS];
+    int dump_count;
+    char dump_buf[4096];
+    uint32_t width, height, frames;
+    int validate, no_device, help;
+} options;
+
+static int usage_error(const char *usage, const char *fmt, const char *arg)
+{
+    fprintf(stderr, "error: ");
+    fprintf(stderr, fmt, arg);
+    fprintf(stderr, "\n%s", usage);
+    return 2;
+}
+
+static int parse_size(const char *s, uint32_t *w, uint32_t *h)
+{
+    char *end;
+    long a = strtol(s, &end, 10);
+    if (*end != 'x' || a <= 0 || a > 16384)
+        return -1;
+    long b = strtol(end + 1, &end, 10);
+    if (*end || b <= 0 || b > 16384)
+        return -1;
+    *w = (uint32_t)a;
+    *h = (uint32_t)b;
+    return 0;
+}
+
+static int parse_options(int argc, char **argv, options *o, const char *usage)
+{
+    memset(o, 0, sizeof *o);
+    o->frames = 1;
+    o->out = "out";
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        const char *next = i + 1 < argc ? argv[i + 1] : NULL;
+        int takes = 1;
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            o->help = 1;
+            takes = 0;
+        } else if (!strcmp(a, "--validate"))
+            o->validate = 1, takes = 0;
+        else if (!strcmp(a, "--no-device"))
+            o->no_device = 1, takes = 0;
+        else if (a[0] == '-' && a[1] == '-' && !next)
+            return usage_error(usage, "%s needs a value", a);
+        else if (!strcmp(a, "--dot"))
+            o->dot = next;
+        else if (!strcmp(a, "--out"))
+            o->out = next;
+        else if (!strcmp(a, "--json"))
+            o->json = next;
+        else if (!strcmp(a, "--device"))
+            o->device = next;
+        else if (!strcmp(a, "--set")) {
+            if (o->set_count == MAX_SETS)
+                return usage_error(usage, "too many --set options%s", "");
+            o->sets[o->set_count++] = next;
+        } else if (!strcmp(a, "--size")) {
+            if (parse_size(next, &o->width, &o->height) != 0)
+                return usage_error(usage, "--size '%s': expected WxH, e.g. 320x180", next);
+        } else if (!strcmp(a, "--frames")) {
+            char *end;
+            long n = strtol(next, &end, 10);
+            if (*end || n <= 0 || n > 10000000)
+                return usage_error(usage, "--frames '%s': expected a positive integer", next);
+            o->frames = (uint32_t)n;
+        } else if (!strcmp(a, "--dump")) {
+            size_t used = strlen(o->dump_buf);
+            snprintf(o->dump_buf + used, sizeof o->dump_buf - used, "%s%s", used ? "," : "", next);
+        } else if (a[0] == '-')
+            return usage_error(usage, "unknown option '%s'", a);
+        else if (!o->graph)
+            o->graph = a, takes = 0;
+        else
+            return usage_error(usage, "unexpected argument '%s'", a);
+        i += takes;
+    }
+    for (char *tok = strtok(o->dump_buf, ","); tok; tok = strtok(NULL, ","))
+        if (o->dump_count < MAX_DUMPS)
+            o->dumps[o->dump_count++] = tok;
+    if (!o->help && !o->graph)
+        return usage_error(usage, "no graph file given%s", "");
+    return 0;
+}
+
+static int load(const options *o, vrg_context **ctx, vrg_graph **g)
+{
+    *ctx = NULL;
+    if (!o->no_device) {
+        vrg_context_desc cd = {.validate = o->validate, .device = o->device};
+        if (vrg_context_create(&cd, ctx) != 0)
+            return 1;
+    }
+    vrg_graph_desc gd = {
+        .path = o->graph,
+        .overrides = o->sets,
+        .override_count = (uint32_t)o->set_count,
+        .width = o->width,
+        .height = o->height,
+        .readback = o->dumps,
+        .readback_count = (uint32_t)o->dump_count,
+    };
+    if (vrg_graph_load(*ctx, &gd, g) != 0) {
+        fprintf(stderr, "%s: graph not loaded\n", o->graph);
+        return 1;
+    }
+    return 0;
+}
+
+static int finish(vrg_context *ctx, vrg_graph *g, int rc)
+{
+    vrg_graph_destroy(g);
+    if (ctx && vrg_context_validation_errors(ctx)) {
+        fprintf(stderr, "error: %u validation message%s (see above)\n", vrg_context_validation_errors(ctx),
+                vrg_context_validation_errors(ctx) == 1 ? "" : "s");
+        rc = 1;
+    }
+    vrg_context_destroy(ctx);
+    return rc;
+}
+
+static int cmd_check(int argc, char **argv)
+{
+    options o;
+    int rc = parse_options(argc, argv, &o, usage_check);
+    if (rc || o.help)
+        return rc ? rc : (fputs(usage_check, stdout), 0);
+    vrg_context *ctx;
+    vrg_graph *g = NULL;
+    if (load(&o, &ctx, &g) != 0)
+        return finish(ctx, g, 1);
+    vrg_graph_report(g, stdout);
+    if (o.dot) {
+        FILE *f = fopen(o.dot, "w");
+        if (!f) {
+            fprintf(stderr, "error: cannot write %s: %s\n", o.dot, strerror(errno));
+            return finish(ctx, g, 1);
+        }
+        vrg_graph_write_dot(g, f);
+        fclose(f);
+    }
+    return finish(ctx, g, 0);
+}
+
+static int mkdir_p(const char *dir)
+{
+    char buf[1024];
+    snprintf(buf, sizeof buf, "%s", dir);
+    for (char *p = buf + 1; *p; p++)
+        if (*p == '/') {
+            *p = '\0';
+            mkdir(buf, 0777);
+            *p = '/';
+        }
+    if (mkdir(buf, 0777) != 0 && errno != EEXIST) {
+        fprintf(stderr, "error: cannot create directory %s: %s\n", dir, strerror(errno));
+        return -1;
+    }
+    return 0;
+}
+
+static int write_resource(vrg_graph *g, const char *dir, const char *name)
+{
+    char path[1200];
+    vrg_image_data img;
+    if (vrg_graph_read(g, name, &img) == 0) {
+        snprintf(path, sizeof path, "%s/%s.png", dir, name);
+        int rc = vrg_write_png(path, &img);
+        free(img.pixels);
+        if (rc == 0)
+            fprintf(stderr, "wrote %s\n", path);
+        return rc;
+    }
+    void *data;
+    uint64_t size;
+    if (vrg_graph_read_buffer(g, name, &data, &size) != 0)
+        return -1;
+    snprintf(path, sizeof path, "%s/%s.bin", dir, name);
+    FILE *f = fopen(path, "wb");
+    int rc = f && fwrite(data, 1, size, f) == size ? 0 : -1;
+    if (f)
+        fclose(f);
+    free(data);
+    if (rc)
+        fprintf(stderr, "error: cannot write %s\n", path);
+    else
+        fprintf(stderr, "wrote %s\n", path);
+    return rc;
+}
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+static int write_json(const char *path, vrg_context *ctx, vrg_graph *g, const options *o, double *ms, uint32_t frames, double wall_ms)
+{
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        fprintf(stderr, "error: cannot write %s: %s\n", path, strerror(errno));
+        return -1;
+    }
+    uint32_t w, h, np = vrg_graph_pass_count(g);
+    vrg_graph_size(g, &w, &h);
+    vrg_memory_stats m = vrg_graph_memory(g);
+    fprintf(f, "{\n  \"graph\": \"%s\",\n  \"device\": \"%s\",\n  \"width\": %u,\n  \"height\": %u,\n  \"frames\": %u,\n", o->graph,
+            vrg_context_device(ctx)->name, w, h, frames);
+    fprintf(f, "  \"wall_ms_per_frame\": %.4f,\n", wall_ms / frames);
+    fprintf(f, "  \"memory\": {\"transient_naive_bytes\": %llu, \"transient_aliased_bytes\": %llu, \"history_bytes\": %llu},\n",
+            (unsigned long long)m.naive_bytes, (unsigned long long)m.aliased_bytes, (unsigned long long)m.history_bytes);
+    fprintf(f, "  \"passes\": [");
+    int first = 1;
+    for (uint32_t i = 0; i < np; i++) {
+        if (vrg_graph_pass_ms(g, i) < 0 && ms[i] < 0)
+            continue; /* culled or not timed */
+        double sum = 0;
+        fprintf(f, "%s\n    {\"name\": \"%s\", \"gpu_ms\": [", first ? "" : ",", vrg_graph_pass_name(g, i));
+        for (uint32_t k = 0; k < frames; k++) {
+            fprintf(f, "%s%.4f", k ? ", " : "", ms[k * np + i]);
+            sum += ms[k * np + i];
+        }
+        fprintf(f, "], \"mean_gpu_ms\": %.4f}", sum / frames);
+        first = 0;
+    }
+    fprintf(f, "\n  ]\n}\n");
+    fclose(f);
+    return 0;
+}
+
+static int cmd_render(int argc, char **argv)
+{
+    options o;
+    int rc = parse_options(argc, argv, &o, usage_render);
+    if (rc || o.help)
+        return rc ? rc : (fputs(usage_render, stdout), 0);
+    if (o.no_device)
+        return usage_error(usage_render, "render needs a device%s", "");
+    vrg_context *ctx;
+    vrg_graph *g = NULL;
+    if (load(&o, &ctx, &g) != 0)
+        return finish(ctx, g, 1);
+    uint32_t np = vrg_graph_pass_count(g);
+    double *ms = calloc((size_t)o.frames * np, sizeof *ms);
+    double start = now_ms();
+    int isatty_err = isatty(2);
+    for (uint32_t k = 0; k < o.frames && rc == 0; k++) {
+        if (vrg_graph_frame(g) != 0) {
+            fprintf(stderr, "error: frame %u failed\n", k);
+            rc = 1;
+        }
+        double total = 0;
+        for (uint32_t i = 0; i < np; i++) {
+            ms[k * np + i] = vrg_graph_pass_ms(g, i);
+            if (ms[k * np + i] > 0)
+                total += ms[k * np + i];
+        }
+        if (isatty_err || k + 1 == o.frames)
+            fprintf(stderr, "\rframe %u/%u  gpu %.2f ms  wall %.1f ms/frame%s", k + 1, o.frames, total, (now_ms() - start) / (k + 1),
+                    k + 1 == o.frames ? "\n" : "");
+    }
+    double wall = now_ms() - start;
+    if (rc == 0 && mkdir_p(o.out) != 0)
+        rc = 1;
+    if (rc == 0)
+        rc |= write_resource(g, o.out, vrg_graph_output(g)) != 0;
+    for (int i = 0; rc == 0 && i < o.dump_count; i++)
+        rc |= write_resource(g, o.out, o.dumps[i]) != 0;
+    if (rc == 0 && o.json)
+        rc |= write_json(o.json, ctx, g, &o, ms, o.frames, wall) != 0;
+    free(ms);
+    return finish(ctx, g, rc);
+}
+
+static const char *kind_name(vrg_resource_kind k) { return k == VRG_IMAGE ? "image" : "buffer"; }
+
+static int cmd_plugins(int argc, char **argv)
+{
+    if (argc > 0 && (!strcmp(argv[0], "--help") || !strcmp(argv[0], "-h"))) {
+        fputs(usage_plugins, stdout);
+        return 0;
+    }
+    const vrg_plugin_desc *list[256];
+    const char *paths[256];
+    int n = vrg_list_plugins(list, paths, 256);
+    const char *want = argc > 0 ? argv[0] : NULL;
+    int found = 0;
+    for (int i = 0; i < n; i++) {
+        const vrg_plugin_desc *d = list[i];
+        if (!want) {
+            printf("%-18s %-5s %s\n", d->name, d->kind == VRG_PLUGIN_SCENE ? "scene" : "pass", d->help ? d->help : "");
+            continue;
+        }
+        if (strcmp(d->name, want) != 0)
+            continue;
+        found = 1;
+        printf("%s (%s plugin, ABI %u)\n  %s\n  file: %s\n", d->name, d->kind == VRG_PLUGIN_SCENE ? "scene" : "pass", d->abi_version,
+               d->help ? d->help : "", paths[i]);
+        printf("slots:\n");
+        for (uint32_t s = 0; s < d->slot_count; s++) {
+            const vrg_slot_desc *sd = &d->slots[s];
+            char size[64] = "";
+            if (sd->kind == VRG_BUFFER)
+                snprintf(size, sizeof size, "%llu bytes", (unsigned long long)sd->size);
+            else if (sd->width)
+                snprintf(size, sizeof size, "%ux%u", sd->width, sd->height);
+            else if (sd->scale > 0 || sd->dir == VRG_OUT)
+                snprintf(size, sizeof size, "scale %g", sd->scale > 0 ? sd->scale : 1.0);
+            else
+                snprintf(size, sizeof size, "any size");
+            printf("  %-3s.%-14s %-6s %-10s %-18s %-14s%s%s  %s\n", sd->dir == VRG_IN ? "in" : "out", sd->name, kind_name(sd->kind),
+                   sd->kind == VRG_IMAGE ? (sd->format ? vrg_format_label(sd->format) : "any") : "-", vrg_access_label(sd->access), size,
+                   sd->flags & VRG_SLOT_OPTIONAL ? " optional" : "", sd->flags & VRG_SLOT_PERSISTENT ? " persistent" : "", sd->help ? sd->help : "");
+        }
+        printf("parameters:%s\n", d->param_count ? "" : " none");
+        for (uint32_t p = 0; p < d->param_count; p++) {
+            const vrg_param_desc *pd = &d->params[p];
+            const char *t = pd->type == VRG_PARAM_INT ? "int" : pd->type == VRG_PARAM_BOOL ? "bool" : "float";
+            char range[64] = "";
+            if (pd->min != 0 || pd->max != 0)
+                snprintf(range, sizeof range, "[%g, %g]", pd->min, pd->max);
+            printf("  %-16s %-5s default %-8g %-16s %s\n", pd->name, t, pd->default_value, range, pd->help ? pd->help : "");
+        }
+    }
+    if (want && !found) {
+        fprintf(stderr, "error: no plugin named '%s' on the search path\n", want);
+        return 1;
+    }
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
+        fputs(usage_main, argc < 2 ? stderr : stdout);
+        return argc < 2 ? 2 : 0;
+    }
+    if (!strcmp(argv[1], "check"))
+        return cmd_check(argc - 2, argv + 2);
+    if (!strcmp(argv[1], "render"))
+        return cmd_render(argc - 2, argv + 2);
+    if (!strcmp(argv[1], "plugins"))
+        return cmd_plugins(argc - 2, argv + 2);
+    fprintf(stderr, "error: unknown command '%s'\n%s", argv[1], usage_main);
+    return 2;
+}

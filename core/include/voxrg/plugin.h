@@ -1,0 +1,236 @@
+/* voxrg plugin ABI.
+ *
+ * A plugin is a shared object exporting one function, vrg_plugin_entry, that
+ * returns a const vrg_plugin_desc. The descriptor tells the runtime everything
+ * it needs before any Vulkan object exists: parameters, slots (the resources
+ * the plugin reads and writes) and callbacks. The runtime owns every resource;
+ * a pass only records commands. See docs/plugin-abi.md for a complete pass. */
+#ifndef VOXRG_PLUGIN_H
+#define VOXRG_PLUGIN_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <vulkan/vulkan.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Bumped on any incompatible change to the structs or functions below. */
+#define VRG_ABI_VERSION 1u
+#define VRG_PLUGIN_ENTRY_SYMBOL "vrg_plugin_entry"
+#define VRG_EXPORT __attribute__((visibility("default")))
+
+typedef enum vrg_plugin_kind {
+    VRG_PLUGIN_PASS = 1,  /* a stage of the graph: [pass NAME] */
+    VRG_PLUGIN_SCENE = 2, /* the world: [scene]; runs first every frame, never culled */
+} vrg_plugin_kind;
+
+typedef enum vrg_param_type {
+    VRG_PARAM_FLOAT = 1,
+    VRG_PARAM_INT = 2,
+    VRG_PARAM_BOOL = 3,
+} vrg_param_type;
+
+typedef struct vrg_param_desc {
+    const char *name;
+    vrg_param_type type;
+    double default_value;
+    double min, max; /* inclusive; min == max == 0 means unbounded */
+    const char *help;
+} vrg_param_desc;
+
+typedef enum vrg_slot_dir {
+    VRG_IN = 1,
+    VRG_OUT = 2,
+} vrg_slot_dir;
+
+typedef enum vrg_resource_kind {
+    VRG_IMAGE = 1,
+    VRG_BUFFER = 2,
+} vrg_resource_kind;
+
+/* How a pass touches a resource. The runtime derives usage flags, layouts,
+ * pipeline stages and access masks (and so every barrier) from this. */
+typedef enum vrg_access {
+    VRG_ACCESS_SAMPLED = 1,      /* image: combined image sampler, SHADER_READ_ONLY_OPTIMAL */
+    VRG_ACCESS_STORAGE_READ,     /* image: storage image read / buffer: storage buffer read */
+    VRG_ACCESS_STORAGE_WRITE,    /* write only; previous contents are not needed */
+    VRG_ACCESS_STORAGE_READ_WRITE,
+    VRG_ACCESS_UNIFORM,          /* buffer: uniform buffer */
+    VRG_ACCESS_TRANSFER_SRC,
+    VRG_ACCESS_TRANSFER_DST,
+} vrg_access;
+
+enum vrg_slot_flags {
+    VRG_SLOT_OPTIONAL = 1u << 0,   /* input may stay unconnected (vrg_res_connected() says) */
+    VRG_SLOT_PERSISTENT = 1u << 1, /* output keeps its contents across frames: never aliased */
+};
+
+typedef struct vrg_slot_desc {
+    const char *name;
+    vrg_slot_dir dir;
+    vrg_resource_kind kind;
+    vrg_access access;
+    /* Images. Outputs: the default format ([resource X] format= overrides it).
+     * Inputs: the format required, or VK_FORMAT_UNDEFINED for any. */
+    VkFormat format;
+    /* Images. Outputs: size as a fraction of the graph size (0 means 1), or
+     * absolute when width and height are set. Inputs: the size required in
+     * the same terms, or all zero for any size. */
+    float scale;
+    uint32_t width, height;
+    /* Buffers. Outputs: size in bytes. Inputs: minimum size, 0 for any. */
+    uint64_t size;
+    uint32_t flags; /* vrg_slot_flags */
+    const char *help;
+} vrg_slot_desc;
+
+/* A pass (or scene) instance inside a graph. Opaque; see the functions below. */
+typedef struct vrg_pass vrg_pass;
+
+typedef struct vrg_plugin_desc {
+    uint32_t abi_version; /* VRG_ABI_VERSION of the headers the plugin was built with */
+    const char *name;
+    vrg_plugin_kind kind;
+    const char *help;
+    /* Directory searched first for this plugin's shaders (VRG_PLUGIN_DIR). */
+    const char *shader_dir;
+    const vrg_param_desc *params;
+    uint32_t param_count;
+    const vrg_slot_desc *slots;
+    uint32_t slot_count;
+
+    /* Called once the graph is valid, before allocation: request internal
+     * resources here and prepare pipelines. Return 0 on success; on failure
+     * call vrg_pass_error() first. May be NULL. */
+    int (*create)(vrg_pass *pass);
+    /* Called after resources are (re)allocated, at start and on every resize.
+     * Resource handles and extents are valid from here on. May be NULL. */
+    int (*resize)(vrg_pass *pass);
+    /* Record the pass. Every slot is already in the layout and access its
+     * declaration names. Required. */
+    void (*execute)(vrg_pass *pass, VkCommandBuffer cmd);
+    /* Free what create() made. May be NULL. */
+    void (*destroy)(vrg_pass *pass);
+    /* Hot reload: copy state to keep into dst (at most cap bytes); return the
+     * size used. restore_state gets it back in the new instance after create. */
+    size_t (*save_state)(vrg_pass *pass, void *dst, size_t cap);
+    int (*restore_state)(vrg_pass *pass, const void *src, size_t size);
+} vrg_plugin_desc;
+
+/* The one symbol a plugin exports. host_abi is the runtime's VRG_ABI_VERSION. */
+typedef const vrg_plugin_desc *(*vrg_plugin_entry_fn)(uint32_t host_abi);
+
+/* Every plugin's source defines its entry with this macro. */
+#define VRG_PLUGIN(desc_var) \
+    VRG_EXPORT const vrg_plugin_desc *vrg_plugin_entry(uint32_t host_abi) { (void)host_abi; return &(desc_var); }
+
+/* ---- What the runtime gives a pass ------------------------------------- */
+
+typedef struct vrg_features {
+    int ray_query;              /* VK_KHR_ray_query enabled */
+    int acceleration_structure; /* VK_KHR_acceleration_structure enabled */
+    int ray_tracing_pipeline;   /* VK_KHR_ray_tracing_pipeline available */
+    int timestamps;             /* per-pass GPU timestamps work */
+    float timestamp_period_ns;
+    uint32_t subgroup_size;
+} vrg_features;
+
+typedef struct vrg_device {
+    VkInstance instance;
+    VkPhysicalDevice physical_device;
+    VkDevice device;
+    VkQueue queue;
+    uint32_t queue_family;
+    const char *name;
+    vrg_features features;
+} vrg_device;
+
+typedef struct vrg_frame_info {
+    uint64_t frame_index;   /* frames since the graph was built */
+    uint32_t width, height; /* graph size */
+    uint32_t seed;          /* [graph] seed */
+    int history_valid;      /* 0 on the first frame, after resize, reload or a camera cut */
+    double time_s;          /* simulated time: frame_index / [graph] fps */
+} vrg_frame_info;
+
+/* A resource a pass can name: one of its slots or an internal resource. */
+typedef struct vrg_res {
+    int id; /* -1: not connected */
+} vrg_res;
+
+const vrg_device *vrg_pass_device(const vrg_pass *pass);
+const vrg_frame_info *vrg_pass_frame(const vrg_pass *pass);
+const char *vrg_pass_name(const vrg_pass *pass);
+void *vrg_pass_user(const vrg_pass *pass);
+void vrg_pass_set_user(vrg_pass *pass, void *user);
+/* Report an error that names this pass (and its plugin); returns -1. */
+int vrg_pass_error(vrg_pass *pass, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* GPU milliseconds of a pass (NULL: this one) in the last finished frame; -1 if unknown. */
+double vrg_pass_gpu_ms(const vrg_pass *pass, const char *other_pass);
+
+/* Parameters by name, after defaults, graph values and --set overrides. */
+double vrg_param(const vrg_pass *pass, const char *name);
+int vrg_param_int(const vrg_pass *pass, const char *name);
+
+/* In create() only: a transient resource private to this pass. It lives for
+ * the pass's execution alone, so the runtime aliases its memory with other
+ * resources. scale: fraction of the graph size. */
+vrg_res vrg_pass_request_image(vrg_pass *pass, const char *name, VkFormat format, float scale, vrg_access first_access);
+vrg_res vrg_pass_request_buffer(vrg_pass *pass, const char *name, uint64_t size);
+
+/* A slot or internal resource by name. */
+vrg_res vrg_pass_res(const vrg_pass *pass, const char *name);
+int vrg_res_connected(vrg_res res);
+VkImage vrg_res_image(const vrg_pass *pass, vrg_res res);
+VkImageView vrg_res_view(const vrg_pass *pass, vrg_res res);
+VkBuffer vrg_res_buffer(const vrg_pass *pass, vrg_res res);
+VkExtent2D vrg_res_extent(const vrg_pass *pass, vrg_res res);
+VkFormat vrg_res_format(const vrg_pass *pass, vrg_res res);
+uint64_t vrg_res_size(const vrg_pass *pass, vrg_res res);
+
+/* For commands the pass records itself: bring resources to an access with
+ * exact barriers (needed between two uses of an internal resource, or when
+ * a pass uses a slot in a way other than declared). Batched in one barrier. */
+typedef struct vrg_use {
+    vrg_res res;
+    vrg_access access;
+} vrg_use;
+void vrg_pass_use(vrg_pass *pass, VkCommandBuffer cmd, const vrg_use *uses, uint32_t count);
+
+/* ---- The helper layer: one compute dispatch ---------------------------- */
+
+#define VRG_MAX_BINDINGS 16
+
+typedef struct vrg_binding {
+    const char *res;   /* slot or internal resource name */
+    vrg_access access; /* 0: the slot's declared access (internal: storage read/write) */
+} vrg_binding;
+
+typedef struct vrg_dispatch_desc {
+    /* GLSL compute shader. Relative paths are searched in the plugin's
+     * shader_dir, then $VOXRG_SHADER_PATH, then the source tree's shaders/. */
+    const char *shader;
+    /* Set 0, binding i = bindings[i]. When none are given, every connected
+     * slot of the pass is bound in declaration order. */
+    vrg_binding bindings[VRG_MAX_BINDINGS];
+    const void *push; /* push constants, at most 128 bytes */
+    uint32_t push_size;
+    /* Dispatch domain: this resource's extent (default: the first image
+     * output), divided by the shader's local size, rounded up. */
+    const char *domain;
+    uint32_t groups_x, groups_y, groups_z; /* explicit group counts, if set */
+} vrg_dispatch_desc;
+
+/* Compiles (once, cached per pass) and records the dispatch, with barriers
+ * for bound resources whose state differs from what the binding needs.
+ * Returns 0, or -1 after reporting the error (shader compile errors name
+ * file:line). */
+int vrg_dispatch(vrg_pass *pass, VkCommandBuffer cmd, const vrg_dispatch_desc *desc);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,97 @@
+/* voxrg host API: what the CLI, tests and embedding programs call. */
+#ifndef VOXRG_H
+#define VOXRG_H
+
+#include <stdio.h>
+#include "voxrg/plugin.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct vrg_context vrg_context;
+typedef struct vrg_graph vrg_graph;
+
+typedef struct vrg_context_desc {
+    int validate;       /* VK_LAYER_KHRONOS_validation + synchronization validation; messages count as errors */
+    const char *device; /* index or part of the name; NULL: prefer a real GPU, else lavapipe */
+    int quiet;          /* no "using device" line */
+} vrg_context_desc;
+
+/* Returns 0 and a context, or -1 after printing why to stderr. */
+int vrg_context_create(const vrg_context_desc *desc, vrg_context **out);
+void vrg_context_destroy(vrg_context *ctx);
+const vrg_device *vrg_context_device(const vrg_context *ctx);
+/* Validation messages seen so far (each also printed to stderr). */
+uint32_t vrg_context_validation_errors(const vrg_context *ctx);
+
+typedef struct vrg_graph_desc {
+    const char *path;             /* the graph file (also used in messages) */
+    const char *text;             /* optional: graph text instead of reading path */
+    const char *const *overrides; /* "pass.param=value" (--set) */
+    uint32_t override_count;
+    uint32_t width, height;       /* 0: the graph's own size */
+    const char *const *readback;  /* resources to keep readable after a frame (output is always) */
+    uint32_t readback_count;
+    FILE *diag;                   /* where errors go; NULL: stderr */
+} vrg_graph_desc;
+
+/* Parse, validate, compile. With ctx, also create the passes and allocate:
+ * the graph can render. Without ctx (check-only, fuzzing) memory sizes are
+ * estimated from formats. Returns 0, or -1 after printing every error. */
+int vrg_graph_load(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph **out);
+void vrg_graph_destroy(vrg_graph *g);
+
+/* Record, submit and wait for one frame. Returns 0, or -1 on error. */
+int vrg_graph_frame(vrg_graph *g);
+/* New graph size: re-allocates every resource and resets history. */
+int vrg_graph_resize(vrg_graph *g, uint32_t width, uint32_t height);
+/* Next frame sees history_valid = 0 and cleared @prev images (camera cut). */
+void vrg_graph_reset_history(vrg_graph *g);
+
+/* Readback of a resource written in the last frame, as float RGBA per pixel
+ * (channels the format lacks are 0, alpha 1). Caller frees pixels. */
+typedef struct vrg_image_data {
+    uint32_t width, height;
+    uint32_t channels; /* channels the format has */
+    VkFormat format;
+    float *pixels;     /* width * height * 4 */
+} vrg_image_data;
+int vrg_graph_read(vrg_graph *g, const char *resource, vrg_image_data *out);
+/* Bytes of a buffer resource written in the last frame. Caller frees *data. */
+int vrg_graph_read_buffer(vrg_graph *g, const char *resource, void **data, uint64_t *size);
+
+/* What `voxrg check` prints: schedule, resources, barriers, culled passes, memory. */
+void vrg_graph_report(const vrg_graph *g, FILE *f);
+void vrg_graph_write_dot(const vrg_graph *g, FILE *f);
+/* Per-pass GPU milliseconds of the last frame; -1 where not measured. */
+uint32_t vrg_graph_pass_count(const vrg_graph *g);
+const char *vrg_graph_pass_name(const vrg_graph *g, uint32_t i);
+double vrg_graph_pass_ms(const vrg_graph *g, uint32_t i);
+const char *vrg_graph_output(const vrg_graph *g);
+void vrg_graph_size(const vrg_graph *g, uint32_t *width, uint32_t *height);
+
+typedef struct vrg_memory_stats {
+    uint64_t naive_bytes;    /* every transient resource in its own memory */
+    uint64_t aliased_bytes;  /* what the runtime allocated for them */
+    uint64_t history_bytes;  /* @prev and persistent resources (both copies) */
+    uint32_t transient_count, alias_shared; /* resources, and how many share memory with another */
+} vrg_memory_stats;
+vrg_memory_stats vrg_graph_memory(const vrg_graph *g);
+/* Memory placement of a resource: block (-1 own memory) and byte offset. */
+int vrg_graph_placement(const vrg_graph *g, const char *resource, int *block, uint64_t *offset, uint64_t *size);
+/* 1 if the named pass was culled. -1 if no such pass. */
+int vrg_graph_pass_culled(const vrg_graph *g, const char *pass);
+
+/* Plugins on the search path, sorted by name, with their file paths. */
+int vrg_list_plugins(const vrg_plugin_desc **descs, const char **paths, int max);
+const char *vrg_format_label(VkFormat f);
+const char *vrg_access_label(vrg_access a);
+
+/* PNG of float RGBA data; see docs/graph-format.md for how floats map. */
+int vrg_write_png(const char *path, const vrg_image_data *img);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

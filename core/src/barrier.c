@@ -1,0 +1,180 @@
+/* Synchronisation: what each declared access means to Vulkan, and the exact
+ * barrier between the state a resource is in and the use about to happen.
+ * Used by the recorder before every pass, by the dispatch helper between a
+ * pass's own dispatches, and by `check` (on a simulated frame) to print them. */
+#include <string.h>
+#include "internal.h"
+
+vrg_access_info vrg_access_info_of(vrg_access a, vrg_resource_kind kind)
+{
+    const VkPipelineStageFlags2 cs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    const VkPipelineStageFlags2 xfer = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+    int img = kind == VRG_IMAGE;
+    switch (a) {
+    case VRG_ACCESS_SAMPLED:
+        return (vrg_access_info){cs, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 0};
+    case VRG_ACCESS_STORAGE_READ:
+        return (vrg_access_info){cs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT, img ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED, 0};
+    case VRG_ACCESS_STORAGE_WRITE:
+        return (vrg_access_info){cs, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, img ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED, 1};
+    case VRG_ACCESS_STORAGE_READ_WRITE:
+        return (vrg_access_info){cs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                                 img ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED, 1};
+    case VRG_ACCESS_UNIFORM:
+        return (vrg_access_info){cs, VK_ACCESS_2_UNIFORM_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED, 0};
+    case VRG_ACCESS_TRANSFER_SRC:
+        return (vrg_access_info){xfer, VK_ACCESS_2_TRANSFER_READ_BIT, img ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED, 0};
+    case VRG_ACCESS_TRANSFER_DST:
+        return (vrg_access_info){xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, img ? VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED, 1};
+    }
+    return (vrg_access_info){cs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_IMAGE_LAYOUT_GENERAL, 0};
+}
+
+/* Write-after-write and write-after-read need an execution dependency on
+ * every earlier access (and the last write made available); read-after-write
+ * needs the write made visible to the reading stage; a layout change counts
+ * as a write. Reads already made visible need nothing. */
+int vrg_sync_use(vrg_sync *s, vrg_access_info need, int discard, vrg_barrier_rec *b)
+{
+    int is_image = need.layout != VK_IMAGE_LAYOUT_UNDEFINED;
+    VkImageLayout old = discard ? VK_IMAGE_LAYOUT_UNDEFINED : s->layout;
+    int layout_change = is_image && (discard || s->layout != need.layout);
+    memset(b, 0, sizeof *b);
+    b->old_layout = old;
+    b->new_layout = is_image ? need.layout : VK_IMAGE_LAYOUT_UNDEFINED;
+    b->dst_stage = need.stage;
+    b->dst_access = need.access;
+    int needed = 0;
+    if (need.writes || layout_change) {
+        b->src_stage = s->write_stages | s->read_stages;
+        b->src_access = s->write_access;
+        needed = layout_change || b->src_stage != 0;
+        if (need.writes) {
+            s->write_stages = need.stage;
+            s->write_access = need.access & (VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
+            s->read_stages = 0;
+            s->visible_stages = 0;
+            s->visible_access = 0;
+        } else {
+            /* A transition that only prepares a read: the read stage now
+             * orders everything after it. */
+            s->read_stages = need.stage;
+            s->visible_stages = need.stage;
+            s->visible_access = need.access;
+        }
+    } else {
+        int visible = (need.stage & ~s->visible_stages) == 0 && (need.access & ~s->visible_access) == 0;
+        if (s->write_stages && !visible) {
+            b->src_stage = s->write_stages;
+            b->src_access = s->write_access;
+            needed = 1;
+            s->visible_stages |= need.stage;
+            s->visible_access |= need.access;
+        }
+        s->read_stages |= need.stage;
+    }
+    if (is_image)
+        s->layout = need.layout;
+    return needed;
+}
+
+int vrg_copy_of(const vrg_graph *g, int res, int prev)
+{
+    if (!g->res[res].history)
+        return 0;
+    int current = (int)(g->frame.frame_index & 1);
+    return prev ? current ^ 1 : current;
+}
+
+/* One use of one resource copy: merges in the accesses of resources that
+ * shared its memory before (aliasing) when its contents start anew. */
+static int barrier_for(vrg_graph *g, int ri, int copy, vrg_access access, vrg_barrier_rec *out)
+{
+    vrg_resource *r = &g->res[ri];
+    int transient = !r->history && !r->persistent;
+    int discard = transient && !r->touched[copy];
+    vrg_sync before = r->sync[copy];
+    r->touched[copy] = 1;
+    int needed = vrg_sync_use(&r->sync[copy], vrg_access_info_of(access, r->kind), discard, out);
+    out->res = ri;
+    out->copy = copy;
+    if (discard) {
+        for (int i = 0; i < r->overlap_count; i++) {
+            const vrg_sync *o = &g->res[r->overlaps[i]].sync[0];
+            out->src_stage |= o->write_stages | o->read_stages;
+            out->src_access |= o->write_access;
+            out->aliasing |= (o->write_stages | o->read_stages) != 0;
+        }
+        /* its own accesses last frame: reuse of the same memory */
+        out->src_stage |= before.write_stages | before.read_stages;
+        out->src_access |= before.write_access;
+        needed |= out->src_stage != 0;
+    }
+    return needed;
+}
+
+int vrg_pass_barriers(vrg_graph *g, vrg_pass *p, vrg_barrier_rec *out, int max)
+{
+    int n = 0;
+    for (int s = 0; s < (int)p->plugin->desc->slot_count && n < max; s++) {
+        const vrg_binding_ref *b = &p->slots[s];
+        if (b->res < 0)
+            continue;
+        int copy = vrg_copy_of(g, b->res, b->prev);
+        if (barrier_for(g, b->res, copy, vrg_slot(p, s)->access, &out[n]))
+            n++;
+    }
+    return n;
+}
+
+int vrg_resource_barrier(vrg_graph *g, int res, int copy, vrg_access access, vrg_barrier_rec *out)
+{
+    return barrier_for(g, res, copy, access, out);
+}
+
+void vrg_emit_barriers(vrg_graph *g, VkCommandBuffer cmd, const vrg_barrier_rec *b, int n)
+{
+    VkImageMemoryBarrier2 img[64];
+    VkBufferMemoryBarrier2 buf[64];
+    uint32_t ni = 0, nb = 0;
+    for (int i = 0; i < n; i++) {
+        const vrg_resource *r = &g->res[b[i].res];
+        VkPipelineStageFlags2 src = b[i].src_stage ? b[i].src_stage : VK_PIPELINE_STAGE_2_NONE;
+        if (r->kind == VRG_IMAGE && ni < 64)
+            img[ni++] = (VkImageMemoryBarrier2){
+                .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
+                .srcStageMask = src,
+                .srcAccessMask = b[i].src_access,
+                .dstStageMask = b[i].dst_stage,
+                .dstAccessMask = b[i].dst_access,
+                .oldLayout = b[i].old_layout,
+                .newLayout = b[i].new_layout,
+                .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                .image = r->image[b[i].copy],
+                .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1},
+            };
+        else if (r->kind == VRG_BUFFER && nb < 64)
+            buf[nb++] = (VkBufferMemoryBarrier2){
+                .sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
+                .srcStageMask = src,
+                .srcAccessMask = b[i].src_access,
+                .dstStageMask = b[i].dst_stage,
+                .dstAccessMask = b[i].dst_access,
+                .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                .buffer = r->buffer[b[i].copy],
+                .size = VK_WHOLE_SIZE,
+            };
+    }
+    if (!ni && !nb)
+        return;
+    VkDependencyInfo dep = {
+        .sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
+        .bufferMemoryBarrierCount = nb,
+        .pBufferMemoryBarriers = buf,
+        .imageMemoryBarrierCount = ni,
+        .pImageMemoryBarriers = img,
+    };
+    vkCmdPipelineBarrier2(cmd, &dep);
+}

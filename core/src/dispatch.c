@@ -1,0 +1,196 @@
+/* The helper layer: "dispatch this compute shader over the output with these
+ * resources bound". Pipelines are cached per pass; descriptors are pushed
+ * (VK_KHR_push_descriptor), so there are no pools to manage; barriers for the
+ * bound resources come from the same tracker the runtime uses between passes. */
+#include <stdlib.h>
+#include <string.h>
+#include "internal.h"
+
+typedef struct vrg_pipeline {
+    char path[1024];
+    VkDescriptorType types[VRG_MAX_BINDINGS];
+    uint32_t count;
+    uint32_t local[3];
+    VkDescriptorSetLayout set_layout;
+    VkPipelineLayout layout;
+    VkPipeline pipeline;
+    struct vrg_pipeline *next;
+} vrg_pipeline;
+
+static VkDescriptorType descriptor_type(vrg_resource_kind kind, vrg_access a)
+{
+    if (kind == VRG_BUFFER)
+        return a == VRG_ACCESS_UNIFORM ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    return a == VRG_ACCESS_SAMPLED ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+}
+
+static vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const VkDescriptorType *types, uint32_t count)
+{
+    char path[1024];
+    if (vrg_shader_resolve(p, shader, path, sizeof path) != 0) {
+        vrg_pass_error(p, "shader '%s' not found (searched the plugin's folder, $VOXRG_SHADER_PATH, shaders/)", shader);
+        return NULL;
+    }
+    for (vrg_pipeline *pl = p->pipelines; pl; pl = pl->next)
+        if (strcmp(pl->path, path) == 0 && pl->count == count && memcmp(pl->types, types, count * sizeof *types) == 0)
+            return pl;
+    vrg_context *ctx = p->graph->ctx;
+    VkDevice dev = ctx->dev.device;
+    vrg_shader_module sm;
+    FILE *diag = p->graph->diag.out ? p->graph->diag.out : stderr;
+    if (vrg_shader_compile(ctx, path, &sm, diag) != 0) {
+        vrg_pass_error(p, "shader %s failed to compile", path);
+        return NULL;
+    }
+    vrg_pipeline *pl = calloc(1, sizeof *pl);
+    snprintf(pl->path, sizeof pl->path, "%s", path);
+    memcpy(pl->types, types, count * sizeof *types);
+    memcpy(pl->local, sm.local_size, sizeof pl->local);
+    pl->count = count;
+    VkDescriptorSetLayoutBinding b[VRG_MAX_BINDINGS];
+    for (uint32_t i = 0; i < count; i++)
+        b[i] = (VkDescriptorSetLayoutBinding){.binding = i, .descriptorType = types[i], .descriptorCount = 1, .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT};
+    VkDescriptorSetLayoutCreateInfo sli = {
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+        .flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR,
+        .bindingCount = count,
+        .pBindings = b,
+    };
+    vkCreateDescriptorSetLayout(dev, &sli, NULL, &pl->set_layout);
+    VkPushConstantRange range = {VK_SHADER_STAGE_COMPUTE_BIT, 0, 128};
+    VkPipelineLayoutCreateInfo pli = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+        .setLayoutCount = 1,
+        .pSetLayouts = &pl->set_layout,
+        .pushConstantRangeCount = 1,
+        .pPushConstantRanges = &range,
+    };
+    vkCreatePipelineLayout(dev, &pli, NULL, &pl->layout);
+    VkComputePipelineCreateInfo ci = {
+        .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+        .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_COMPUTE_BIT, .module = sm.module, .pName = "main"},
+        .layout = pl->layout,
+    };
+    VkResult res = vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &ci, NULL, &pl->pipeline);
+    vkDestroyShaderModule(dev, sm.module, NULL);
+    if (res != VK_SUCCESS) {
+        vkDestroyPipelineLayout(dev, pl->layout, NULL);
+        vkDestroyDescriptorSetLayout(dev, pl->set_layout, NULL);
+        free(pl);
+        vrg_pass_error(p, "vkCreateComputePipelines failed for %s (%d)", path, res);
+        return NULL;
+    }
+    vrg_name_object(ctx, VK_OBJECT_TYPE_PIPELINE, (uint64_t)pl->pipeline, "%s/%s: %s", p->graph->name, p->name, shader);
+    pl->next = p->pipelines;
+    p->pipelines = pl;
+    return pl;
+}
+
+void vrg_pipelines_destroy(vrg_pass *p)
+{
+    VkDevice dev = p->graph->ctx ? p->graph->ctx->dev.device : VK_NULL_HANDLE;
+    while (p->pipelines) {
+        vrg_pipeline *pl = p->pipelines;
+        p->pipelines = pl->next;
+        vkDestroyPipeline(dev, pl->pipeline, NULL);
+        vkDestroyPipelineLayout(dev, pl->layout, NULL);
+        vkDestroyDescriptorSetLayout(dev, pl->set_layout, NULL);
+        free(pl);
+    }
+}
+
+typedef struct bound {
+    int res, prev;
+    vrg_access access;
+} bound;
+
+static int resolve_bindings(vrg_pass *p, const vrg_dispatch_desc *d, bound *out)
+{
+    const vrg_plugin_desc *pd = p->plugin->desc;
+    int n = 0;
+    if (!d->bindings[0].res) {
+        for (uint32_t s = 0; s < pd->slot_count && n < VRG_MAX_BINDINGS; s++)
+            out[n++] = (bound){p->slots[s].res, p->slots[s].prev, pd->slots[s].access};
+        return n;
+    }
+    for (; n < VRG_MAX_BINDINGS && d->bindings[n].res; n++) {
+        int res, prev, slot;
+        if (vrg_pass_lookup(p, d->bindings[n].res, &res, &prev, &slot) != 0)
+            return vrg_pass_error(p, "binding %d names '%s', which is neither a slot nor an internal resource of this pass", n,
+                                  d->bindings[n].res);
+        vrg_access a = d->bindings[n].access;
+        if (!a)
+            a = slot >= 0 ? pd->slots[slot].access : VRG_ACCESS_STORAGE_READ_WRITE;
+        out[n] = (bound){res, prev, a};
+    }
+    return n;
+}
+
+int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
+{
+    vrg_graph *g = p->graph;
+    bound b[VRG_MAX_BINDINGS];
+    int n = resolve_bindings(p, d, b);
+    if (n < 0)
+        return -1;
+    VkDescriptorType types[VRG_MAX_BINDINGS];
+    for (int i = 0; i < n; i++) {
+        if (b[i].access == VRG_ACCESS_TRANSFER_SRC || b[i].access == VRG_ACCESS_TRANSFER_DST)
+            return vrg_pass_error(p, "binding %d: transfer access cannot be bound to a shader", i);
+        types[i] = descriptor_type(g->res[b[i].res].kind, b[i].access);
+    }
+    if (d->push_size > 128)
+        return vrg_pass_error(p, "push constants of %u bytes (at most 128)", d->push_size);
+    vrg_pipeline *pl = get_pipeline(p, d->shader, types, (uint32_t)n);
+    if (!pl)
+        return -1;
+
+    vrg_barrier_rec bars[VRG_MAX_BINDINGS];
+    int nb = 0;
+    VkWriteDescriptorSet w[VRG_MAX_BINDINGS];
+    VkDescriptorImageInfo ii[VRG_MAX_BINDINGS];
+    VkDescriptorBufferInfo bi[VRG_MAX_BINDINGS];
+    for (int i = 0; i < n; i++) {
+        vrg_resource *r = &g->res[b[i].res];
+        int copy = vrg_copy_of(g, b[i].res, b[i].prev);
+        if (vrg_resource_barrier(g, b[i].res, copy, b[i].access, &bars[nb]))
+            nb++;
+        w[i] = (VkWriteDescriptorSet){
+            .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstBinding = (uint32_t)i, .descriptorCount = 1, .descriptorType = types[i]};
+        if (r->kind == VRG_IMAGE) {
+            vrg_access_info info = vrg_access_info_of(b[i].access, VRG_IMAGE);
+            ii[i] = (VkDescriptorImageInfo){.sampler = g->ctx->sampler_linear, .imageView = r->view[copy], .imageLayout = info.layout};
+            w[i].pImageInfo = &ii[i];
+        } else {
+            bi[i] = (VkDescriptorBufferInfo){.buffer = r->buffer[copy], .offset = 0, .range = VK_WHOLE_SIZE};
+            w[i].pBufferInfo = &bi[i];
+        }
+    }
+    vrg_emit_barriers(g, cmd, bars, nb);
+
+    uint32_t gx = d->groups_x, gy = d->groups_y ? d->groups_y : 1, gz = d->groups_z ? d->groups_z : 1;
+    if (!gx) {
+        int dom = -1;
+        if (d->domain) {
+            int prev, slot;
+            if (vrg_pass_lookup(p, d->domain, &dom, &prev, &slot) != 0)
+                return vrg_pass_error(p, "dispatch domain '%s' is not a resource of this pass", d->domain);
+        } else {
+            for (uint32_t s = 0; s < p->plugin->desc->slot_count && dom < 0; s++)
+                if (vrg_slot(p, (int)s)->dir == VRG_OUT && vrg_slot(p, (int)s)->kind == VRG_IMAGE)
+                    dom = p->slots[s].res;
+            if (dom < 0)
+                return vrg_pass_error(p, "dispatch has no domain: no image output; set domain or groups_x");
+        }
+        gx = (g->res[dom].width + pl->local[0] - 1) / pl->local[0];
+        gy = (g->res[dom].height + pl->local[1] - 1) / pl->local[1];
+        gz = 1;
+    }
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pl->pipeline);
+    if (n)
+        g->ctx->push_descriptor(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pl->layout, 0, (uint32_t)n, w);
+    if (d->push_size)
+        vkCmdPushConstants(cmd, pl->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, d->push_size, d->push);
+    vkCmdDispatch(cmd, gx, gy, gz);
+    return 0;
+}

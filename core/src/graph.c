@@ -1,0 +1,357 @@
+/* The graph's life: load (parse → validate → compile → create → allocate),
+ * frames, resize, readback, destroy. Each phase is its own file. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "internal.h"
+
+static int create_passes(vrg_graph *g)
+{
+    for (int k = 0; k < g->schedule_count; k++) {
+        vrg_pass *p = &g->passes[g->schedule[k]];
+        if (p->plugin->desc->create && p->plugin->desc->create(p) != 0) {
+            if (!p->failed)
+                vrg_pass_error(p, "create() failed");
+            return -1;
+        }
+        if (p->failed)
+            return -1;
+        p->created = 1;
+    }
+    return 0;
+}
+
+static int resize_passes(vrg_graph *g)
+{
+    for (int k = 0; k < g->schedule_count; k++) {
+        vrg_pass *p = &g->passes[g->schedule[k]];
+        if (p->plugin->desc->resize && p->plugin->desc->resize(p) != 0) {
+            if (!p->failed)
+                vrg_pass_error(p, "resize() failed");
+            return -1;
+        }
+    }
+    return 0;
+}
+
+static int frame_objects(vrg_graph *g)
+{
+    vrg_context *ctx = g->ctx;
+    VkDevice dev = ctx->dev.device;
+    VkCommandBufferAllocateInfo ai = {
+        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, .commandPool = ctx->cmd_pool, .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY, .commandBufferCount = 1};
+    vkAllocateCommandBuffers(dev, &ai, &g->cmd);
+    VkFenceCreateInfo fi = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    vkCreateFence(dev, &fi, NULL, &g->fence);
+    if (ctx->dev.features.timestamps && g->schedule_count) {
+        VkQueryPoolCreateInfo qi = {
+            .sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO, .queryType = VK_QUERY_TYPE_TIMESTAMP, .queryCount = (uint32_t)(2 * g->schedule_count)};
+        vkCreateQueryPool(dev, &qi, NULL, &g->queries);
+        vrg_name_object(ctx, VK_OBJECT_TYPE_QUERY_POOL, (uint64_t)g->queries, "%s/pass timestamps", g->name);
+    }
+    vrg_name_object(ctx, VK_OBJECT_TYPE_COMMAND_BUFFER, (uint64_t)g->cmd, "%s/frame", g->name);
+    return 0;
+}
+
+static int readback_buffer(vrg_graph *g)
+{
+    VkDevice dev = g->ctx->dev.device;
+    VkDeviceSize size = 0;
+    for (int i = 0; i < g->res_count; i++) {
+        vrg_resource *r = &g->res[i];
+        if (r->first_use < 0 || !(r->is_output || r->readback))
+            continue;
+        g->readback_offset[i] = size;
+        VkDeviceSize bytes = r->kind == VRG_IMAGE ? (VkDeviceSize)r->width * r->height * vrg_format_bytes(r->format) : r->size;
+        size += (bytes + 15) / 16 * 16;
+    }
+    if (!size)
+        return 0;
+    VkBufferCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = size, .usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT};
+    vkCreateBuffer(dev, &ci, NULL, &g->readback_buffer);
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(dev, g->readback_buffer, &req);
+    int type = vrg_find_memory_type(g->ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size, .memoryTypeIndex = (uint32_t)type};
+    if (type < 0 || vkAllocateMemory(dev, &ai, NULL, &g->readback_memory) != VK_SUCCESS) {
+        vrg_error(&g->diag, "cannot allocate %llu bytes of host-visible memory for readback", (unsigned long long)size);
+        return -1;
+    }
+    vkBindBufferMemory(dev, g->readback_buffer, g->readback_memory, 0);
+    vkMapMemory(dev, g->readback_memory, 0, VK_WHOLE_SIZE, 0, &g->readback_map);
+    g->readback_size = size;
+    vrg_name_object(g->ctx, VK_OBJECT_TYPE_BUFFER, (uint64_t)g->readback_buffer, "%s/readback", g->name);
+    return 0;
+}
+
+static void free_readback(vrg_graph *g)
+{
+    if (!g->ctx)
+        return;
+    VkDevice dev = g->ctx->dev.device;
+    if (g->readback_memory)
+        vkUnmapMemory(dev, g->readback_memory);
+    vkDestroyBuffer(dev, g->readback_buffer, NULL);
+    vkFreeMemory(dev, g->readback_memory, NULL);
+    g->readback_buffer = VK_NULL_HANDLE;
+    g->readback_memory = VK_NULL_HANDLE;
+    g->readback_map = NULL;
+    g->frame_done = 0;
+}
+
+int vrg_graph_load(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph **out)
+{
+    *out = NULL;
+    vrg_graph *g = calloc(1, sizeof *g);
+    vrg_ast *ast = calloc(1, sizeof *ast);
+    g->ctx = ctx;
+    snprintf(g->path, sizeof g->path, "%s", desc->path ? desc->path : "<graph>");
+    g->diag = (vrg_diag){.out = desc->diag, .file = g->path};
+    g->output = -1;
+    snprintf(g->name, sizeof g->name, "graph");
+    int rc = vrg_parse(g->path, desc->text, ast, &g->diag);
+    /* Keep going after syntax errors so one run shows every problem. */
+    if (rc == 0 || ast->section_count > 0)
+        rc = vrg_validate(g, ast, desc) | rc;
+    free(ast);
+    if (rc == 0)
+        rc = vrg_compile(g);
+    if (rc == 0 && ctx) {
+        rc = create_passes(g);
+        if (rc == 0)
+            rc = vrg_compile(g); /* internal resources now exist: lifetimes again */
+    }
+    if (rc == 0)
+        rc = vrg_allocate(g);
+    if (rc == 0 && ctx) {
+        rc = frame_objects(g);
+        if (rc == 0)
+            rc = readback_buffer(g);
+        if (rc == 0)
+            rc = resize_passes(g);
+    }
+    if (rc != 0) {
+        vrg_graph_destroy(g);
+        return -1;
+    }
+    *out = g;
+    return 0;
+}
+
+void vrg_graph_destroy(vrg_graph *g)
+{
+    if (!g)
+        return;
+    if (g->ctx) {
+        VkDevice dev = g->ctx->dev.device;
+        vkDeviceWaitIdle(dev);
+        for (int i = 0; i < g->pass_count; i++) {
+            vrg_pass *p = &g->passes[i];
+            if (p->created && p->plugin->desc->destroy)
+                p->plugin->desc->destroy(p);
+            vrg_pipelines_destroy(p);
+        }
+        free_readback(g);
+        vrg_free_resources(g);
+        if (g->cmd)
+            vkFreeCommandBuffers(dev, g->ctx->cmd_pool, 1, &g->cmd);
+        vkDestroyFence(dev, g->fence, NULL);
+        vkDestroyQueryPool(dev, g->queries, NULL);
+    }
+    free(g);
+}
+
+int vrg_graph_frame(vrg_graph *g)
+{
+    if (!g->ctx || !g->allocated) {
+        vrg_error(&g->diag, "graph '%s' has no device resources (loaded without a context)", g->name);
+        return -1;
+    }
+    return vrg_record_frame(g);
+}
+
+int vrg_graph_resize(vrg_graph *g, uint32_t width, uint32_t height)
+{
+    if (!width || !height || width > 16384 || height > 16384) {
+        vrg_error(&g->diag, "resize to %ux%u: sizes are 1..16384", width, height);
+        return -1;
+    }
+    if (g->ctx)
+        vkDeviceWaitIdle(g->ctx->dev.device);
+    free_readback(g);
+    vrg_free_resources(g);
+    g->width = width;
+    g->height = height;
+    if (vrg_allocate(g) != 0)
+        return -1;
+    if (g->ctx && (readback_buffer(g) != 0 || resize_passes(g) != 0))
+        return -1;
+    g->frame.frame_index = 0;
+    return 0;
+}
+
+void vrg_graph_reset_history(vrg_graph *g) { g->history_reset = 1; }
+
+static int find_readable(vrg_graph *g, const char *name)
+{
+    for (int i = 0; i < g->res_count; i++)
+        if (strcmp(g->res[i].name, name) == 0) {
+            if (!(g->res[i].is_output || g->res[i].readback) || g->res[i].first_use < 0) {
+                vrg_error(&g->diag, "resource '%s' is not read back (ask for it in vrg_graph_desc.readback / --dump)", name);
+                return -1;
+            }
+            if (!g->frame_done) {
+                vrg_error(&g->diag, "resource '%s': no frame rendered yet", name);
+                return -1;
+            }
+            return i;
+        }
+    vrg_error(&g->diag, "the graph has no resource '%s'", name);
+    return -1;
+}
+
+static float half_to_float(uint16_t h)
+{
+    uint32_t sign = (uint32_t)(h >> 15) << 31, exp = (h >> 10) & 0x1f, mant = h & 0x3ff, bits;
+    if (exp == 0) {
+        if (mant == 0)
+            bits = sign;
+        else { /* subnormal */
+            exp = 127 - 14;
+            while (!(mant & 0x400)) {
+                mant <<= 1;
+                exp--;
+            }
+            bits = sign | (exp << 23) | ((mant & 0x3ff) << 13);
+        }
+    } else if (exp == 31)
+        bits = sign | 0x7f800000u | (mant << 13);
+    else
+        bits = sign | ((exp + 127 - 15) << 23) | (mant << 13);
+    float f;
+    memcpy(&f, &bits, 4);
+    return f;
+}
+
+static float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f); }
+
+int vrg_graph_read(vrg_graph *g, const char *name, vrg_image_data *out)
+{
+    memset(out, 0, sizeof *out);
+    int i = find_readable(g, name);
+    if (i < 0)
+        return -1;
+    vrg_resource *r = &g->res[i];
+    if (r->kind != VRG_IMAGE) {
+        vrg_error(&g->diag, "resource '%s' is a buffer: use vrg_graph_read_buffer", name);
+        return -1;
+    }
+    const uint8_t *src = (const uint8_t *)g->readback_map + g->readback_offset[i];
+    uint32_t ch = vrg_format_channels(r->format);
+    size_t n = (size_t)r->width * r->height;
+    out->width = r->width;
+    out->height = r->height;
+    out->channels = ch;
+    out->format = r->format;
+    out->pixels = calloc(n * 4, sizeof(float));
+    for (size_t p = 0; p < n; p++) {
+        float v[4] = {0, 0, 0, 1};
+        for (uint32_t c = 0; c < ch; c++) {
+            switch (r->format) {
+            case VK_FORMAT_R8_UNORM:
+            case VK_FORMAT_R8G8_UNORM:
+            case VK_FORMAT_R8G8B8A8_UNORM: v[c] = src[p * ch + c] / 255.0f; break;
+            case VK_FORMAT_R8G8B8A8_SRGB: v[c] = c < 3 ? srgb_to_linear(src[p * 4 + c] / 255.0f) : src[p * 4 + c] / 255.0f; break;
+            case VK_FORMAT_R16_SFLOAT:
+            case VK_FORMAT_R16G16_SFLOAT:
+            case VK_FORMAT_R16G16B16A16_SFLOAT: {
+                uint16_t h;
+                memcpy(&h, src + (p * ch + c) * 2, 2);
+                v[c] = half_to_float(h);
+                break;
+            }
+            case VK_FORMAT_R32_UINT:
+            case VK_FORMAT_R32G32_UINT:
+            case VK_FORMAT_R32G32B32A32_UINT: {
+                uint32_t u;
+                memcpy(&u, src + (p * ch + c) * 4, 4);
+                v[c] = (float)u;
+                break;
+            }
+            case VK_FORMAT_B10G11R11_UFLOAT_PACK32: {
+                uint32_t u;
+                memcpy(&u, src + p * 4, 4);
+                /* 11/11/10-bit floats share half's exponent: widen them to halves */
+                uint32_t bits[3] = {(u & 0x7ff) << 4, ((u >> 11) & 0x7ff) << 4, ((u >> 22) & 0x3ff) << 5};
+                v[c] = half_to_float((uint16_t)bits[c]);
+                break;
+            }
+            default: memcpy(&v[c], src + (p * ch + c) * 4, 4); break;
+            }
+        }
+        memcpy(out->pixels + p * 4, v, sizeof v);
+    }
+    return 0;
+}
+
+int vrg_graph_read_buffer(vrg_graph *g, const char *name, void **data, uint64_t *size)
+{
+    *data = NULL;
+    *size = 0;
+    int i = find_readable(g, name);
+    if (i < 0)
+        return -1;
+    vrg_resource *r = &g->res[i];
+    if (r->kind != VRG_BUFFER) {
+        vrg_error(&g->diag, "resource '%s' is an image: use vrg_graph_read", name);
+        return -1;
+    }
+    *data = malloc(r->size);
+    memcpy(*data, (const uint8_t *)g->readback_map + g->readback_offset[i], r->size);
+    *size = r->size;
+    return 0;
+}
+
+uint32_t vrg_graph_pass_count(const vrg_graph *g) { return (uint32_t)g->pass_count; }
+const char *vrg_graph_pass_name(const vrg_graph *g, uint32_t i) { return i < (uint32_t)g->pass_count ? g->passes[i].name : NULL; }
+double vrg_graph_pass_ms(const vrg_graph *g, uint32_t i) { return i < (uint32_t)g->pass_count ? g->pass_ms[i] : -1; }
+const char *vrg_graph_output(const vrg_graph *g) { return g->output_name; }
+void vrg_graph_size(const vrg_graph *g, uint32_t *w, uint32_t *h)
+{
+    *w = g->width;
+    *h = g->height;
+}
+
+vrg_memory_stats vrg_graph_memory(const vrg_graph *g)
+{
+    vrg_memory_stats s = {.naive_bytes = g->naive_bytes, .aliased_bytes = g->aliased_bytes, .history_bytes = g->history_bytes};
+    for (int i = 0; i < g->res_count; i++) {
+        const vrg_resource *r = &g->res[i];
+        if (r->block < 0 || r->first_use < 0)
+            continue;
+        s.transient_count++;
+        if (r->overlap_count)
+            s.alias_shared++;
+    }
+    return s;
+}
+
+int vrg_graph_placement(const vrg_graph *g, const char *name, int *block, uint64_t *offset, uint64_t *size)
+{
+    for (int i = 0; i < g->res_count; i++)
+        if (strcmp(g->res[i].name, name) == 0) {
+            *block = g->res[i].block;
+            *offset = g->res[i].offset;
+            *size = g->res[i].req.size;
+            return 0;
+        }
+    return -1;
+}
+
+int vrg_graph_pass_culled(const vrg_graph *g, const char *name)
+{
+    for (int i = 0; i < g->pass_count; i++)
+        if (strcmp(g->passes[i].name, name) == 0)
+            return g->passes[i].culled;
+    return -1;
+}

@@ -1,0 +1,253 @@
+/* Internal data model shared by the phases: parse → validate → compile →
+ * allocate → record. Each phase lives in its own file and fills in the part
+ * of these structs it owns. */
+#ifndef VRG_INTERNAL_H
+#define VRG_INTERNAL_H
+
+#include <stdarg.h>
+#include <stdio.h>
+#include "voxrg/voxrg.h"
+
+#define VRG_NAME_MAX 64
+#define VRG_MAX_PASSES 128
+#define VRG_MAX_RESOURCES 512
+#define VRG_MAX_SLOTS 32
+#define VRG_MAX_PARAMS 64
+#define VRG_MAX_KEYS 2048
+#define VRG_MAX_PLUGINS 128
+
+/* ---- diagnostics (diag.c) ---- */
+typedef struct vrg_diag {
+    FILE *out;
+    const char *file;
+    int errors;
+} vrg_diag;
+void vrg_error_at(vrg_diag *d, int line, const char *hint, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
+void vrg_error(vrg_diag *d, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void vrg_note(vrg_diag *d, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* ---- context (context.c) ---- */
+struct vrg_context {
+    vrg_device dev;
+    char device_name[256];
+    VkDebugUtilsMessengerEXT messenger;
+    uint32_t validation_errors;
+    int validate;
+    VkCommandPool cmd_pool;
+    VkPhysicalDeviceProperties props;
+    VkPhysicalDeviceMemoryProperties mem_props;
+    PFN_vkSetDebugUtilsObjectNameEXT set_name;
+    PFN_vkCmdPushDescriptorSetKHR push_descriptor;
+    VkSampler sampler_linear;
+};
+void vrg_name_object(vrg_context *ctx, VkObjectType type, uint64_t handle, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
+int vrg_find_memory_type(const vrg_context *ctx, uint32_t bits, VkMemoryPropertyFlags want);
+
+/* ---- plugin loading (plugin_loader.c) ---- */
+typedef struct vrg_plugin {
+    char name[VRG_NAME_MAX];
+    char path[1024];
+    void *handle;
+    const vrg_plugin_desc *desc;
+} vrg_plugin;
+/* Finds and loads NAME; NULL after reporting at `line`. Cached per process. */
+const vrg_plugin *vrg_plugin_load(const char *name, const char *graph_path, vrg_diag *d, int line);
+/* Every plugin on the search path (for `voxrg plugins`). */
+int vrg_plugin_list(const vrg_plugin **out, int max);
+
+/* ---- parse (parse.c): the file as written, with line numbers ---- */
+typedef struct vrg_key {
+    char section[VRG_NAME_MAX + 16];
+    char name[VRG_NAME_MAX];
+    char value[256];
+    int line;
+    int section_index; /* index into vrg_ast.sections */
+} vrg_key;
+typedef struct vrg_section {
+    char name[VRG_NAME_MAX + 16];
+    int line;
+} vrg_section;
+typedef struct vrg_ast {
+    vrg_section sections[VRG_MAX_PASSES + 64];
+    int section_count;
+    vrg_key keys[VRG_MAX_KEYS];
+    int key_count;
+    int syntax_error_line; /* inih's first error, 0 if none */
+} vrg_ast;
+int vrg_parse(const char *path, const char *text, vrg_ast *ast, vrg_diag *d);
+
+/* ---- the validated graph ---- */
+enum { VRG_RES_GRAPH = 0, VRG_RES_INTERNAL = 1 };
+
+typedef struct vrg_sync {
+    VkImageLayout layout;
+    VkPipelineStageFlags2 write_stages; /* stages of the last write */
+    VkAccessFlags2 write_access;
+    VkPipelineStageFlags2 read_stages;  /* stages that read since the last write */
+    VkPipelineStageFlags2 visible_stages; /* stages the last write is visible to */
+    VkAccessFlags2 visible_access;
+} vrg_sync;
+
+typedef struct vrg_resource {
+    char name[VRG_NAME_MAX + VRG_NAME_MAX + 2];
+    int line;                /* [resource] section or first mention */
+    vrg_resource_kind kind;
+    VkFormat format;
+    float scale;
+    uint32_t abs_width, abs_height;
+    uint64_t size;           /* buffers */
+    int format_line, size_line; /* where an override was written, 0 if none */
+    int writer;              /* pass index, -1 none */
+    int writer_slot;
+    int writer_line;
+    int history;             /* read through @prev somewhere: two copies, kept */
+    int persistent;          /* written by a VRG_SLOT_PERSISTENT slot: kept, not aliased */
+    int is_output, readback;
+    int internal_owner;      /* pass index for internal resources, -1 otherwise */
+    vrg_access internal_first_access;
+    /* compile */
+    int first_use, last_use; /* schedule positions; -1 unused */
+    /* allocate */
+    uint32_t width, height;
+    VkImageUsageFlags image_usage;
+    VkBufferUsageFlags buffer_usage;
+    VkImage image[2];
+    VkImageView view[2];
+    VkBuffer buffer[2];
+    VkDeviceMemory own_memory[2]; /* kept resources have their own memory */
+    VkMemoryRequirements req;
+    int block;               /* alias heap index, -1 own memory */
+    VkDeviceSize offset;
+    int overlaps[VRG_MAX_RESOURCES / 8]; /* earlier-placed resources sharing memory */
+    int overlap_count;
+    vrg_sync sync[2];
+    int touched[2];          /* used already this frame (else its contents are discarded) */
+    int dummy;               /* 1x1 stand-in bound to an unconnected optional input */
+} vrg_resource;
+
+typedef struct vrg_binding_ref {
+    int res;       /* resource index, -1 unconnected (optional inputs get a dummy) */
+    int dummy;     /* res is the 1x1 stand-in: the slot reports unconnected */
+    int prev;      /* reads last frame's copy (@prev) */
+    int line;
+} vrg_binding_ref;
+
+struct vrg_pass {
+    char name[VRG_NAME_MAX];
+    int line;
+    int is_scene;
+    const vrg_plugin *plugin;
+    double params[VRG_MAX_PARAMS];
+    vrg_binding_ref slots[VRG_MAX_SLOTS];
+    int internal[16];         /* resource indices of requested internal resources */
+    int internal_count;
+    int culled;
+    int order;                /* position in schedule, -1 culled */
+    vrg_graph *graph;
+    void *user;
+    int created;
+    /* shader pipelines cached by the dispatch helper */
+    struct vrg_pipeline *pipelines;
+    int failed;               /* an error during execute: frame fails */
+    VkCommandBuffer cmd;      /* during execute */
+};
+
+typedef struct vrg_barrier_rec {
+    int res, copy;
+    VkPipelineStageFlags2 src_stage, dst_stage;
+    VkAccessFlags2 src_access, dst_access;
+    VkImageLayout old_layout, new_layout;
+    int aliasing;  /* first use of memory another resource used before */
+} vrg_barrier_rec;
+
+typedef struct vrg_heap_block {
+    VkDeviceMemory memory;
+    VkDeviceSize size;
+    uint32_t type_bits;
+} vrg_heap_block;
+
+struct vrg_graph {
+    vrg_context *ctx;
+    vrg_diag diag;
+    char path[1024];
+    char name[VRG_NAME_MAX];
+    char output_name[VRG_NAME_MAX];
+    int output_line;
+    uint32_t width, height, seed;
+    double fps;
+    vrg_pass passes[VRG_MAX_PASSES];
+    int pass_count;
+    vrg_resource res[VRG_MAX_RESOURCES];
+    int res_count;
+    int output;               /* resource index */
+    int schedule[VRG_MAX_PASSES];
+    int schedule_count;
+    /* allocate */
+    vrg_heap_block blocks[4];
+    int block_count;
+    uint64_t naive_bytes, aliased_bytes, history_bytes;
+    int allocated;
+    /* record */
+    vrg_frame_info frame;
+    int history_reset;        /* clear @prev copies at the next frame */
+    int fresh;                /* resources just allocated: clear persistent ones */
+    VkCommandBuffer cmd;
+    VkFence fence;
+    VkQueryPool queries;
+    double pass_ms[VRG_MAX_PASSES];
+    VkBuffer readback_buffer;
+    VkDeviceMemory readback_memory;
+    VkDeviceSize readback_size;
+    void *readback_map;
+    VkDeviceSize readback_offset[VRG_MAX_RESOURCES];
+    int frame_done;
+};
+
+/* validate.c: AST → graph (plugins loaded, slots resolved, every check). */
+int vrg_validate(vrg_graph *g, const vrg_ast *ast, const vrg_graph_desc *desc);
+/* compile.c: cull, order, lifetimes; alias placement of sized resources. */
+int vrg_compile(vrg_graph *g);
+/* Add an internal resource for a pass (used by create()). */
+int vrg_graph_add_resource(vrg_graph *g, const char *name);
+uint64_t vrg_format_bytes(VkFormat f);
+const char *vrg_format_name(VkFormat f);
+VkFormat vrg_format_parse(const char *s);
+uint32_t vrg_format_channels(VkFormat f);
+void vrg_resource_extent(const vrg_graph *g, const vrg_resource *r, uint32_t *w, uint32_t *h);
+/* Place resources with the given sizes into heap blocks; fills block/offset/overlaps. */
+void vrg_plan_aliasing(vrg_graph *g);
+/* allocate.c */
+int vrg_allocate(vrg_graph *g);
+void vrg_free_resources(vrg_graph *g);
+/* record.c */
+int vrg_record_frame(vrg_graph *g);
+/* barrier.c: the access a use needs, and the barrier that gets it there. */
+typedef struct vrg_access_info {
+    VkPipelineStageFlags2 stage;
+    VkAccessFlags2 access;
+    VkImageLayout layout;
+    int writes;
+} vrg_access_info;
+vrg_access_info vrg_access_info_of(vrg_access a, vrg_resource_kind kind);
+/* Updates *s for a use; returns 1 and fills *b when a barrier is needed. */
+int vrg_sync_use(vrg_sync *s, vrg_access_info need, int discard, vrg_barrier_rec *b);
+/* Barriers to bring a pass's resources to their declared accesses. */
+int vrg_pass_barriers(vrg_graph *g, vrg_pass *p, vrg_barrier_rec *out, int max);
+void vrg_emit_barriers(vrg_graph *g, VkCommandBuffer cmd, const vrg_barrier_rec *b, int n);
+int vrg_copy_of(const vrg_graph *g, int res, int prev);
+int vrg_pass_lookup(const vrg_pass *p, const char *name, int *res, int *prev, int *slot);
+int vrg_resource_barrier(vrg_graph *g, int res, int copy, vrg_access access, vrg_barrier_rec *out);
+/* shader.c */
+typedef struct vrg_shader_module {
+    VkShaderModule module;
+    uint32_t local_size[3];
+} vrg_shader_module;
+int vrg_shader_compile(vrg_context *ctx, const char *path, vrg_shader_module *out, FILE *diag);
+int vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t cap);
+void vrg_pipelines_destroy(vrg_pass *p);
+/* report.c */
+const char *vrg_access_name(vrg_access a);
+
+static inline const vrg_slot_desc *vrg_slot(const vrg_pass *p, int i) { return &p->plugin->desc->slots[i]; }
+
+#endif

@@ -1,0 +1,206 @@
+/* The functions a plugin calls on its vrg_pass. */
+#include <stdlib.h>
+#include <string.h>
+#include "internal.h"
+
+const vrg_device *vrg_pass_device(const vrg_pass *p) { return p->graph->ctx ? &p->graph->ctx->dev : NULL; }
+const vrg_frame_info *vrg_pass_frame(const vrg_pass *p) { return &p->graph->frame; }
+const char *vrg_pass_name(const vrg_pass *p) { return p->name; }
+void *vrg_pass_user(const vrg_pass *p) { return p->user; }
+void vrg_pass_set_user(vrg_pass *p, void *user) { p->user = user; }
+
+int vrg_pass_error(vrg_pass *p, const char *fmt, ...)
+{
+    vrg_diag *d = &p->graph->diag;
+    FILE *f = d->out ? d->out : stderr;
+    va_list ap;
+    fprintf(f, "%s:%d: error: pass '%s' (plugin %s): ", d->file, p->line, p->name, p->plugin ? p->plugin->path : "?");
+    va_start(ap, fmt);
+    vfprintf(f, fmt, ap);
+    va_end(ap);
+    fputc('\n', f);
+    d->errors++;
+    p->failed = 1;
+    return -1;
+}
+
+double vrg_pass_gpu_ms(const vrg_pass *p, const char *other)
+{
+    const vrg_graph *g = p->graph;
+    if (!other)
+        return g->pass_ms[p - g->passes];
+    for (int i = 0; i < g->pass_count; i++)
+        if (strcmp(g->passes[i].name, other) == 0)
+            return g->pass_ms[i];
+    return -1;
+}
+
+static int param_index(const vrg_pass *p, const char *name)
+{
+    for (uint32_t i = 0; i < p->plugin->desc->param_count; i++)
+        if (strcmp(p->plugin->desc->params[i].name, name) == 0)
+            return (int)i;
+    return -1;
+}
+
+double vrg_param(const vrg_pass *p, const char *name)
+{
+    int i = param_index(p, name);
+    if (i < 0) {
+        /* A plugin asking for a parameter it never declared is a plugin bug. */
+        fprintf(stderr, "voxrg: plugin %s asked for undeclared parameter '%s'\n", p->plugin->name, name);
+        abort();
+    }
+    return p->params[i];
+}
+
+int vrg_param_int(const vrg_pass *p, const char *name) { return (int)vrg_param(p, name); }
+
+static vrg_res request(vrg_pass *p, const char *name, vrg_resource_kind kind)
+{
+    vrg_graph *g = p->graph;
+    char full[2 * VRG_NAME_MAX + 2];
+    snprintf(full, sizeof full, "%s.%s", p->name, name);
+    if (p->created) {
+        vrg_pass_error(p, "internal resource '%s' requested outside create()", name);
+        return (vrg_res){-1};
+    }
+    for (int i = 0; i < p->internal_count; i++)
+        if (strcmp(g->res[p->internal[i]].name, full) == 0) {
+            vrg_pass_error(p, "internal resource '%s' requested twice", name);
+            return (vrg_res){-1};
+        }
+    int before = g->res_count;
+    int r = vrg_graph_add_resource(g, full);
+    if (r < 0 || r < before || p->internal_count >= (int)(sizeof p->internal / sizeof p->internal[0])) {
+        vrg_pass_error(p, "cannot add internal resource '%s' (name taken or too many)", name);
+        return (vrg_res){-1};
+    }
+    vrg_resource *res = &g->res[r];
+    res->kind = kind;
+    res->internal_owner = (int)(p - g->passes);
+    res->line = p->line;
+    p->internal[p->internal_count++] = r;
+    return (vrg_res){r << 1};
+}
+
+vrg_res vrg_pass_request_image(vrg_pass *p, const char *name, VkFormat format, float scale, vrg_access first_access)
+{
+    vrg_res h = request(p, name, VRG_IMAGE);
+    if (h.id >= 0) {
+        vrg_resource *r = &p->graph->res[h.id >> 1];
+        r->format = format ? format : VK_FORMAT_R16G16B16A16_SFLOAT;
+        r->scale = scale > 0 ? scale : 1.0f;
+        r->internal_first_access = first_access ? first_access : VRG_ACCESS_STORAGE_WRITE;
+    }
+    return h;
+}
+
+vrg_res vrg_pass_request_buffer(vrg_pass *p, const char *name, uint64_t size)
+{
+    vrg_res h = request(p, name, VRG_BUFFER);
+    if (h.id >= 0) {
+        vrg_resource *r = &p->graph->res[h.id >> 1];
+        r->size = size ? size : 16;
+        r->internal_first_access = VRG_ACCESS_STORAGE_WRITE;
+    }
+    return h;
+}
+
+/* Slot (or internal resource) by name, dummies included: what the dispatch helper binds. */
+int vrg_pass_lookup(const vrg_pass *p, const char *name, int *res, int *prev, int *slot)
+{
+    const vrg_plugin_desc *d = p->plugin->desc;
+    for (uint32_t s = 0; s < d->slot_count; s++)
+        if (strcmp(d->slots[s].name, name) == 0) {
+            *res = p->slots[s].res;
+            *prev = p->slots[s].prev;
+            *slot = (int)s;
+            return *res >= 0 ? 0 : -1;
+        }
+    size_t n = strlen(p->name);
+    for (int i = 0; i < p->internal_count; i++) {
+        const char *full = p->graph->res[p->internal[i]].name;
+        if (strncmp(full, p->name, n) == 0 && full[n] == '.' && strcmp(full + n + 1, name) == 0) {
+            *res = p->internal[i];
+            *prev = 0;
+            *slot = -1;
+            return 0;
+        }
+    }
+    return -1;
+}
+
+vrg_res vrg_pass_res(const vrg_pass *p, const char *name)
+{
+    int res, prev, slot;
+    if (vrg_pass_lookup(p, name, &res, &prev, &slot) != 0 || (slot >= 0 && p->slots[slot].dummy))
+        return (vrg_res){-1};
+    return (vrg_res){(res << 1) | prev};
+}
+
+int vrg_res_connected(vrg_res res) { return res.id >= 0; }
+
+static const vrg_resource *res_of(const vrg_pass *p, vrg_res h, int *copy)
+{
+    if (h.id < 0 || (h.id >> 1) >= p->graph->res_count)
+        return NULL;
+    *copy = vrg_copy_of(p->graph, h.id >> 1, h.id & 1);
+    return &p->graph->res[h.id >> 1];
+}
+
+VkImage vrg_res_image(const vrg_pass *p, vrg_res h)
+{
+    int c;
+    const vrg_resource *r = res_of(p, h, &c);
+    return r ? r->image[c] : VK_NULL_HANDLE;
+}
+
+VkImageView vrg_res_view(const vrg_pass *p, vrg_res h)
+{
+    int c;
+    const vrg_resource *r = res_of(p, h, &c);
+    return r ? r->view[c] : VK_NULL_HANDLE;
+}
+
+VkBuffer vrg_res_buffer(const vrg_pass *p, vrg_res h)
+{
+    int c;
+    const vrg_resource *r = res_of(p, h, &c);
+    return r ? r->buffer[c] : VK_NULL_HANDLE;
+}
+
+VkExtent2D vrg_res_extent(const vrg_pass *p, vrg_res h)
+{
+    int c;
+    const vrg_resource *r = res_of(p, h, &c);
+    return r ? (VkExtent2D){r->width, r->height} : (VkExtent2D){0, 0};
+}
+
+VkFormat vrg_res_format(const vrg_pass *p, vrg_res h)
+{
+    int c;
+    const vrg_resource *r = res_of(p, h, &c);
+    return r ? r->format : VK_FORMAT_UNDEFINED;
+}
+
+uint64_t vrg_res_size(const vrg_pass *p, vrg_res h)
+{
+    int c;
+    const vrg_resource *r = res_of(p, h, &c);
+    return r ? r->size : 0;
+}
+
+void vrg_pass_use(vrg_pass *p, VkCommandBuffer cmd, const vrg_use *uses, uint32_t count)
+{
+    vrg_barrier_rec b[64];
+    int n = 0;
+    for (uint32_t i = 0; i < count && n < 64; i++) {
+        if (uses[i].res.id < 0)
+            continue;
+        int res = uses[i].res.id >> 1;
+        if (vrg_resource_barrier(p->graph, res, vrg_copy_of(p->graph, res, uses[i].res.id & 1), uses[i].access, &b[n]))
+            n++;
+    }
+    vrg_emit_barriers(p->graph, cmd, b, n);
+}

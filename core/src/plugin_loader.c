@@ -1,0 +1,204 @@
+/* Plugins are found by name on a search path and loaded once per process:
+ *   $VOXRG_PLUGIN_PATH (':'-separated), the graph file's folder and its
+ *   plugins/ subfolder, <exe>/plugins (build tree), <exe>/../lib/voxrg/plugins
+ *   (install tree). The first NAME.so found wins. */
+#define _GNU_SOURCE
+#include <dirent.h>
+#include <dlfcn.h>
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include "internal.h"
+
+static vrg_plugin loaded[VRG_MAX_PLUGINS];
+static int loaded_count;
+
+static int search_dirs(const char *graph_path, char dirs[][1024], int max)
+{
+    int n = 0;
+    const char *env = getenv("VOXRG_PLUGIN_PATH");
+    if (env) {
+        const char *p = env;
+        while (*p && n < max) {
+            const char *c = strchr(p, ':');
+            size_t len = c ? (size_t)(c - p) : strlen(p);
+            if (len && len < 1024) {
+                memcpy(dirs[n], p, len);
+                dirs[n++][len] = '\0';
+            }
+            p = c ? c + 1 : p + len;
+        }
+    }
+    if (graph_path && n + 2 <= max) {
+        const char *slash = strrchr(graph_path, '/');
+        int len = slash ? (int)(slash - graph_path) : 1;
+        snprintf(dirs[n++], 1024, "%.*s", len, slash ? graph_path : ".");
+        snprintf(dirs[n++], 1024, "%.*s/plugins", len, slash ? graph_path : ".");
+    }
+    char exe[1024];
+    ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (len > 0 && n + 2 <= max) {
+        exe[len] = '\0';
+        char *slash = strrchr(exe, '/');
+        if (slash)
+            *slash = '\0';
+        snprintf(dirs[n++], 1024, "%s/plugins", exe);
+        snprintf(dirs[n++], 1024, "%s/../lib/voxrg/plugins", exe);
+    }
+#ifdef VRG_BUILD_PLUGIN_DIR
+    if (n < max) /* tests and fuzzers run from other folders of the build */
+        snprintf(dirs[n++], 1024, "%s", VRG_BUILD_PLUGIN_DIR);
+#endif
+    return n;
+}
+
+static int check_desc(const vrg_plugin *p, vrg_diag *d, int line)
+{
+    const vrg_plugin_desc *desc = p->desc;
+    const char *why = NULL;
+    if (!desc->name || strcmp(desc->name, p->name) != 0)
+        why = "its descriptor's name differs from its file name";
+    else if (desc->kind != VRG_PLUGIN_PASS && desc->kind != VRG_PLUGIN_SCENE)
+        why = "kind is neither VRG_PLUGIN_PASS nor VRG_PLUGIN_SCENE";
+    else if (!desc->execute)
+        why = "execute callback is NULL";
+    else if (desc->slot_count > VRG_MAX_SLOTS || (desc->slot_count && !desc->slots))
+        why = "slot table is too large or missing";
+    else if (desc->param_count > VRG_MAX_PARAMS || (desc->param_count && !desc->params))
+        why = "parameter table is too large or missing";
+    if (why) {
+        vrg_error_at(d, line, NULL, "plugin '%s' (%s): %s", p->name, p->path, why);
+        return -1;
+    }
+    for (uint32_t i = 0; i < desc->slot_count; i++) {
+        const vrg_slot_desc *s = &desc->slots[i];
+        if (!s->name || (s->dir != VRG_IN && s->dir != VRG_OUT) || (s->kind != VRG_IMAGE && s->kind != VRG_BUFFER) ||
+            s->access < VRG_ACCESS_SAMPLED || s->access > VRG_ACCESS_TRANSFER_DST) {
+            vrg_error_at(d, line, NULL, "plugin '%s' (%s): slot %u is malformed (name, dir, kind, access)", p->name, p->path, i);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+const vrg_plugin *vrg_plugin_load(const char *name, const char *graph_path, vrg_diag *d, int line)
+{
+    for (int i = 0; i < loaded_count; i++)
+        if (strcmp(loaded[i].name, name) == 0)
+            return &loaded[i];
+    if (!name[0] || strchr(name, '/') || strlen(name) >= VRG_NAME_MAX) {
+        vrg_error_at(d, line, "a plugin is named by its file name without .so", "unknown plugin '%s'", name);
+        return NULL;
+    }
+    if (loaded_count >= VRG_MAX_PLUGINS) {
+        vrg_error_at(d, line, NULL, "too many plugins (at most %d)", VRG_MAX_PLUGINS);
+        return NULL;
+    }
+    char dirs[8][1024];
+    int nd = search_dirs(graph_path, dirs, 8);
+    vrg_plugin p = {0};
+    snprintf(p.name, sizeof p.name, "%s", name);
+    for (int i = 0; i < nd && !p.path[0]; i++) {
+        char path[1200];
+        snprintf(path, sizeof path, "%s/%s.so", dirs[i], name);
+        if (access(path, F_OK) == 0) {
+            char *real = realpath(path, NULL);
+            snprintf(p.path, sizeof p.path, "%s", real ? real : path);
+            free(real);
+        }
+    }
+    if (!p.path[0]) {
+        char hint[2048] = "searched:";
+        for (int i = 0; i < nd; i++) {
+            strncat(hint, " ", sizeof hint - strlen(hint) - 1);
+            strncat(hint, dirs[i], sizeof hint - strlen(hint) - 1);
+        }
+        strncat(hint, " (set VOXRG_PLUGIN_PATH; `voxrg plugins` lists what exists)", sizeof hint - strlen(hint) - 1);
+        vrg_error_at(d, line, hint, "unknown plugin '%s'", name);
+        return NULL;
+    }
+    p.handle = dlopen(p.path, RTLD_NOW | RTLD_LOCAL);
+    if (!p.handle) {
+        vrg_error_at(d, line, "is it a shared object built for this machine?", "cannot load plugin '%s' from %s: %s", name, p.path, dlerror());
+        return NULL;
+    }
+    vrg_plugin_entry_fn entry = (vrg_plugin_entry_fn)dlsym(p.handle, VRG_PLUGIN_ENTRY_SYMBOL);
+    if (!entry) {
+        vrg_error_at(d, line, "a plugin's source ends with VRG_PLUGIN(desc)", "plugin '%s' (%s) does not export %s", name, p.path, VRG_PLUGIN_ENTRY_SYMBOL);
+        dlclose(p.handle);
+        return NULL;
+    }
+    p.desc = entry(VRG_ABI_VERSION);
+    if (!p.desc) {
+        vrg_error_at(d, line, NULL, "plugin '%s' (%s): %s returned NULL", name, p.path, VRG_PLUGIN_ENTRY_SYMBOL);
+        dlclose(p.handle);
+        return NULL;
+    }
+    if (p.desc->abi_version != VRG_ABI_VERSION) {
+        vrg_error_at(d, line, "rebuild the plugin against this voxrg's headers",
+                     "plugin '%s' (%s) has ABI version %u, this voxrg expects ABI version %u", name, p.path, p.desc->abi_version,
+                     VRG_ABI_VERSION);
+        dlclose(p.handle);
+        return NULL;
+    }
+    if (check_desc(&p, d, line) != 0) {
+        dlclose(p.handle);
+        return NULL;
+    }
+    loaded[loaded_count] = p;
+    return &loaded[loaded_count++];
+}
+
+static int by_name(const void *a, const void *b)
+{
+    return strcmp((*(const vrg_plugin *const *)a)->name, (*(const vrg_plugin *const *)b)->name);
+}
+
+int vrg_plugin_list(const vrg_plugin **out, int max)
+{
+    char dirs[8][1024];
+    int nd = search_dirs(NULL, dirs, 8);
+    vrg_diag quiet = {.out = stderr, .file = "plugins"};
+    for (int i = 0; i < nd; i++) {
+        DIR *dir = opendir(dirs[i]);
+        if (!dir)
+            continue;
+        struct dirent *e;
+        while ((e = readdir(dir))) {
+            size_t len = strlen(e->d_name);
+            if (len < 4 || strcmp(e->d_name + len - 3, ".so") != 0 || len - 3 >= VRG_NAME_MAX)
+                continue;
+            char name[VRG_NAME_MAX];
+            snprintf(name, sizeof name, "%.*s", (int)(len - 3), e->d_name);
+            int known = 0;
+            for (int k = 0; k < loaded_count; k++)
+                known |= strcmp(loaded[k].name, name) == 0;
+            if (!known) {
+                /* A broken plugin on the path is reported, not fatal, here. */
+                FILE *devnull = fopen("/dev/null", "w");
+                quiet.out = devnull ? devnull : stderr;
+                vrg_plugin_load(name, NULL, &quiet, 0);
+                if (devnull)
+                    fclose(devnull);
+            }
+        }
+        closedir(dir);
+    }
+    int n = 0;
+    for (int i = 0; i < loaded_count && n < max; i++)
+        out[n++] = &loaded[i];
+    qsort(out, (size_t)n, sizeof *out, by_name);
+    return n;
+}
+
+int vrg_list_plugins(const vrg_plugin_desc **descs, const char **paths, int max)
+{
+    const vrg_plugin *list[VRG_MAX_PLUGINS];
+    int n = vrg_plugin_list(list, max < VRG_MAX_PLUGINS ? max : VRG_MAX_PLUGINS);
+    for (int i = 0; i < n; i++) {
+        descs[i] = list[i]->desc;
+        paths[i] = list[i]->path;
+    }
+    return n;
+}

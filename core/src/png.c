@@ -1,0 +1,87 @@
+/* PNG output with libspng. How values become 8-bit sRGB (see docs):
+ *   8-bit UNORM/sRGB formats: written as stored.
+ *   integer formats: divided by the image's maximum.
+ *   float formats: a signed image (minimum < 0, e.g. normals, motion) maps
+ *   [-1,1] to [0,1]; a one-channel image above 1 (e.g. depth) is divided by
+ *   its maximum; anything else is linear colour: clamped, sRGB-encoded. */
+#include <math.h>
+#include <spng.h>
+#include <stdlib.h>
+#include "internal.h"
+
+static float linear_to_srgb(float c)
+{
+    c = c < 0 ? 0 : c > 1 ? 1 : c;
+    return c <= 0.0031308f ? c * 12.92f : 1.055f * powf(c, 1.0f / 2.4f) - 0.055f;
+}
+
+static int is_unorm8(VkFormat f)
+{
+    return f == VK_FORMAT_R8_UNORM || f == VK_FORMAT_R8G8_UNORM || f == VK_FORMAT_R8G8B8A8_UNORM;
+}
+
+static int is_uint(VkFormat f)
+{
+    return f == VK_FORMAT_R32_UINT || f == VK_FORMAT_R32G32_UINT || f == VK_FORMAT_R32G32B32A32_UINT;
+}
+
+int vrg_write_png(const char *path, const vrg_image_data *img)
+{
+    size_t n = (size_t)img->width * img->height;
+    uint32_t ch = img->channels < 3 ? img->channels : 3;
+    float lo = INFINITY, hi = -INFINITY;
+    for (size_t p = 0; p < n; p++)
+        for (uint32_t c = 0; c < ch; c++) {
+            float v = img->pixels[p * 4 + c];
+            if (isfinite(v)) {
+                lo = fminf(lo, v);
+                hi = fmaxf(hi, v);
+            }
+        }
+    enum { AS_IS, SRGB, SIGNED, BY_MAX } mode = SRGB;
+    if (is_unorm8(img->format))
+        mode = AS_IS;
+    else if (is_uint(img->format))
+        mode = BY_MAX;
+    else if (lo < 0)
+        mode = SIGNED;
+    else if (ch == 1 && hi > 1)
+        mode = BY_MAX;
+    uint8_t *rgb = malloc(n * 3);
+    for (size_t p = 0; p < n; p++)
+        for (int c = 0; c < 3; c++) {
+            /* one channel: grey; two channels: red/green, blue 0 */
+            float v = (uint32_t)c < ch ? img->pixels[p * 4 + c] : ch == 1 ? img->pixels[p * 4] : 0.0f;
+            if (!isfinite(v))
+                v = 0;
+            switch (mode) {
+            case AS_IS: break;
+            case SRGB: v = linear_to_srgb(v); break;
+            case SIGNED: v = v * 0.5f + 0.5f; break;
+            case BY_MAX: v = hi > 0 ? v / hi : 0; break;
+            }
+            if (img->format == VK_FORMAT_R8G8B8A8_SRGB)
+                v = linear_to_srgb(img->pixels[p * 4 + c]);
+            v = v < 0 ? 0 : v > 1 ? 1 : v;
+            rgb[p * 3 + c] = (uint8_t)lrintf(v * 255.0f);
+        }
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        free(rgb);
+        fprintf(stderr, "error: cannot write %s\n", path);
+        return -1;
+    }
+    spng_ctx *ctx = spng_ctx_new(SPNG_CTX_ENCODER);
+    spng_set_png_file(ctx, f);
+    struct spng_ihdr ihdr = {.width = img->width, .height = img->height, .bit_depth = 8, .color_type = SPNG_COLOR_TYPE_TRUECOLOR};
+    spng_set_ihdr(ctx, &ihdr);
+    int err = spng_encode_image(ctx, rgb, n * 3, SPNG_FMT_PNG, SPNG_ENCODE_FINALIZE);
+    spng_ctx_free(ctx);
+    fclose(f);
+    free(rgb);
+    if (err) {
+        fprintf(stderr, "error: PNG encoding of %s failed: %s\n", path, spng_strerror(err));
+        return -1;
+    }
+    return 0;
+}

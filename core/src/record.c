@@ -1,0 +1,145 @@
+/* Phase 5, record: one command buffer per frame. Before each pass the
+ * barriers its slots need, then the plugin's execute, bracketed by GPU
+ * timestamps; history images are cleared when history is reset; the output
+ * and dumped resources are copied to a host buffer at the end. */
+#include <string.h>
+#include "internal.h"
+
+static void clear_kept(vrg_graph *g, VkCommandBuffer cmd)
+{
+    /* @prev copies on every history reset; persistent resources only when new. */
+    vrg_barrier_rec b[VRG_MAX_RESOURCES] = {0};
+    int n = 0;
+    for (int i = 0; i < g->res_count && n < VRG_MAX_RESOURCES - 1; i++) {
+        vrg_resource *r = &g->res[i];
+        if (r->first_use < 0 || !((r->history && g->history_reset) || (r->persistent && g->fresh)))
+            continue;
+        for (int c = 0; c < (r->history ? 2 : 1); c++) {
+            /* old contents are garbage: start from UNDEFINED */
+            r->sync[c].layout = VK_IMAGE_LAYOUT_UNDEFINED;
+            if (vrg_sync_use(&r->sync[c], vrg_access_info_of(VRG_ACCESS_TRANSFER_DST, r->kind), 1, &b[n]))
+                b[n].res = i, b[n].copy = c, n++;
+        }
+    }
+    vrg_emit_barriers(g, cmd, b, n);
+    for (int k = 0; k < n; k++) {
+        vrg_resource *r = &g->res[b[k].res];
+        if (r->kind == VRG_IMAGE) {
+            VkClearColorValue zero = {{0}};
+            VkImageSubresourceRange range = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+            vkCmdClearColorImage(cmd, r->image[b[k].copy], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
+        } else
+            vkCmdFillBuffer(cmd, r->buffer[b[k].copy], 0, VK_WHOLE_SIZE, 0);
+    }
+}
+
+static void copy_readbacks(vrg_graph *g, VkCommandBuffer cmd)
+{
+    vrg_barrier_rec b[VRG_MAX_RESOURCES] = {0};
+    int n = 0, want[VRG_MAX_RESOURCES], nw = 0;
+    for (int i = 0; i < g->res_count; i++) {
+        vrg_resource *r = &g->res[i];
+        if (r->first_use < 0 || !(r->is_output || r->readback))
+            continue;
+        want[nw++] = i;
+        if (vrg_resource_barrier(g, i, vrg_copy_of(g, i, 0), VRG_ACCESS_TRANSFER_SRC, &b[n]))
+            n++;
+    }
+    vrg_emit_barriers(g, cmd, b, n);
+    for (int k = 0; k < nw; k++) {
+        vrg_resource *r = &g->res[want[k]];
+        int c = vrg_copy_of(g, want[k], 0);
+        if (r->kind == VRG_IMAGE) {
+            VkBufferImageCopy region = {
+                .bufferOffset = g->readback_offset[want[k]],
+                .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                .imageExtent = {r->width, r->height, 1},
+            };
+            vkCmdCopyImageToBuffer(cmd, r->image[c], VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, g->readback_buffer, 1, &region);
+        } else {
+            VkBufferCopy region = {.srcOffset = 0, .dstOffset = g->readback_offset[want[k]], .size = r->size};
+            vkCmdCopyBuffer(cmd, r->buffer[c], g->readback_buffer, 1, &region);
+        }
+    }
+    VkBufferMemoryBarrier2 host = {
+        .sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
+        .srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+        .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
+        .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT,
+        .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT,
+        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .buffer = g->readback_buffer,
+        .size = VK_WHOLE_SIZE,
+    };
+    VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .bufferMemoryBarrierCount = 1, .pBufferMemoryBarriers = &host};
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+static void read_timestamps(vrg_graph *g)
+{
+    for (int i = 0; i < g->pass_count; i++)
+        g->pass_ms[i] = -1;
+    if (!g->queries || !g->schedule_count)
+        return;
+    uint64_t ts[2 * VRG_MAX_PASSES];
+    if (vkGetQueryPoolResults(g->ctx->dev.device, g->queries, 0, (uint32_t)(2 * g->schedule_count), sizeof ts, ts, sizeof ts[0],
+                              VK_QUERY_RESULT_64_BIT) != VK_SUCCESS)
+        return;
+    double ns = g->ctx->dev.features.timestamp_period_ns;
+    for (int k = 0; k < g->schedule_count; k++)
+        g->pass_ms[g->schedule[k]] = (double)(ts[2 * k + 1] - ts[2 * k]) * ns * 1e-6;
+}
+
+int vrg_record_frame(vrg_graph *g)
+{
+    VkDevice dev = g->ctx->dev.device;
+    VkCommandBuffer cmd = g->cmd;
+    vkResetCommandBuffer(cmd, 0);
+    VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
+    vkBeginCommandBuffer(cmd, &bi);
+    if (g->queries)
+        vkCmdResetQueryPool(cmd, g->queries, 0, (uint32_t)(2 * g->schedule_count));
+    g->frame.history_valid = !g->history_reset;
+    g->frame.width = g->width;
+    g->frame.height = g->height;
+    g->frame.seed = g->seed;
+    g->frame.time_s = (double)g->frame.frame_index / g->fps;
+    for (int i = 0; i < g->res_count; i++)
+        g->res[i].touched[0] = g->res[i].touched[1] = 0;
+    clear_kept(g, cmd);
+    g->history_reset = 0;
+    g->fresh = 0;
+    int failed = 0;
+    for (int k = 0; k < g->schedule_count; k++) {
+        vrg_pass *p = &g->passes[g->schedule[k]];
+        if (g->queries)
+            vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, g->queries, (uint32_t)(2 * k));
+        vrg_barrier_rec b[VRG_MAX_SLOTS];
+        int n = vrg_pass_barriers(g, p, b, VRG_MAX_SLOTS);
+        vrg_emit_barriers(g, cmd, b, n);
+        p->failed = 0;
+        p->cmd = cmd;
+        p->plugin->desc->execute(p, cmd);
+        p->cmd = VK_NULL_HANDLE;
+        failed |= p->failed;
+        if (g->queries)
+            vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, g->queries, (uint32_t)(2 * k + 1));
+    }
+    copy_readbacks(g, cmd);
+    vkEndCommandBuffer(cmd);
+    VkCommandBufferSubmitInfo cbi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = cmd};
+    VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cbi};
+    vkResetFences(dev, 1, &g->fence);
+    VkResult res = vkQueueSubmit2(g->ctx->dev.queue, 1, &si, g->fence);
+    if (res == VK_SUCCESS)
+        res = vkWaitForFences(dev, 1, &g->fence, VK_TRUE, UINT64_MAX);
+    if (res != VK_SUCCESS) {
+        vrg_error(&g->diag, "frame %llu: queue submission failed (%d)", (unsigned long long)g->frame.frame_index, res);
+        return -1;
+    }
+    read_timestamps(g);
+    g->frame_done = 1;
+    g->frame.frame_index++;
+    return failed ? -1 : 0;
+}

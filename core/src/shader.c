@@ -1,0 +1,283 @@
+#define _GNU_SOURCE
+/* GLSL → SPIR-V at run time with glslang's C API. #include "x.glsl" is
+ * resolved next to the including file, then in shaders/include and shaders/.
+ * Errors come out as FILE:LINE: error: MESSAGE. */
+#include <glslang/Include/glslang_c_interface.h>
+#include <glslang/Public/resource_limits_c.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include "internal.h"
+
+#ifndef VRG_SOURCE_DIR
+#define VRG_SOURCE_DIR "."
+#endif
+
+static pthread_once_t glslang_once = PTHREAD_ONCE_INIT;
+static void glslang_init(void) { glslang_initialize_process(); }
+
+static char *read_file(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    if (n < 0) {
+        fclose(f);
+        return NULL;
+    }
+    char *buf = malloc((size_t)n + 1);
+    size_t got = fread(buf, 1, (size_t)n, f);
+    buf[got] = '\0';
+    fclose(f);
+    if (len)
+        *len = got;
+    return buf;
+}
+
+static int exists(const char *p) { return access(p, R_OK) == 0; }
+
+int vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t cap)
+{
+    if (name[0] == '/') {
+        snprintf(out, cap, "%s", name);
+        return exists(out) ? 0 : -1;
+    }
+    if (p && p->plugin->desc->shader_dir) {
+        snprintf(out, cap, "%s/%s", p->plugin->desc->shader_dir, name);
+        if (exists(out))
+            return 0;
+    }
+    const char *env = getenv("VOXRG_SHADER_PATH");
+    while (env && *env) {
+        const char *c = strchr(env, ':');
+        int len = c ? (int)(c - env) : (int)strlen(env);
+        snprintf(out, cap, "%.*s/%s", len, env, name);
+        if (exists(out))
+            return 0;
+        env = c ? c + 1 : env + len;
+    }
+    snprintf(out, cap, "%s/shaders/%s", VRG_SOURCE_DIR, name);
+    if (exists(out))
+        return 0;
+    snprintf(out, cap, "%s/%s", VRG_SOURCE_DIR, name);
+    return exists(out) ? 0 : -1;
+}
+
+/* glslang 12's C API has no include callbacks, so #include is expanded
+ * here, with #line directives (GL_GOOGLE_cpp_style_line_directive) so that
+ * errors name the right file and line. Each file is included once. */
+typedef struct expand_ctx {
+    char *out;
+    size_t len, cap;
+    char seen[32][1024];
+    int seen_count;
+    FILE *diag;
+    int failed;
+} expand_ctx;
+
+static void emit(expand_ctx *e, const char *s, size_t n)
+{
+    if (e->len + n + 1 > e->cap) {
+        e->cap = (e->len + n + 1) * 2;
+        e->out = realloc(e->out, e->cap);
+    }
+    memcpy(e->out + e->len, s, n);
+    e->len += n;
+    e->out[e->len] = '\0';
+}
+
+static void emitf(expand_ctx *e, const char *fmt, const char *file, int line)
+{
+    char buf[1200];
+    int n = snprintf(buf, sizeof buf, fmt, line, file);
+    emit(e, buf, (size_t)(n < (int)sizeof buf ? n : (int)sizeof buf - 1));
+}
+
+static int resolve_include(const char *includer, const char *name, char *out, size_t cap)
+{
+    const char *slash = strrchr(includer, '/');
+    snprintf(out, cap, "%.*s/%s", slash ? (int)(slash - includer) : 1, slash ? includer : ".", name);
+    if (exists(out))
+        return 0;
+    const char *dirs[] = {VRG_SOURCE_DIR "/shaders/include", VRG_SOURCE_DIR "/shaders", VRG_SOURCE_DIR};
+    for (int i = 0; i < 3; i++) {
+        snprintf(out, cap, "%s/%s", dirs[i], name);
+        if (exists(out))
+            return 0;
+    }
+    return -1;
+}
+
+static void expand(expand_ctx *e, const char *path, const char *text, int depth)
+{
+    int line = 0;
+    const char *p = text;
+    while (*p) {
+        line++;
+        const char *end = strchr(p, '\n');
+        size_t n = end ? (size_t)(end - p) : strlen(p);
+        const char *s = p;
+        while (s < p + n && (*s == ' ' || *s == '\t'))
+            s++;
+        int is_include = 0;
+        if (s < p + n && *s == '#') {
+            const char *d = s + 1;
+            while (d < p + n && (*d == ' ' || *d == '\t'))
+                d++;
+            is_include = (size_t)(p + n - d) > 7 && strncmp(d, "include", 7) == 0;
+            if (is_include) {
+                const char *q = d + 7;
+                while (q < p + n && (*q == ' ' || *q == '\t'))
+                    q++;
+                char close = *q == '"' ? '"' : *q == '<' ? '>' : 0;
+                const char *qe = close ? memchr(q + 1, close, (size_t)(p + n - q - 1)) : NULL;
+                char name[512], resolved[1024];
+                if (!qe || (size_t)(qe - q - 1) >= sizeof name) {
+                    fprintf(e->diag, "%s:%d: error: malformed #include\n", path, line);
+                    e->failed = 1;
+                } else {
+                    snprintf(name, sizeof name, "%.*s", (int)(qe - q - 1), q + 1);
+                    if (resolve_include(path, name, resolved, sizeof resolved) != 0) {
+                        fprintf(e->diag, "%s:%d: error: cannot find include file \"%s\"\n", path, line, name);
+                        e->failed = 1;
+                    } else if (depth > 16) {
+                        fprintf(e->diag, "%s:%d: error: #include nested too deeply\n", path, line);
+                        e->failed = 1;
+                    } else {
+                        int seen = 0;
+                        for (int i = 0; i < e->seen_count; i++)
+                            seen |= strcmp(e->seen[i], resolved) == 0;
+                        if (!seen && e->seen_count < 32) {
+                            snprintf(e->seen[e->seen_count++], sizeof e->seen[0], "%s", resolved);
+                            char *inc = read_file(resolved, NULL);
+                            if (inc) {
+                                emitf(e, "#line %d \"%s\"\n", resolved, 1);
+                                expand(e, resolved, inc, depth + 1);
+                                free(inc);
+                                emitf(e, "#line %d \"%s\"\n", path, line + 1);
+                            }
+                        } else
+                            emit(e, "\n", 1);
+                    }
+                }
+                if (e->failed)
+                    emit(e, "\n", 1);
+            }
+        }
+        if (!is_include) {
+            emit(e, p, n);
+            emit(e, "\n", 1);
+            /* #line "file" (from includes) needs this extension, which may
+             * only come after #version; #line keeps the numbering. */
+            if (depth == 0 && (size_t)(p + n - s) > 8 && strncmp(s, "#version", 8) == 0)
+                emitf(e, "#extension GL_GOOGLE_cpp_style_line_directive : enable\n#line %d \"%s\"\n", path, line + 1);
+        }
+        p = end ? end + 1 : p + n;
+    }
+}
+
+/* glslang says "ERROR: 0:12: msg" for the main file and "ERROR: path:12:" for
+ * includes; rewrite each error line as PATH:LINE: error: msg. */
+static void print_log(FILE *f, const char *path, const char *log)
+{
+    while (log && *log) {
+        const char *end = strchr(log, '\n');
+        int n = end ? (int)(end - log) : (int)strlen(log);
+        if (strncmp(log, "ERROR: ", 7) == 0 || strncmp(log, "WARNING: ", 9) == 0) {
+            int is_err = log[0] == 'E';
+            const char *rest = log + (is_err ? 7 : 9);
+            int restn = n - (is_err ? 7 : 9);
+            if (strncmp(rest, "0:", 2) == 0)
+                fprintf(f, "%s:%.*s\n", path, restn - 2, rest + 2);
+            else if (restn > 0 && strstr(rest, ":") && strncmp(rest, "Linking", 7) != 0 && rest[0] != '0')
+                fprintf(f, "%.*s\n", restn, rest);
+            else
+                fprintf(f, "%s: %s%.*s\n", path, is_err ? "error: " : "warning: ", restn, rest);
+        }
+        log = end ? end + 1 : log + n;
+    }
+}
+
+static void local_size_of(const uint32_t *spv, size_t words, uint32_t out[3])
+{
+    out[0] = out[1] = out[2] = 1;
+    for (size_t i = 5; i < words;) {
+        uint32_t op = spv[i] & 0xffff, wc = spv[i] >> 16;
+        if (wc == 0)
+            break;
+        if (op == 16 /* OpExecutionMode */ && wc >= 6 && spv[i + 2] == 17 /* LocalSize */) {
+            out[0] = spv[i + 3];
+            out[1] = spv[i + 4];
+            out[2] = spv[i + 5];
+        }
+        i += wc;
+    }
+}
+
+int vrg_shader_compile(vrg_context *ctx, const char *path, vrg_shader_module *out, FILE *diag)
+{
+    pthread_once(&glslang_once, glslang_init);
+    size_t len;
+    char *src = read_file(path, &len);
+    if (!src) {
+        fprintf(diag, "%s: error: cannot read shader\n", path);
+        return -1;
+    }
+    expand_ctx e = {.diag = diag};
+    expand(&e, path, src, 0);
+    free(src);
+    src = e.out;
+    if (e.failed) {
+        free(src);
+        return -1;
+    }
+    glslang_input_t input = {
+        .language = GLSLANG_SOURCE_GLSL,
+        .stage = GLSLANG_STAGE_COMPUTE,
+        .client = GLSLANG_CLIENT_VULKAN,
+        .client_version = GLSLANG_TARGET_VULKAN_1_3,
+        .target_language = GLSLANG_TARGET_SPV,
+        .target_language_version = GLSLANG_TARGET_SPV_1_6,
+        .code = src,
+        .default_version = 450,
+        .default_profile = GLSLANG_NO_PROFILE,
+        .force_default_version_and_profile = 0,
+        .forward_compatible = 0,
+        .messages = GLSLANG_MSG_DEFAULT_BIT | GLSLANG_MSG_SPV_RULES_BIT | GLSLANG_MSG_VULKAN_RULES_BIT,
+        .resource = glslang_default_resource(),
+    };
+    glslang_shader_t *shader = glslang_shader_create(&input);
+    int ok = glslang_shader_preprocess(shader, &input) && glslang_shader_parse(shader, &input);
+    glslang_program_t *program = NULL;
+    if (ok) {
+        program = glslang_program_create();
+        glslang_program_add_shader(program, shader);
+        ok = glslang_program_link(program, GLSLANG_MSG_SPV_RULES_BIT | GLSLANG_MSG_VULKAN_RULES_BIT);
+        if (!ok)
+            print_log(diag, path, glslang_program_get_info_log(program));
+    } else
+        print_log(diag, path, glslang_shader_get_info_log(shader));
+    int rc = -1;
+    if (ok) {
+        glslang_program_SPIRV_generate(program, GLSLANG_STAGE_COMPUTE);
+        size_t words = glslang_program_SPIRV_get_size(program);
+        const uint32_t *spv = glslang_program_SPIRV_get_ptr(program);
+        local_size_of(spv, words, out->local_size);
+        VkShaderModuleCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, .codeSize = words * 4, .pCode = spv};
+        if (vkCreateShaderModule(ctx->dev.device, &ci, NULL, &out->module) == VK_SUCCESS) {
+            vrg_name_object(ctx, VK_OBJECT_TYPE_SHADER_MODULE, (uint64_t)out->module, "%s", path);
+            rc = 0;
+        } else
+            fprintf(diag, "%s: error: vkCreateShaderModule failed\n", path);
+    }
+    if (program)
+        glslang_program_delete(program);
+    glslang_shader_delete(shader);
+    free(src);
+    return rc;
+}

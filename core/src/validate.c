@@ -1,0 +1,712 @@
+#define _DEFAULT_SOURCE
+/* Phase 2, validate: give the parsed keys meaning. Loads plugins, resolves
+ * slots to resources, and runs every check, collecting all errors (each with
+ * file:line and a hint) instead of stopping at the first. */
+#include <ctype.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "internal.h"
+
+/* ---- numbers ---- */
+
+static int parse_double(const char *s, double *out)
+{
+    char *end;
+    while (isspace((unsigned char)*s))
+        s++;
+    if (!*s)
+        return -1;
+    double v = strtod(s, &end);
+    while (isspace((unsigned char)*end))
+        end++;
+    if (*end || isnan(v) || isinf(v))
+        return -1;
+    *out = v;
+    return 0;
+}
+
+static int parse_int(const char *s, long *out)
+{
+    double v;
+    if (parse_double(s, &v) != 0 || v != floor(v) || fabs(v) > 2147483647.0)
+        return -1;
+    *out = (long)v;
+    return 0;
+}
+
+static int parse_bool(const char *s, double *out)
+{
+    static const char *yes[] = {"1", "true", "yes", "on"}, *no[] = {"0", "false", "no", "off"};
+    for (int i = 0; i < 4; i++) {
+        if (strcasecmp(s, yes[i]) == 0) { *out = 1; return 0; }
+        if (strcasecmp(s, no[i]) == 0) { *out = 0; return 0; }
+    }
+    return -1;
+}
+
+static int positive_int(vrg_diag *d, const vrg_key *k, uint32_t max, uint32_t *out)
+{
+    long v;
+    if (parse_int(k->value, &v) != 0 || v <= 0 || v > (long)max) {
+        char hint[96];
+        snprintf(hint, sizeof hint, "a whole number from 1 to %u", max);
+        vrg_error_at(d, k->line, hint, "'%s = %s' must be a positive integer", k->name, k->value);
+        return -1;
+    }
+    *out = (uint32_t)v;
+    return 0;
+}
+
+/* ---- resources ---- */
+
+static int valid_name(const char *s)
+{
+    if (!*s)
+        return 0;
+    for (; *s; s++)
+        if (!isalnum((unsigned char)*s) && *s != '_' && *s != '-' && *s != '.')
+            return 0;
+    return 1;
+}
+
+static int find_resource(const vrg_graph *g, const char *name)
+{
+    for (int i = 0; i < g->res_count; i++)
+        if (strcmp(g->res[i].name, name) == 0)
+            return i;
+    return -1;
+}
+
+int vrg_graph_add_resource(vrg_graph *g, const char *name)
+{
+    int i = find_resource(g, name);
+    if (i >= 0)
+        return i;
+    if (g->res_count >= VRG_MAX_RESOURCES)
+        return -1;
+    vrg_resource *r = &g->res[g->res_count];
+    memset(r, 0, sizeof *r);
+    snprintf(r->name, sizeof r->name, "%s", name);
+    r->writer = -1;
+    r->writer_slot = -1;
+    r->internal_owner = -1;
+    r->block = -1;
+    r->first_use = r->last_use = -1;
+    return g->res_count++;
+}
+
+static int find_slot(const vrg_plugin_desc *desc, const char *name)
+{
+    for (uint32_t i = 0; i < desc->slot_count; i++)
+        if (strcmp(desc->slots[i].name, name) == 0)
+            return (int)i;
+    return -1;
+}
+
+static int find_param(const vrg_plugin_desc *desc, const char *name)
+{
+    for (uint32_t i = 0; i < desc->param_count; i++)
+        if (strcmp(desc->params[i].name, name) == 0)
+            return (int)i;
+    return -1;
+}
+
+/* Checks and stores one parameter value; `where` is the line, or 0 for --set. */
+static int set_param(vrg_graph *g, vrg_pass *p, int idx, const char *value, int line, const char *what)
+{
+    const vrg_param_desc *pd = &p->plugin->desc->params[idx];
+    double v = 0;
+    long iv = 0;
+    int bad;
+    const char *hint = pd->help;
+    if (pd->type == VRG_PARAM_BOOL)
+        bad = parse_bool(value, &v);
+    else if (pd->type == VRG_PARAM_INT)
+        bad = parse_int(value, &iv), v = (double)iv;
+    else
+        bad = parse_double(value, &v);
+    if (bad) {
+        const char *kind = pd->type == VRG_PARAM_BOOL ? "true or false" : pd->type == VRG_PARAM_INT ? "an integer" : "a finite number";
+        if (line)
+            vrg_error_at(&g->diag, line, hint, "%s = '%s' is not a number of the right kind: %s expects %s", what, value, pd->name, kind);
+        else
+            vrg_error(&g->diag, "--set %s=%s: not a number of the right kind (%s expects %s)", what, value, pd->name, kind);
+        return -1;
+    }
+    if ((pd->min != 0 || pd->max != 0) && (v < pd->min || v > pd->max)) {
+        char h[256];
+        snprintf(h, sizeof h, "%s lies in [%g, %g]%s%s", pd->name, pd->min, pd->max, hint ? ": " : "", hint ? hint : "");
+        if (line)
+            vrg_error_at(&g->diag, line, h, "%s = %s is out of range", what, value);
+        else
+            vrg_error(&g->diag, "--set %s=%s is out of range (%s)", what, value, h);
+        return -1;
+    }
+    p->params[idx] = v;
+    return 0;
+}
+
+/* ---- sections ---- */
+
+typedef enum { SEC_GRAPH, SEC_SCENE, SEC_PASS, SEC_RESOURCE, SEC_UNKNOWN } sec_kind;
+
+static sec_kind section_kind(const char *name, const char **arg)
+{
+    *arg = NULL;
+    if (strcmp(name, "graph") == 0)
+        return SEC_GRAPH;
+    if (strcmp(name, "scene") == 0)
+        return SEC_SCENE;
+    if (strncmp(name, "pass ", 5) == 0 || strncmp(name, "resource ", 9) == 0) {
+        const char *a = name + (name[0] == 'p' ? 5 : 9);
+        while (*a == ' ')
+            a++;
+        *arg = a;
+        return name[0] == 'p' ? SEC_PASS : SEC_RESOURCE;
+    }
+    return SEC_UNKNOWN;
+}
+
+static void graph_section(vrg_graph *g, const vrg_ast *a, int si)
+{
+    static const char *known = "name, output, width, height, seed, fps";
+    for (int i = 0; i < a->key_count; i++) {
+        const vrg_key *k = &a->keys[i];
+        if (k->section_index != si)
+            continue;
+        double v;
+        if (strcmp(k->name, "name") == 0)
+            snprintf(g->name, sizeof g->name, "%s", k->value);
+        else if (strcmp(k->name, "output") == 0) {
+            snprintf(g->output_name, sizeof g->output_name, "%s", k->value);
+            g->output_line = k->line;
+        } else if (strcmp(k->name, "width") == 0)
+            positive_int(&g->diag, k, 16384, &g->width);
+        else if (strcmp(k->name, "height") == 0)
+            positive_int(&g->diag, k, 16384, &g->height);
+        else if (strcmp(k->name, "seed") == 0) {
+            long s;
+            if (parse_int(k->value, &s) != 0 || s < 0)
+                vrg_error_at(&g->diag, k->line, "a whole number >= 0", "'seed = %s' must be a non-negative integer", k->value);
+            else
+                g->seed = (uint32_t)s;
+        } else if (strcmp(k->name, "fps") == 0) {
+            if (parse_double(k->value, &v) != 0)
+                vrg_error_at(&g->diag, k->line, "frames per second of simulated time", "'fps = %s' is not a number", k->value);
+            else if (v <= 0)
+                vrg_error_at(&g->diag, k->line, "frames per second of simulated time", "'fps = %s' must be > 0", k->value);
+            else
+                g->fps = v;
+        } else
+            vrg_error_at(&g->diag, k->line, known, "unknown key '%s' in [graph]", k->name);
+    }
+}
+
+static void param_hint(const vrg_plugin_desc *desc, char *out, size_t cap)
+{
+    size_t n = (size_t)snprintf(out, cap, "plugin '%s' takes: plugin, in.*/out.* slots", desc->name);
+    for (uint32_t i = 0; i < desc->slot_count && n < cap; i++)
+        n += (size_t)snprintf(out + n, cap - n, " %s.%s", desc->slots[i].dir == VRG_IN ? "in" : "out", desc->slots[i].name);
+    if (n < cap)
+        n += (size_t)snprintf(out + n, cap - n, "; parameters:");
+    for (uint32_t i = 0; i < desc->param_count && n < cap; i++)
+        n += (size_t)snprintf(out + n, cap - n, " %s", desc->params[i].name);
+    if (desc->param_count == 0 && n < cap)
+        snprintf(out + n, cap - n, " none");
+}
+
+static void bind_slot(vrg_graph *g, vrg_pass *p, const vrg_key *k, const char *slot_name, vrg_slot_dir dir)
+{
+    const vrg_plugin_desc *desc = p->plugin->desc;
+    char hint[1024];
+    int s = find_slot(desc, slot_name);
+    if (s < 0) {
+        param_hint(desc, hint, sizeof hint);
+        vrg_error_at(&g->diag, k->line, hint, "plugin '%s' has no slot '%s'", desc->name, slot_name);
+        return;
+    }
+    const vrg_slot_desc *sd = &desc->slots[s];
+    if (sd->dir != dir) {
+        vrg_error_at(&g->diag, k->line, dir == VRG_IN ? "connect it as out.<slot>" : "connect it as in.<slot>",
+                     "slot '%s' of plugin '%s' is an %s", slot_name, desc->name, sd->dir == VRG_IN ? "input" : "output");
+        return;
+    }
+    if (p->slots[s].line) {
+        vrg_error_at(&g->diag, k->line, NULL, "slot '%s' is connected twice (first at line %d)", slot_name, p->slots[s].line);
+        return;
+    }
+    char name[VRG_NAME_MAX + 8];
+    snprintf(name, sizeof name, "%s", k->value);
+    char *at = strchr(name, '@');
+    int prev = 0;
+    if (at) {
+        if (strcmp(at, "@prev") != 0 || dir == VRG_OUT) {
+            vrg_error_at(&g->diag, k->line, "'@prev' on an input names last frame's value of a resource",
+                         "'%s' is not a resource name%s", k->value, dir == VRG_OUT ? " an output can write" : "");
+            return;
+        }
+        *at = '\0';
+        prev = 1;
+    }
+    if (!valid_name(name) || strlen(name) >= VRG_NAME_MAX) {
+        vrg_error_at(&g->diag, k->line, "resource names use letters, digits, '_', '-' and '.'", "'%s' is not a valid resource name", k->value);
+        return;
+    }
+    int r = vrg_graph_add_resource(g, name);
+    if (r < 0) {
+        vrg_error_at(&g->diag, k->line, NULL, "too many resources (at most %d)", VRG_MAX_RESOURCES);
+        return;
+    }
+    vrg_resource *res = &g->res[r];
+    if (!res->line)
+        res->line = k->line;
+    p->slots[s] = (vrg_binding_ref){.res = r, .prev = prev, .line = k->line};
+    if (dir == VRG_OUT) {
+        if (res->writer >= 0) {
+            char h[128];
+            snprintf(h, sizeof h, "pass '%s' already writes it at line %d; give one of them another name", g->passes[res->writer].name,
+                     res->writer_line);
+            vrg_error_at(&g->diag, k->line, h, "resource '%s' has two writers", name);
+            return;
+        }
+        res->writer = (int)(p - g->passes);
+        res->writer_slot = s;
+        res->writer_line = k->line;
+    } else if (prev)
+        res->history = 1;
+}
+
+static void pass_section(vrg_graph *g, const vrg_ast *a, int si, vrg_pass *p)
+{
+    char hint[1024];
+    for (int i = 0; i < a->key_count; i++) {
+        const vrg_key *k = &a->keys[i];
+        if (k->section_index != si || strcmp(k->name, "plugin") == 0)
+            continue;
+        if (!p->plugin)
+            continue; /* its plugin failed to load: already reported */
+        const vrg_plugin_desc *desc = p->plugin->desc;
+        if (strncmp(k->name, "in.", 3) == 0)
+            bind_slot(g, p, k, k->name + 3, VRG_IN);
+        else if (strncmp(k->name, "out.", 4) == 0)
+            bind_slot(g, p, k, k->name + 4, VRG_OUT);
+        else {
+            int pi = find_param(desc, k->name);
+            if (pi < 0) {
+                param_hint(desc, hint, sizeof hint);
+                vrg_error_at(&g->diag, k->line, hint, "unknown key '%s' in [%s]", k->name, a->sections[si].name);
+            } else
+                set_param(g, p, pi, k->value, k->line, k->name);
+        }
+    }
+}
+
+static void resource_section(vrg_graph *g, const vrg_ast *a, int si, const char *name)
+{
+    int ri = find_resource(g, name);
+    if (ri < 0) {
+        vrg_note(&g->diag, "%s:%d: [resource %s] is not used by any pass", g->diag.file, a->sections[si].line, name);
+        return;
+    }
+    vrg_resource *r = &g->res[ri];
+    r->line = a->sections[si].line;
+    for (int i = 0; i < a->key_count; i++) {
+        const vrg_key *k = &a->keys[i];
+        if (k->section_index != si)
+            continue;
+        double v;
+        if (strcmp(k->name, "format") == 0) {
+            VkFormat f = vrg_format_parse(k->value);
+            if (f == VK_FORMAT_UNDEFINED)
+                vrg_error_at(&g->diag, k->line, "one of r8, rg8, rgba8, rgba8_srgb, r16f, rg16f, rgba16f, r32f, rg32f, rgba32f, r32ui, rg32ui, rgba32ui",
+                             "unknown format '%s'", k->value);
+            else
+                r->format = f, r->format_line = k->line;
+        } else if (strcmp(k->name, "scale") == 0) {
+            if (parse_double(k->value, &v) != 0)
+                vrg_error_at(&g->diag, k->line, "a fraction of the graph size, e.g. 0.5", "'scale = %s' is not a number", k->value);
+            else if (v <= 0 || v > 16)
+                vrg_error_at(&g->diag, k->line, "a fraction of the graph size in (0, 16]", "'scale = %s' must be > 0 (and at most 16)", k->value);
+            else
+                r->scale = (float)v, r->size_line = k->line;
+        } else if (strcmp(k->name, "width") == 0) {
+            if (positive_int(&g->diag, k, 16384, &r->abs_width) == 0)
+                r->size_line = k->line;
+        } else if (strcmp(k->name, "height") == 0) {
+            if (positive_int(&g->diag, k, 16384, &r->abs_height) == 0)
+                r->size_line = k->line;
+        } else if (strcmp(k->name, "size") == 0) {
+            long s;
+            if (parse_int(k->value, &s) != 0 || s <= 0)
+                vrg_error_at(&g->diag, k->line, "buffer size in bytes", "'size = %s' must be a positive integer", k->value);
+            else
+                r->size = (uint64_t)s, r->size_line = k->line;
+        } else
+            vrg_error_at(&g->diag, k->line, "format, scale, width, height (images) or size (buffers)", "unknown key '%s' in [resource %s]", k->name, name);
+    }
+    if ((r->abs_width != 0) != (r->abs_height != 0))
+        vrg_error_at(&g->diag, r->line, "give both width and height, or scale", "[resource %s] sets only one of width and height", name);
+}
+
+static int find_pass(const vrg_graph *g, const char *name)
+{
+    for (int i = 0; i < g->pass_count; i++)
+        if (strcmp(g->passes[i].name, name) == 0)
+            return i;
+    return -1;
+}
+
+/* First pass: the sections themselves, plugins, and pass identities. */
+static void collect_sections(vrg_graph *g, const vrg_ast *a, const char *graph_path, int *graph_si)
+{
+    int scene_si = -1;
+    *graph_si = -1;
+    for (int si = 0; si < a->section_count; si++) {
+        const vrg_section *sec = &a->sections[si];
+        const char *arg;
+        sec_kind kind = section_kind(sec->name, &arg);
+        if (kind == SEC_UNKNOWN) {
+            vrg_error_at(&g->diag, sec->line, "sections are [graph], [scene], [pass NAME] and [resource NAME]", "unknown section '[%s]'",
+                         sec->name);
+            continue;
+        }
+        if (kind == SEC_GRAPH || kind == SEC_SCENE) {
+            int *seen = kind == SEC_GRAPH ? graph_si : &scene_si;
+            if (*seen >= 0)
+                vrg_error_at(&g->diag, sec->line, NULL, "duplicate section [%s] (first at line %d)", sec->name, a->sections[*seen].line);
+            else
+                *seen = si;
+            if (kind == SEC_GRAPH)
+                continue;
+        }
+        if (kind == SEC_RESOURCE) {
+            for (int o = 0; o < si; o++)
+                if (strcmp(a->sections[o].name, sec->name) == 0) {
+                    vrg_error_at(&g->diag, sec->line, NULL, "duplicate section [%s] (first at line %d)", sec->name, a->sections[o].line);
+                    break;
+                }
+            continue;
+        }
+        if (kind == SEC_SCENE && *(&scene_si) != si)
+            continue;
+        /* a pass or the scene */
+        const char *pname = kind == SEC_SCENE ? "scene" : arg;
+        if (kind == SEC_PASS && (!valid_name(pname) || strlen(pname) >= VRG_NAME_MAX)) {
+            vrg_error_at(&g->diag, sec->line, "pass names use letters, digits, '_', '-' and '.'", "'%s' is not a valid pass name", pname);
+            continue;
+        }
+        if (kind == SEC_PASS && (strcmp(pname, "scene") == 0 || find_pass(g, pname) >= 0)) {
+            int first = find_pass(g, pname);
+            char h[96];
+            snprintf(h, sizeof h, "the first [pass %s] is at line %d; pass names must be unique", pname, first >= 0 ? g->passes[first].line : 0);
+            vrg_error_at(&g->diag, sec->line, h, "duplicate pass name '%s'", pname);
+            continue;
+        }
+        if (g->pass_count >= VRG_MAX_PASSES) {
+            vrg_error_at(&g->diag, sec->line, NULL, "too many passes (at most %d)", VRG_MAX_PASSES);
+            continue;
+        }
+        vrg_pass *p = &g->passes[g->pass_count++];
+        memset(p, 0, sizeof *p);
+        snprintf(p->name, sizeof p->name, "%s", pname);
+        p->line = sec->line;
+        p->is_scene = kind == SEC_SCENE;
+        p->graph = g;
+        p->order = -1;
+        for (int s = 0; s < VRG_MAX_SLOTS; s++)
+            p->slots[s].res = -1;
+        const vrg_key *plugin_key = NULL;
+        for (int i = 0; i < a->key_count; i++)
+            if (a->keys[i].section_index == si && strcmp(a->keys[i].name, "plugin") == 0)
+                plugin_key = &a->keys[i];
+        if (!plugin_key) {
+            vrg_error_at(&g->diag, sec->line, "add 'plugin = NAME' (`voxrg plugins` lists them)", "[%s] has no plugin", sec->name);
+            continue;
+        }
+        const vrg_plugin *pl = vrg_plugin_load(plugin_key->value, graph_path, &g->diag, plugin_key->line);
+        if (!pl)
+            continue;
+        if (kind == SEC_PASS && pl->desc->kind == VRG_PLUGIN_SCENE) {
+            vrg_error_at(&g->diag, plugin_key->line, "use it in the [scene] section", "plugin '%s' is a scene plugin, not a pass", pl->name);
+            continue;
+        }
+        if (kind == SEC_SCENE && pl->desc->kind != VRG_PLUGIN_SCENE) {
+            vrg_error_at(&g->diag, plugin_key->line, "use it in a [pass NAME] section", "plugin '%s' is a pass plugin, not a scene plugin", pl->name);
+            continue;
+        }
+        p->plugin = pl;
+        for (uint32_t i = 0; i < pl->desc->param_count; i++)
+            p->params[i] = pl->desc->params[i].default_value;
+    }
+}
+
+static void apply_overrides(vrg_graph *g, const vrg_graph_desc *desc)
+{
+    for (uint32_t i = 0; i < desc->override_count; i++) {
+        const char *o = desc->overrides[i];
+        const char *dot = strchr(o, '.'), *eq = strchr(o, '=');
+        if (!dot || !eq || dot > eq) {
+            vrg_error(&g->diag, "--set '%s': expected PASS.PARAM=VALUE", o);
+            continue;
+        }
+        char pass[VRG_NAME_MAX] = {0}, param[VRG_NAME_MAX] = {0};
+        snprintf(pass, sizeof pass, "%.*s", (int)(dot - o), o);
+        snprintf(param, sizeof param, "%.*s", (int)(eq - dot - 1), dot + 1);
+        int pi = find_pass(g, pass);
+        if (pi < 0) {
+            vrg_error(&g->diag, "--set '%s': the graph has no pass '%s'", o, pass);
+            continue;
+        }
+        vrg_pass *p = &g->passes[pi];
+        if (!p->plugin)
+            continue;
+        int idx = find_param(p->plugin->desc, param);
+        if (idx < 0) {
+            char hint[1024];
+            param_hint(p->plugin->desc, hint, sizeof hint);
+            vrg_error(&g->diag, "--set '%s': pass '%s' has no parameter '%s' (%s)", o, pass, param, hint);
+            continue;
+        }
+        char what[2 * VRG_NAME_MAX + 2];
+        snprintf(what, sizeof what, "%s.%s", pass, param);
+        set_param(g, p, idx, eq + 1, 0, what);
+    }
+}
+
+/* Resolve each resource's kind, format and size from its writer and the
+ * [resource] overrides; then check every reader against it. */
+static void resolve_resources(vrg_graph *g)
+{
+    for (int ri = 0; ri < g->res_count; ri++) {
+        vrg_resource *r = &g->res[ri];
+        if (r->writer < 0)
+            continue;
+        const vrg_slot_desc *sd = vrg_slot(&g->passes[r->writer], r->writer_slot);
+        r->kind = sd->kind;
+        if (!r->format_line)
+            r->format = sd->format ? sd->format : VK_FORMAT_R16G16B16A16_SFLOAT;
+        if (!r->size_line) {
+            r->scale = sd->scale > 0 ? sd->scale : 1.0f;
+            r->abs_width = sd->width;
+            r->abs_height = sd->height;
+            if (sd->kind == VRG_BUFFER)
+                r->size = sd->size;
+        }
+        if (sd->kind == VRG_BUFFER && r->size == 0)
+            vrg_error_at(&g->diag, r->writer_line, "give the buffer a size in a [resource] section", "buffer '%s' has size 0", r->name);
+        if (sd->kind == VRG_BUFFER && r->format_line)
+            vrg_error_at(&g->diag, r->format_line, "format applies to images", "resource '%s' is a buffer", r->name);
+        r->persistent = (sd->flags & VRG_SLOT_PERSISTENT) != 0;
+    }
+    for (int pi = 0; pi < g->pass_count; pi++) {
+        vrg_pass *p = &g->passes[pi];
+        if (!p->plugin)
+            continue;
+        for (uint32_t s = 0; s < p->plugin->desc->slot_count; s++) {
+            const vrg_slot_desc *sd = vrg_slot(p, (int)s);
+            vrg_binding_ref *b = &p->slots[s];
+            if (sd->dir != VRG_IN)
+                continue;
+            if (b->res < 0 && (sd->flags & VRG_SLOT_OPTIONAL)) {
+                /* Shaders still declare the binding: give them a 1x1 stand-in. */
+                char name[2 * VRG_NAME_MAX + 16];
+                snprintf(name, sizeof name, "%s.%s(unconnected)", p->name, sd->name);
+                int r = vrg_graph_add_resource(g, name);
+                if (r >= 0) {
+                    vrg_resource *res = &g->res[r];
+                    res->kind = sd->kind;
+                    res->format = sd->format ? sd->format : VK_FORMAT_R16G16B16A16_SFLOAT;
+                    res->abs_width = res->abs_height = 1;
+                    res->size = sd->size > 16 ? sd->size : 16;
+                    res->persistent = res->dummy = 1;
+                    res->line = p->line;
+                    *b = (vrg_binding_ref){.res = r, .dummy = 1, .line = p->line};
+                }
+                continue;
+            }
+            if (b->res < 0) {
+                if (!(sd->flags & VRG_SLOT_OPTIONAL)) {
+                    char h[160];
+                    snprintf(h, sizeof h, "add 'in.%s = RESOURCE' to [%s%s]", sd->name, p->is_scene ? "scene" : "pass ", p->is_scene ? "" : p->name);
+                    vrg_error_at(&g->diag, p->line, h, "required input '%s' of pass '%s' is not connected", sd->name, p->name);
+                }
+                continue;
+            }
+            vrg_resource *r = &g->res[b->res];
+            if (r->writer < 0) {
+                vrg_error_at(&g->diag, b->line, "some pass must write it (out.SLOT = NAME), or fix the name",
+                             "resource '%s' is read but never written", r->name);
+                continue;
+            }
+            if (r->kind != sd->kind) {
+                vrg_error_at(&g->diag, b->line, NULL, "kind mismatch: resource '%s' is %s, slot '%s' of pass '%s' takes %s", r->name,
+                             r->kind == VRG_IMAGE ? "an image" : "a buffer", sd->name, p->name, sd->kind == VRG_IMAGE ? "an image" : "a buffer");
+                continue;
+            }
+            if (sd->kind == VRG_IMAGE && sd->format && sd->format != r->format) {
+                char h[256];
+                snprintf(h, sizeof h, "'%s' is written by pass '%s' (line %d)%s", r->name, g->passes[r->writer].name, r->writer_line,
+                         r->format_line ? "; see its [resource] format" : "");
+                vrg_error_at(&g->diag, b->line, h, "format mismatch: resource '%s' is %s, slot '%s' of pass '%s' needs %s", r->name,
+                             vrg_format_name(r->format), sd->name, p->name, vrg_format_name(sd->format));
+            }
+            if (sd->kind == VRG_IMAGE && (sd->scale > 0 || sd->width)) {
+                int same = sd->width ? (r->abs_width == sd->width && r->abs_height == sd->height)
+                                     : (!r->abs_width && fabsf(r->scale - sd->scale) < 1e-6f);
+                if (!same) {
+                    char have[64], need[64];
+                    if (r->abs_width)
+                        snprintf(have, sizeof have, "%ux%u", r->abs_width, r->abs_height);
+                    else
+                        snprintf(have, sizeof have, "scale %g", r->scale);
+                    if (sd->width)
+                        snprintf(need, sizeof need, "%ux%u", sd->width, sd->height);
+                    else
+                        snprintf(need, sizeof need, "scale %g", sd->scale);
+                    vrg_error_at(&g->diag, b->line, "check the [resource] size or the writer's slot", "size mismatch: resource '%s' is %s, slot '%s' of pass '%s' needs %s",
+                                 r->name, have, sd->name, p->name, need);
+                }
+            }
+            if (sd->kind == VRG_BUFFER && sd->size > r->size)
+                vrg_error_at(&g->diag, b->line, NULL, "size mismatch: buffer '%s' has %llu bytes, slot '%s' of pass '%s' needs at least %llu", r->name,
+                             (unsigned long long)r->size, sd->name, p->name, (unsigned long long)sd->size);
+        }
+        /* Outputs nobody named still get written by the shader: give them a private resource. */
+        for (uint32_t s = 0; s < p->plugin->desc->slot_count; s++) {
+            const vrg_slot_desc *sd = vrg_slot(p, (int)s);
+            if (sd->dir != VRG_OUT || p->slots[s].res >= 0)
+                continue;
+            char name[2 * VRG_NAME_MAX + 2];
+            if (p->is_scene)
+                snprintf(name, sizeof name, "%s", sd->name);
+            else
+                snprintf(name, sizeof name, "%s.%s", p->name, sd->name);
+            if (find_resource(g, name) >= 0 && g->res[find_resource(g, name)].writer >= 0) {
+                vrg_error_at(&g->diag, p->line, NULL, "resource '%s' (the default for unconnected out.%s) has two writers", name, sd->name);
+                continue;
+            }
+            int r = vrg_graph_add_resource(g, name);
+            if (r < 0)
+                continue;
+            vrg_resource *res = &g->res[r];
+            /* a reader may already have asked for it (scene outputs by slot name) */
+            if (!res->line)
+                res->line = p->line;
+            res->writer = pi;
+            res->writer_slot = (int)s;
+            res->writer_line = p->line;
+            res->kind = sd->kind;
+            res->format = sd->format ? sd->format : VK_FORMAT_R16G16B16A16_SFLOAT;
+            res->scale = sd->scale > 0 ? sd->scale : 1.0f;
+            res->abs_width = sd->width;
+            res->abs_height = sd->height;
+            res->size = sd->size;
+            res->persistent = (sd->flags & VRG_SLOT_PERSISTENT) != 0;
+            p->slots[s] = (vrg_binding_ref){.res = r, .prev = 0, .line = p->line};
+        }
+    }
+}
+
+/* Cycles through same-frame reads (an @prev read breaks the cycle). */
+static int cycle_dfs(vrg_graph *g, int pi, int *state, int *stack, int depth)
+{
+    state[pi] = 1;
+    stack[depth] = pi;
+    vrg_pass *p = &g->passes[pi];
+    for (int s = 0; p->plugin && s < (int)p->plugin->desc->slot_count; s++) {
+        vrg_binding_ref *b = &p->slots[s];
+        if (vrg_slot(p, s)->dir != VRG_IN || b->res < 0 || b->prev)
+            continue;
+        int w = g->res[b->res].writer;
+        if (w < 0)
+            continue;
+        if (state[w] == 1) {
+            char path[1024] = "";
+            int start = depth;
+            while (start > 0 && stack[start] != w)
+                start--;
+            int first = w;
+            for (int i = start; i <= depth; i++) {
+                if (g->passes[stack[i]].line < g->passes[first].line)
+                    first = stack[i];
+                strncat(path, g->passes[stack[i]].name, sizeof path - strlen(path) - 1);
+                strncat(path, " -> ", sizeof path - strlen(path) - 1);
+            }
+            strncat(path, g->passes[w].name, sizeof path - strlen(path) - 1);
+            vrg_error_at(&g->diag, g->passes[first].line, "read last frame's value with NAME@prev to break the cycle",
+                         "cycle between passes: %s", path);
+            return 1;
+        }
+        if (state[w] == 0 && cycle_dfs(g, w, state, stack, depth + 1))
+            return 1;
+    }
+    state[pi] = 2;
+    return 0;
+}
+
+static void check_cycles(vrg_graph *g)
+{
+    int state[VRG_MAX_PASSES] = {0}, stack[VRG_MAX_PASSES];
+    for (int i = 0; i < g->pass_count; i++)
+        if (state[i] == 0 && cycle_dfs(g, i, state, stack, 0))
+            return; /* one cycle report is enough; the rest usually repeat it */
+}
+
+int vrg_validate(vrg_graph *g, const vrg_ast *ast, const vrg_graph_desc *desc)
+{
+    int graph_si;
+    g->fps = 60;
+    collect_sections(g, ast, desc->path, &graph_si);
+    if (graph_si >= 0)
+        graph_section(g, ast, graph_si);
+    else
+        vrg_error_at(&g->diag, 1, "start the file with [graph] and 'output = RESOURCE'", "the graph has no [graph] section, so no output");
+    for (int si = 0; si < ast->section_count; si++) {
+        const char *arg;
+        sec_kind kind = section_kind(ast->sections[si].name, &arg);
+        if (kind != SEC_PASS && kind != SEC_SCENE)
+            continue;
+        const char *pname = kind == SEC_SCENE ? "scene" : arg;
+        int pi = find_pass(g, pname);
+        if (pi >= 0 && g->passes[pi].line == ast->sections[si].line)
+            pass_section(g, ast, si, &g->passes[pi]);
+    }
+    apply_overrides(g, desc);
+    for (int si = 0; si < ast->section_count; si++) {
+        const char *arg;
+        if (section_kind(ast->sections[si].name, &arg) == SEC_RESOURCE)
+            resource_section(g, ast, si, arg);
+    }
+    resolve_resources(g);
+    if (graph_si >= 0) {
+        if (!g->output_name[0])
+            vrg_error_at(&g->diag, ast->sections[graph_si].line, "add 'output = RESOURCE' to [graph]", "the graph has no output");
+        else {
+            g->output = find_resource(g, g->output_name);
+            if (g->output < 0 || g->res[g->output].writer < 0)
+                vrg_error_at(&g->diag, g->output_line, "name a resource some pass writes", "output resource '%s' is never written",
+                             g->output_name);
+            else if (g->res[g->output].kind != VRG_IMAGE)
+                vrg_error_at(&g->diag, g->output_line, "the output is shown and written as PNG", "output resource '%s' is a buffer, not an image",
+                             g->output_name);
+            else
+                g->res[g->output].is_output = 1;
+        }
+        if (!g->width || !g->height)
+            if (!desc->width && !g->diag.errors)
+                vrg_error_at(&g->diag, ast->sections[graph_si].line, "add 'width = ' and 'height = ' to [graph] (or pass --size)",
+                             "the graph has no size");
+    }
+    if (desc->width && desc->height)
+        g->width = desc->width, g->height = desc->height;
+    for (uint32_t i = 0; i < desc->readback_count; i++) {
+        int r = find_resource(g, desc->readback[i]);
+        if (r < 0 || g->res[r].writer < 0)
+            vrg_error(&g->diag, "--dump %s: the graph writes no resource of that name", desc->readback[i]);
+        else
+            g->res[r].readback = 1;
+    }
+    check_cycles(g);
+    return g->diag.errors ? -1 : 0;
+}
