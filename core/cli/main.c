@@ -75,6 +75,15 @@ static int parse_size(const char *s, uint32_t *w, uint32_t *h)
     return 0;
 }
 
+static int is_valued_option(const char *a)
+{
+    static const char *valued[] = {"--dot", "--out", "--json", "--device", "--set", "--size", "--frames", "--dump"};
+    for (size_t i = 0; i < sizeof valued / sizeof valued[0]; i++)
+        if (!strcmp(a, valued[i]))
+            return 1;
+    return 0;
+}
+
 static int parse_options(int argc, char **argv, options *o, const char *usage)
 {
     memset(o, 0, sizeof *o);
@@ -91,7 +100,9 @@ static int parse_options(int argc, char **argv, options *o, const char *usage)
             o->validate = 1, takes = 0;
         else if (!strcmp(a, "--no-device"))
             o->no_device = 1, takes = 0;
-        else if (a[0] == '-' && a[1] == '-' && !next)
+        else if (a[0] == '-' && !is_valued_option(a))
+            return usage_error(usage, "unknown option '%s'", a);
+        else if (a[0] == '-' && !next)
             return usage_error(usage, "%s needs a value", a);
         else if (!strcmp(a, "--dot"))
             o->dot = next;
@@ -117,9 +128,7 @@ static int parse_options(int argc, char **argv, options *o, const char *usage)
         } else if (!strcmp(a, "--dump")) {
             size_t used = strlen(o->dump_buf);
             snprintf(o->dump_buf + used, sizeof o->dump_buf - used, "%s%s", used ? "," : "", next);
-        } else if (a[0] == '-')
-            return usage_error(usage, "unknown option '%s'", a);
-        else if (!o->graph)
+        } else if (!o->graph)
             o->graph = a, takes = 0;
         else
             return usage_error(usage, "unexpected argument '%s'", a);
@@ -359,7 +368,9 @@ static int cmd_plugins(int argc, char **argv)
                 snprintf(size, sizeof size, "scale %g", sd->scale > 0 ? sd->scale : 1.0);
             else
                 snprintf(size, sizeof size, "any size");
-            printf("  %-3s.%-14s %-6s %-10s %-18s %-14s%s%s  %s\n", sd->dir == VRG_IN ? "in" : "out", sd->name, kind_name(sd->kind),
+            char slot[80];
+            snprintf(slot, sizeof slot, "%s.%s", sd->dir == VRG_IN ? "in" : "out", sd->name);
+            printf("  %-18s %-6s %-10s %-18s %-14s%s%s  %s\n", slot, kind_name(sd->kind),
                    sd->kind == VRG_IMAGE ? (sd->format ? vrg_format_label(sd->format) : "any") : "-", vrg_access_label(sd->access), size,
                    sd->flags & VRG_SLOT_OPTIONAL ? " optional" : "", sd->flags & VRG_SLOT_PERSISTENT ? " persistent" : "", sd->help ? sd->help : "");
         }

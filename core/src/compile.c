@@ -37,6 +37,19 @@ VkFormat vrg_format_parse(const char *s)
     return VK_FORMAT_UNDEFINED;
 }
 
+const char *vrg_format_list(void)
+{
+    static char list[512];
+    if (!list[0]) {
+        strcat(list, "one of");
+        for (size_t i = 0; i < sizeof formats / sizeof formats[0]; i++) {
+            strcat(list, i ? ", " : " ");
+            strcat(list, formats[i].name);
+        }
+    }
+    return list;
+}
+
 const char *vrg_format_name(VkFormat f)
 {
     for (size_t i = 0; i < sizeof formats / sizeof formats[0]; i++)

@@ -1,7 +1,10 @@
 /* Vulkan context: instance (with validation + synchronization validation on
  * request), device choice (a real GPU first, lavapipe otherwise), features
  * the plugins can ask about, and debug names for everything we create. */
+#define _GNU_SOURCE
 #include <ctype.h>
+#include <dlfcn.h>
+#include <link.h>
 #include <stdlib.h>
 #include <string.h>
 #include "internal.h"
@@ -200,7 +203,8 @@ static int create_device(vrg_context *ctx)
     ctx->dev.queue_family = (uint32_t)family;
 
     /* Ask what exists, then enable what we use of it. */
-    VkPhysicalDeviceRayQueryFeaturesKHR rq = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
+    VkPhysicalDeviceRayTracingPipelineFeaturesKHR rtp = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
+    VkPhysicalDeviceRayQueryFeaturesKHR rq = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR, .pNext = &rtp};
     VkPhysicalDeviceAccelerationStructureFeaturesKHR as = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
     VkPhysicalDeviceVulkan13Features v13 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     VkPhysicalDeviceVulkan12Features v12 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, .pNext = &v13};
@@ -208,10 +212,10 @@ static int create_device(vrg_context *ctx)
     int has_rq = has_device_ext(pd, VK_KHR_RAY_QUERY_EXTENSION_NAME);
     int has_as = has_device_ext(pd, VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME) &&
                  has_device_ext(pd, VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME);
+    int has_rtp = has_device_ext(pd, VK_KHR_RAY_TRACING_PIPELINE_EXTENSION_NAME);
     if (has_as) {
         v13.pNext = &as;
-        if (has_rq)
-            as.pNext = &rq;
+        as.pNext = &rq; /* rq chains on to rtp; unknown structs are ignored by drivers lacking them */
     }
     vkGetPhysicalDeviceFeatures2(pd, &f2);
     if (!v13.synchronization2) {
@@ -220,12 +224,14 @@ static int create_device(vrg_context *ctx)
     }
     has_as = has_as && as.accelerationStructure && v12.bufferDeviceAddress;
     has_rq = has_rq && has_as && rq.rayQuery;
+    has_rtp = has_rtp && has_as && rtp.rayTracingPipeline;
 
     VkPhysicalDeviceFeatures2 en = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     VkPhysicalDeviceVulkan12Features en12 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     VkPhysicalDeviceVulkan13Features en13 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     VkPhysicalDeviceAccelerationStructureFeaturesKHR en_as = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
     VkPhysicalDeviceRayQueryFeaturesKHR en_rq = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
+    VkPhysicalDeviceRayTracingPipelineFeaturesKHR en_rtp = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
     en.pNext = &en12;
     en12.pNext = &en13;
     en.features.shaderStorageImageWriteWithoutFormat = f2.features.shaderStorageImageWriteWithoutFormat;
@@ -239,7 +245,7 @@ static int create_device(vrg_context *ctx)
     en12.hostQueryReset = v12.hostQueryReset;
     en13.synchronization2 = VK_TRUE;
     en13.maintenance4 = v13.maintenance4;
-    const char *exts[8];
+    const char *exts[12];
     uint32_t next = 0;
     exts[next++] = VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME;
     if (has_as) {
@@ -247,10 +253,17 @@ static int create_device(vrg_context *ctx)
         en_as.accelerationStructure = VK_TRUE;
         exts[next++] = VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME;
         exts[next++] = VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME;
+        void **tail = &en_as.pNext;
         if (has_rq) {
-            en_as.pNext = &en_rq;
+            *tail = &en_rq;
+            tail = &en_rq.pNext;
             en_rq.rayQuery = VK_TRUE;
             exts[next++] = VK_KHR_RAY_QUERY_EXTENSION_NAME;
+        }
+        if (has_rtp) {
+            *tail = &en_rtp;
+            en_rtp.rayTracingPipeline = VK_TRUE;
+            exts[next++] = VK_KHR_RAY_TRACING_PIPELINE_EXTENSION_NAME;
         }
     }
     float prio = 1.0f;
@@ -275,7 +288,7 @@ static int create_device(vrg_context *ctx)
     vrg_features *f = &ctx->dev.features;
     f->ray_query = has_rq;
     f->acceleration_structure = has_as;
-    f->ray_tracing_pipeline = has_device_ext(pd, VK_KHR_RAY_TRACING_PIPELINE_EXTENSION_NAME);
+    f->ray_tracing_pipeline = has_rtp;
     f->timestamps = ts_bits > 0 && ctx->props.limits.timestampComputeAndGraphics;
     f->timestamp_period_ns = ctx->props.limits.timestampPeriod;
     VkPhysicalDeviceSubgroupProperties sg = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
@@ -284,6 +297,21 @@ static int create_device(vrg_context *ctx)
     f->subgroup_size = sg.subgroupSize;
     return 0;
 }
+
+#ifdef VRG_SANITIZE_BUILD
+/* Leak reports from inside the Vulkan driver and layers can only be matched
+ * by the suppressions in tests/lsan.supp while those libraries are still
+ * mapped; the loader unloads them at vkDestroyInstance, so pin them. */
+static int pin_library(struct dl_phdr_info *info, size_t size, void *user)
+{
+    (void)size;
+    (void)user;
+    const char *n = info->dlpi_name;
+    if (n && (strstr(n, "libvulkan_") || strstr(n, "VkLayer_") || strstr(n, "libLLVM") || strstr(n, "libgallium")))
+        dlopen(n, RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
+    return 0;
+}
+#endif
 
 int vrg_context_create(const vrg_context_desc *desc, vrg_context **out)
 {
@@ -297,6 +325,9 @@ int vrg_context_create(const vrg_context_desc *desc, vrg_context **out)
         vrg_context_destroy(ctx);
         return -1;
     }
+#ifdef VRG_SANITIZE_BUILD
+    dl_iterate_phdr(pin_library, NULL);
+#endif
     VkCommandPoolCreateInfo pi = {
         .sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
         .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,

@@ -106,7 +106,9 @@ int vrg_graph_load(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph **out
     vrg_ast *ast = calloc(1, sizeof *ast);
     g->ctx = ctx;
     snprintf(g->path, sizeof g->path, "%s", desc->path ? desc->path : "<graph>");
-    g->diag = (vrg_diag){.out = desc->diag, .file = g->path};
+    g->diag = (vrg_diag){.out = desc->diag, .file = g->path, .collect = 1};
+    for (int i = 0; i < VRG_MAX_PASSES; i++)
+        g->pass_ms[i] = -1;
     g->output = -1;
     snprintf(g->name, sizeof g->name, "graph");
     int rc = vrg_parse(g->path, desc->text, ast, &g->diag);
@@ -130,6 +132,7 @@ int vrg_graph_load(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph **out
         if (rc == 0)
             rc = resize_passes(g);
     }
+    vrg_diag_flush(&g->diag);
     if (rc != 0) {
         vrg_graph_destroy(g);
         return -1;
@@ -186,7 +189,6 @@ int vrg_graph_resize(vrg_graph *g, uint32_t width, uint32_t height)
         return -1;
     if (g->ctx && (readback_buffer(g) != 0 || resize_passes(g) != 0))
         return -1;
-    g->frame.frame_index = 0;
     return 0;
 }
 

@@ -17,14 +17,22 @@
 #define VRG_MAX_PLUGINS 128
 
 /* ---- diagnostics (diag.c) ---- */
+typedef struct vrg_diag_entry {
+    int line, seq;
+    char *text;
+} vrg_diag_entry;
 typedef struct vrg_diag {
     FILE *out;
     const char *file;
     int errors;
+    int collect; /* hold messages until vrg_diag_flush, then print sorted by line */
+    vrg_diag_entry *entries;
+    int count, cap;
 } vrg_diag;
 void vrg_error_at(vrg_diag *d, int line, const char *hint, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
 void vrg_error(vrg_diag *d, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-void vrg_note(vrg_diag *d, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void vrg_note_at(vrg_diag *d, int line, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+void vrg_diag_flush(vrg_diag *d);
 
 /* ---- context (context.c) ---- */
 struct vrg_context {
@@ -97,6 +105,7 @@ typedef struct vrg_resource {
     uint32_t abs_width, abs_height;
     uint64_t size;           /* buffers */
     int format_line, size_line; /* where an override was written, 0 if none */
+    int bytes_line, extent_line;  /* size = (buffers) / scale, width, height (images) */
     int writer;              /* pass index, -1 none */
     int writer_slot;
     int writer_line;
@@ -126,6 +135,7 @@ typedef struct vrg_resource {
 } vrg_resource;
 
 typedef struct vrg_binding_ref {
+    int bad;       /* the graph tried to connect it and failed: already reported */
     int res;       /* resource index, -1 unconnected (optional inputs get a dummy) */
     int dummy;     /* res is the 1x1 stand-in: the slot reports unconnected */
     int prev;      /* reads last frame's copy (@prev) */
@@ -211,6 +221,7 @@ int vrg_compile(vrg_graph *g);
 int vrg_graph_add_resource(vrg_graph *g, const char *name);
 uint64_t vrg_format_bytes(VkFormat f);
 const char *vrg_format_name(VkFormat f);
+const char *vrg_format_list(void);
 VkFormat vrg_format_parse(const char *s);
 uint32_t vrg_format_channels(VkFormat f);
 void vrg_resource_extent(const vrg_graph *g, const vrg_resource *r, uint32_t *w, uint32_t *h);

@@ -3,6 +3,7 @@
  * know which line each key came from (Debian's inih is built without
  * INI_HANDLER_LINENO). Meaning is given to the keys in validate.c. */
 #include <ini.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 #include "internal.h"
@@ -26,6 +27,8 @@ static char *read_line(char *str, int num, void *stream)
     while (r->pos + n < r->len && r->text[r->pos + n] != '\n')
         n++;
     size_t copy = n < (size_t)(num - 1) ? n : (size_t)(num - 1);
+    if (n > copy)
+        vrg_error_at(r->d, r->line + 1, "split the value or shorten names", "line is longer than %d characters", num - 2);
     memcpy(str, r->text + r->pos, copy);
     str[copy] = '\0';
     r->pos += n + (r->pos + n < r->len ? 1 : 0);
@@ -129,6 +132,9 @@ int vrg_parse(const char *path, const char *text, vrg_ast *ast, vrg_diag *d)
         return -1;
     }
     line_reader r = {.text = text, .len = strlen(text), .ast = ast, .d = d};
+    /* An indented line is a line like any other, not a continuation of the
+     * previous value (inih's default follows Python's configparser). */
+    ini_allow_multiline = false;
     /* Scan again with inih, keeping section indices in step with the scan above. */
     int err = ini_parse_stream(read_line, &r, on_key, &r);
     if (err > 0) {

@@ -11,15 +11,12 @@ void vrg_pass_set_user(vrg_pass *p, void *user) { p->user = user; }
 
 int vrg_pass_error(vrg_pass *p, const char *fmt, ...)
 {
-    vrg_diag *d = &p->graph->diag;
-    FILE *f = d->out ? d->out : stderr;
+    char msg[1536];
     va_list ap;
-    fprintf(f, "%s:%d: error: pass '%s' (plugin %s): ", d->file, p->line, p->name, p->plugin ? p->plugin->path : "?");
     va_start(ap, fmt);
-    vfprintf(f, fmt, ap);
+    vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    fputc('\n', f);
-    d->errors++;
+    vrg_error_at(&p->graph->diag, p->line, NULL, "pass '%s' (plugin %s): %s", p->name, p->plugin ? p->plugin->path : "?", msg);
     p->failed = 1;
     return -1;
 }
@@ -111,8 +108,15 @@ vrg_res vrg_pass_request_buffer(vrg_pass *p, const char *name, uint64_t size)
 int vrg_pass_lookup(const vrg_pass *p, const char *name, int *res, int *prev, int *slot)
 {
     const vrg_plugin_desc *d = p->plugin->desc;
+    /* "in.color" / "out.color" pick a direction; a bare name takes the first
+     * slot declared with it. */
+    int dir = 0;
+    if (strncmp(name, "in.", 3) == 0)
+        dir = VRG_IN, name += 3;
+    else if (strncmp(name, "out.", 4) == 0)
+        dir = VRG_OUT, name += 4;
     for (uint32_t s = 0; s < d->slot_count; s++)
-        if (strcmp(d->slots[s].name, name) == 0) {
+        if (strcmp(d->slots[s].name, name) == 0 && (!dir || (int)d->slots[s].dir == dir)) {
             *res = p->slots[s].res;
             *prev = p->slots[s].prev;
             *slot = (int)s;

@@ -14,9 +14,20 @@
 static vrg_plugin loaded[VRG_MAX_PLUGINS];
 static int loaded_count;
 
+static int add_dir(char dirs[][1024], int n, int max, const char *dir)
+{
+    for (int i = 0; i < n; i++)
+        if (strcmp(dirs[i], dir) == 0)
+            return n;
+    if (n < max)
+        snprintf(dirs[n++], 1024, "%s", dir);
+    return n;
+}
+
 static int search_dirs(const char *graph_path, char dirs[][1024], int max)
 {
     int n = 0;
+    char dir[1100];
     const char *env = getenv("VOXRG_PLUGIN_PATH");
     if (env) {
         const char *p = env;
@@ -24,31 +35,35 @@ static int search_dirs(const char *graph_path, char dirs[][1024], int max)
             const char *c = strchr(p, ':');
             size_t len = c ? (size_t)(c - p) : strlen(p);
             if (len && len < 1024) {
-                memcpy(dirs[n], p, len);
-                dirs[n++][len] = '\0';
+                snprintf(dir, sizeof dir, "%.*s", (int)len, p);
+                n = add_dir(dirs, n, max, dir);
             }
             p = c ? c + 1 : p + len;
         }
     }
-    if (graph_path && n + 2 <= max) {
+    if (graph_path) {
         const char *slash = strrchr(graph_path, '/');
         int len = slash ? (int)(slash - graph_path) : 1;
-        snprintf(dirs[n++], 1024, "%.*s", len, slash ? graph_path : ".");
-        snprintf(dirs[n++], 1024, "%.*s/plugins", len, slash ? graph_path : ".");
+        snprintf(dir, sizeof dir, "%.*s", len, slash ? graph_path : ".");
+        n = add_dir(dirs, n, max, dir);
+        snprintf(dir, sizeof dir, "%.*s/plugins", len, slash ? graph_path : ".");
+        n = add_dir(dirs, n, max, dir);
     }
     char exe[1024];
     ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    if (len > 0 && n + 2 <= max) {
+    if (len > 0) {
         exe[len] = '\0';
         char *slash = strrchr(exe, '/');
         if (slash)
             *slash = '\0';
-        snprintf(dirs[n++], 1024, "%s/plugins", exe);
-        snprintf(dirs[n++], 1024, "%s/../lib/voxrg/plugins", exe);
+        snprintf(dir, sizeof dir, "%s/plugins", exe);
+        n = add_dir(dirs, n, max, dir);
+        snprintf(dir, sizeof dir, "%s/../lib/voxrg/plugins", exe);
+        n = add_dir(dirs, n, max, dir);
     }
 #ifdef VRG_BUILD_PLUGIN_DIR
-    if (n < max) /* tests and fuzzers run from other folders of the build */
-        snprintf(dirs[n++], 1024, "%s", VRG_BUILD_PLUGIN_DIR);
+    /* tests and fuzzers run from other folders of the build */
+    n = add_dir(dirs, n, max, VRG_BUILD_PLUGIN_DIR);
 #endif
     return n;
 }
@@ -78,6 +93,17 @@ static int check_desc(const vrg_plugin *p, vrg_diag *d, int line)
             vrg_error_at(d, line, NULL, "plugin '%s' (%s): slot %u is malformed (name, dir, kind, access)", p->name, p->path, i);
             return -1;
         }
+        if ((s->access == VRG_ACCESS_SAMPLED && s->kind != VRG_IMAGE) || (s->access == VRG_ACCESS_UNIFORM && s->kind != VRG_BUFFER)) {
+            vrg_error_at(d, line, NULL, "plugin '%s' (%s): slot '%s': %s access needs %s", p->name, p->path, s->name,
+                         s->access == VRG_ACCESS_SAMPLED ? "sampled" : "uniform", s->access == VRG_ACCESS_SAMPLED ? "an image" : "a buffer");
+            return -1;
+        }
+        for (uint32_t j = 0; j < i; j++)
+            if (strcmp(desc->slots[j].name, s->name) == 0 && desc->slots[j].dir == s->dir) {
+                vrg_error_at(d, line, NULL, "plugin '%s' (%s): two %s slots named '%s'", p->name, p->path, s->dir == VRG_IN ? "input" : "output",
+                             s->name);
+                return -1;
+            }
     }
     return 0;
 }
@@ -95,8 +121,8 @@ const vrg_plugin *vrg_plugin_load(const char *name, const char *graph_path, vrg_
         vrg_error_at(d, line, NULL, "too many plugins (at most %d)", VRG_MAX_PLUGINS);
         return NULL;
     }
-    char dirs[8][1024];
-    int nd = search_dirs(graph_path, dirs, 8);
+    char dirs[32][1024];
+    int nd = search_dirs(graph_path, dirs, 32);
     vrg_plugin p = {0};
     snprintf(p.name, sizeof p.name, "%s", name);
     for (int i = 0; i < nd && !p.path[0]; i++) {
@@ -157,8 +183,8 @@ static int by_name(const void *a, const void *b)
 
 int vrg_plugin_list(const vrg_plugin **out, int max)
 {
-    char dirs[8][1024];
-    int nd = search_dirs(NULL, dirs, 8);
+    char dirs[32][1024];
+    int nd = search_dirs(NULL, dirs, 32);
     vrg_diag quiet = {.out = stderr, .file = "plugins"};
     for (int i = 0; i < nd; i++) {
         DIR *dir = opendir(dirs[i]);

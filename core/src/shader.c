@@ -181,23 +181,28 @@ static void expand(expand_ctx *e, const char *path, const char *text, int depth)
     }
 }
 
-/* glslang says "ERROR: 0:12: msg" for the main file and "ERROR: path:12:" for
- * includes; rewrite each error line as PATH:LINE: error: msg. */
+/* glslang says "ERROR: 0:12: msg" for the main file and "ERROR: path:12:
+ * msg" after a #line naming an include; print each as PATH:LINE: error: msg. */
 static void print_log(FILE *f, const char *path, const char *log)
 {
     while (log && *log) {
         const char *end = strchr(log, '\n');
         int n = end ? (int)(end - log) : (int)strlen(log);
-        if (strncmp(log, "ERROR: ", 7) == 0 || strncmp(log, "WARNING: ", 9) == 0) {
-            int is_err = log[0] == 'E';
-            const char *rest = log + (is_err ? 7 : 9);
-            int restn = n - (is_err ? 7 : 9);
-            if (strncmp(rest, "0:", 2) == 0)
-                fprintf(f, "%s:%.*s\n", path, restn - 2, rest + 2);
-            else if (restn > 0 && strstr(rest, ":") && strncmp(rest, "Linking", 7) != 0 && rest[0] != '0')
-                fprintf(f, "%.*s\n", restn, rest);
-            else
-                fprintf(f, "%s: %s%.*s\n", path, is_err ? "error: " : "warning: ", restn, rest);
+        int is_err = strncmp(log, "ERROR: ", 7) == 0, is_warn = strncmp(log, "WARNING: ", 9) == 0;
+        if (is_err || is_warn) {
+            const char *rest = log + (is_err ? 7 : 9), *stop = log + n;
+            const char *kind = is_err ? "error" : "warning";
+            /* FILE:LINE: where LINE is digits; FILE is "0" for the main file */
+            const char *colon = memchr(rest, ':', (size_t)(stop - rest));
+            const char *num = colon ? colon + 1 : NULL, *q = num;
+            while (q && q < stop && *q >= '0' && *q <= '9')
+                q++;
+            if (colon && q > num && q < stop && *q == ':') {
+                int main_file = colon - rest == 1 && rest[0] == '0';
+                fprintf(f, "%.*s:%.*s: %s:%.*s\n", main_file ? (int)strlen(path) : (int)(colon - rest), main_file ? path : rest, (int)(q - num),
+                        num, kind, (int)(stop - q - 1), q + 1);
+            } else
+                fprintf(f, "%s: %s: %.*s\n", path, kind, (int)(stop - rest), rest);
         }
         log = end ? end + 1 : log + n;
     }

@@ -96,12 +96,18 @@ int vrg_graph_add_resource(vrg_graph *g, const char *name)
     return g->res_count++;
 }
 
-static int find_slot(const vrg_plugin_desc *desc, const char *name)
+/* A slot by name and direction (in.color and out.color may both exist);
+ * with no slot of that direction, one of the other so the error can say so. */
+static int find_slot(const vrg_plugin_desc *desc, const char *name, vrg_slot_dir dir)
 {
+    int other = -1;
     for (uint32_t i = 0; i < desc->slot_count; i++)
-        if (strcmp(desc->slots[i].name, name) == 0)
-            return (int)i;
-    return -1;
+        if (strcmp(desc->slots[i].name, name) == 0) {
+            if (desc->slots[i].dir == dir)
+                return (int)i;
+            other = (int)i;
+        }
+    return other;
 }
 
 static int find_param(const vrg_plugin_desc *desc, const char *name)
@@ -149,6 +155,20 @@ static int set_param(vrg_graph *g, vrg_pass *p, int idx, const char *value, int 
 
 /* ---- sections ---- */
 
+/* A key given twice in one section is a mistake, not an override. */
+static int repeated_key(vrg_graph *g, const vrg_ast *a, int ki)
+{
+    const vrg_key *k = &a->keys[ki];
+    for (int i = 0; i < ki; i++)
+        if (a->keys[i].section_index == k->section_index && strcmp(a->keys[i].name, k->name) == 0) {
+            char h[64];
+            snprintf(h, sizeof h, "first given at line %d", a->keys[i].line);
+            vrg_error_at(&g->diag, k->line, h, "duplicate key '%s' in [%s]", k->name, a->sections[k->section_index].name);
+            return 1;
+        }
+    return 0;
+}
+
 typedef enum { SEC_GRAPH, SEC_SCENE, SEC_PASS, SEC_RESOURCE, SEC_UNKNOWN } sec_kind;
 
 static sec_kind section_kind(const char *name, const char **arg)
@@ -173,7 +193,7 @@ static void graph_section(vrg_graph *g, const vrg_ast *a, int si)
     static const char *known = "name, output, width, height, seed, fps";
     for (int i = 0; i < a->key_count; i++) {
         const vrg_key *k = &a->keys[i];
-        if (k->section_index != si)
+        if (k->section_index != si || repeated_key(g, a, i))
             continue;
         double v;
         if (strcmp(k->name, "name") == 0)
@@ -220,7 +240,7 @@ static void bind_slot(vrg_graph *g, vrg_pass *p, const vrg_key *k, const char *s
 {
     const vrg_plugin_desc *desc = p->plugin->desc;
     char hint[1024];
-    int s = find_slot(desc, slot_name);
+    int s = find_slot(desc, slot_name, dir);
     if (s < 0) {
         param_hint(desc, hint, sizeof hint);
         vrg_error_at(&g->diag, k->line, hint, "plugin '%s' has no slot '%s'", desc->name, slot_name);
@@ -236,6 +256,10 @@ static void bind_slot(vrg_graph *g, vrg_pass *p, const vrg_key *k, const char *s
         vrg_error_at(&g->diag, k->line, NULL, "slot '%s' is connected twice (first at line %d)", slot_name, p->slots[s].line);
         return;
     }
+    /* From here on errors concern the value: the slot counts as connected
+     * so it is not also reported as missing. */
+    p->slots[s].bad = 1;
+    p->slots[s].line = k->line;
     char name[VRG_NAME_MAX + 8];
     snprintf(name, sizeof name, "%s", k->value);
     char *at = strchr(name, '@');
@@ -262,6 +286,8 @@ static void bind_slot(vrg_graph *g, vrg_pass *p, const vrg_key *k, const char *s
     if (!res->line)
         res->line = k->line;
     p->slots[s] = (vrg_binding_ref){.res = r, .prev = prev, .line = k->line};
+    if (dir == VRG_OUT && res->writer >= 0)
+        p->slots[s].bad = 1;
     if (dir == VRG_OUT) {
         if (res->writer >= 0) {
             char h[128];
@@ -282,7 +308,7 @@ static void pass_section(vrg_graph *g, const vrg_ast *a, int si, vrg_pass *p)
     char hint[1024];
     for (int i = 0; i < a->key_count; i++) {
         const vrg_key *k = &a->keys[i];
-        if (k->section_index != si || strcmp(k->name, "plugin") == 0)
+        if (k->section_index != si || repeated_key(g, a, i) || strcmp(k->name, "plugin") == 0)
             continue;
         if (!p->plugin)
             continue; /* its plugin failed to load: already reported */
@@ -306,21 +332,20 @@ static void resource_section(vrg_graph *g, const vrg_ast *a, int si, const char 
 {
     int ri = find_resource(g, name);
     if (ri < 0) {
-        vrg_note(&g->diag, "%s:%d: [resource %s] is not used by any pass", g->diag.file, a->sections[si].line, name);
+        vrg_note_at(&g->diag, a->sections[si].line, "[resource %s] is not used by any pass", name);
         return;
     }
     vrg_resource *r = &g->res[ri];
     r->line = a->sections[si].line;
     for (int i = 0; i < a->key_count; i++) {
         const vrg_key *k = &a->keys[i];
-        if (k->section_index != si)
+        if (k->section_index != si || repeated_key(g, a, i))
             continue;
         double v;
         if (strcmp(k->name, "format") == 0) {
             VkFormat f = vrg_format_parse(k->value);
             if (f == VK_FORMAT_UNDEFINED)
-                vrg_error_at(&g->diag, k->line, "one of r8, rg8, rgba8, rgba8_srgb, r16f, rg16f, rgba16f, r32f, rg32f, rgba32f, r32ui, rg32ui, rgba32ui",
-                             "unknown format '%s'", k->value);
+                vrg_error_at(&g->diag, k->line, vrg_format_list(), "unknown format '%s'", k->value);
             else
                 r->format = f, r->format_line = k->line;
         } else if (strcmp(k->name, "scale") == 0) {
@@ -329,19 +354,19 @@ static void resource_section(vrg_graph *g, const vrg_ast *a, int si, const char 
             else if (v <= 0 || v > 16)
                 vrg_error_at(&g->diag, k->line, "a fraction of the graph size in (0, 16]", "'scale = %s' must be > 0 (and at most 16)", k->value);
             else
-                r->scale = (float)v, r->size_line = k->line;
+                r->scale = (float)v, r->size_line = r->extent_line = k->line;
         } else if (strcmp(k->name, "width") == 0) {
             if (positive_int(&g->diag, k, 16384, &r->abs_width) == 0)
-                r->size_line = k->line;
+                r->size_line = r->extent_line = k->line;
         } else if (strcmp(k->name, "height") == 0) {
             if (positive_int(&g->diag, k, 16384, &r->abs_height) == 0)
-                r->size_line = k->line;
+                r->size_line = r->extent_line = k->line;
         } else if (strcmp(k->name, "size") == 0) {
             long s;
             if (parse_int(k->value, &s) != 0 || s <= 0)
                 vrg_error_at(&g->diag, k->line, "buffer size in bytes", "'size = %s' must be a positive integer", k->value);
             else
-                r->size = (uint64_t)s, r->size_line = k->line;
+                r->size = (uint64_t)s, r->size_line = r->bytes_line = k->line;
         } else
             vrg_error_at(&g->diag, k->line, "format, scale, width, height (images) or size (buffers)", "unknown key '%s' in [resource %s]", k->name, name);
     }
@@ -498,6 +523,10 @@ static void resolve_resources(vrg_graph *g)
         if (sd->kind == VRG_BUFFER && r->format_line)
             vrg_error_at(&g->diag, r->format_line, "format applies to images", "resource '%s' is a buffer", r->name);
         r->persistent = (sd->flags & VRG_SLOT_PERSISTENT) != 0;
+        if (sd->kind == VRG_IMAGE && r->bytes_line)
+            vrg_error_at(&g->diag, r->bytes_line, "size = applies to buffers; images take scale or width/height", "resource '%s' is an image", r->name);
+        if (sd->kind == VRG_BUFFER && r->extent_line)
+            vrg_error_at(&g->diag, r->extent_line, "buffers take size = BYTES", "resource '%s' is a buffer", r->name);
     }
     for (int pi = 0; pi < g->pass_count; pi++) {
         vrg_pass *p = &g->passes[pi];
@@ -508,6 +537,8 @@ static void resolve_resources(vrg_graph *g)
             vrg_binding_ref *b = &p->slots[s];
             if (sd->dir != VRG_IN)
                 continue;
+            if (b->bad && b->res < 0)
+                continue; /* its error is already reported */
             if (b->res < 0 && (sd->flags & VRG_SLOT_OPTIONAL)) {
                 /* Shaders still declare the binding: give them a 1x1 stand-in. */
                 char name[2 * VRG_NAME_MAX + 16];
@@ -572,10 +603,22 @@ static void resolve_resources(vrg_graph *g)
                 vrg_error_at(&g->diag, b->line, NULL, "size mismatch: buffer '%s' has %llu bytes, slot '%s' of pass '%s' needs at least %llu", r->name,
                              (unsigned long long)r->size, sd->name, p->name, (unsigned long long)sd->size);
         }
+    }
+}
+
+/* Outputs nobody named are still written by the shader: each gets a private
+ * resource "pass.slot" (a scene's: the slot name), made before the
+ * [resource] sections are read so those can configure it. */
+static void default_outputs(vrg_graph *g)
+{
+    for (int pi = 0; pi < g->pass_count; pi++) {
+        vrg_pass *p = &g->passes[pi];
+        if (!p->plugin)
+            continue;
         /* Outputs nobody named still get written by the shader: give them a private resource. */
         for (uint32_t s = 0; s < p->plugin->desc->slot_count; s++) {
             const vrg_slot_desc *sd = vrg_slot(p, (int)s);
-            if (sd->dir != VRG_OUT || p->slots[s].res >= 0)
+            if (sd->dir != VRG_OUT || p->slots[s].res >= 0 || p->slots[s].bad)
                 continue;
             char name[2 * VRG_NAME_MAX + 2];
             if (p->is_scene)
@@ -596,15 +639,32 @@ static void resolve_resources(vrg_graph *g)
             res->writer = pi;
             res->writer_slot = (int)s;
             res->writer_line = p->line;
-            res->kind = sd->kind;
-            res->format = sd->format ? sd->format : VK_FORMAT_R16G16B16A16_SFLOAT;
-            res->scale = sd->scale > 0 ? sd->scale : 1.0f;
-            res->abs_width = sd->width;
-            res->abs_height = sd->height;
-            res->size = sd->size;
-            res->persistent = (sd->flags & VRG_SLOT_PERSISTENT) != 0;
             p->slots[s] = (vrg_binding_ref){.res = r, .prev = 0, .line = p->line};
         }
+    }
+}
+
+/* One pass may read a resource through two slots only if both want the same
+ * image layout: a descriptor cannot see two layouts at once. */
+static void check_conflicting_uses(vrg_graph *g)
+{
+    for (int pi = 0; pi < g->pass_count; pi++) {
+        vrg_pass *p = &g->passes[pi];
+        if (!p->plugin)
+            continue;
+        for (int a = 0; a < (int)p->plugin->desc->slot_count; a++)
+            for (int b = a + 1; b < (int)p->plugin->desc->slot_count; b++) {
+                const vrg_binding_ref *x = &p->slots[a], *y = &p->slots[b];
+                if (x->res < 0 || x->res != y->res || x->prev != y->prev || x->dummy || g->res[x->res].kind != VRG_IMAGE)
+                    continue;
+                vrg_access_info ia = vrg_access_info_of(vrg_slot(p, a)->access, VRG_IMAGE);
+                vrg_access_info ib = vrg_access_info_of(vrg_slot(p, b)->access, VRG_IMAGE);
+                if (ia.layout != ib.layout)
+                    vrg_error_at(&g->diag, y->line, "read it through one slot, or give the plugin matching accesses",
+                                 "resource '%s' is bound to slots '%s' (%s) and '%s' (%s) of pass '%s', which need different layouts",
+                                 g->res[x->res].name, vrg_slot(p, a)->name, vrg_access_name(vrg_slot(p, a)->access), vrg_slot(p, b)->name,
+                                 vrg_access_name(vrg_slot(p, b)->access), p->name);
+            }
     }
 }
 
@@ -673,12 +733,14 @@ int vrg_validate(vrg_graph *g, const vrg_ast *ast, const vrg_graph_desc *desc)
             pass_section(g, ast, si, &g->passes[pi]);
     }
     apply_overrides(g, desc);
+    default_outputs(g);
     for (int si = 0; si < ast->section_count; si++) {
         const char *arg;
         if (section_kind(ast->sections[si].name, &arg) == SEC_RESOURCE)
             resource_section(g, ast, si, arg);
     }
     resolve_resources(g);
+    check_conflicting_uses(g);
     if (graph_si >= 0) {
         if (!g->output_name[0])
             vrg_error_at(&g->diag, ast->sections[graph_si].line, "add 'output = RESOURCE' to [graph]", "the graph has no output");

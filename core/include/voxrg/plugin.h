@@ -131,7 +131,7 @@ typedef const vrg_plugin_desc *(*vrg_plugin_entry_fn)(uint32_t host_abi);
 typedef struct vrg_features {
     int ray_query;              /* VK_KHR_ray_query enabled */
     int acceleration_structure; /* VK_KHR_acceleration_structure enabled */
-    int ray_tracing_pipeline;   /* VK_KHR_ray_tracing_pipeline available */
+    int ray_tracing_pipeline;   /* VK_KHR_ray_tracing_pipeline enabled */
     int timestamps;             /* per-pass GPU timestamps work */
     float timestamp_period_ns;
     uint32_t subgroup_size;
@@ -181,7 +181,8 @@ int vrg_param_int(const vrg_pass *pass, const char *name);
 vrg_res vrg_pass_request_image(vrg_pass *pass, const char *name, VkFormat format, float scale, vrg_access first_access);
 vrg_res vrg_pass_request_buffer(vrg_pass *pass, const char *name, uint64_t size);
 
-/* A slot or internal resource by name. */
+/* A slot or internal resource by name. An input and an output may share a
+ * name: "in.color" / "out.color" choose; a bare name is the first declared. */
 vrg_res vrg_pass_res(const vrg_pass *pass, const char *name);
 int vrg_res_connected(vrg_res res);
 VkImage vrg_res_image(const vrg_pass *pass, vrg_res res);
@@ -205,7 +206,7 @@ void vrg_pass_use(vrg_pass *pass, VkCommandBuffer cmd, const vrg_use *uses, uint
 #define VRG_MAX_BINDINGS 16
 
 typedef struct vrg_binding {
-    const char *res;   /* slot or internal resource name */
+    const char *res;   /* slot ("src", or "in.color"/"out.color") or internal resource name */
     vrg_access access; /* 0: the slot's declared access (internal: storage read/write) */
 } vrg_binding;
 

@@ -1,0 +1,14 @@
+#version 450
+// dst = src (same size, enforced by the slot declaration)
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 0, binding = 0) uniform sampler2D src;
+layout(set = 0, binding = 1, rgba16f) uniform writeonly image2D dst;
+
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, imageSize(dst))))
+        return;
+    imageStore(dst, p, texelFetch(src, p, 0));
+}

@@ -1,0 +1,48 @@
+# Tests that drive the runtime (included from tests/CMakeLists.txt).
+# Every test runs with the Khronos validation layer and synchronization
+# validation; a validation message fails it.
+
+set(VRG_TEST_ENV
+  "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/lsan.supp:print_suppressions=0"
+  "ASAN_OPTIONS=detect_leaks=1:abort_on_error=0"
+  "UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1")
+
+add_executable(test_runtime test_runtime.c)
+target_link_libraries(test_runtime PRIVATE voxrg m)
+target_compile_definitions(test_runtime PRIVATE TEST_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
+set(VRG_LOADER_DIR ${CMAKE_CURRENT_BINARY_DIR}/loader_plugins)
+file(MAKE_DIRECTORY ${VRG_LOADER_DIR})
+foreach(case chain history accumulate pingpong alias buffer scene loader)
+  add_test(NAME runtime_${case} COMMAND test_runtime ${case})
+  set_tests_properties(runtime_${case} PROPERTIES ENVIRONMENT "${VRG_TEST_ENV};VOXRG_PLUGIN_PATH=${VRG_LOADER_DIR}" TIMEOUT 300)
+endforeach()
+
+# The CLI: check, render, plugins, help, exit codes.
+add_test(NAME cli COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test_cli.sh $<TARGET_FILE:voxrg_cli> ${CMAKE_CURRENT_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}/cli_out)
+set_tests_properties(cli PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}" TIMEOUT 600)
+
+# The shipped graphs render under validation.
+file(GLOB shipped_graphs ${PROJECT_SOURCE_DIR}/graphs/*.ini)
+foreach(graph ${shipped_graphs})
+  get_filename_component(gname ${graph} NAME_WE)
+  add_test(NAME graph_${gname} COMMAND voxrg_cli render ${graph} --validate --frames 3 --size 96x54 --out ${CMAKE_CURRENT_BINARY_DIR}/graph_out/${gname})
+  set_tests_properties(graph_${gname} PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}" TIMEOUT 300)
+endforeach()
+
+# libFuzzer: parse + validate + compile + aliasing of graph text, seeded with
+# every good and bad graph; a short run in the suite, longer by hand.
+if(VOXRG_FUZZ)
+  if(NOT CMAKE_C_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "VOXRG_FUZZ needs clang (CC=clang)")
+  endif()
+  add_executable(fuzz_graph fuzz_graph.c)
+  target_compile_options(fuzz_graph PRIVATE -fsanitize=fuzzer)
+  target_link_options(fuzz_graph PRIVATE -fsanitize=fuzzer)
+  target_link_libraries(fuzz_graph PRIVATE voxrg)
+  target_compile_options(voxrg PRIVATE -fsanitize=fuzzer-no-link)
+  set(FUZZ_CORPUS ${CMAKE_CURRENT_BINARY_DIR}/fuzz_corpus)
+  add_test(NAME fuzz_graph
+           COMMAND ${CMAKE_COMMAND} -E env ${VRG_TEST_ENV}
+                   sh -c "mkdir -p ${FUZZ_CORPUS} && cp ${CMAKE_CURRENT_SOURCE_DIR}/graphs/*.ini ${CMAKE_CURRENT_SOURCE_DIR}/bad/*.ini ${PROJECT_SOURCE_DIR}/graphs/*.ini ${FUZZ_CORPUS}/ && $<TARGET_FILE:fuzz_graph> -runs=20000 -max_len=4096 -timeout=10 ${FUZZ_CORPUS}")
+  set_tests_properties(fuzz_graph PROPERTIES TIMEOUT 600)
+endif()

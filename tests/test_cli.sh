@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# The voxrg CLI: help and exit codes, `check` output (schedule, culled passes,
+# resources, barriers, memory) and --dot, `render` files and JSON, `plugins`.
+# Usage: test_cli.sh VOXRG TESTS_DIR OUT_DIR
+set -u
+voxrg=$1 tests=$2 out=$3
+rm -rf "$out" && mkdir -p "$out"
+pass=0 fail=0
+ok() { pass=$((pass + 1)); }
+bad() { echo "FAIL: $*"; fail=$((fail + 1)); }
+expect_rc() { # want_rc description cmd...
+    local want=$1 what=$2; shift 2
+    "$@" >"$out/stdout" 2>"$out/stderr"; local rc=$?
+    if [ "$rc" -eq "$want" ]; then ok; else bad "$what: exit $rc, want $want"; cat "$out/stderr"; fi
+}
+has() { # file pattern description
+    if grep -qE -- "$2" "$1"; then ok; else bad "$3: no '$2' in $1"; sed 's/^/    /' "$1" | head -40; fi
+}
+
+expect_rc 0 "voxrg --help" "$voxrg" --help
+has "$out/stdout" "check GRAPH" "main help"
+for c in check render plugins; do
+    expect_rc 0 "voxrg $c --help" "$voxrg" "$c" --help
+    has "$out/stdout" "usage: voxrg $c" "$c help"
+done
+expect_rc 2 "no command" "$voxrg"
+expect_rc 2 "unknown command" "$voxrg" frobnicate
+expect_rc 2 "unknown option" "$voxrg" check "$tests/graphs/alias.ini" --bogus
+expect_rc 2 "bad --size" "$voxrg" render "$tests/graphs/alias.ini" --size 12by4
+expect_rc 1 "missing graph file" "$voxrg" check "$tests/graphs/does-not-exist.ini" --no-device
+has "$out/stderr" "cannot open graph file" "missing graph message"
+expect_rc 1 "unknown --set parameter" "$voxrg" check "$tests/graphs/alias.ini" --no-device --set gen.nope=1
+has "$out/stderr" "has no parameter 'nope'" "--set unknown parameter"
+expect_rc 1 "out-of-range --set" "$voxrg" check "$tests/graphs/alias.ini" --no-device --set gen.value=5
+has "$out/stderr" "out of range" "--set range"
+
+# check: a multi-pass graph with a culled pass, aliasing and barriers
+expect_rc 0 "check alias.ini" "$voxrg" check "$tests/graphs/alias.ini" --validate --dot "$out/alias.dot"
+has "$out/stdout" "^schedule:" "check schedule"
+has "$out/stdout" "^culled passes:" "check culled header"
+has "$out/stdout" "^  unused .*reach neither" "check culled pass"
+has "$out/stdout" "^resources:" "check resources"
+has "$out/stdout" "lifetime [0-9]+\.\.[0-9]+" "check lifetimes"
+has "$out/stdout" "block 0 @ [0-9]+" "check placement"
+has "$out/stdout" "aliased" "check alias marker"
+has "$out/stdout" "^barriers" "check barriers"
+has "$out/stdout" "COMPUTE/STORAGE_WRITE -> COMPUTE/SAMPLED_READ  GENERAL -> SHADER_READ_ONLY" "check read-after-write barrier"
+has "$out/stdout" "^memory: transient naive .*aliased .*saved [1-9][0-9]*\.[0-9]%" "check memory line"
+has "$out/alias.dot" "^digraph" "dot file"
+has "$out/alias.dot" "style=dashed" "dot culled pass"
+
+# check without a device gives the same schedule
+expect_rc 0 "check --no-device" "$voxrg" check "$tests/graphs/history.ini" --no-device
+has "$out/stdout" "@prev" "history resource listed"
+has "$out/stdout" "x2 \(history\)" "history memory"
+
+# render: PNG, dumps, JSON timings, progress line
+expect_rc 0 "render chain.ini" "$voxrg" render "$tests/graphs/chain.ini" --validate --frames 3 --size 40x24 --out "$out/r" --json "$out/r.json" --dump gradient
+has "$out/stderr" "frame 3/3" "progress line"
+for f in "$out/r/final.png" "$out/r/gradient.png"; do
+    if [ -s "$f" ] && [ "$(head -c 8 "$f" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ]; then ok; else bad "no PNG $f"; fi
+done
+if python3 - "$out/r.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["frames"] == 3 and d["width"] == 40 and d["height"] == 24, d
+names = [p["name"] for p in d["passes"]]
+assert names and all(len(p["gpu_ms"]) == 3 for p in d["passes"]), d
+assert all(x >= 0 for p in d["passes"] for x in p["gpu_ms"]), d
+assert d["memory"]["transient_aliased_bytes"] <= d["memory"]["transient_naive_bytes"], d
+PY
+then ok; else bad "render JSON"; fi
+expect_rc 1 "dump of an unknown resource" "$voxrg" render "$tests/graphs/chain.ini" --dump nonesuch --out "$out/r2"
+has "$out/stderr" "nonesuch" "dump error names the resource"
+
+# plugins
+expect_rc 0 "plugins" "$voxrg" plugins
+has "$out/stdout" "^pattern +pass" "plugins lists pattern"
+has "$out/stdout" "^test_scene +scene" "plugins lists the scene"
+expect_rc 0 "plugins blur" "$voxrg" plugins blur
+has "$out/stdout" "^  in\.src +image" "plugin slots"
+expect_rc 0 "plugins pingpong" "$voxrg" plugins pingpong
+has "$out/stdout" "iterations +int +default 3" "plugin parameters"
+expect_rc 1 "plugins unknown" "$voxrg" plugins nonesuch
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]

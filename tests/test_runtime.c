@@ -1,0 +1,345 @@
+#define _POSIX_C_SOURCE 200809L
+/* Runtime tests driven through the host API, on lavapipe, with validation and
+ * synchronization validation on: any validation message fails the test.
+ * Usage: test_runtime CASE (ctest registers one test per case). */
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include "voxrg/voxrg.h"
+
+#ifndef TEST_DIR
+#define TEST_DIR "."
+#endif
+
+static int failures;
+static vrg_context *ctx;
+
+#define CHECK(cond, ...)                                                  \
+    do {                                                                  \
+        if (!(cond)) {                                                    \
+            fprintf(stderr, "%s:%d: check failed: %s: ", __FILE__, __LINE__, #cond); \
+            fprintf(stderr, __VA_ARGS__);                                 \
+            fputc('\n', stderr);                                          \
+            failures++;                                                   \
+        }                                                                 \
+    } while (0)
+
+static vrg_graph *load_with(const char *name, const char *const *sets, uint32_t nsets, const char *const *reads, uint32_t nreads)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/graphs/%s", TEST_DIR, name);
+    vrg_graph_desc d = {.path = path, .overrides = sets, .override_count = nsets, .readback = reads, .readback_count = nreads};
+    vrg_graph *g = NULL;
+    if (vrg_graph_load(ctx, &d, &g) != 0) {
+        fprintf(stderr, "cannot load %s\n", path);
+        failures++;
+        return NULL;
+    }
+    return g;
+}
+
+static vrg_graph *load(const char *name) { return load_with(name, NULL, 0, NULL, 0); }
+
+static float px(const vrg_image_data *img, uint32_t x, uint32_t y, int c) { return img->pixels[((size_t)y * img->width + x) * 4 + c]; }
+
+/* The pattern plugin: (x/(W-1), y/(H-1), value, 1). */
+static void pattern_at(uint32_t w, uint32_t h, int x, int y, float value, float out[4])
+{
+    out[0] = (float)x / (float)(w - 1);
+    out[1] = (float)y / (float)(h - 1);
+    out[2] = value;
+    out[3] = 1;
+}
+
+/* 3x3 box with clamped coordinates, as the blur plugin computes it. */
+static void blur_at(const float *src, uint32_t w, uint32_t h, int x, int y, float out[4])
+{
+    memset(out, 0, 4 * sizeof(float));
+    for (int dy = -1; dy <= 1; dy++)
+        for (int dx = -1; dx <= 1; dx++) {
+            int sx = x + dx < 0 ? 0 : x + dx >= (int)w ? (int)w - 1 : x + dx;
+            int sy = y + dy < 0 ? 0 : y + dy >= (int)h ? (int)h - 1 : y + dy;
+            for (int c = 0; c < 4; c++)
+                out[c] += src[((size_t)sy * w + sx) * 4 + c] / 9.0f;
+        }
+}
+
+static float *pattern_image(uint32_t w, uint32_t h, float value)
+{
+    float *img = malloc((size_t)w * h * 4 * sizeof(float));
+    for (uint32_t y = 0; y < h; y++)
+        for (uint32_t x = 0; x < w; x++)
+            pattern_at(w, h, (int)x, (int)y, value, img + ((size_t)y * w + x) * 4);
+    return img;
+}
+
+static float *blur_image(const float *src, uint32_t w, uint32_t h)
+{
+    float *img = malloc((size_t)w * h * 4 * sizeof(float));
+    for (uint32_t y = 0; y < h; y++)
+        for (uint32_t x = 0; x < w; x++)
+            blur_at(src, w, h, (int)x, (int)y, img + ((size_t)y * w + x) * 4);
+    return img;
+}
+
+static double max_diff(const vrg_image_data *img, const float *want, int channels)
+{
+    double worst = 0;
+    for (size_t p = 0; p < (size_t)img->width * img->height; p++)
+        for (int c = 0; c < channels; c++)
+            worst = fmax(worst, fabs(img->pixels[p * 4 + c] - want[p * 4 + c]));
+    return worst;
+}
+
+/* pattern → blur → add(blur, pattern): values against a CPU computation. */
+static void test_chain(void)
+{
+    vrg_graph *g = load("chain.ini");
+    if (!g)
+        return;
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_image_data img;
+    CHECK(vrg_graph_read(g, vrg_graph_output(g), &img) == 0, "readback failed");
+    float *pat = pattern_image(img.width, img.height, 0.5f);
+    float *blur = blur_image(pat, img.width, img.height);
+    for (size_t i = 0; i < (size_t)img.width * img.height * 4; i++)
+        blur[i] += pat[i];
+    double d = max_diff(&img, blur, 4);
+    CHECK(d < 4e-3, "chain output differs from the CPU result by %g", d);
+    /* and not trivially: the gradient must be there */
+    CHECK(px(&img, img.width - 1, 0, 0) > 1.5f && px(&img, 0, 0, 0) < 0.1f, "no gradient in the output");
+    free(pat);
+    free(blur);
+    free(img.pixels);
+    vrg_graph_destroy(g);
+}
+
+/* counter: out = prev + 1 while history is valid. */
+static void test_history(void)
+{
+    vrg_graph *g = load("history.ini");
+    if (!g)
+        return;
+    vrg_image_data img;
+    for (int frame = 1; frame <= 5; frame++) {
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+        CHECK(vrg_graph_read(g, vrg_graph_output(g), &img) == 0, "readback failed");
+        CHECK(px(&img, 0, 0, 0) == (float)frame && px(&img, img.width - 1, img.height - 1, 0) == (float)frame,
+              "frame %d: counter is %g", frame, px(&img, 0, 0, 0));
+        free(img.pixels);
+    }
+    vrg_graph_reset_history(g);
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_graph_read(g, vrg_graph_output(g), &img);
+    CHECK(px(&img, 3, 3, 0) == 1.0f, "after a history reset the counter is %g, not 1", px(&img, 3, 3, 0));
+    free(img.pixels);
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    uint32_t w, h;
+    vrg_graph_size(g, &w, &h);
+    CHECK(vrg_graph_resize(g, w / 2, h + 3) == 0, "resize failed");
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_graph_read(g, vrg_graph_output(g), &img);
+    CHECK(img.width == w / 2 && img.height == h + 3, "resize gave %ux%u", img.width, img.height);
+    CHECK(px(&img, img.width - 1, img.height - 1, 0) == 1.0f, "after resize the counter is %g, not 1", px(&img, 0, 0, 0));
+    free(img.pixels);
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_graph_read(g, vrg_graph_output(g), &img);
+    CHECK(px(&img, 0, 0, 0) == 2.0f, "history not kept after resize: %g", px(&img, 0, 0, 0));
+    free(img.pixels);
+    vrg_graph_destroy(g);
+}
+
+/* accumulate: out = mix(history, color, alpha) once history is valid. The
+ * input changes with a --set between graphs, so use two frames of one graph
+ * whose color is constant: the result must stay the colour (mix of equals),
+ * and the first frame must not read uninitialised history. */
+static void test_accumulate(void)
+{
+    static const char *sets[] = {"acc.alpha=0.25"};
+    vrg_graph *g = load_with("accumulate.ini", sets, 1, NULL, 0);
+    if (!g)
+        return;
+    vrg_image_data img;
+    for (int i = 0; i < 3; i++)
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    CHECK(vrg_graph_read(g, vrg_graph_output(g), &img) == 0, "readback failed");
+    float *pat = pattern_image(img.width, img.height, 0.5f);
+    double d = max_diff(&img, pat, 3);
+    CHECK(d < 4e-3, "accumulated constant input drifted by %g", d);
+    free(pat);
+    free(img.pixels);
+    vrg_graph_destroy(g);
+}
+
+/* pingpong: internal ping-pong images; dst = src + iterations. */
+static void test_pingpong(void)
+{
+    for (int it = 1; it <= 5; it += 2) {
+        char set[64];
+        snprintf(set, sizeof set, "pp.iterations=%d", it);
+        const char *sets[] = {set};
+        vrg_graph *g = load_with("pingpong.ini", sets, 1, NULL, 0);
+        if (!g)
+            return;
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+        vrg_image_data img;
+        CHECK(vrg_graph_read(g, vrg_graph_output(g), &img) == 0, "readback failed");
+        float *pat = pattern_image(img.width, img.height, 0.5f);
+        for (size_t i = 0; i < (size_t)img.width * img.height * 4; i++)
+            pat[i] += (float)it;
+        double d = max_diff(&img, pat, 4);
+        CHECK(d < 8e-3, "iterations=%d: output differs from src+%d by %g", it, it, d);
+        free(pat);
+        free(img.pixels);
+        vrg_memory_stats m = vrg_graph_memory(g);
+        CHECK(m.transient_count >= 3, "internal images were not made transient resources (%u)", m.transient_count);
+        vrg_graph_destroy(g);
+    }
+}
+
+/* alias: a chain whose early resources die before later ones are born. */
+static void test_alias(void)
+{
+    vrg_graph *g = load("alias.ini");
+    if (!g)
+        return;
+    vrg_memory_stats m = vrg_graph_memory(g);
+    CHECK(m.aliased_bytes < m.naive_bytes, "no memory saved: naive %llu, aliased %llu", (unsigned long long)m.naive_bytes,
+          (unsigned long long)m.aliased_bytes);
+    CHECK(m.aliased_bytes * 2 <= m.naive_bytes, "a 5-resource chain should at least halve memory: naive %llu, aliased %llu",
+          (unsigned long long)m.naive_bytes, (unsigned long long)m.aliased_bytes);
+    CHECK(m.alias_shared >= 2, "no two resources share memory (%u)", m.alias_shared);
+    CHECK(vrg_graph_pass_culled(g, "unused") == 1, "pass 'unused' was not culled");
+    CHECK(vrg_graph_pass_culled(g, "gen") == 0, "pass 'gen' was culled");
+    /* Pixels must survive the sharing: 4 blurs of the pattern. */
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_image_data img;
+    CHECK(vrg_graph_read(g, vrg_graph_output(g), &img) == 0, "readback failed");
+    float *cur = pattern_image(img.width, img.height, 0.5f);
+    for (int i = 0; i < 4; i++) {
+        float *next = blur_image(cur, img.width, img.height);
+        free(cur);
+        cur = next;
+    }
+    double d = max_diff(&img, cur, 4);
+    CHECK(d < 6e-3, "aliased chain output differs from the CPU result by %g", d);
+    free(cur);
+    free(img.pixels);
+    vrg_graph_destroy(g);
+}
+
+/* buffers between passes: data[i] = i * mul; image(x,y) = data[(y*W+x) % 1024]. */
+static void test_buffer(void)
+{
+    static const char *sets[] = {"fill.mul=7"};
+    vrg_graph *g = load_with("buffer.ini", sets, 1, NULL, 0);
+    if (!g)
+        return;
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_image_data img;
+    CHECK(vrg_graph_read(g, vrg_graph_output(g), &img) == 0, "readback failed");
+    int bad = 0;
+    for (uint32_t y = 0; y < img.height; y++)
+        for (uint32_t x = 0; x < img.width; x++)
+            bad += px(&img, x, y, 0) != (float)(((y * img.width + x) % 1024) * 7);
+    CHECK(bad == 0, "%d pixels differ from data[(y*W+x)%%1024] = index*7", bad);
+    free(img.pixels);
+    vrg_graph_destroy(g);
+}
+
+/* A scene plugin writes a uniform buffer by transfer; a pass reads it. */
+static void test_scene(void)
+{
+    static const char *sets[] = {"scene.r=1"};
+    vrg_graph *g = load_with("scene.ini", sets, 1, NULL, 0);
+    if (!g)
+        return;
+    for (int i = 0; i < 2; i++)
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_image_data img;
+    CHECK(vrg_graph_read(g, vrg_graph_output(g), &img) == 0, "readback failed");
+    CHECK(fabsf(px(&img, 1, 1, 0) - 1.0f) < 1e-3f && fabsf(px(&img, 1, 1, 1) - 0.5f) < 1e-3f && fabsf(px(&img, 1, 1, 2) - 0.75f) < 1e-3f,
+          "scene colour is (%g %g %g), want (1 0.5 0.75)", px(&img, 1, 1, 0), px(&img, 1, 1, 1), px(&img, 1, 1, 2));
+    free(img.pixels);
+    vrg_graph_destroy(g);
+}
+
+/* Loader errors: each names the plugin path and what was expected. */
+static int load_text_errors(const char *text, const char *want1, const char *want2)
+{
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *diag = open_memstream(&buf, &len);
+    vrg_graph_desc d = {.path = TEST_DIR "/graphs/loader.ini", .text = text, .diag = diag};
+    vrg_graph *g = NULL;
+    int rc = vrg_graph_load(NULL, &d, &g);
+    fclose(diag);
+    int ok = rc != 0 && strstr(buf, want1) && (!want2 || strstr(buf, want2));
+    if (!ok)
+        fprintf(stderr, "loader message lacks '%s'/'%s':\n%s\n", want1, want2 ? want2 : "", buf);
+    free(buf);
+    vrg_graph_destroy(g);
+    return ok;
+}
+
+static void test_loader(void)
+{
+    char abi[256];
+    snprintf(abi, sizeof abi, "ABI version %u", VRG_ABI_VERSION);
+    CHECK(load_text_errors("[graph]\noutput=x\n[pass a]\nplugin = bad_abi\n", "bad_abi.so", "has ABI version 999"), "ABI mismatch");
+    CHECK(load_text_errors("[graph]\noutput=x\n[pass a]\nplugin = bad_abi\n", "loader.ini:4:", abi), "ABI mismatch line/expected");
+    CHECK(load_text_errors("[graph]\noutput=x\n[pass a]\nplugin = no_entry\n", "no_entry.so", "vrg_plugin_entry"), "missing entry point");
+    CHECK(load_text_errors("[graph]\noutput=x\n[pass a]\nplugin = not_there\n", "unknown plugin 'not_there'", "searched:"), "missing file");
+    /* a file that is not a shared object: dlopen's own error, with the path */
+    const char *dir = getenv("VOXRG_PLUGIN_PATH");
+    CHECK(dir != NULL, "VOXRG_PLUGIN_PATH is not set for this test");
+    if (dir) {
+        char path[1024];
+        snprintf(path, sizeof path, "%s/garbage.so", dir);
+        FILE *f = fopen(path, "w");
+        CHECK(f != NULL, "cannot write %s", path);
+        if (f) {
+            fputs("this is not an ELF file\n", f);
+            fclose(f);
+            CHECK(load_text_errors("[graph]\noutput=x\n[pass a]\nplugin = garbage\n", "cannot load plugin 'garbage'", "garbage.so"), "dlopen error");
+        }
+    }
+}
+
+int main(int argc, char **argv)
+{
+    static const struct {
+        const char *name;
+        void (*fn)(void);
+        int device;
+    } cases[] = {
+        {"chain", test_chain, 1},     {"history", test_history, 1}, {"accumulate", test_accumulate, 1}, {"pingpong", test_pingpong, 1},
+        {"alias", test_alias, 1},     {"buffer", test_buffer, 1},   {"scene", test_scene, 1},           {"loader", test_loader, 0},
+    };
+    if (argc != 2) {
+        fprintf(stderr, "usage: test_runtime CASE\n");
+        return 2;
+    }
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        if (strcmp(cases[i].name, argv[1]) != 0)
+            continue;
+        if (cases[i].device) {
+            vrg_context_desc cd = {.validate = 1, .quiet = 1};
+            if (vrg_context_create(&cd, &ctx) != 0)
+                return 1;
+        }
+        cases[i].fn();
+        if (ctx) {
+            uint32_t v = vrg_context_validation_errors(ctx);
+            CHECK(v == 0, "%u validation messages", v);
+            vrg_context_destroy(ctx);
+        }
+        printf("%s: %s\n", argv[1], failures ? "FAILED" : "ok");
+        return failures ? 1 : 0;
+    }
+    fprintf(stderr, "unknown case '%s'\n", argv[1]);
+    return 2;
+}
