@@ -71,6 +71,14 @@ for f in "$dir"/*.ini; do
 $expects
 EOF
 
+    # and nothing else: one error per expectation, no follow-on noise
+    want=$(printf '%s\n' "$expects" | awk 'NF { print $1 }' | sort -u | wc -l)
+    got=$(grep -o -- "^$f:[0-9]*: error:" "$out" | sort -u | wc -l)
+    if [ "$got" -ne "$want" ]; then
+        problems="$problems
+  errors on $got lines, expected on $want"
+    fi
+
     if [ -z "$problems" ]; then
         passed=$((passed + 1))
         echo "ok    $f"

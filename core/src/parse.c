@@ -27,8 +27,10 @@ static char *read_line(char *str, int num, void *stream)
     while (r->pos + n < r->len && r->text[r->pos + n] != '\n')
         n++;
     size_t copy = n < (size_t)(num - 1) ? n : (size_t)(num - 1);
-    if (n > copy)
+    if (n > copy) {
         vrg_error_at(r->d, r->line + 1, "split the value or shorten names", "line is longer than %d characters", num - 2);
+        copy = 0; /* hand inih a blank line: no follow-on syntax error */
+    }
     memcpy(str, r->text + r->pos, copy);
     str[copy] = '\0';
     r->pos += n + (r->pos + n < r->len ? 1 : 0);
