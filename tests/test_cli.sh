@@ -73,6 +73,26 @@ then ok; else bad "render JSON"; fi
 expect_rc 1 "dump of an unknown resource" "$voxrg" render "$tests/graphs/chain.ini" --dump nonesuch --out "$out/r2"
 has "$out/stderr" "nonesuch" "dump error names the resource"
 
+# --validate: a validation message fails the run
+expect_rc 1 "render with a hazard under --validate" "$voxrg" render "$tests/graphs/hazard.ini" --validate --out "$out/hz"
+has "$out/stderr" "SYNC-HAZARD-WRITE.AFTER.WRITE" "sync validation names the hazard"
+has "$out/stderr" "validation message" "validation summary"
+
+# --device by name and by index; a device that does not exist
+expect_rc 0 "--device by name" "$voxrg" check "$tests/graphs/chain.ini" --device llvmpipe
+has "$out/stderr" "device llvmpipe" "chosen device"
+expect_rc 0 "--device by index" "$voxrg" check "$tests/graphs/chain.ini" --device 0
+expect_rc 1 "--device unknown" "$voxrg" check "$tests/graphs/chain.ini" --device no-such-gpu
+has "$out/stderr" "matches no device" "unknown device message"
+has "$out/stderr" "0: " "device list"
+
+# plugins next to the graph file are found before the build's
+mkdir -p "$out/rel/plugins"
+cp "$tests/graphs/chain.ini" "$out/rel/"
+cp "$(dirname "$voxrg")/plugins/pattern.so" "$out/rel/plugins/"
+expect_rc 0 "graph-relative plugin" "$voxrg" check "$out/rel/chain.ini" --no-device
+has "$out/stdout" "plugin pattern .*$out/rel/plugins/pattern.so" "graph-relative plugin path"
+
 # plugins
 expect_rc 0 "plugins" "$voxrg" plugins
 has "$out/stdout" "^pattern +pass" "plugins lists pattern"

@@ -212,6 +212,20 @@ static void test_alias(void)
     CHECK(m.aliased_bytes * 2 <= m.naive_bytes, "a 5-resource chain should at least halve memory: naive %llu, aliased %llu",
           (unsigned long long)m.naive_bytes, (unsigned long long)m.aliased_bytes);
     CHECK(m.alias_shared >= 2, "no two resources share memory (%u)", m.alias_shared);
+    /* Two resources whose lifetimes do not overlap sit at the same address. */
+    int shared = 0;
+    char names[8][32];
+    int blocks[8];
+    uint64_t offs[8], sizes[8];
+    int n = 0;
+    static const char *candidates[] = {"gradient", "b1", "b2", "b3", "final"};
+    for (size_t i = 0; i < sizeof candidates / sizeof candidates[0] && n < 8; i++)
+        if (vrg_graph_placement(g, candidates[i], &blocks[n], &offs[n], &sizes[n]) == 0 && blocks[n] >= 0)
+            snprintf(names[n], sizeof names[n], "%s", candidates[i]), n++;
+    for (int i = 0; i < n; i++)
+        for (int j = i + 1; j < n; j++)
+            shared += blocks[i] == blocks[j] && offs[i] == offs[j];
+    CHECK(n >= 3 && shared >= 1, "no two of %d placed resources share an offset", n);
     CHECK(vrg_graph_pass_culled(g, "unused") == 1, "pass 'unused' was not culled");
     CHECK(vrg_graph_pass_culled(g, "gen") == 0, "pass 'gen' was culled");
     /* Pixels must survive the sharing: 4 blurs of the pattern. */

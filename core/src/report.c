@@ -134,7 +134,7 @@ void vrg_graph_report(const vrg_graph *g, FILE *f)
     fprintf(f, "schedule:\n");
     for (int k = 0; k < g->schedule_count; k++) {
         const vrg_pass *p = &g->passes[g->schedule[k]];
-        fprintf(f, "  %2d. %-12s plugin %-14s (line %d)\n", k, p->name, p->plugin->name, p->line);
+        fprintf(f, "  %2d. %-12s plugin %-14s (line %d)  %s\n", k, p->name, p->plugin->name, p->line, p->plugin->path);
     }
     fprintf(f, "culled passes:%s\n", culled ? "" : " none");
     for (int i = 0; i < g->pass_count; i++)
