@@ -78,6 +78,28 @@ expect_rc 1 "render with a hazard under --validate" "$voxrg" render "$tests/grap
 has "$out/stderr" "SYNC-HAZARD-WRITE.AFTER.WRITE" "sync validation names the hazard"
 has "$out/stderr" "validation message" "validation summary"
 
+# shaders: #include resolution and compile errors naming FILE:LINE
+mkdir -p "$out/sh"
+cat >"$out/sh/inc.glsl" <<'GLSL'
+// included
+vec4 shade(ivec2 p) { return vec4(0.25, 0.5, 1.0, 1.0); }
+GLSL
+cat >"$out/sh/user.comp" <<'GLSL'
+#version 450
+#include "inc.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0, rgba16f) uniform writeonly image2D dst;
+void main() { imageStore(dst, ivec2(gl_GlobalInvocationID.xy), shade(ivec2(0))); }
+GLSL
+expect_rc 0 "shader with #include" env VOXRG_SHADER_PATH="$out/sh" "$voxrg" render "$tests/graphs/shader_file.ini" --validate --out "$out/sh_ok"
+sed -i 's/return vec4/return vec3/' "$out/sh/inc.glsl"   # a type error on line 2 of the include
+expect_rc 1 "shader error in an include" env VOXRG_SHADER_PATH="$out/sh" "$voxrg" render "$tests/graphs/shader_file.ini" --validate --out "$out/sh_bad"
+has "$out/stderr" "^$out/sh/inc.glsl:2: error:" "include error names the included file and line"
+printf '#version 450\nlayout(local_size_x = 8) in;\nvoid main() { undefined_call(); }\n' >"$out/sh/user.comp"
+expect_rc 1 "shader error in the main file" env VOXRG_SHADER_PATH="$out/sh" "$voxrg" render "$tests/graphs/shader_file.ini" --out "$out/sh_bad2"
+has "$out/stderr" "^$out/sh/user.comp:3: error:.*undefined_call" "main-file error names file and line"
+has "$out/stderr" "shader_file.ini:8: error: pass 'user'" "the failing pass is named at its line"
+
 # --device by name and by index; a device that does not exist
 expect_rc 0 "--device by name" "$voxrg" check "$tests/graphs/chain.ini" --device llvmpipe
 has "$out/stderr" "device llvmpipe" "chosen device"
