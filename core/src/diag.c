@@ -75,7 +75,8 @@ static int by_line(const void *a, const void *b)
 
 void vrg_diag_flush(vrg_diag *d)
 {
-    qsort(d->entries, (size_t)d->count, sizeof *d->entries, by_line);
+    if (d->count)
+        qsort(d->entries, (size_t)d->count, sizeof *d->entries, by_line);
     for (int i = 0; i < d->count; i++) {
         fputs(d->entries[i].text, diag_out(d));
         free(d->entries[i].text);
