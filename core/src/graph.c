@@ -153,6 +153,7 @@ void vrg_graph_destroy(vrg_graph *g)
             if (p->created && p->plugin->desc->destroy)
                 p->plugin->desc->destroy(p);
             vrg_pipelines_destroy(p);
+            vrg_pass_free_host_buffers(p);
         }
         free_readback(g);
         vrg_free_resources(g);
@@ -161,6 +162,8 @@ void vrg_graph_destroy(vrg_graph *g)
         vkDestroyFence(dev, g->fence, NULL);
         vkDestroyQueryPool(dev, g->queries, NULL);
     }
+    for (int i = 0; i < g->pass_count; i++)
+        vrg_pass_free_params(&g->passes[i]);
     free(g);
 }
 
@@ -349,6 +352,8 @@ int vrg_graph_placement(const vrg_graph *g, const char *name, int *block, uint64
         }
     return -1;
 }
+
+vrg_world *vrg_graph_world(const vrg_graph *g) { return g->world; }
 
 int vrg_graph_pass_culled(const vrg_graph *g, const char *name)
 {

@@ -159,8 +159,30 @@ struct vrg_pass {
     /* shader pipelines cached by the dispatch helper */
     struct vrg_pipeline *pipelines;
     int failed;               /* an error during execute: frame fails */
+    uint64_t buffer_size[VRG_MAX_SLOTS]; /* vrg_pass_set_buffer_size, 0 if not set */
+    struct vrg_param_value *strings;     /* string parameter values, in file order */
+    int string_count;
+    struct vrg_host_buffer *host_buffers;
     VkCommandBuffer cmd;      /* during execute */
 };
+
+typedef struct vrg_param_value {
+    int param; /* index into the plugin's parameter table */
+    char *value;
+    int line;  /* 0: --set */
+} vrg_param_value;
+
+typedef struct vrg_host_buffer {
+    char name[VRG_NAME_MAX];
+    VkBuffer buffer;
+    VkDeviceMemory memory;
+    void *map;
+    struct vrg_host_buffer *next;
+} vrg_host_buffer;
+
+void vrg_pass_free_params(vrg_pass *p);
+void vrg_pass_free_host_buffers(vrg_pass *p);
+int vrg_pass_add_string(vrg_pass *p, int param, const char *value, int line, int replace);
 
 typedef struct vrg_barrier_rec {
     int res, copy;
@@ -211,6 +233,7 @@ struct vrg_graph {
     void *readback_map;
     VkDeviceSize readback_offset[VRG_MAX_RESOURCES];
     int frame_done;
+    vrg_world *world;         /* the scene's, for host queries */
 };
 
 /* validate.c: AST → graph (plugins loaded, slots resolved, every check). */

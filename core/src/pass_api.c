@@ -1,4 +1,5 @@
 /* The functions a plugin calls on its vrg_pass. */
+#define _DEFAULT_SOURCE
 #include <stdlib.h>
 #include <string.h>
 #include "internal.h"
@@ -52,6 +53,151 @@ double vrg_param(const vrg_pass *p, const char *name)
 }
 
 int vrg_param_int(const vrg_pass *p, const char *name) { return (int)vrg_param(p, name); }
+
+int vrg_pass_add_string(vrg_pass *p, int param, const char *value, int line, int replace)
+{
+    if (replace) {
+        int k = 0;
+        for (int i = 0; i < p->string_count; i++) {
+            if (p->strings[i].param == param)
+                free(p->strings[i].value);
+            else
+                p->strings[k++] = p->strings[i];
+        }
+        p->string_count = k;
+    }
+    p->strings = realloc(p->strings, (size_t)(p->string_count + 1) * sizeof *p->strings);
+    p->strings[p->string_count++] = (vrg_param_value){param, strdup(value), line};
+    return 0;
+}
+
+void vrg_pass_free_params(vrg_pass *p)
+{
+    for (int i = 0; i < p->string_count; i++)
+        free(p->strings[i].value);
+    free(p->strings);
+    p->strings = NULL;
+    p->string_count = 0;
+}
+
+static int string_param(const vrg_pass *p, const char *name)
+{
+    int i = param_index(p, name);
+    if (i < 0 || p->plugin->desc->params[i].type != VRG_PARAM_STRING) {
+        fprintf(stderr, "voxrg: plugin %s asked for undeclared string parameter '%s'\n", p->plugin->name, name);
+        abort();
+    }
+    return i;
+}
+
+const char *vrg_param_string(const vrg_pass *p, const char *name)
+{
+    int idx = string_param(p, name);
+    const char *v = p->plugin->desc->params[idx].default_string;
+    for (int i = 0; i < p->string_count; i++)
+        if (p->strings[i].param == idx)
+            v = p->strings[i].value;
+    return v ? v : "";
+}
+
+int vrg_param_count(const vrg_pass *p, const char *name)
+{
+    int idx = string_param(p, name), n = 0;
+    for (int i = 0; i < p->string_count; i++)
+        n += p->strings[i].param == idx;
+    return n;
+}
+
+const char *vrg_param_item(const vrg_pass *p, const char *name, int k, int *line)
+{
+    int idx = string_param(p, name);
+    for (int i = 0; i < p->string_count; i++)
+        if (p->strings[i].param == idx && k-- == 0) {
+            if (line)
+                *line = p->strings[i].line;
+            return p->strings[i].value;
+        }
+    return NULL;
+}
+
+int vrg_pass_error_at(vrg_pass *p, int line, const char *fmt, ...)
+{
+    char msg[1536];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    if (line > 0)
+        vrg_error_at(&p->graph->diag, line, NULL, "%s", msg);
+    else
+        vrg_error(&p->graph->diag, "pass '%s': %s", p->name, msg);
+    p->failed = 1;
+    return -1;
+}
+
+int vrg_pass_set_buffer_size(vrg_pass *p, const char *slot, uint64_t bytes)
+{
+    const vrg_plugin_desc *d = p->plugin->desc;
+    for (uint32_t s = 0; s < d->slot_count; s++)
+        if (d->slots[s].dir == VRG_OUT && d->slots[s].kind == VRG_BUFFER && strcmp(d->slots[s].name, slot) == 0) {
+            if (p->graph->allocated)
+                return vrg_pass_error(p, "buffer size of '%s' set after allocation", slot);
+            p->buffer_size[s] = bytes;
+            if (p->slots[s].res >= 0)
+                p->graph->res[p->slots[s].res].size = bytes;
+            return 0;
+        }
+    return vrg_pass_error(p, "vrg_pass_set_buffer_size: no buffer output '%s'", slot);
+}
+
+void *vrg_pass_host_buffer(vrg_pass *p, const char *name, uint64_t bytes, VkBuffer *buffer)
+{
+    vrg_context *ctx = p->graph->ctx;
+    *buffer = VK_NULL_HANDLE;
+    if (!ctx) {
+        vrg_pass_error(p, "host buffer '%s' needs a device", name);
+        return NULL;
+    }
+    VkDevice dev = ctx->dev.device;
+    vrg_host_buffer *hb = calloc(1, sizeof *hb);
+    snprintf(hb->name, sizeof hb->name, "%s", name);
+    VkBufferCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = bytes, .usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT};
+    VkMemoryRequirements req;
+    int type = -1;
+    if (vkCreateBuffer(dev, &ci, NULL, &hb->buffer) == VK_SUCCESS) {
+        vkGetBufferMemoryRequirements(dev, hb->buffer, &req);
+        type = vrg_find_memory_type(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    }
+    VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = type >= 0 ? req.size : 0, .memoryTypeIndex = (uint32_t)type};
+    if (type < 0 || vkAllocateMemory(dev, &ai, NULL, &hb->memory) != VK_SUCCESS ||
+        vkBindBufferMemory(dev, hb->buffer, hb->memory, 0) != VK_SUCCESS || vkMapMemory(dev, hb->memory, 0, VK_WHOLE_SIZE, 0, &hb->map) != VK_SUCCESS) {
+        vkDestroyBuffer(dev, hb->buffer, NULL);
+        vkFreeMemory(dev, hb->memory, NULL);
+        free(hb);
+        vrg_pass_error(p, "cannot allocate %llu bytes of host-visible memory for '%s'", (unsigned long long)bytes, name);
+        return NULL;
+    }
+    vrg_name_object(ctx, VK_OBJECT_TYPE_BUFFER, (uint64_t)hb->buffer, "%s/%s.%s (host)", p->graph->name, p->name, name);
+    hb->next = p->host_buffers;
+    p->host_buffers = hb;
+    *buffer = hb->buffer;
+    return hb->map;
+}
+
+void vrg_pass_free_host_buffers(vrg_pass *p)
+{
+    while (p->host_buffers) {
+        vrg_host_buffer *hb = p->host_buffers;
+        p->host_buffers = hb->next;
+        VkDevice dev = p->graph->ctx->dev.device;
+        vkUnmapMemory(dev, hb->memory);
+        vkDestroyBuffer(dev, hb->buffer, NULL);
+        vkFreeMemory(dev, hb->memory, NULL);
+        free(hb);
+    }
+}
+
+void vrg_pass_set_world(vrg_pass *p, vrg_world *world) { p->graph->world = world; }
 
 static vrg_res request(vrg_pass *p, const char *name, vrg_resource_kind kind)
 {

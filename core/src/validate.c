@@ -122,6 +122,13 @@ static int find_param(const vrg_plugin_desc *desc, const char *name)
 static int set_param(vrg_graph *g, vrg_pass *p, int idx, const char *value, int line, const char *what)
 {
     const vrg_param_desc *pd = &p->plugin->desc->params[idx];
+    if (pd->type == VRG_PARAM_STRING) {
+        /* a list grows by file lines; --set replaces it */
+        vrg_pass_add_string(p, idx, value, line, !line || !(pd->flags & VRG_PARAM_REPEATABLE));
+        (void)g;
+        (void)what;
+        return 0;
+    }
     double v = 0;
     long iv = 0;
     int bad;
@@ -308,7 +315,11 @@ static void pass_section(vrg_graph *g, const vrg_ast *a, int si, vrg_pass *p)
     char hint[1024];
     for (int i = 0; i < a->key_count; i++) {
         const vrg_key *k = &a->keys[i];
-        if (k->section_index != si || repeated_key(g, a, i) || strcmp(k->name, "plugin") == 0)
+        if (k->section_index != si || strcmp(k->name, "plugin") == 0)
+            continue;
+        int list = p->plugin && find_param(p->plugin->desc, k->name) >= 0 &&
+                   (p->plugin->desc->params[find_param(p->plugin->desc, k->name)].flags & VRG_PARAM_REPEATABLE);
+        if (!list && repeated_key(g, a, i))
             continue;
         if (!p->plugin)
             continue; /* its plugin failed to load: already reported */
@@ -516,7 +527,7 @@ static void resolve_resources(vrg_graph *g)
             r->abs_width = sd->width;
             r->abs_height = sd->height;
             if (sd->kind == VRG_BUFFER)
-                r->size = sd->size;
+                r->size = g->passes[r->writer].buffer_size[r->writer_slot] ? g->passes[r->writer].buffer_size[r->writer_slot] : sd->size;
         }
         if (sd->kind == VRG_BUFFER && r->size == 0)
             vrg_error_at(&g->diag, r->writer_line, "give the buffer a size in a [resource] section", "buffer '%s' has size 0", r->name);
@@ -733,6 +744,11 @@ int vrg_validate(vrg_graph *g, const vrg_ast *ast, const vrg_graph_desc *desc)
             pass_section(g, ast, si, &g->passes[pi]);
     }
     apply_overrides(g, desc);
+    for (int i = 0; i < g->pass_count; i++) {
+        vrg_pass *p = &g->passes[i];
+        if (p->plugin && p->plugin->desc->check && p->plugin->desc->check(p) != 0 && !p->failed)
+            vrg_pass_error(p, "its check() failed");
+    }
     default_outputs(g);
     for (int si = 0; si < ast->section_count; si++) {
         const char *arg;

@@ -30,7 +30,12 @@ typedef enum vrg_param_type {
     VRG_PARAM_FLOAT = 1,
     VRG_PARAM_INT = 2,
     VRG_PARAM_BOOL = 3,
+    VRG_PARAM_STRING = 4, /* text the plugin interprets (check it in the check callback) */
 } vrg_param_type;
+
+enum vrg_param_flags {
+    VRG_PARAM_REPEATABLE = 1u << 0, /* the key may appear many times: a list (e.g. box = ...) */
+};
 
 typedef struct vrg_param_desc {
     const char *name;
@@ -38,6 +43,8 @@ typedef struct vrg_param_desc {
     double default_value;
     double min, max; /* inclusive; min == max == 0 means unbounded */
     const char *help;
+    uint32_t flags;             /* vrg_param_flags */
+    const char *default_string; /* VRG_PARAM_STRING: the value when none is given */
 } vrg_param_desc;
 
 typedef enum vrg_slot_dir {
@@ -117,6 +124,11 @@ typedef struct vrg_plugin_desc {
      * size used. restore_state gets it back in the new instance after create. */
     size_t (*save_state)(vrg_pass *pass, void *dst, size_t cap);
     int (*restore_state)(vrg_pass *pass, const void *src, size_t size);
+    /* Called while the graph is validated, without a device (also by
+     * `voxrg check --no-device`): check string parameters, reporting with
+     * vrg_pass_error_at(), and size outputs with vrg_pass_set_buffer_size().
+     * Return 0 if all is well. May be NULL. */
+    int (*check)(vrg_pass *pass);
 } vrg_plugin_desc;
 
 /* The one symbol a plugin exports. host_abi is the runtime's VRG_ABI_VERSION. */
@@ -168,12 +180,33 @@ void vrg_pass_set_user(vrg_pass *pass, void *user);
 /* Report an error that names this pass (and its plugin); returns -1. */
 int vrg_pass_error(vrg_pass *pass, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
+/* An error at a line of the graph file (e.g. a parameter's, from vrg_param_item). */
+int vrg_pass_error_at(vrg_pass *pass, int line, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
 /* GPU milliseconds of a pass (NULL: this one) in the last finished frame; -1 if unknown. */
 double vrg_pass_gpu_ms(const vrg_pass *pass, const char *other_pass);
 
 /* Parameters by name, after defaults, graph values and --set overrides. */
 double vrg_param(const vrg_pass *pass, const char *name);
 int vrg_param_int(const vrg_pass *pass, const char *name);
+/* String parameters: the value (the last given, or the default). */
+const char *vrg_param_string(const vrg_pass *pass, const char *name);
+/* Repeatable parameters: how many values, and value i with its graph line
+ * (0 when it came from --set or the default). */
+int vrg_param_count(const vrg_pass *pass, const char *name);
+const char *vrg_param_item(const vrg_pass *pass, const char *name, int i, int *line);
+
+/* In check() or create(): the byte size of a buffer output, when it depends
+ * on parameters (readers' minimum sizes are checked against it). */
+int vrg_pass_set_buffer_size(vrg_pass *pass, const char *slot, uint64_t bytes);
+/* In create(): host-visible, coherent, persistently mapped memory owned by
+ * the runtime (staging for uploads). Returns the mapping; *buffer is usable
+ * as a transfer source. Host writes before the frame's submission are
+ * visible to it. */
+void *vrg_pass_host_buffer(vrg_pass *pass, const char *name, uint64_t bytes, VkBuffer *buffer);
+/* A scene plugin hands its world to the runtime so hosts can query it. */
+typedef struct vrg_world vrg_world;
+void vrg_pass_set_world(vrg_pass *pass, vrg_world *world);
 
 /* In create() only: a transient resource private to this pass. It lives for
  * the pass's execution alone, so the runtime aliases its memory with other

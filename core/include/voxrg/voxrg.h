@@ -80,6 +80,8 @@ typedef struct vrg_memory_stats {
 vrg_memory_stats vrg_graph_memory(const vrg_graph *g);
 /* Memory placement of a resource: block (-1 own memory) and byte offset. */
 int vrg_graph_placement(const vrg_graph *g, const char *resource, int *block, uint64_t *offset, uint64_t *size);
+/* The scene's world (NULL without a scene that sets one): CPU block queries. */
+vrg_world *vrg_graph_world(const vrg_graph *g);
 /* 1 if the named pass was culled. -1 if no such pass. */
 int vrg_graph_pass_culled(const vrg_graph *g, const char *pass);
 

@@ -54,6 +54,46 @@ const vrg_material *vrg_materials(void);
 /* Block id by name ("stone"), or -1. */
 int vrg_block_by_name(const char *name);
 
+/* ---- The world store: loaded chunks, CPU queries, GPU mirror ----------- */
+
+/* Chunks live in a toroidal grid of (2*radius+1) x height x (2*radius+1)
+ * slots: chunk (cx,cy,cz) goes to slot (cx mod G, cy, cz mod G), so the camera
+ * can travel forever and only chunks that change are uploaded. Two chunks
+ * closer than G columns never share a slot. */
+typedef struct vrg_world vrg_world;
+
+vrg_world *vrg_world_create(int radius_chunks, int height_chunks);
+void vrg_world_destroy(vrg_world *w);
+/* Bytes of the GPU buffer (header, material table, slots); see world.glsl. */
+uint64_t vrg_world_gpu_bytes(int radius_chunks, int height_chunks);
+void vrg_world_grid(const vrg_world *w, int dims[3]);
+/* Stores a chunk (replacing whatever held its slot) and marks it for upload. */
+void vrg_world_put_chunk(vrg_world *w, int cx, int cy, int cz, const vrg_block *blocks);
+void vrg_world_drop_chunk(vrg_world *w, int cx, int cy, int cz);
+int vrg_world_has_chunk(const vrg_world *w, int cx, int cy, int cz);
+/* The chunk's blocks, or NULL when it is not loaded. */
+const vrg_block *vrg_world_chunk(const vrg_world *w, int cx, int cy, int cz);
+int vrg_world_chunk_count(const vrg_world *w);
+/* Block at a world position; air where no chunk is loaded. */
+vrg_block vrg_world_block(const vrg_world *w, int x, int y, int z);
+
+typedef struct vrg_world_hit {
+    int block[3];    /* the block hit */
+    int normal[3];   /* face normal (axis unit vector); 0 when the ray starts inside */
+    float distance;  /* along dir (normalised) */
+    vrg_block id;
+} vrg_world_hit;
+/* First non-air block along a ray (Amanatides-Woo DDA); 1 on a hit. */
+int vrg_world_pick(const vrg_world *w, const float origin[3], const float dir[3], float max_distance, vrg_world_hit *hit);
+
+/* Records copies of changed chunks (at most what fits the staging ring)
+ * into dst, the world buffer a scene writes with VRG_ACCESS_TRANSFER_DST.
+ * staging is host-visible memory of staging_bytes (vrg_pass_host_buffer).
+ * Returns the number of slots uploaded; the rest wait for the next frame. */
+int vrg_world_upload(vrg_world *w, VkCommandBuffer cmd, VkBuffer dst, void *staging, VkBuffer staging_buffer, uint64_t staging_bytes);
+/* Slots still waiting for upload. */
+int vrg_world_dirty_count(const vrg_world *w);
+
 static inline int vrg_floor_div16(int v) { return v >= 0 ? v / 16 : -((15 - v) / 16); }
 static inline int vrg_chunk_index(int lx, int ly, int lz) { return lx + VRG_CHUNK_SIZE * (lz + VRG_CHUNK_SIZE * ly); }
 

@@ -1,0 +1,284 @@
+/* The world store. CPU side: a toroidal grid of chunk slots holding block
+ * ids. GPU side: the same grid in one storage buffer, in the layout
+ * shaders/include/world.glsl reads:
+ *   uint header[16]   = {GX, GY, GZ, SLOT_UINTS, SLOTS_OFFSET, BLOCK_COUNT, ...}
+ *   uint materials[32][8] = {albedo r,g,b (float bits), emissive, flags, tile top, side, bottom}
+ *   slots[GX*GY*GZ][SLOT_UINTS]:
+ *     [0..2] chunk coords, [3] brick mask (bit b: brick b has a solid voxel) | valid << 31
+ *     [4..131] occupancy: 8 bricks x 16 uints, 1 bit per voxel
+ *     [132..1155] block ids, 4 per uint
+ * A brick is 8^3 voxels: brick b = bx + 2*(bz + 2*by), bit = x + 8*(z + 8*y). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "voxrg/world.h"
+
+#define HEADER_UINTS 16
+#define MATERIAL_UINTS 8
+#define MAX_MATERIALS 32
+#define SLOTS_OFFSET (HEADER_UINTS + MAX_MATERIALS * MATERIAL_UINTS)
+#define SLOT_HEADER 4
+#define SLOT_OCC_UINTS (8 * 16)
+#define SLOT_UINTS (SLOT_HEADER + SLOT_OCC_UINTS + VRG_CHUNK_VOXELS / 4)
+
+typedef struct slot {
+    int cx, cy, cz;
+    int valid;
+    int dirty;
+    vrg_block blocks[VRG_CHUNK_VOXELS];
+} slot;
+
+struct vrg_world {
+    int gx, gy, gz;
+    slot *slots;
+    int *dirty_list; /* slot indices, each once */
+    int dirty_count;
+    int header_dirty;
+    int loaded;
+};
+
+static const vrg_material materials[VRG_BLOCK_COUNT] = {
+    [VRG_BLOCK_AIR] = {"air", 0, 0, 0, 0, {0, 0, 0}, 0},
+    [VRG_BLOCK_GRASS] = {"grass", 0, 1, 2, VRG_MATERIAL_OPAQUE, {0.23f, 0.42f, 0.12f}, 0},
+    [VRG_BLOCK_DIRT] = {"dirt", 2, 2, 2, VRG_MATERIAL_OPAQUE, {0.35f, 0.24f, 0.14f}, 0},
+    [VRG_BLOCK_STONE] = {"stone", 3, 3, 3, VRG_MATERIAL_OPAQUE, {0.40f, 0.40f, 0.41f}, 0},
+    [VRG_BLOCK_SAND] = {"sand", 4, 4, 4, VRG_MATERIAL_OPAQUE, {0.76f, 0.70f, 0.50f}, 0},
+    [VRG_BLOCK_SANDSTONE] = {"sandstone", 5, 6, 5, VRG_MATERIAL_OPAQUE, {0.72f, 0.62f, 0.42f}, 0},
+    [VRG_BLOCK_WOOD] = {"wood", 7, 8, 7, VRG_MATERIAL_OPAQUE, {0.36f, 0.27f, 0.16f}, 0},
+    [VRG_BLOCK_LEAVES] = {"leaves", 9, 9, 9, VRG_MATERIAL_OPAQUE, {0.16f, 0.36f, 0.10f}, 0},
+    [VRG_BLOCK_WATER] = {"water", 10, 10, 10, 0, {0.10f, 0.22f, 0.45f}, 0},
+    [VRG_BLOCK_SNOW] = {"snow", 11, 11, 11, VRG_MATERIAL_OPAQUE, {0.85f, 0.87f, 0.90f}, 0},
+    [VRG_BLOCK_GRAVEL] = {"gravel", 12, 12, 12, VRG_MATERIAL_OPAQUE, {0.45f, 0.42f, 0.40f}, 0},
+    [VRG_BLOCK_LAMP] = {"lamp", 13, 13, 13, VRG_MATERIAL_OPAQUE, {0.95f, 0.85f, 0.60f}, 4.0f},
+    [VRG_BLOCK_RED] = {"red", 14, 14, 14, VRG_MATERIAL_OPAQUE, {0.80f, 0.05f, 0.05f}, 0},
+    [VRG_BLOCK_WHITE] = {"white", 15, 15, 15, VRG_MATERIAL_OPAQUE, {0.80f, 0.80f, 0.80f}, 0},
+};
+
+const vrg_material *vrg_materials(void) { return materials; }
+
+int vrg_block_by_name(const char *name)
+{
+    for (int i = 0; i < VRG_BLOCK_COUNT; i++)
+        if (strcmp(materials[i].name, name) == 0)
+            return i;
+    return -1;
+}
+
+static int wrap(int v, int n) { return ((v % n) + n) % n; }
+
+static int slot_of(const vrg_world *w, int cx, int cy, int cz)
+{
+    if (cy < 0 || cy >= w->gy)
+        return -1;
+    return wrap(cx, w->gx) + w->gx * (wrap(cz, w->gz) + w->gz * cy);
+}
+
+vrg_world *vrg_world_create(int radius_chunks, int height_chunks)
+{
+    if (radius_chunks < 0 || height_chunks <= 0)
+        return NULL;
+    vrg_world *w = calloc(1, sizeof *w);
+    w->gx = w->gz = 2 * radius_chunks + 1;
+    w->gy = height_chunks;
+    size_t n = (size_t)w->gx * w->gy * w->gz;
+    w->slots = calloc(n, sizeof *w->slots);
+    w->dirty_list = calloc(n, sizeof *w->dirty_list);
+    if (!w->slots || !w->dirty_list) {
+        vrg_world_destroy(w);
+        return NULL;
+    }
+    w->header_dirty = 1;
+    return w;
+}
+
+void vrg_world_destroy(vrg_world *w)
+{
+    if (!w)
+        return;
+    free(w->slots);
+    free(w->dirty_list);
+    free(w);
+}
+
+uint64_t vrg_world_gpu_bytes(int radius_chunks, int height_chunks)
+{
+    uint64_t g = 2 * (uint64_t)radius_chunks + 1;
+    return 4 * (SLOTS_OFFSET + g * g * (uint64_t)height_chunks * SLOT_UINTS);
+}
+
+void vrg_world_grid(const vrg_world *w, int dims[3])
+{
+    dims[0] = w->gx;
+    dims[1] = w->gy;
+    dims[2] = w->gz;
+}
+
+static void mark_dirty(vrg_world *w, int s)
+{
+    if (!w->slots[s].dirty) {
+        w->slots[s].dirty = 1;
+        w->dirty_list[w->dirty_count++] = s;
+    }
+}
+
+void vrg_world_put_chunk(vrg_world *w, int cx, int cy, int cz, const vrg_block *blocks)
+{
+    int s = slot_of(w, cx, cy, cz);
+    if (s < 0)
+        return;
+    slot *sl = &w->slots[s];
+    w->loaded += !sl->valid;
+    sl->cx = cx;
+    sl->cy = cy;
+    sl->cz = cz;
+    sl->valid = 1;
+    memcpy(sl->blocks, blocks, VRG_CHUNK_VOXELS);
+    mark_dirty(w, s);
+}
+
+void vrg_world_drop_chunk(vrg_world *w, int cx, int cy, int cz)
+{
+    int s = slot_of(w, cx, cy, cz);
+    if (s < 0 || !w->slots[s].valid || w->slots[s].cx != cx || w->slots[s].cz != cz)
+        return;
+    w->slots[s].valid = 0;
+    w->loaded--;
+    mark_dirty(w, s);
+}
+
+const vrg_block *vrg_world_chunk(const vrg_world *w, int cx, int cy, int cz)
+{
+    int s = slot_of(w, cx, cy, cz);
+    if (s < 0)
+        return NULL;
+    const slot *sl = &w->slots[s];
+    return sl->valid && sl->cx == cx && sl->cy == cy && sl->cz == cz ? sl->blocks : NULL;
+}
+
+int vrg_world_has_chunk(const vrg_world *w, int cx, int cy, int cz) { return vrg_world_chunk(w, cx, cy, cz) != NULL; }
+int vrg_world_chunk_count(const vrg_world *w) { return w->loaded; }
+int vrg_world_dirty_count(const vrg_world *w) { return w->dirty_count + w->header_dirty; }
+
+vrg_block vrg_world_block(const vrg_world *w, int x, int y, int z)
+{
+    const vrg_block *c = vrg_world_chunk(w, vrg_floor_div16(x), vrg_floor_div16(y), vrg_floor_div16(z));
+    return c ? c[vrg_chunk_index(x & 15, y & 15, z & 15)] : VRG_BLOCK_AIR;
+}
+
+int vrg_world_pick(const vrg_world *w, const float origin[3], const float dir_in[3], float max_distance, vrg_world_hit *hit)
+{
+    float len = sqrtf(dir_in[0] * dir_in[0] + dir_in[1] * dir_in[1] + dir_in[2] * dir_in[2]);
+    if (!(len > 0))
+        return 0;
+    float dir[3] = {dir_in[0] / len, dir_in[1] / len, dir_in[2] / len};
+    int cell[3], step[3], normal[3] = {0, 0, 0};
+    float t_max[3], t_delta[3], t = 0;
+    for (int a = 0; a < 3; a++) {
+        cell[a] = (int)floorf(origin[a]);
+        step[a] = dir[a] > 0 ? 1 : dir[a] < 0 ? -1 : 0;
+        float next = step[a] > 0 ? (float)cell[a] + 1 - origin[a] : origin[a] - (float)cell[a];
+        t_delta[a] = step[a] ? 1.0f / fabsf(dir[a]) : INFINITY;
+        t_max[a] = step[a] ? next * t_delta[a] : INFINITY;
+    }
+    while (t <= max_distance) {
+        vrg_block b = vrg_world_block(w, cell[0], cell[1], cell[2]);
+        if (b != VRG_BLOCK_AIR) {
+            memcpy(hit->block, cell, sizeof cell);
+            memcpy(hit->normal, normal, sizeof normal);
+            hit->distance = t;
+            hit->id = b;
+            return 1;
+        }
+        int a = t_max[0] < t_max[1] ? (t_max[0] < t_max[2] ? 0 : 2) : (t_max[1] < t_max[2] ? 1 : 2);
+        t = t_max[a];
+        t_max[a] += t_delta[a];
+        cell[a] += step[a];
+        normal[0] = normal[1] = normal[2] = 0;
+        normal[a] = -step[a];
+    }
+    return 0;
+}
+
+/* ---- GPU packing ---- */
+
+static uint32_t float_bits(float f)
+{
+    uint32_t u;
+    memcpy(&u, &f, 4);
+    return u;
+}
+
+static void pack_header(const vrg_world *w, uint32_t *out)
+{
+    memset(out, 0, SLOTS_OFFSET * 4);
+    out[0] = (uint32_t)w->gx;
+    out[1] = (uint32_t)w->gy;
+    out[2] = (uint32_t)w->gz;
+    out[3] = SLOT_UINTS;
+    out[4] = SLOTS_OFFSET;
+    out[5] = VRG_BLOCK_COUNT;
+    for (int i = 0; i < VRG_BLOCK_COUNT; i++) {
+        uint32_t *m = out + HEADER_UINTS + i * MATERIAL_UINTS;
+        const vrg_material *mt = &materials[i];
+        m[0] = float_bits(mt->albedo[0]);
+        m[1] = float_bits(mt->albedo[1]);
+        m[2] = float_bits(mt->albedo[2]);
+        m[3] = float_bits(mt->emissive);
+        m[4] = mt->flags;
+        m[5] = mt->tile_top;
+        m[6] = mt->tile_side;
+        m[7] = mt->tile_bottom;
+    }
+}
+
+static void pack_slot(const slot *sl, uint32_t *out)
+{
+    memset(out, 0, SLOT_UINTS * 4);
+    if (!sl->valid)
+        return; /* valid bit 0: the shaders treat it as empty */
+    out[0] = (uint32_t)sl->cx;
+    out[1] = (uint32_t)sl->cy;
+    out[2] = (uint32_t)sl->cz;
+    uint32_t mask = 0;
+    uint32_t *occ = out + SLOT_HEADER, *ids = out + SLOT_HEADER + SLOT_OCC_UINTS;
+    for (int y = 0; y < 16; y++)
+        for (int z = 0; z < 16; z++)
+            for (int x = 0; x < 16; x++) {
+                int i = vrg_chunk_index(x, y, z);
+                vrg_block b = sl->blocks[i];
+                ids[i >> 2] |= (uint32_t)b << (8 * (i & 3));
+                if (b == VRG_BLOCK_AIR)
+                    continue;
+                int brick = (x >> 3) + 2 * ((z >> 3) + 2 * (y >> 3));
+                int bit = (x & 7) + 8 * ((z & 7) + 8 * (y & 7));
+                occ[brick * 16 + (bit >> 5)] |= 1u << (bit & 31);
+                mask |= 1u << brick;
+            }
+    out[3] = mask | 1u << 31;
+}
+
+int vrg_world_upload(vrg_world *w, VkCommandBuffer cmd, VkBuffer dst, void *staging, VkBuffer staging_buffer, uint64_t staging_bytes)
+{
+    VkBufferCopy regions[256];
+    uint32_t nr = 0;
+    uint64_t used = 0;
+    if (w->header_dirty && staging_bytes >= SLOTS_OFFSET * 4) {
+        pack_header(w, staging);
+        regions[nr++] = (VkBufferCopy){.srcOffset = 0, .dstOffset = 0, .size = SLOTS_OFFSET * 4};
+        used = SLOTS_OFFSET * 4;
+        w->header_dirty = 0;
+    }
+    int done = 0;
+    while (done < w->dirty_count && nr < 256 && used + SLOT_UINTS * 4 <= staging_bytes) {
+        int s = w->dirty_list[done++];
+        pack_slot(&w->slots[s], (uint32_t *)((char *)staging + used));
+        regions[nr++] = (VkBufferCopy){.srcOffset = used, .dstOffset = 4 * (SLOTS_OFFSET + (uint64_t)s * SLOT_UINTS), .size = SLOT_UINTS * 4};
+        used += SLOT_UINTS * 4;
+        w->slots[s].dirty = 0;
+    }
+    memmove(w->dirty_list, w->dirty_list + done, (size_t)(w->dirty_count - done) * sizeof *w->dirty_list);
+    w->dirty_count -= done;
+    if (nr)
+        vkCmdCopyBuffer(cmd, staging_buffer, dst, nr, regions);
+    return done;
+}
