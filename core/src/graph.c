@@ -110,6 +110,7 @@ int vrg_graph_load(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph **out
     for (int i = 0; i < VRG_MAX_PASSES; i++)
         g->pass_ms[i] = -1;
     g->output = -1;
+    vrg_camera_default(&g->camera);
     snprintf(g->name, sizeof g->name, "graph");
     int rc = vrg_parse(g->path, desc->text, ast, &g->diag);
     /* Keep going after syntax errors so one run shows every problem. */
@@ -354,6 +355,9 @@ int vrg_graph_placement(const vrg_graph *g, const char *name, int *block, uint64
 }
 
 vrg_world *vrg_graph_world(const vrg_graph *g) { return g->world; }
+void vrg_graph_set_camera(vrg_graph *g, const vrg_camera *c) { g->camera = *c; }
+const vrg_camera *vrg_graph_camera(const vrg_graph *g) { return &g->camera; }
+double vrg_graph_frame_seconds(const vrg_graph *g) { return 1.0 / g->fps; }
 
 int vrg_graph_pass_culled(const vrg_graph *g, const char *name)
 {

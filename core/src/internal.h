@@ -109,6 +109,7 @@ typedef struct vrg_resource {
     int writer;              /* pass index, -1 none */
     int writer_slot;
     int writer_line;
+    int writer_unknown;      /* written by a pass whose plugin failed to load */
     int history;             /* read through @prev somewhere: two copies, kept */
     int persistent;          /* written by a VRG_SLOT_PERSISTENT slot: kept, not aliased */
     int is_output, readback;
@@ -234,6 +235,8 @@ struct vrg_graph {
     VkDeviceSize readback_offset[VRG_MAX_RESOURCES];
     int frame_done;
     vrg_world *world;         /* the scene's, for host queries */
+    vrg_camera camera;        /* for the next frame */
+    vrg_camera last_camera;   /* the last frame's */
 };
 
 /* validate.c: AST → graph (plugins loaded, slots resolved, every check). */

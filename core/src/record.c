@@ -105,6 +105,9 @@ int vrg_record_frame(vrg_graph *g)
     g->frame.height = g->height;
     g->frame.seed = g->seed;
     g->frame.time_s = (double)g->frame.frame_index / g->fps;
+    g->frame.camera = g->camera;
+    g->frame.prev_camera = g->frame.history_valid ? g->last_camera : g->camera;
+    g->last_camera = g->camera;
     for (int i = 0; i < g->res_count; i++)
         g->res[i].touched[0] = g->res[i].touched[1] = 0;
     clear_kept(g, cmd);

@@ -176,7 +176,7 @@ static int repeated_key(vrg_graph *g, const vrg_ast *a, int ki)
     return 0;
 }
 
-typedef enum { SEC_GRAPH, SEC_SCENE, SEC_PASS, SEC_RESOURCE, SEC_UNKNOWN } sec_kind;
+typedef enum { SEC_GRAPH, SEC_SCENE, SEC_PASS, SEC_RESOURCE, SEC_CAMERA, SEC_UNKNOWN } sec_kind;
 
 static sec_kind section_kind(const char *name, const char **arg)
 {
@@ -185,6 +185,8 @@ static sec_kind section_kind(const char *name, const char **arg)
         return SEC_GRAPH;
     if (strcmp(name, "scene") == 0)
         return SEC_SCENE;
+    if (strcmp(name, "camera") == 0)
+        return SEC_CAMERA;
     if (strncmp(name, "pass ", 5) == 0 || strncmp(name, "resource ", 9) == 0) {
         const char *a = name + (name[0] == 'p' ? 5 : 9);
         while (*a == ' ')
@@ -227,6 +229,43 @@ static void graph_section(vrg_graph *g, const vrg_ast *a, int si)
                 g->fps = v;
         } else
             vrg_error_at(&g->diag, k->line, known, "unknown key '%s' in [graph]", k->name);
+    }
+}
+
+/* [camera]: where a still camera stands (--camera PATH or the host moves it). */
+static void camera_section(vrg_graph *g, const vrg_ast *a, int si)
+{
+    static const char *known = "position = X Y Z, yaw, pitch, fov (degrees)";
+    vrg_camera *c = &g->camera;
+    for (int i = 0; i < a->key_count; i++) {
+        const vrg_key *k = &a->keys[i];
+        if (k->section_index != si || repeated_key(g, a, i))
+            continue;
+        double v;
+        if (strcmp(k->name, "position") == 0) {
+            float p[3];
+            char extra;
+            if (sscanf(k->value, "%f %f %f %c", &p[0], &p[1], &p[2], &extra) != 3 || !isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
+                vrg_error_at(&g->diag, k->line, "three numbers: X Y Z in blocks", "'position = %s' is not a position", k->value);
+            else
+                memcpy(c->position, p, sizeof p);
+        } else if (strcmp(k->name, "yaw") == 0 || strcmp(k->name, "pitch") == 0 || strcmp(k->name, "fov") == 0) {
+            int is_pitch = k->name[0] == 'p', is_fov = k->name[0] == 'f';
+            double lo = is_fov ? 1 : is_pitch ? -89 : -360, hi = is_fov ? 179 : is_pitch ? 89 : 360;
+            char hint[64];
+            snprintf(hint, sizeof hint, "degrees in [%g, %g]", lo, hi);
+            if (parse_double(k->value, &v) != 0)
+                vrg_error_at(&g->diag, k->line, hint, "'%s = %s' is not a number", k->name, k->value);
+            else if (v < lo || v > hi)
+                vrg_error_at(&g->diag, k->line, hint, "'%s = %s' is out of range", k->name, k->value);
+            else if (is_fov)
+                c->fov_y = (float)v;
+            else if (is_pitch)
+                c->pitch = (float)v;
+            else
+                c->yaw = (float)v;
+        } else
+            vrg_error_at(&g->diag, k->line, known, "unknown key '%s' in [camera]", k->name);
     }
 }
 
@@ -321,8 +360,16 @@ static void pass_section(vrg_graph *g, const vrg_ast *a, int si, vrg_pass *p)
                    (p->plugin->desc->params[find_param(p->plugin->desc, k->name)].flags & VRG_PARAM_REPEATABLE);
         if (!list && repeated_key(g, a, i))
             continue;
-        if (!p->plugin)
-            continue; /* its plugin failed to load: already reported */
+        if (!p->plugin) {
+            /* Its plugin failed to load (already reported). Remember what it
+             * would write so readers get no follow-on "never written". */
+            if (strncmp(k->name, "out.", 4) == 0 && valid_name(k->value)) {
+                int r = vrg_graph_add_resource(g, k->value);
+                if (r >= 0)
+                    g->res[r].writer_unknown = 1;
+            }
+            continue;
+        }
         const vrg_plugin_desc *desc = p->plugin->desc;
         if (strncmp(k->name, "in.", 3) == 0)
             bind_slot(g, p, k, k->name + 3, VRG_IN);
@@ -394,17 +441,25 @@ static int find_pass(const vrg_graph *g, const char *name)
 }
 
 /* First pass: the sections themselves, plugins, and pass identities. */
-static void collect_sections(vrg_graph *g, const vrg_ast *a, const char *graph_path, int *graph_si)
+static void collect_sections(vrg_graph *g, const vrg_ast *a, const char *graph_path, int *graph_si, int *camera_si)
 {
     int scene_si = -1;
     *graph_si = -1;
+    *camera_si = -1;
     for (int si = 0; si < a->section_count; si++) {
         const vrg_section *sec = &a->sections[si];
         const char *arg;
         sec_kind kind = section_kind(sec->name, &arg);
         if (kind == SEC_UNKNOWN) {
-            vrg_error_at(&g->diag, sec->line, "sections are [graph], [scene], [pass NAME] and [resource NAME]", "unknown section '[%s]'",
+            vrg_error_at(&g->diag, sec->line, "sections are [graph], [camera], [scene], [pass NAME] and [resource NAME]", "unknown section '[%s]'",
                          sec->name);
+            continue;
+        }
+        if (kind == SEC_CAMERA) {
+            if (*camera_si >= 0)
+                vrg_error_at(&g->diag, sec->line, NULL, "duplicate section [camera] (first at line %d)", a->sections[*camera_si].line);
+            else
+                *camera_si = si;
             continue;
         }
         if (kind == SEC_GRAPH || kind == SEC_SCENE) {
@@ -576,6 +631,8 @@ static void resolve_resources(vrg_graph *g)
                 continue;
             }
             vrg_resource *r = &g->res[b->res];
+            if (r->writer < 0 && r->writer_unknown)
+                continue;
             if (r->writer < 0) {
                 vrg_error_at(&g->diag, b->line, "some pass must write it (out.SLOT = NAME), or fix the name",
                              "resource '%s' is read but never written", r->name);
@@ -726,9 +783,11 @@ static void check_cycles(vrg_graph *g)
 
 int vrg_validate(vrg_graph *g, const vrg_ast *ast, const vrg_graph_desc *desc)
 {
-    int graph_si;
+    int graph_si, camera_si;
     g->fps = 60;
-    collect_sections(g, ast, desc->path, &graph_si);
+    collect_sections(g, ast, desc->path, &graph_si, &camera_si);
+    if (camera_si >= 0)
+        camera_section(g, ast, camera_si);
     if (graph_si >= 0)
         graph_section(g, ast, graph_si);
     else
@@ -762,7 +821,9 @@ int vrg_validate(vrg_graph *g, const vrg_ast *ast, const vrg_graph_desc *desc)
             vrg_error_at(&g->diag, ast->sections[graph_si].line, "add 'output = RESOURCE' to [graph]", "the graph has no output");
         else {
             g->output = find_resource(g, g->output_name);
-            if (g->output < 0 || g->res[g->output].writer < 0)
+            if (g->output >= 0 && g->res[g->output].writer_unknown)
+                ; /* its writer's plugin failed to load: already reported */
+            else if (g->output < 0 || g->res[g->output].writer < 0)
                 vrg_error_at(&g->diag, g->output_line, "name a resource some pass writes", "output resource '%s' is never written",
                              g->output_name);
             else if (g->res[g->output].kind != VRG_IMAGE)

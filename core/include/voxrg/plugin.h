@@ -11,6 +11,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <vulkan/vulkan.h>
+#include "voxrg/camera.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -165,6 +166,8 @@ typedef struct vrg_frame_info {
     uint32_t seed;          /* [graph] seed */
     int history_valid;      /* 0 on the first frame, after resize, reload or a camera cut */
     double time_s;          /* simulated time: frame_index / [graph] fps */
+    vrg_camera camera;      /* this frame's camera ([camera] section, --camera path, or the host) */
+    vrg_camera prev_camera; /* last frame's; equal to camera when history is not valid */
 } vrg_frame_info;
 
 /* A resource a pass can name: one of its slots or an internal resource. */

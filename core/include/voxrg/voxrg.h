@@ -48,6 +48,11 @@ int vrg_graph_frame(vrg_graph *g);
 int vrg_graph_resize(vrg_graph *g, uint32_t width, uint32_t height);
 /* Next frame sees history_valid = 0 and cleared @prev images (camera cut). */
 void vrg_graph_reset_history(vrg_graph *g);
+/* The camera for the next frame (the previous one becomes prev_camera). */
+void vrg_graph_set_camera(vrg_graph *g, const vrg_camera *camera);
+const vrg_camera *vrg_graph_camera(const vrg_graph *g);
+/* Simulated seconds per frame (1 / [graph] fps). */
+double vrg_graph_frame_seconds(const vrg_graph *g);
 
 /* Readback of a resource written in the last frame, as float RGBA per pixel
  * (channels the format lacks are 0, alpha 1). Caller frees pixels. */

@@ -94,6 +94,29 @@ int vrg_world_upload(vrg_world *w, VkCommandBuffer cmd, VkBuffer dst, void *stag
 /* Slots still waiting for upload. */
 int vrg_world_dirty_count(const vrg_world *w);
 
+/* ---- Per-frame uniforms (std140; shaders/include/frame.glsl) ----------- */
+
+typedef struct vrg_frame_uniforms {
+    float view_proj[16];
+    float inv_view_proj[16];
+    float prev_view_proj[16];
+    float camera_pos[4];      /* w: vertical field of view, radians */
+    float prev_camera_pos[4];
+    float sun_dir[4];         /* to the sun; w: elevation, degrees */
+    float sun_radiance[4];
+    float sky_zenith[4];
+    float sky_horizon[4];
+    float ambient[4];
+    uint32_t frame_index, width, height, seed;
+    float time_s, hours, pad0, pad1;
+} vrg_frame_uniforms;
+
+void vrg_frame_uniforms_fill(const vrg_frame_info *frame, const vrg_sky *sky, vrg_frame_uniforms *out);
+/* What a scene plugin does each frame for its `frame` output (a buffer with
+ * VRG_ACCESS_TRANSFER_DST): evaluate the sky at this frame's time and record
+ * the uniforms into it. */
+void vrg_scene_write_frame(vrg_pass *pass, VkCommandBuffer cmd, const char *slot, const vrg_sky_desc *sky);
+
 static inline int vrg_floor_div16(int v) { return v >= 0 ? v / 16 : -((15 - v) / 16); }
 static inline int vrg_chunk_index(int lx, int ly, int lz) { return lx + VRG_CHUNK_SIZE * (lz + VRG_CHUNK_SIZE * ly); }
 

@@ -1,0 +1,43 @@
+/* A debug view of the voxel world: one primary ray per pixel through the
+ * two-level DDA, shown as shaded albedo (with a hard sun shadow), normals,
+ * block ids or distance. Enough to see a scene before the real passes. */
+#include "voxrg/world.h"
+
+static const vrg_param_desc params[] = {
+    {"mode", VRG_PARAM_INT, 0, 0, 3, "0 shaded, 1 normals, 2 block ids, 3 distance"},
+    {"shadows", VRG_PARAM_BOOL, 1, 0, 1, "trace a hard shadow ray toward the sun in mode 0"},
+    {"exposure", VRG_PARAM_FLOAT, 0.35, 0, 100, "scale of the shaded radiance"},
+    {"max_distance", VRG_PARAM_FLOAT, 512, 1, 4096, "ray length in blocks"},
+};
+
+static const vrg_slot_desc slots[] = {
+    {.name = "world", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_STORAGE_READ, .help = "the scene's world"},
+    {.name = "frame", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_UNIFORM, .help = "the scene's per-frame uniforms"},
+    {.name = "color", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE,
+     .format = VK_FORMAT_R16G16B16A16_SFLOAT, .help = "the view"},
+};
+
+static void execute(vrg_pass *pass, VkCommandBuffer cmd)
+{
+    struct {
+        int32_t mode, shadows;
+        float exposure, max_distance;
+    } pc = {vrg_param_int(pass, "mode"), vrg_param_int(pass, "shadows"), (float)vrg_param(pass, "exposure"),
+            (float)vrg_param(pass, "max_distance")};
+    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "world_debug.comp", .push = &pc, .push_size = sizeof pc});
+}
+
+static const vrg_plugin_desc desc = {
+    .abi_version = VRG_ABI_VERSION,
+    .name = "world_debug",
+    .kind = VRG_PLUGIN_PASS,
+    .help = "debug view of the voxel world: primary rays, shaded albedo / normals / block ids / distance",
+    .shader_dir = VRG_PLUGIN_DIR,
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .slots = slots,
+    .slot_count = sizeof slots / sizeof slots[0],
+    .execute = execute,
+};
+
+VRG_PLUGIN(desc)

@@ -1,0 +1,44 @@
+// Per-frame uniforms written by scene plugins (vrg_frame_uniforms in
+// core/include/voxrg/world.h; std140, same order). Before including, define
+// FRAME_BINDING to the binding of the pass's `frame` slot.
+#ifndef VOXRG_FRAME_GLSL
+#define VOXRG_FRAME_GLSL
+
+layout(std140, binding = FRAME_BINDING) uniform FrameUniforms {
+    mat4 view_proj;
+    mat4 inv_view_proj;
+    mat4 prev_view_proj;
+    vec4 camera_pos;       // w: vertical field of view, radians
+    vec4 prev_camera_pos;
+    vec4 sun_dir;          // to the sun; w: elevation in degrees
+    vec4 sun_radiance;
+    vec4 sky_zenith;
+    vec4 sky_horizon;
+    vec4 ambient;
+    uvec4 frame_info;      // frame index, width, height, seed
+    vec4 time_info;        // simulated seconds, hours of the day, 0, 0
+} frame;
+
+// World-space direction of the primary ray through pixel centre p + 0.5.
+vec3 frame_ray_dir(vec2 pixel, vec2 size)
+{
+    vec2 ndc = (pixel + 0.5) / size * 2.0 - 1.0;
+    vec4 far_point = frame.inv_view_proj * vec4(ndc, 1.0, 1.0);
+    vec4 near_point = frame.inv_view_proj * vec4(ndc, 0.0, 1.0);
+    return normalize(far_point.xyz / far_point.w - near_point.xyz / near_point.w);
+}
+
+// Sky radiance along a unit direction: vrg_sky_radiance in core/src/sky.c,
+// the same formula (keep them in step): a horizon-to-zenith gradient by
+// sqrt(dir.y), a darkened horizon below it, and a glow around the sun.
+vec3 frame_sky(vec3 dir)
+{
+    float c = max(dot(dir, frame.sun_dir.xyz), 0.0);
+    float c4 = c * c * c * c;
+    float c32 = c4 * c4 * c4 * c4 * c4 * c4 * c4 * c4;
+    float glow = 0.25 * c32 + 0.05 * c4;
+    vec3 base = dir.y >= 0.0 ? mix(frame.sky_horizon.rgb, frame.sky_zenith.rgb, sqrt(dir.y))
+                             : frame.sky_horizon.rgb * (0.3 + 0.7 * exp(8.0 * dir.y));
+    return base + frame.sun_radiance.rgb * glow;
+}
+#endif

@@ -1,0 +1,69 @@
+// The voxel world buffer a scene plugin writes (layout: core/src/world.c).
+// Before including, define WORLD_BINDING to the binding of the pass's
+// `world` slot (a storage buffer).
+#ifndef VOXRG_WORLD_GLSL
+#define VOXRG_WORLD_GLSL
+
+layout(std430, binding = WORLD_BINDING) readonly buffer WorldBuffer { uint world_data[]; };
+
+const uint WORLD_MATERIALS = 16u;  // header uints before the material table
+const uint WORLD_SLOTS = 272u;     // header + 32 materials x 8 uints
+const uint WORLD_SLOT_UINTS = 1156u;
+const uint WORLD_OCC = 4u;         // slot-relative: occupancy bits (8 bricks x 16 uints)
+const uint WORLD_IDS = 132u;       // slot-relative: block ids, 4 per uint
+
+ivec3 world_grid() { return ivec3(world_data[0], world_data[1], world_data[2]); }
+int world_height() { return int(world_data[1]) * 16; }
+
+int world_imod(int a, int n) { return ((a % n) + n) % n; }
+
+// First uint of the slot holding chunk c, or -1 when c is not loaded (the
+// toroidal slot is empty or holds another chunk).
+int world_chunk(ivec3 c)
+{
+    ivec3 g = world_grid();
+    if (c.y < 0 || c.y >= g.y)
+        return -1;
+    uint base = WORLD_SLOTS + uint(world_imod(c.x, g.x) + g.x * (world_imod(c.z, g.z) + g.z * c.y)) * WORLD_SLOT_UINTS;
+    if ((world_data[base + 3u] & 0x80000000u) == 0u)
+        return -1;
+    if (int(world_data[base]) != c.x || int(world_data[base + 1u]) != c.y || int(world_data[base + 2u]) != c.z)
+        return -1;
+    return int(base);
+}
+
+// Brick b = bx + 2*(bz + 2*by) of a loaded chunk holds a solid voxel.
+bool world_brick_solid(int base, ivec3 brick) { return (world_data[base + 3] & (1u << uint(brick.x + 2 * (brick.z + 2 * brick.y)))) != 0u; }
+
+// Occupancy bit of chunk-local voxel l.
+bool world_voxel_solid(int base, ivec3 l)
+{
+    ivec3 b = l >> 3, v = l & 7;
+    uint bit = uint(v.x + 8 * (v.z + 8 * v.y));
+    uint word = world_data[uint(base) + WORLD_OCC + uint(b.x + 2 * (b.z + 2 * b.y)) * 16u + (bit >> 5)];
+    return (word & (1u << (bit & 31u))) != 0u;
+}
+
+uint world_block_local(int base, ivec3 l)
+{
+    uint i = uint(l.x + 16 * (l.z + 16 * l.y));
+    return (world_data[uint(base) + WORLD_IDS + (i >> 2)] >> (8u * (i & 3u))) & 0xffu;
+}
+
+// Block id at a world position; 0 (air) where no chunk is loaded.
+uint world_block(ivec3 p)
+{
+    int base = world_chunk(p >> 4);
+    return base < 0 ? 0u : world_block_local(base, p & 15);
+}
+
+vec3 material_albedo(uint id)
+{
+    uint m = WORLD_MATERIALS + id * 8u;
+    return vec3(uintBitsToFloat(world_data[m]), uintBitsToFloat(world_data[m + 1u]), uintBitsToFloat(world_data[m + 2u]));
+}
+float material_emissive(uint id) { return uintBitsToFloat(world_data[WORLD_MATERIALS + id * 8u + 3u]); }
+uint material_flags(uint id) { return world_data[WORLD_MATERIALS + id * 8u + 4u]; }
+// Atlas tile of a face: 0 top, 1 side, 2 bottom.
+uint material_tile(uint id, int face) { return world_data[WORLD_MATERIALS + id * 8u + 5u + uint(face)]; }
+#endif
