@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "voxrg/voxrg.h"
+#include "voxrg/world.h"
 
 #ifndef TEST_DIR
 #define TEST_DIR "."
@@ -357,6 +358,100 @@ static void test_validation_live(void)
     expect_validation_messages = 1;
 }
 
+/* PCG hash, as in tests/plugins/world_probe/world_probe.comp. */
+static uint32_t pcg(uint32_t v)
+{
+    uint32_t s = v * 747796405u + 2891336453u;
+    uint32_t w = ((s >> ((s >> 28u) + 4u)) ^ s) * 277803737u;
+    return (w >> 22u) ^ w;
+}
+
+/* The boxes of tests/graphs/blocks_probe.ini: later ones win. */
+static const struct {
+    int lo[3], hi[3];
+    const char *block;
+} probe_boxes[] = {
+    {{-20, 0, -20}, {35, 0, 35}, "white"}, {{-3, 1, -3}, {3, 20, 3}, "stone"}, {{10, 1, -18}, {12, 17, 30}, "red"},
+    {{0, 5, 0}, {1, 6, 1}, "air"},         {{30, 30, 30}, {31, 31, 31}, "lamp"},
+};
+
+static int expected_block(int x, int y, int z)
+{
+    int id = VRG_BLOCK_AIR;
+    for (size_t i = 0; i < sizeof probe_boxes / sizeof probe_boxes[0]; i++)
+        if (x >= probe_boxes[i].lo[0] && x <= probe_boxes[i].hi[0] && y >= probe_boxes[i].lo[1] && y <= probe_boxes[i].hi[1] &&
+            z >= probe_boxes[i].lo[2] && z <= probe_boxes[i].hi[2])
+            id = vrg_block_by_name(probe_boxes[i].block);
+    return id;
+}
+
+/* The blocks scene holds exactly its boxes (CPU), the GPU buffer agrees with
+ * the CPU store at pseudo-random probes (ids, occupancy and brick bits), and
+ * the CPU pick ray finds the right face. */
+static void test_blocks_world(void)
+{
+    vrg_graph *g = load("blocks_probe.ini");
+    if (!g)
+        return;
+    const vrg_world *w = vrg_graph_world(g);
+    CHECK(w != NULL, "the blocks scene set no world");
+    if (!w) {
+        vrg_graph_destroy(g);
+        return;
+    }
+    int wrong = 0, solid = 0;
+    for (int y = -2; y < 40; y++)
+        for (int z = -40; z < 50; z++)
+            for (int x = -40; x < 50; x++) {
+                int want = expected_block(x, y, z), got = vrg_world_block(w, x, y, z);
+                wrong += want != got;
+                solid += got != VRG_BLOCK_AIR;
+            }
+    CHECK(wrong == 0, "%d voxels differ from the boxes", wrong);
+    CHECK(solid == 56 * 56 + 7 * 20 * 7 - 8 + 3 * 17 * 49 + 8, "%d solid voxels", solid);
+
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_image_data img;
+    CHECK(vrg_graph_read(g, "probes", &img) == 0, "readback failed");
+    int mismatched = 0, probed_solid = 0;
+    for (uint32_t i = 0; i < img.width * img.height; i++) {
+        int p[3] = {-40 + (int)(pcg(3 * i) % 90), -4 + (int)(pcg(3 * i + 1) % 40), -40 + (int)(pcg(3 * i + 2) % 90)};
+        int cx = vrg_floor_div16(p[0]), cy = vrg_floor_div16(p[1]), cz = vrg_floor_div16(p[2]);
+        int id = vrg_world_block(w, p[0], p[1], p[2]);
+        int brick = 0;
+        const vrg_block *chunk = vrg_world_chunk(w, cx, cy, cz);
+        if (chunk) {
+            int bx = (p[0] & 15) & ~7, by = (p[1] & 15) & ~7, bz = (p[2] & 15) & ~7;
+            for (int k = 0; k < 512 && !brick; k++)
+                brick = chunk[vrg_chunk_index(bx + (k & 7), by + ((k >> 6) & 7), bz + ((k >> 3) & 7))] != VRG_BLOCK_AIR;
+        }
+        uint32_t flags = (id != 0) | (brick << 1) | ((chunk != NULL) << 2);
+        uint32_t gid = (uint32_t)img.pixels[i * 4], gflags = (uint32_t)img.pixels[i * 4 + 1];
+        if (gid != (uint32_t)id || gflags != flags) {
+            if (mismatched < 5)
+                fprintf(stderr, "probe (%d %d %d): GPU id %u flags %u, CPU id %d flags %u\n", p[0], p[1], p[2], gid, gflags, id, flags);
+            mismatched++;
+        }
+        probed_solid += id != 0;
+    }
+    CHECK(mismatched == 0, "%d of %u probes differ between GPU and CPU", mismatched, img.width * img.height);
+    CHECK(probed_solid > 20, "only %d probes hit a solid block: the probe does not exercise the world", probed_solid);
+    free(img.pixels);
+
+    vrg_world_hit hit;
+    float o[3] = {0.5f, 30.5f, 0.5f}, down[3] = {0, -1, 0};
+    CHECK(vrg_world_pick(w, o, down, 100, &hit) == 1, "pick missed the pillar");
+    CHECK(hit.block[0] == 0 && hit.block[1] == 20 && hit.block[2] == 0 && hit.normal[1] == 1 && fabsf(hit.distance - 9.5f) < 1e-4f &&
+              hit.id == VRG_BLOCK_STONE,
+          "pick: block (%d %d %d) normal (%d %d %d) distance %g id %d", hit.block[0], hit.block[1], hit.block[2], hit.normal[0],
+          hit.normal[1], hit.normal[2], hit.distance, hit.id);
+    float o2[3] = {-30.5f, 10.5f, 0.5f}, east[3] = {1, 0, 0};
+    CHECK(vrg_world_pick(w, o2, east, 100, &hit) == 1 && hit.block[0] == -3 && hit.normal[0] == -1, "pick east: block x %d normal x %d",
+          hit.block[0], hit.normal[0]);
+    CHECK(vrg_world_pick(w, o2, east, 20, &hit) == 0, "pick beyond max_distance hit");
+    vrg_graph_destroy(g);
+}
+
 int main(int argc, char **argv)
 {
     static const struct {
@@ -367,6 +462,7 @@ int main(int argc, char **argv)
         {"chain", test_chain, 1},     {"history", test_history, 1}, {"accumulate", test_accumulate, 1}, {"pingpong", test_pingpong, 1},
         {"alias", test_alias, 1},     {"buffer", test_buffer, 1},   {"scene", test_scene, 1},           {"loader", test_loader, 0},
         {"accumulate_count", test_accumulate_count, 1}, {"validation_live", test_validation_live, 1},
+        {"blocks_world", test_blocks_world, 1},
     };
     if (argc != 2) {
         fprintf(stderr, "usage: test_runtime CASE\n");

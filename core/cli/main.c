@@ -222,7 +222,9 @@ static int write_resource(vrg_graph *g, const char *dir, const char *name)
 {
     char path[1200];
     vrg_image_data img;
-    if (vrg_graph_read(g, name, &img) == 0) {
+    if (vrg_graph_resource_kind(g, name) == VRG_IMAGE) {
+        if (vrg_graph_read(g, name, &img) != 0)
+            return -1;
         snprintf(path, sizeof path, "%s/%s.png", dir, name);
         int rc = vrg_write_png(path, &img);
         free(img.pixels);

@@ -300,6 +300,14 @@ int vrg_graph_read(vrg_graph *g, const char *name, vrg_image_data *out)
     return 0;
 }
 
+int vrg_graph_resource_kind(const vrg_graph *g, const char *name)
+{
+    for (int i = 0; i < g->res_count; i++)
+        if (strcmp(g->res[i].name, name) == 0)
+            return (int)g->res[i].kind;
+    return -1;
+}
+
 int vrg_graph_read_buffer(vrg_graph *g, const char *name, void **data, uint64_t *size)
 {
     *data = NULL;

@@ -64,6 +64,8 @@ typedef struct vrg_image_data {
 } vrg_image_data;
 int vrg_graph_read(vrg_graph *g, const char *resource, vrg_image_data *out);
 /* Bytes of a buffer resource written in the last frame. Caller frees *data. */
+/* VRG_IMAGE or VRG_BUFFER, or -1 if the graph has no such resource. */
+int vrg_graph_resource_kind(const vrg_graph *g, const char *resource);
 int vrg_graph_read_buffer(vrg_graph *g, const char *resource, void **data, uint64_t *size);
 
 /* What `voxrg check` prints: schedule, resources, barriers, culled passes, memory. */

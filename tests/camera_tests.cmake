@@ -1,0 +1,16 @@
+# Camera, camera paths and sky (included from tests/CMakeLists.txt). Pure
+# CPU code: the sources are compiled straight in, so these tests need no GPU
+# and no Vulkan loader.
+add_executable(test_camera
+  ${CMAKE_CURRENT_LIST_DIR}/test_camera.c
+  ${PROJECT_SOURCE_DIR}/core/src/camera.c
+  ${PROJECT_SOURCE_DIR}/core/src/camera_path.c
+  ${PROJECT_SOURCE_DIR}/core/src/sky.c)
+target_include_directories(test_camera PRIVATE ${PROJECT_SOURCE_DIR}/core/include)
+target_link_libraries(test_camera PRIVATE m)
+# shipped_paths reads graphs/paths/*.path from the source tree
+target_compile_definitions(test_camera PRIVATE VRG_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+foreach(case projection path_keys path_errors sun shipped_paths)
+  add_test(NAME camera_${case} COMMAND test_camera ${case})
+  set_tests_properties(camera_${case} PROPERTIES LABELS "camera" TIMEOUT 120)
+endforeach()
