@@ -100,6 +100,17 @@ expect_rc 1 "shader error in the main file" env VOXRG_SHADER_PATH="$out/sh" "$vo
 has "$out/stderr" "^$out/sh/user.comp:3: error:.*undefined_call" "main-file error names file and line"
 has "$out/stderr" "shader_file.ini:8: error: pass 'user'" "the failing pass is named at its line"
 
+# --camera: a path moves the camera; a bad path names FILE:LINE
+expect_rc 0 "render still" "$voxrg" render "$tests/graphs/blocks_wall.ini" --validate --out "$out/still"
+printf '# two keys\n0 16 30 60 10 -20\n1 20 25 50 30 -30\n' >"$out/move.path"
+expect_rc 0 "render --camera" "$voxrg" render "$tests/graphs/blocks_wall.ini" --validate --camera "$out/move.path" --frames 2 --out "$out/moved"
+if cmp -s "$out/still/view.png" "$out/moved/view.png"; then bad "--camera did not move the camera"; else ok; fi
+printf '0 1 2 3 4 5\n0.5 1 2 three 4 5\n' >"$out/bad.path"
+expect_rc 1 "render --camera bad path" "$voxrg" render "$tests/graphs/blocks_wall.ini" --camera "$out/bad.path" --out "$out/badcam"
+has "$out/stderr" "^$out/bad.path:2: error:" "bad path names FILE:LINE"
+expect_rc 1 "render --camera missing" "$voxrg" render "$tests/graphs/blocks_wall.ini" --camera "$out/none.path" --out "$out/badcam"
+has "$out/stderr" "none.path" "missing path named"
+
 # --device by name and by index; a device that does not exist
 expect_rc 0 "--device by name" "$voxrg" check "$tests/graphs/chain.ini" --device llvmpipe
 has "$out/stderr" "device llvmpipe" "chosen device"

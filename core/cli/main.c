@@ -31,10 +31,11 @@ static const char *usage_check =
 
 static const char *usage_render =
     "usage: voxrg render GRAPH [--frames N] [--size WxH] [--out DIR] [--set PASS.PARAM=VALUE]...\n"
-    "                          [--dump RES[,RES...]] [--json FILE] [--validate] [--device NAME|INDEX]\n"
+    "                          [--camera PATH] [--dump RES[,RES...]] [--json FILE] [--validate] [--device NAME|INDEX]\n"
     "Renders N frames (default 1) headless and writes DIR/OUTPUT.png (default DIR: out),\n"
     "plus DIR/RES.png for each dumped image (DIR/RES.bin for buffers). --json writes\n"
-    "per-pass GPU timings. --validate turns on the Khronos validation layer with\n"
+    "per-pass GPU timings. --camera plays a camera path (graphs/paths/*.path) at the\n"
+    "graph's fps. --validate turns on the Khronos validation layer with\n"
     "synchronization validation; any message fails the run.\n";
 
 static const char *usage_plugins =
@@ -43,7 +44,7 @@ static const char *usage_plugins =
     "<exe>/../lib/voxrg/plugins), or NAME's slots and parameters.\n";
 
 typedef struct options {
-    const char *graph, *dot, *out, *json, *device;
+    const char *graph, *dot, *out, *json, *device, *camera;
     const char *sets[MAX_SETS];
     int set_count;
     const char *dumps[MAX_DUMPS];
@@ -77,7 +78,7 @@ static int parse_size(const char *s, uint32_t *w, uint32_t *h)
 
 static int is_valued_option(const char *a)
 {
-    static const char *valued[] = {"--dot", "--out", "--json", "--device", "--set", "--size", "--frames", "--dump"};
+    static const char *valued[] = {"--dot", "--out", "--json", "--device", "--set", "--size", "--frames", "--dump", "--camera"};
     for (size_t i = 0; i < sizeof valued / sizeof valued[0]; i++)
         if (!strcmp(a, valued[i]))
             return 1;
@@ -112,6 +113,8 @@ static int parse_options(int argc, char **argv, options *o, const char *usage)
             o->json = next;
         else if (!strcmp(a, "--device"))
             o->device = next;
+        else if (!strcmp(a, "--camera"))
+            o->camera = next;
         else if (!strcmp(a, "--set")) {
             if (o->set_count == MAX_SETS)
                 return usage_error(usage, "too many --set options%s", "");
@@ -302,11 +305,19 @@ static int cmd_render(int argc, char **argv)
     vrg_graph *g = NULL;
     if (load(&o, &ctx, &g) != 0)
         return finish(ctx, g, 1);
+    vrg_camera_path path = {0};
+    if (o.camera && vrg_camera_path_load(o.camera, &path, stderr) != 0)
+        return finish(ctx, g, 1);
+    vrg_camera camera = *vrg_graph_camera(g);
     uint32_t np = vrg_graph_pass_count(g);
     double *ms = calloc((size_t)o.frames * np, sizeof *ms);
     double start = now_ms();
     int isatty_err = isatty(2);
     for (uint32_t k = 0; k < o.frames && rc == 0; k++) {
+        if (path.count) {
+            vrg_camera_path_eval(&path, (float)(k * vrg_graph_frame_seconds(g)), &camera);
+            vrg_graph_set_camera(g, &camera);
+        }
         if (vrg_graph_frame(g) != 0) {
             fprintf(stderr, "error: frame %u failed\n", k);
             rc = 1;
@@ -322,6 +333,7 @@ static int cmd_render(int argc, char **argv)
                     k + 1 == o.frames ? "\n" : "");
     }
     double wall = now_ms() - start;
+    vrg_camera_path_free(&path);
     if (rc == 0 && mkdir_p(o.out) != 0)
         rc = 1;
     if (rc == 0)
