@@ -452,6 +452,46 @@ static void test_blocks_world(void)
     vrg_graph_destroy(g);
 }
 
+/* The GPU's primary rays and two-level DDA against the CPU camera and pick
+ * ray, pixel by pixel, on the wall scene (world_debug mode 3: distance). */
+static void test_blocks_trace(void)
+{
+    static const char *sets[] = {"view.mode=3"};
+    vrg_graph *g = load_with("blocks_wall.ini", sets, 1, NULL, 0);
+    if (!g)
+        return;
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_image_data img;
+    CHECK(vrg_graph_read(g, "view", &img) == 0, "readback failed");
+    const vrg_world *w = vrg_graph_world(g);
+    const vrg_camera *cam = vrg_graph_camera(g);
+    int disagree = 0, hits = 0, misses = 0;
+    double worst = 0;
+    for (uint32_t y = 0; y < img.height; y++)
+        for (uint32_t x = 0; x < img.width; x++) {
+            float dir[3];
+            vrg_camera_ray(cam, img.width, img.height, (float)x, (float)y, dir);
+            vrg_world_hit hit;
+            int h = vrg_world_pick(w, cam->position, dir, 512, &hit);
+            float gpu = px(&img, x, y, 0);
+            if (h != (gpu > 0)) {
+                disagree++;
+                continue;
+            }
+            if (h) {
+                hits++;
+                worst = fmax(worst, fabs(gpu - hit.distance) / hit.distance);
+            } else
+                misses++;
+        }
+    /* rays grazing an edge may fall either side in float */
+    CHECK(disagree <= (int)(img.width * img.height / 200), "%d pixels disagree on hit/miss", disagree);
+    CHECK(hits > 1000 && misses > 300, "scene not in view: %d hits, %d misses", hits, misses);
+    CHECK(worst < 2e-3, "distance differs by %.4f%%", worst * 100);
+    free(img.pixels);
+    vrg_graph_destroy(g);
+}
+
 int main(int argc, char **argv)
 {
     static const struct {
@@ -462,7 +502,7 @@ int main(int argc, char **argv)
         {"chain", test_chain, 1},     {"history", test_history, 1}, {"accumulate", test_accumulate, 1}, {"pingpong", test_pingpong, 1},
         {"alias", test_alias, 1},     {"buffer", test_buffer, 1},   {"scene", test_scene, 1},           {"loader", test_loader, 0},
         {"accumulate_count", test_accumulate_count, 1}, {"validation_live", test_validation_live, 1},
-        {"blocks_world", test_blocks_world, 1},
+        {"blocks_world", test_blocks_world, 1}, {"blocks_trace", test_blocks_trace, 1},
     };
     if (argc != 2) {
         fprintf(stderr, "usage: test_runtime CASE\n");

@@ -18,7 +18,8 @@ void vrg_camera_default(vrg_camera *c)
 static double clampd(double v, double lo, double hi) { return v < lo ? lo : v > hi ? hi : v; }
 
 /* Pitch at exactly +-90 would make forward parallel to +y and the right
- * vector undefined; NaN becomes 0 so a bad value cannot poison matrices. */
+ * vector undefined; NaN angles become 0 so a bad value cannot poison the
+ * matrices. */
 static double used_pitch(const vrg_camera *c)
 {
     return c->pitch == c->pitch ? clampd(c->pitch, -89.0, 89.0) : 0.0;
@@ -27,7 +28,7 @@ static double used_pitch(const vrg_camera *c)
 /* The camera's orthonormal basis: right, up, forward (world space). */
 static void basis(const vrg_camera *c, double r[3], double u[3], double f[3])
 {
-    double yaw = c->yaw * DEG, pitch = used_pitch(c) * DEG;
+    double yaw = c->yaw == c->yaw ? c->yaw * DEG : 0.0, pitch = used_pitch(c) * DEG;
     double sy = sin(yaw), cy = cos(yaw), sp = sin(pitch), cp = cos(pitch);
     f[0] = -sy * cp;
     f[1] = sp;

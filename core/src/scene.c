@@ -11,12 +11,29 @@ static void fill_camera(const vrg_camera *c, float aspect, float vp[16], float p
     pos[3] = c->fov_y * (float)M_PI / 180.0f;
 }
 
+static void ray_basis(const vrg_camera *c, float aspect, float right[4], float up[4], float forward[4])
+{
+    /* the conventions and clamps of voxrg/camera.h */
+    const float deg = (float)M_PI / 180.0f;
+    float fov = !(c->fov_y >= 1) ? 1 : c->fov_y > 179 ? 179 : c->fov_y;
+    float yaw = c->yaw * deg, t = tanf(fov * deg / 2);
+    vrg_camera_forward(c, forward);
+    float r[3] = {cosf(yaw), 0, -sinf(yaw)};
+    float u[3] = {r[1] * forward[2] - r[2] * forward[1], r[2] * forward[0] - r[0] * forward[2], r[0] * forward[1] - r[1] * forward[0]};
+    for (int i = 0; i < 3; i++) {
+        right[i] = r[i] * t * aspect;
+        up[i] = u[i] * t;
+    }
+    right[3] = up[3] = forward[3] = 0;
+}
+
 void vrg_frame_uniforms_fill(const vrg_frame_info *f, const vrg_sky *sky, vrg_frame_uniforms *u)
 {
     memset(u, 0, sizeof *u);
     float aspect = f->height ? (float)f->width / (float)f->height : 1.0f;
     fill_camera(&f->camera, aspect, u->view_proj, u->camera_pos);
     fill_camera(&f->prev_camera, aspect, u->prev_view_proj, u->prev_camera_pos);
+    ray_basis(&f->camera, aspect, u->camera_right, u->camera_up, u->camera_forward);
     if (vrg_mat4_invert(u->view_proj, u->inv_view_proj) != 0)
         memset(u->inv_view_proj, 0, sizeof u->inv_view_proj);
     memcpy(u->sun_dir, sky->sun_dir, sizeof sky->sun_dir);

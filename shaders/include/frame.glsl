@@ -10,6 +10,9 @@ layout(std140, binding = FRAME_BINDING) uniform FrameUniforms {
     mat4 prev_view_proj;
     vec4 camera_pos;       // w: vertical field of view, radians
     vec4 prev_camera_pos;
+    vec4 camera_right;     // scaled by the image plane's half-width at distance 1
+    vec4 camera_up;        // scaled by its half-height
+    vec4 camera_forward;
     vec4 sun_dir;          // to the sun; w: elevation in degrees
     vec4 sun_radiance;
     vec4 sky_zenith;
@@ -19,13 +22,12 @@ layout(std140, binding = FRAME_BINDING) uniform FrameUniforms {
     vec4 time_info;        // simulated seconds, hours of the day, 0, 0
 } frame;
 
-// World-space direction of the primary ray through pixel centre p + 0.5.
+// World-space direction of the primary ray through pixel centre p + 0.5
+// (vrg_camera_ray in core/src/camera.c; NDC y points down).
 vec3 frame_ray_dir(vec2 pixel, vec2 size)
 {
     vec2 ndc = (pixel + 0.5) / size * 2.0 - 1.0;
-    vec4 far_point = frame.inv_view_proj * vec4(ndc, 1.0, 1.0);
-    vec4 near_point = frame.inv_view_proj * vec4(ndc, 0.0, 1.0);
-    return normalize(far_point.xyz / far_point.w - near_point.xyz / near_point.w);
+    return normalize(frame.camera_forward.xyz + ndc.x * frame.camera_right.xyz - ndc.y * frame.camera_up.xyz);
 }
 
 // Sky radiance along a unit direction: vrg_sky_radiance in core/src/sky.c,

@@ -77,7 +77,8 @@ typedef struct vrg_camera_path {
 /* Both return 0, or -1 after printing "NAME:LINE: error: message" and a
  * "  hint: ..." line to diag (NULL: stderr) for every bad line: wrong field
  * count, not a number, NaN/inf, pitch out of range, time not increasing; and
- * "NAME:1: error: ..." when there is no keyframe at all. On -1, *out holds no
+ * "NAME:1: error: ..." when there is no keyframe at all (load: "FILE: error:
+ * cannot open/read camera path: why" when the file itself fails). On -1, *out holds no
  * keys (count 0, keys NULL) and needs no free; on 0, free it with
  * vrg_camera_path_free. Numbers are read with strtod: the C locale is
  * assumed. */

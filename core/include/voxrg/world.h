@@ -102,6 +102,13 @@ typedef struct vrg_frame_uniforms {
     float prev_view_proj[16];
     float camera_pos[4];      /* w: vertical field of view, radians */
     float prev_camera_pos[4];
+    /* Primary rays: dir = normalize(forward + nx * right - ny * up) for the
+     * pixel centre's NDC (nx, ny), y down. right and up are scaled by the
+     * half-extent of the image plane, so no matrix inverse (and its float
+     * error far from the origin) is involved. */
+    float camera_right[4];
+    float camera_up[4];
+    float camera_forward[4];
     float sun_dir[4];         /* to the sun; w: elevation, degrees */
     float sun_radiance[4];
     float sky_zenith[4];
