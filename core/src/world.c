@@ -259,6 +259,8 @@ static void pack_slot(const slot *sl, uint32_t *out)
 
 int vrg_world_upload(vrg_world *w, VkCommandBuffer cmd, VkBuffer dst, void *staging, VkBuffer staging_buffer, uint64_t staging_bytes)
 {
+    /* Regions go out in batches; the staging memory is used once per frame
+     * (its copies run before the host writes it again). */
     VkBufferCopy regions[256];
     uint32_t nr = 0;
     uint64_t used = 0;
@@ -269,12 +271,16 @@ int vrg_world_upload(vrg_world *w, VkCommandBuffer cmd, VkBuffer dst, void *stag
         w->header_dirty = 0;
     }
     int done = 0;
-    while (done < w->dirty_count && nr < 256 && used + SLOT_UINTS * 4 <= staging_bytes) {
+    while (done < w->dirty_count && used + SLOT_UINTS * 4 <= staging_bytes) {
         int s = w->dirty_list[done++];
         pack_slot(&w->slots[s], (uint32_t *)((char *)staging + used));
         regions[nr++] = (VkBufferCopy){.srcOffset = used, .dstOffset = 4 * (SLOTS_OFFSET + (uint64_t)s * SLOT_UINTS), .size = SLOT_UINTS * 4};
         used += SLOT_UINTS * 4;
         w->slots[s].dirty = 0;
+        if (nr == 256) {
+            vkCmdCopyBuffer(cmd, staging_buffer, dst, nr, regions);
+            nr = 0;
+        }
     }
     memmove(w->dirty_list, w->dirty_list + done, (size_t)(w->dirty_count - done) * sizeof *w->dirty_list);
     w->dirty_count -= done;

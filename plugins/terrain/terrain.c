@@ -1,0 +1,169 @@
+/* Scene plugin: the procedural terrain of the thesis. Improved Perlin noise
+ * heights, Voronoi biomes and trees (terrain_gen.c), generated in 16^3 chunks
+ * on a worker pool around the camera and streamed as it moves (stream.c).
+ *
+ * By default every frame waits until the chunks it needs are in (stream =
+ * wait), so the same graph, seed, camera path and size give the same image
+ * whatever the thread count. stream = budget integrates finished chunks for
+ * at most budget_ms per frame instead, for interactive use. */
+#include <stdlib.h>
+#include <string.h>
+#include <math.h>
+#include <time.h>
+#include <unistd.h>
+#include "stream.h"
+#include "terrain_gen.h"
+
+static const vrg_param_desc params[] = {
+    {"seed", VRG_PARAM_INT, 1337, 0, 4294967295.0, "world seed"},
+    {"radius", VRG_PARAM_INT, 13, 0, 64, "chunks generated around the camera (|dx|, |dz| <= radius)"},
+    {"height_chunks", VRG_PARAM_INT, 3, 1, 16, "world height in 16-block chunks"},
+    {"hysteresis", VRG_PARAM_INT, 2, 0, 16, "chunks beyond radius kept before they are dropped"},
+    {"octaves", VRG_PARAM_INT, 5, 1, 16, "noise octaves (frequency doubles per octave)"},
+    {"scale", VRG_PARAM_FLOAT, 96, 1, 100000, "horizontal size of the largest octave, blocks"},
+    {"falloff", VRG_PARAM_FLOAT, 0.5, 0, 1, "amplitude multiplier per octave"},
+    {"base_height", VRG_PARAM_FLOAT, 20, 0, 256, "mean surface height, blocks"},
+    {"amplitude", VRG_PARAM_FLOAT, 14, 0, 256, "height variation, blocks"},
+    {"biome_size", VRG_PARAM_FLOAT, 128, 8, 100000, "Voronoi cell size of biomes, blocks"},
+    {"tree_density", VRG_PARAM_FLOAT, 0.02, 0, 1, "fraction of forest columns holding a tree"},
+    {"sea_level", VRG_PARAM_INT, 12, 0, 256, "water fills air below this height"},
+    {"threads", VRG_PARAM_INT, 0, 0, 64, "generator threads; 0: one per CPU"},
+    {"stream", VRG_PARAM_STRING, 0, 0, 0, "wait (deterministic: each frame waits for its chunks) or budget", 0, "wait"},
+    {"budget_ms", VRG_PARAM_FLOAT, 2, 0, 1000, "stream = budget: main-thread integration time per frame"},
+    {"time_of_day", VRG_PARAM_FLOAT, 10, 0, 24, "hours at the start, 12 = noon"},
+    {"day_length", VRG_PARAM_FLOAT, 0, 0, 1e6, "seconds per 24-hour cycle; 0 keeps the time of day"},
+};
+
+static const vrg_slot_desc slots[] = {
+    {.name = "world", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_TRANSFER_DST, .size = 16,
+     .flags = VRG_SLOT_PERSISTENT, .help = "voxel world (shaders/include/world.glsl)"},
+    {.name = "frame", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_TRANSFER_DST,
+     .size = sizeof(vrg_frame_uniforms), .flags = VRG_SLOT_PERSISTENT, .help = "per-frame uniforms (shaders/include/frame.glsl)"},
+};
+
+typedef struct scene {
+    terrain_params gen;
+    vrg_world *world;
+    stream *stream;
+    int wait;
+    void *staging;
+    VkBuffer staging_buffer;
+    uint64_t staging_bytes;
+    /* integration time per frame, for `voxrg bench` and tests */
+    double last_integrate_ms;
+    int last_integrated;
+} scene;
+
+static void params_from(vrg_pass *pass, terrain_params *g)
+{
+    terrain_params_default(g);
+    g->seed = (uint32_t)vrg_param(pass, "seed");
+    g->octaves = vrg_param_int(pass, "octaves");
+    g->scale = (float)vrg_param(pass, "scale");
+    g->falloff = (float)vrg_param(pass, "falloff");
+    g->base_height = (float)vrg_param(pass, "base_height");
+    g->amplitude = (float)vrg_param(pass, "amplitude");
+    g->height_chunks = vrg_param_int(pass, "height_chunks");
+    g->biome_size = (float)vrg_param(pass, "biome_size");
+    g->tree_density = (float)vrg_param(pass, "tree_density");
+    g->sea_level = vrg_param_int(pass, "sea_level");
+}
+
+static int grid_radius(vrg_pass *pass) { return vrg_param_int(pass, "radius") + vrg_param_int(pass, "hysteresis"); }
+
+static int check(vrg_pass *pass)
+{
+    const char *mode = vrg_param_string(pass, "stream");
+    if (strcmp(mode, "wait") != 0 && strcmp(mode, "budget") != 0) {
+        int line = 0;
+        vrg_param_item(pass, "stream", vrg_param_count(pass, "stream") - 1, &line);
+        return vrg_pass_error_at(pass, line, "stream = '%s': expected wait or budget", mode);
+    }
+    return vrg_pass_set_buffer_size(pass, "world", vrg_world_gpu_bytes(grid_radius(pass), vrg_param_int(pass, "height_chunks")));
+}
+
+static void generate(void *user, int cx, int cy, int cz, vrg_block out[VRG_CHUNK_VOXELS])
+{
+    terrain_generate_chunk(&((scene *)user)->gen, cx, cy, cz, out);
+}
+
+static void integrate(void *user, int cx, int cy, int cz, const vrg_block *blocks) { vrg_world_put_chunk(user, cx, cy, cz, blocks); }
+static void drop(void *user, int cx, int cy, int cz) { vrg_world_drop_chunk(user, cx, cy, cz); }
+
+static int create(vrg_pass *pass)
+{
+    scene *s = calloc(1, sizeof *s);
+    vrg_pass_set_user(pass, s);
+    params_from(pass, &s->gen);
+    s->wait = strcmp(vrg_param_string(pass, "stream"), "wait") == 0;
+    int threads = vrg_param_int(pass, "threads");
+    if (threads == 0) {
+        long n = sysconf(_SC_NPROCESSORS_ONLN);
+        threads = n > 0 ? (int)n : 1;
+    }
+    s->world = vrg_world_create(grid_radius(pass), s->gen.height_chunks);
+    stream_desc sd = {.threads = threads,
+                      .radius = vrg_param_int(pass, "radius"),
+                      .hysteresis = vrg_param_int(pass, "hysteresis"),
+                      .height_chunks = s->gen.height_chunks,
+                      .generate = generate,
+                      .user = s};
+    s->stream = s->world ? stream_create(&sd) : NULL;
+    if (!s->stream)
+        return vrg_pass_error(pass, "cannot create the world (out of memory?)");
+    vrg_pass_set_world(pass, s->world);
+    /* Room to upload the whole grid in one frame (the first frame, or a
+     * teleport); uploads are per changed chunk after that. */
+    s->staging_bytes = vrg_world_gpu_bytes(grid_radius(pass), s->gen.height_chunks);
+    s->staging = vrg_pass_host_buffer(pass, "staging", s->staging_bytes, &s->staging_buffer);
+    return s->staging ? 0 : -1;
+}
+
+static void execute(vrg_pass *pass, VkCommandBuffer cmd)
+{
+    scene *s = vrg_pass_user(pass);
+    const vrg_camera *cam = &vrg_pass_frame(pass)->camera;
+    int cx = vrg_floor_div16((int)floorf(cam->position[0])), cz = vrg_floor_div16((int)floorf(cam->position[2]));
+    stream_update(s->stream, cx, cz, drop, s->world);
+    if (s->wait)
+        stream_wait_idle(s->stream);
+    double spent = 0;
+    s->last_integrated = stream_integrate(s->stream, s->wait ? 1e9 : vrg_param(pass, "budget_ms"), integrate, s->world, &spent);
+    s->last_integrate_ms = spent;
+    if (vrg_world_dirty_count(s->world))
+        vrg_world_upload(s->world, cmd, vrg_res_buffer(pass, vrg_pass_res(pass, "world")), s->staging, s->staging_buffer, s->staging_bytes);
+    vrg_sky_desc sky;
+    vrg_sky_default(&sky);
+    sky.time_of_day = (float)vrg_param(pass, "time_of_day");
+    sky.day_length = (float)vrg_param(pass, "day_length");
+    vrg_scene_write_frame(pass, cmd, "frame", &sky);
+}
+
+static void destroy(vrg_pass *pass)
+{
+    scene *s = vrg_pass_user(pass);
+    if (!s)
+        return;
+    vrg_pass_set_world(pass, NULL);
+    stream_destroy(s->stream);
+    vrg_world_destroy(s->world);
+    free(s);
+}
+
+static const vrg_plugin_desc desc = {
+    .abi_version = VRG_ABI_VERSION,
+    .name = "terrain",
+    .kind = VRG_PLUGIN_SCENE,
+    .help = "procedural terrain: Perlin heights, Voronoi biomes, trees, chunks streamed around the camera",
+    .shader_dir = VRG_PLUGIN_DIR,
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .slots = slots,
+    .slot_count = sizeof slots / sizeof slots[0],
+    .check = check,
+    .create = create,
+    .execute = execute,
+    .destroy = destroy,
+};
+
+VRG_PLUGIN(desc)
