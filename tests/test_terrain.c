@@ -355,7 +355,11 @@ static int test_biomes_bruteforce(void)
 
 /* ---- layers ---- */
 
-static int check_column(const terrain_params *p, const vrg_block *col, int x, int z, int *water)
+typedef struct layer_stats {
+    int water, snow, trees;
+} layer_stats;
+
+static int check_column(const terrain_params *p, const vrg_block *col, int x, int z, layer_stats *st)
 {
     int h = terrain_height_at(p, x, z);
     terrain_biome b = terrain_biome_at(p, x, z, NULL);
@@ -371,15 +375,19 @@ static int check_column(const terrain_params *p, const vrg_block *col, int x, in
             else
                 CHECK(got == VRG_BLOCK_AIR || got == VRG_BLOCK_WOOD || got == VRG_BLOCK_LEAVES,
                       "(%d,%d,%d): %d above ground", x, y, z, got);
-            *water += got == VRG_BLOCK_WATER;
+            st->water += got == VRG_BLOCK_WATER;
+            st->trees += got == VRG_BLOCK_WOOD && y == h;
             continue;
         }
         if (b == BIOME_DESERT)
             want = depth < 3 ? VRG_BLOCK_SAND : depth < 6 ? VRG_BLOCK_SANDSTONE : VRG_BLOCK_STONE;
         else if (shore)
             want = depth < 3 ? VRG_BLOCK_SAND : VRG_BLOCK_STONE;
+        else if (depth == 0)
+            want = (float)y >= p->base_height + 0.75f * p->amplitude ? VRG_BLOCK_SNOW : VRG_BLOCK_GRASS;
         else
-            want = depth == 0 ? VRG_BLOCK_GRASS : depth <= 3 ? VRG_BLOCK_DIRT : VRG_BLOCK_STONE;
+            want = depth <= 3 ? VRG_BLOCK_DIRT : VRG_BLOCK_STONE;
+        st->snow += got == VRG_BLOCK_SNOW;
         CHECK(got == want, "(%d,%d,%d): biome %d height %d depth %d: %d, want %d", x, y, z, b, h, depth, got, want);
     }
     return 0;
@@ -392,9 +400,10 @@ static int test_layers(void)
     p.seed = 777;
     static vrg_block chunks[3][VRG_CHUNK_VOXELS];
     vrg_block col[48];
-    int columns = 0, water = 0, biome_cols[BIOME_COUNT] = { 0 };
-    for (int i = 0; i < 60; i++) {
-        int cx = rng_range(-60, 60), cz = rng_range(-60, 60);
+    int columns = 0, biome_cols[BIOME_COUNT] = { 0 };
+    layer_stats st = { 0 };
+    for (int i = 0; i < 150; i++) {
+        int cx = rng_range(-100, 100), cz = rng_range(-100, 100);
         for (int cy = 0; cy < 3; cy++)
             terrain_generate_chunk(&p, cx, cy, cz, chunks[cy]);
         for (int lz = 0; lz < 16; lz++)
@@ -402,7 +411,7 @@ static int test_layers(void)
                 for (int y = 0; y < 48; y++)
                     col[y] = chunks[y / 16][vrg_chunk_index(lx, y & 15, lz)];
                 int x = cx * 16 + lx, z = cz * 16 + lz;
-                if (check_column(&p, col, x, z, &water))
+                if (check_column(&p, col, x, z, &st))
                     return 1;
                 biome_cols[terrain_biome_at(&p, x, z, NULL)]++;
                 columns++;
@@ -410,6 +419,8 @@ static int test_layers(void)
     }
     for (int b = 0; b < BIOME_COUNT; b++)
         CHECK(biome_cols[b] > 0, "no column of biome %d", b);
+    CHECK(st.water > 0 && st.snow > 0 && st.trees > 0, "water %d, snow %d, trees %d: expected some of each", st.water,
+          st.snow, st.trees);
     /* Out-of-range cy is air. */
     terrain_generate_chunk(&p, 0, 3, 0, chunks[0]);
     terrain_generate_chunk(&p, 0, -1, 0, chunks[1]);
@@ -433,8 +444,9 @@ static int test_layers(void)
     }
     CHECK(border_samples > 100, "too few border samples");
     CHECK(border_max <= 3, "height step of %d at a biome border", border_max);
-    printf("%d columns (grassland %d, forest %d, desert %d), %d water blocks; max step at borders %d over %d samples\n",
-           columns, biome_cols[0], biome_cols[1], biome_cols[2], water, border_max, border_samples);
+    printf("%d columns (grassland %d, forest %d, desert %d): %d water blocks, %d snow, %d trees; max step at "
+           "borders %d over %d samples\n",
+           columns, biome_cols[0], biome_cols[1], biome_cols[2], st.water, st.snow, st.trees, border_max, border_samples);
     return 0;
 }
 
@@ -442,9 +454,16 @@ static int test_layers(void)
 
 enum { ST_R = 3, ST_HYST = 1, ST_H = 3, ST_MIN = -20, ST_MAX = 20, ST_SPAN = ST_MAX - ST_MIN + 1 };
 
+/* Integration pretends to upload: each chunk takes at least UPLOAD_MS, so a
+ * call with a budget of BUDGET_MS can integrate at most MAX_PER_CALL (the
+ * budget is checked before every chunk after the first). */
+#define UPLOAD_MS 0.25
+#define BUDGET_MS 1.0
+enum { MAX_PER_CALL = 4 };
+
 typedef struct tracker {
     unsigned char loaded[ST_SPAN][ST_SPAN][ST_H];
-    int errors, integrated, dropped;
+    int errors, integrated, dropped, most_per_call;
     double times[4096];
     int ntimes;
 } tracker;
@@ -477,6 +496,7 @@ static void st_integrate(void *user, int cx, int cy, int cz, const vrg_block *b)
     t->errors += *l; /* integrated twice without a drop */
     *l = 1;
     t->integrated++;
+    sleep_ms(UPLOAD_MS);
 }
 
 static void st_drop(void *user, int cx, int cy, int cz)
@@ -490,13 +510,14 @@ static void st_drop(void *user, int cx, int cy, int cz)
     t->dropped++;
 }
 
-/* Frames of update + integrate (2 ms budget) until nothing is pending. */
+/* Frames of update + integrate until nothing is pending. */
 static void st_run(stream *s, tracker *t, int cx, int cz)
 {
     for (;;) {
         double spent;
         stream_update(s, cx, cz, st_drop, t);
-        int n = stream_integrate(s, 2.0, st_integrate, t, &spent);
+        int n = stream_integrate(s, BUDGET_MS, st_integrate, t, &spent);
+        t->most_per_call = n > t->most_per_call ? n : t->most_per_call;
         if (n > 0 && t->ntimes < (int)(sizeof t->times / sizeof *t->times))
             t->times[t->ntimes++] = spent;
         if (!stream_pending(s))
@@ -565,6 +586,8 @@ static int test_streaming(void)
     CHECK(t.dropped == 4 * 7 * 3 && t.integrated == 7 * 7 * 3 + 5 * 7 * 3, "dropped %d, integrated %d", t.dropped,
           t.integrated);
     CHECK(stream_pending(s) == 0, "pending after settling");
+    CHECK(t.most_per_call >= 2 && t.most_per_call <= MAX_PER_CALL, "budget not kept: %d chunks in one call",
+          t.most_per_call);
 
     /* Jump away and back before anything settles (in-flight chunks get
      * discarded), then back to the origin: dropped chunks come back. */
@@ -587,7 +610,8 @@ static int test_streaming(void)
     stream_destroy(s);
 
     qsort(t.times, (size_t)t.ntimes, sizeof *t.times, cmp_double);
-    printf("integrate calls %d: median %.4f ms, max %.4f ms\n", t.ntimes, t.times[t.ntimes / 2], t.times[t.ntimes - 1]);
+    printf("integrate calls %d (budget %.2f ms, >= %.2f ms per chunk, at most %d per call): median %.3f ms, max %.3f ms\n",
+           t.ntimes, BUDGET_MS, UPLOAD_MS, t.most_per_call, t.times[t.ntimes / 2], t.times[t.ntimes - 1]);
     return 0;
 }
 

@@ -20,6 +20,10 @@ enum {
 
 /* Grassland keeps this fraction of the forest tree density. */
 #define GRASSLAND_TREE_FRACTION 0.08f
+/* Normalised fBm rarely leaves [-0.5, 0.5] (standard deviation ~0.15 at the
+ * default 5 octaves, persistence 0.5); scaling it by 2.5 makes amplitude
+ * the height of the tall hills rather than of the rare extremes. */
+#define HEIGHT_CONTRAST 2.5f
 /* Width of the biome height blend, in blocks; capped at half a cell (see
  * biome_eval for why that bound matters). */
 #define BLEND_WIDTH 32.0f
@@ -59,6 +63,10 @@ static uint32_t hash2(uint32_t seed, enum salt salt, int a, int b)
 
 /* Top 24 bits as a float in [0, 1): exact, and never rounds up to 1. */
 static float unit(uint32_t h) { return (float)(h >> 8) * (1.0f / 16777216.0f); }
+
+/* Snow caps the peaks: a top block at y >= base_height + 0.75 amplitude
+ * (compared as floats, since neither need be an integer). */
+static int snowy(const terrain_params *p, int y) { return (float)y >= p->base_height + 0.75f * p->amplitude; }
 
 /* ---- improved Perlin noise ---- */
 
@@ -101,8 +109,9 @@ static float noise_perm(const uint8_t *perm, float x, float y)
     unsigned A = perm[X] + Y, B = perm[X + 1] + Y;
     float n = lerp(v, lerp(u, grad(perm[perm[A]], x, y), grad(perm[perm[B]], x - 1.0f, y)),
                    lerp(u, grad(perm[perm[A + 1]], x, y - 1.0f), grad(perm[perm[B + 1]], x - 1.0f, y - 1.0f)));
-    /* The extreme (all four diagonal gradients aimed at the cell centre) is
-     * exactly 1; the clamp only absorbs float rounding. */
+    /* The extreme is 1 (all four diagonal gradients aimed at the cell centre;
+     * checked over every gradient combination), so the clamp only absorbs
+     * float rounding. */
     return n > 1.0f ? 1.0f : n < -1.0f ? -1.0f : n;
 }
 
@@ -283,7 +292,7 @@ static int height_eval(gen_ctx *c, int x, int z, terrain_biome *biome)
     float fx = (float)x + 0.5f, fz = (float)z + 0.5f;
     float w[BIOME_COUNT];
     *biome = biome_eval(c, fx, fz, NULL, w);
-    float n = fbm_ctx(c, fx, fz), sum = 0.0f, wsum = 0.0f;
+    float n = HEIGHT_CONTRAST * fbm_ctx(c, fx, fz), sum = 0.0f, wsum = 0.0f;
     for (int b = 0; b < BIOME_COUNT; b++) {
         if (w[b] > 0.0f) {
             sum += w[b] * biome_height(c, (terrain_biome)b, n, fx, fz);
@@ -307,8 +316,8 @@ int terrain_height_at(const terrain_params *p, int x, int z)
 /* ---- trees ---- */
 
 /* Order-independent spacing: a candidate survives only if no column within
- * TREE_SPACING has a smaller hash (equal hashes: the one at the smaller
- * offset wins, which the two columns agree on). */
+ * TREE_SPACING has a smaller hash (on equal hashes the column with the
+ * smaller (z, x) wins, which both columns agree on). */
 static int tree_wins_spacing(uint32_t seed, int x, int z, uint32_t h)
 {
     for (int dz = -TREE_SPACING; dz <= TREE_SPACING; dz++)
@@ -333,7 +342,7 @@ static int tree_eval(gen_ctx *c, int x, int z, terrain_tree *t)
     int height = height_eval(c, x, z, &b);
     if (b == BIOME_DESERT || (b == BIOME_GRASSLAND && !(u < p->tree_density * GRASSLAND_TREE_FRACTION)))
         return 0;
-    if (height - 1 <= p->sea_level) /* on grass only, not on shores */
+    if (height - 1 <= p->sea_level || snowy(p, height - 1)) /* on grass only */
         return 0;
     t->x = x;
     t->z = z;
@@ -387,7 +396,9 @@ static vrg_block column_block(const terrain_params *p, int height, terrain_biome
                                                          : VRG_BLOCK_STONE;
     if (height - 1 <= p->sea_level) /* shore or sea floor */
         return depth < TOPSOIL_DEPTH ? VRG_BLOCK_SAND : VRG_BLOCK_STONE;
-    return depth == 0 ? VRG_BLOCK_GRASS : depth <= TOPSOIL_DEPTH ? VRG_BLOCK_DIRT : VRG_BLOCK_STONE;
+    if (depth == 0)
+        return snowy(p, y) ? VRG_BLOCK_SNOW : VRG_BLOCK_GRASS;
+    return depth <= TOPSOIL_DEPTH ? VRG_BLOCK_DIRT : VRG_BLOCK_STONE;
 }
 
 static void fill_terrain(gen_ctx *c, int x0, int y0, int z0, vrg_block *out)

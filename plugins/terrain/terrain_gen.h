@@ -6,7 +6,13 @@
  * hash of the seed and coordinates.
  *
  * Heights are in blocks: a column of height h is solid for y in [0, h), its
- * top block is at y = h - 1, and water fills y in [h, sea_level). */
+ * top block is at y = h - 1, and water fills y in [h, sea_level). Depth d
+ * counts down from the top block (d = 0):
+ *   desert:                 sand d < 3, sandstone d < 6, stone below
+ *   shore (h - 1 <= sea):   sand d < 3, stone below (grassland and forest)
+ *   grassland and forest:   grass (snow if h - 1 >= base_height + 0.75 amplitude)
+ *                           at d = 0, dirt d <= 3, stone below
+ * The biome of a column is its nearest one (terrain_biome_at). */
 #ifndef VOXRG_TERRAIN_GEN_H
 #define VOXRG_TERRAIN_GEN_H
 
