@@ -111,6 +111,15 @@ has "$out/stderr" "^$out/bad.path:2: error:" "bad path names FILE:LINE"
 expect_rc 1 "render --camera missing" "$voxrg" render "$tests/graphs/blocks_wall.ini" --camera "$out/none.path" --out "$out/badcam"
 has "$out/stderr" "none.path" "missing path named"
 
+# determinism: the same graph gives the same image whatever the thread count
+expect_rc 0 "terrain, 1 thread" "$voxrg" render "$tests/../graphs/terrain-debug.ini" --size 64x36 --set scene.radius=3 --set scene.threads=1 --out "$out/t1"
+expect_rc 0 "terrain, 2 threads" "$voxrg" render "$tests/../graphs/terrain-debug.ini" --size 64x36 --set scene.radius=3 --set scene.threads=2 --out "$out/t2"
+if cmp -s "$out/t1/view.png" "$out/t2/view.png"; then ok; else bad "terrain image differs between 1 and 2 generator threads"; fi
+expect_rc 0 "terrain, other seed" "$voxrg" render "$tests/../graphs/terrain-debug.ini" --size 64x36 --set scene.radius=3 --set scene.seed=99 --out "$out/t3"
+if cmp -s "$out/t1/view.png" "$out/t3/view.png"; then bad "the seed does not change the terrain"; else ok; fi
+expect_rc 1 "terrain, bad stream mode" "$voxrg" check "$tests/../graphs/terrain-debug.ini" --no-device --set scene.stream=sometimes
+has "$out/stderr" "expected wait or budget" "stream mode error"
+
 # --device by name and by index; a device that does not exist
 expect_rc 0 "--device by name" "$voxrg" check "$tests/graphs/chain.ini" --device llvmpipe
 has "$out/stderr" "device llvmpipe" "chosen device"

@@ -492,6 +492,65 @@ static void test_blocks_trace(void)
     vrg_graph_destroy(g);
 }
 
+/* Probes (as in blocks_world) against the CPU store: 0 on agreement. */
+static int probe_mismatches(vrg_graph *g, const int lo[3], const int extent[3], int *solid)
+{
+    const vrg_world *w = vrg_graph_world(g);
+    vrg_image_data img;
+    if (!w || vrg_graph_read(g, "probes", &img) != 0)
+        return -1;
+    int bad = 0;
+    *solid = 0;
+    for (uint32_t i = 0; i < img.width * img.height; i++) {
+        int p[3] = {lo[0] + (int)(pcg(3 * i) % (uint32_t)extent[0]), lo[1] + (int)(pcg(3 * i + 1) % (uint32_t)extent[1]),
+                    lo[2] + (int)(pcg(3 * i + 2) % (uint32_t)extent[2])};
+        int id = vrg_world_block(w, p[0], p[1], p[2]);
+        const vrg_block *chunk = vrg_world_chunk(w, vrg_floor_div16(p[0]), vrg_floor_div16(p[1]), vrg_floor_div16(p[2]));
+        int differs = (uint32_t)img.pixels[i * 4] != (uint32_t)id || (((uint32_t)img.pixels[i * 4 + 1] >> 2) & 1) != (chunk != NULL) ||
+                      ((uint32_t)img.pixels[i * 4 + 1] & 1) != (id != 0);
+        if (differs && bad < 3)
+            fprintf(stderr, "probe (%d %d %d): GPU id %u flags %u, CPU id %d loaded %d\n", p[0], p[1], p[2], (uint32_t)img.pixels[i * 4],
+                    (uint32_t)img.pixels[i * 4 + 1], id, chunk != NULL);
+        bad += differs;
+        *solid += id != 0;
+    }
+    free(img.pixels);
+    return bad;
+}
+
+/* The terrain scene: GPU world equals the CPU store, and the loaded chunk
+ * set follows the camera exactly (radius 2, hysteresis 1). */
+static void test_terrain_world(void)
+{
+    vrg_graph *g = load("terrain_probe.ini");
+    if (!g)
+        return;
+    const vrg_world *w = vrg_graph_world(g);
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    CHECK(vrg_world_chunk_count(w) == 5 * 5 * 3, "%d chunks loaded at the start, want 75", vrg_world_chunk_count(w));
+    int lo[3] = {-40, -2, -40}, extent[3] = {150, 52, 80}, solid; /* the probe pass's parameters */
+    int bad = probe_mismatches(g, lo, extent, &solid);
+    CHECK(bad == 0, "%d probes differ between GPU and CPU", bad);
+    CHECK(solid > 500, "only %d probes in solid terrain", solid);
+
+    /* four chunks east: cx 2..6 wanted, 1 kept by hysteresis, the rest dropped */
+    vrg_camera cam = *vrg_graph_camera(g);
+    cam.position[0] = 4 * 16 + 8;
+    vrg_graph_set_camera(g, &cam);
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    int wrong = 0;
+    for (int cx = -4; cx <= 8; cx++)
+        for (int cz = -4; cz <= 4; cz++)
+            for (int cy = 0; cy < 3; cy++)
+                wrong += vrg_world_has_chunk(w, cx, cy, cz) != (cx >= 1 && cx <= 6 && cz >= -2 && cz <= 2);
+    CHECK(wrong == 0 && vrg_world_chunk_count(w) == 6 * 5 * 3, "after moving: %d chunks wrong, %d loaded (want 90)", wrong,
+          vrg_world_chunk_count(w));
+    /* the GPU copy followed: new chunks are there, dropped ones read as unloaded */
+    bad = probe_mismatches(g, lo, extent, &solid);
+    CHECK(bad == 0, "after moving, %d probes differ between GPU and CPU", bad);
+    vrg_graph_destroy(g);
+}
+
 int main(int argc, char **argv)
 {
     static const struct {
@@ -502,7 +561,7 @@ int main(int argc, char **argv)
         {"chain", test_chain, 1},     {"history", test_history, 1}, {"accumulate", test_accumulate, 1}, {"pingpong", test_pingpong, 1},
         {"alias", test_alias, 1},     {"buffer", test_buffer, 1},   {"scene", test_scene, 1},           {"loader", test_loader, 0},
         {"accumulate_count", test_accumulate_count, 1}, {"validation_live", test_validation_live, 1},
-        {"blocks_world", test_blocks_world, 1}, {"blocks_trace", test_blocks_trace, 1},
+        {"blocks_world", test_blocks_world, 1}, {"blocks_trace", test_blocks_trace, 1}, {"terrain_world", test_terrain_world, 1},
     };
     if (argc != 2) {
         fprintf(stderr, "usage: test_runtime CASE\n");
