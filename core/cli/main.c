@@ -285,7 +285,12 @@ static int write_json(const char *path, vrg_context *ctx, vrg_graph *g, const op
             fprintf(f, "%s%.4f", k ? ", " : "", ms[k * np + i]);
             sum += ms[k * np + i];
         }
-        fprintf(f, "], \"mean_gpu_ms\": %.4f}", sum / frames);
+        fprintf(f, "], \"mean_gpu_ms\": %.4f", sum / frames);
+        double v;
+        const char *name;
+        for (uint32_t k = 0; (name = vrg_graph_stat_at(g, i, k, &v)); k++)
+            fprintf(f, ", \"%s\": %.6g", name, v);
+        fprintf(f, "}");
         first = 0;
     }
     fprintf(f, "\n  ]\n}\n");

@@ -374,3 +374,23 @@ int vrg_graph_pass_culled(const vrg_graph *g, const char *name)
             return g->passes[i].culled;
     return -1;
 }
+
+int vrg_graph_stat(const vrg_graph *g, const char *pass, const char *name, double *value)
+{
+    for (int i = 0; i < g->pass_count; i++)
+        if (strcmp(g->passes[i].name, pass) == 0)
+            for (int k = 0; k < g->passes[i].stat_count; k++)
+                if (strcmp(g->passes[i].stats[k].name, name) == 0) {
+                    *value = g->passes[i].stats[k].value;
+                    return 0;
+                }
+    return -1;
+}
+
+const char *vrg_graph_stat_at(const vrg_graph *g, uint32_t pass, uint32_t i, double *value)
+{
+    if (pass >= (uint32_t)g->pass_count || i >= (uint32_t)g->passes[pass].stat_count)
+        return NULL;
+    *value = g->passes[pass].stats[i].value;
+    return g->passes[pass].stats[i].name;
+}

@@ -164,6 +164,11 @@ struct vrg_pass {
     struct vrg_param_value *strings;     /* string parameter values, in file order */
     int string_count;
     struct vrg_host_buffer *host_buffers;
+    struct {
+        char name[32];
+        double value;
+    } stats[16];
+    int stat_count;
     VkCommandBuffer cmd;      /* during execute */
 };
 

@@ -354,3 +354,16 @@ void vrg_pass_use(vrg_pass *p, VkCommandBuffer cmd, const vrg_use *uses, uint32_
     }
     vrg_emit_barriers(p->graph, cmd, b, n);
 }
+
+void vrg_pass_stat(vrg_pass *p, const char *name, double value)
+{
+    for (int i = 0; i < p->stat_count; i++)
+        if (strcmp(p->stats[i].name, name) == 0) {
+            p->stats[i].value = value;
+            return;
+        }
+    if (p->stat_count < (int)(sizeof p->stats / sizeof p->stats[0])) {
+        snprintf(p->stats[p->stat_count].name, sizeof p->stats[0].name, "%s", name);
+        p->stats[p->stat_count++].value = value;
+    }
+}

@@ -6,6 +6,7 @@
  * wait), so the same graph, seed, camera path and size give the same image
  * whatever the thread count. stream = budget integrates finished chunks for
  * at most budget_ms per frame instead, for interactive use. */
+#define _POSIX_C_SOURCE 200809L
 #include <stdlib.h>
 #include <string.h>
 #include <math.h>
@@ -49,10 +50,15 @@ typedef struct scene {
     void *staging;
     VkBuffer staging_buffer;
     uint64_t staging_bytes;
-    /* integration time per frame, for `voxrg bench` and tests */
-    double last_integrate_ms;
-    int last_integrated;
+    int threads;
 } scene;
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
 
 static void params_from(vrg_pass *pass, terrain_params *g)
 {
@@ -101,6 +107,7 @@ static int create(vrg_pass *pass)
         long n = sysconf(_SC_NPROCESSORS_ONLN);
         threads = n > 0 ? (int)n : 1;
     }
+    s->threads = threads;
     s->world = vrg_world_create(grid_radius(pass), s->gen.height_chunks);
     stream_desc sd = {.threads = threads,
                       .radius = vrg_param_int(pass, "radius"),
@@ -124,14 +131,25 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     scene *s = vrg_pass_user(pass);
     const vrg_camera *cam = &vrg_pass_frame(pass)->camera;
     int cx = vrg_floor_div16((int)floorf(cam->position[0])), cz = vrg_floor_div16((int)floorf(cam->position[2]));
+    double t0 = now_ms();
     stream_update(s->stream, cx, cz, drop, s->world);
     if (s->wait)
         stream_wait_idle(s->stream);
-    double spent = 0;
-    s->last_integrated = stream_integrate(s->stream, s->wait ? 1e9 : vrg_param(pass, "budget_ms"), integrate, s->world, &spent);
-    s->last_integrate_ms = spent;
+    double t1 = now_ms(), spent = 0;
+    int integrated = stream_integrate(s->stream, s->wait ? 1e9 : vrg_param(pass, "budget_ms"), integrate, s->world, &spent);
+    double t2 = now_ms();
+    int uploaded = 0;
     if (vrg_world_dirty_count(s->world))
-        vrg_world_upload(s->world, cmd, vrg_res_buffer(pass, vrg_pass_res(pass, "world")), s->staging, s->staging_buffer, s->staging_bytes);
+        uploaded = vrg_world_upload(s->world, cmd, vrg_res_buffer(pass, vrg_pass_res(pass, "world")), s->staging, s->staging_buffer, s->staging_bytes);
+    /* figures for `voxrg bench` and --json */
+    vrg_pass_stat(pass, "wait_ms", t1 - t0);
+    vrg_pass_stat(pass, "integrate_ms", spent);
+    vrg_pass_stat(pass, "upload_ms", now_ms() - t2);
+    vrg_pass_stat(pass, "chunks_integrated", integrated);
+    vrg_pass_stat(pass, "chunks_uploaded", uploaded);
+    vrg_pass_stat(pass, "chunks_loaded", vrg_world_chunk_count(s->world));
+    vrg_pass_stat(pass, "chunks_pending", stream_pending(s->stream));
+    vrg_pass_stat(pass, "threads", s->threads);
     vrg_sky_desc sky;
     vrg_sky_default(&sky);
     sky.time_of_day = (float)vrg_param(pass, "time_of_day");

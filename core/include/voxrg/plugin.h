@@ -189,6 +189,10 @@ int vrg_pass_error_at(vrg_pass *pass, int line, const char *fmt, ...) __attribut
 /* GPU milliseconds of a pass (NULL: this one) in the last finished frame; -1 if unknown. */
 double vrg_pass_gpu_ms(const vrg_pass *pass, const char *other_pass);
 
+/* A named figure of this frame (e.g. chunks integrated, milliseconds spent
+ * on the CPU) that hosts read with vrg_graph_stat and `render --json` writes. */
+void vrg_pass_stat(vrg_pass *pass, const char *name, double value);
+
 /* Parameters by name, after defaults, graph values and --set overrides. */
 double vrg_param(const vrg_pass *pass, const char *name);
 int vrg_param_int(const vrg_pass *pass, const char *name);

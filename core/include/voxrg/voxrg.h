@@ -64,6 +64,11 @@ typedef struct vrg_image_data {
 } vrg_image_data;
 int vrg_graph_read(vrg_graph *g, const char *resource, vrg_image_data *out);
 /* Bytes of a buffer resource written in the last frame. Caller frees *data. */
+/* A figure a pass recorded with vrg_pass_stat in the last frame: 0, or -1. */
+int vrg_graph_stat(const vrg_graph *g, const char *pass, const char *name, double *value);
+/* Its i-th figure (for listing): name, or NULL past the end. */
+const char *vrg_graph_stat_at(const vrg_graph *g, uint32_t pass, uint32_t i, double *value);
+
 /* VRG_IMAGE or VRG_BUFFER, or -1 if the graph has no such resource. */
 int vrg_graph_resource_kind(const vrg_graph *g, const char *resource);
 int vrg_graph_read_buffer(vrg_graph *g, const char *resource, void **data, uint64_t *size);
