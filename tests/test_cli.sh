@@ -135,6 +135,22 @@ cp "$(dirname "$voxrg")/plugins/pattern.so" "$out/rel/plugins/"
 expect_rc 0 "graph-relative plugin" "$voxrg" check "$out/rel/chain.ini" --no-device
 has "$out/stdout" "plugin pattern .*$out/rel/plugins/pattern.so" "graph-relative plugin path"
 
+# bench: a smoke run (no timing assertion), JSON complete and well-formed
+expect_rc 0 "bench --help" "$voxrg" bench --help
+expect_rc 2 "bench unknown suite" "$voxrg" bench --suite nonesuch
+expect_rc 0 "bench terrain" "$voxrg" bench --suite terrain --runs 1 --json "$out/bench.json"
+has "$out/stdout" "generate radius-13 world \(2187 chunks\)" "bench table"
+if python3 - "$out/bench.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+figs = d["figures"]
+assert d["device"] and d["runs"] == 1 and len(figs) >= 10, d
+for f in figs:
+    assert f["suite"] == "terrain" and f["samples"] >= 1 and f["min"] <= f["median"] <= f["max"], f
+assert any("streaming" in f["name"] and f["samples"] > 100 for f in figs), figs
+PY
+then ok; else bad "bench JSON"; fi
+
 # plugins
 expect_rc 0 "plugins" "$voxrg" plugins
 has "$out/stdout" "^pattern +pass" "plugins lists pattern"

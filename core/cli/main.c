@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
+#include "bench.h"
 #include "voxrg/voxrg.h"
 
 #define MAX_SETS 64
@@ -19,6 +20,7 @@ static const char *usage_main =
     "  check GRAPH     validate a graph; print schedule, resources, barriers, memory\n"
     "  render GRAPH    render frames headless; write PNGs and timings\n"
     "  plugins [NAME]  list plugins, or one plugin's slots and parameters\n"
+    "  bench           measure the figures in docs/benchmarks.md\n"
     "'voxrg COMMAND --help' describes each.\n";
 
 static const char *usage_check =
@@ -410,6 +412,43 @@ static int cmd_plugins(int argc, char **argv)
     return 0;
 }
 
+static const char *usage_bench =
+    "usage: voxrg bench [--suite all|terrain] [--runs N] [--json FILE] [--device NAME|INDEX]\n"
+    "Measures each figure N times (default 5) after a warm-up run and prints the\n"
+    "median, min, max and p99 with the device and thread counts (LP_NUM_THREADS\n"
+    "sets lavapipe's). terrain: radius-13 world generation with 1 and 2 threads,\n"
+    "chunks/s per thread, and main-thread streaming time per frame along\n"
+    "graphs/paths/walk.path.\n";
+
+const char *vrg_source_dir(void) { return VRG_SOURCE_DIR; }
+
+static int cmd_bench(int argc, char **argv)
+{
+    const char *suite = "all", *json = NULL, *device = NULL;
+    int runs = 5;
+    for (int i = 0; i < argc; i++) {
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            fputs(usage_bench, stdout);
+            return 0;
+        }
+        if (i + 1 >= argc)
+            return usage_error(usage_bench, "unknown option or missing value '%s'", argv[i]);
+        if (!strcmp(argv[i], "--suite"))
+            suite = argv[++i];
+        else if (!strcmp(argv[i], "--json"))
+            json = argv[++i];
+        else if (!strcmp(argv[i], "--device"))
+            device = argv[++i];
+        else if (!strcmp(argv[i], "--runs")) {
+            runs = atoi(argv[++i]);
+            if (runs < 1 || runs > 64)
+                return usage_error(usage_bench, "--runs '%s': 1 to 64", argv[i]);
+        } else
+            return usage_error(usage_bench, "unknown option '%s'", argv[i]);
+    }
+    return vrg_cli_bench(suite, json, runs, device);
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
@@ -422,6 +461,8 @@ int main(int argc, char **argv)
         return cmd_render(argc - 2, argv + 2);
     if (!strcmp(argv[1], "plugins"))
         return cmd_plugins(argc - 2, argv + 2);
+    if (!strcmp(argv[1], "bench"))
+        return cmd_bench(argc - 2, argv + 2);
     fprintf(stderr, "error: unknown command '%s'\n%s", argv[1], usage_main);
     return 2;
 }
