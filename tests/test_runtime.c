@@ -366,6 +366,8 @@ static uint32_t pcg(uint32_t v)
     return (w >> 22u) ^ w;
 }
 
+static int probe_mismatches(vrg_graph *g, const int lo[3], const int extent[3], int *solid);
+
 /* The boxes of tests/graphs/blocks_probe.ini: later ones win. */
 static const struct {
     int lo[3], hi[3];
@@ -437,6 +439,11 @@ static void test_blocks_world(void)
     CHECK(mismatched == 0, "%d of %u probes differ between GPU and CPU", mismatched, img.width * img.height);
     CHECK(probed_solid > 20, "only %d probes hit a solid block: the probe does not exercise the world", probed_solid);
     free(img.pixels);
+    /* a resize re-allocates (and clears) the world buffer: the scene must upload it again */
+    CHECK(vrg_graph_resize(g, 48, 40) == 0 && vrg_graph_frame(g) == 0, "resize failed");
+    int lo[3] = {-40, -4, -40}, extent[3] = {90, 40, 90}, solid_after;
+    int bad = probe_mismatches(g, lo, extent, &solid_after);
+    CHECK(bad == 0 && solid_after > 10, "after resize %d probes differ (%d solid)", bad, solid_after);
 
     vrg_world_hit hit;
     float o[3] = {0.5f, 30.5f, 0.5f}, down[3] = {0, -1, 0};

@@ -110,6 +110,7 @@ int vrg_record_frame(vrg_graph *g)
     g->last_camera = g->camera;
     for (int i = 0; i < g->res_count; i++)
         g->res[i].touched[0] = g->res[i].touched[1] = 0;
+    g->frame.resources_new = g->fresh;
     clear_kept(g, cmd);
     g->history_reset = 0;
     g->fresh = 0;

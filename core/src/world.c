@@ -157,6 +157,13 @@ const vrg_block *vrg_world_chunk(const vrg_world *w, int cx, int cy, int cz)
 
 int vrg_world_has_chunk(const vrg_world *w, int cx, int cy, int cz) { return vrg_world_chunk(w, cx, cy, cz) != NULL; }
 int vrg_world_chunk_count(const vrg_world *w) { return w->loaded; }
+void vrg_world_invalidate_gpu(vrg_world *w)
+{
+    w->header_dirty = 1;
+    for (int s = 0; s < w->gx * w->gy * w->gz; s++)
+        mark_dirty(w, s); /* empty slots too: the buffer starts zeroed, but stay simple and exact */
+}
+
 int vrg_world_dirty_count(const vrg_world *w) { return w->dirty_count + w->header_dirty; }
 
 vrg_block vrg_world_block(const vrg_world *w, int x, int y, int z)

@@ -150,6 +150,8 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     scene *s = vrg_pass_user(pass);
     VkBuffer world = vrg_res_buffer(pass, vrg_pass_res(pass, "world"));
+    if (vrg_pass_frame(pass)->resources_new)
+        vrg_world_invalidate_gpu(s->world);
     if (vrg_world_dirty_count(s->world))
         vrg_world_upload(s->world, cmd, world, s->staging, s->staging_buffer, s->staging_bytes);
     vrg_sky_desc sky;

@@ -139,6 +139,8 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     int integrated = stream_integrate(s->stream, s->wait ? 1e9 : vrg_param(pass, "budget_ms"), integrate, s->world, &spent);
     double t2 = now_ms();
     int uploaded = 0;
+    if (vrg_pass_frame(pass)->resources_new)
+        vrg_world_invalidate_gpu(s->world);
     if (vrg_world_dirty_count(s->world))
         uploaded = vrg_world_upload(s->world, cmd, vrg_res_buffer(pass, vrg_pass_res(pass, "world")), s->staging, s->staging_buffer, s->staging_bytes);
     /* figures for `voxrg bench` and --json */

@@ -168,6 +168,8 @@ typedef struct vrg_frame_info {
     double time_s;          /* simulated time: frame_index / [graph] fps */
     vrg_camera camera;      /* this frame's camera ([camera] section, --camera path, or the host) */
     vrg_camera prev_camera; /* last frame's; equal to camera when history is not valid */
+    int resources_new;      /* every resource was just (re)allocated: persistent ones are
+                             * cleared, so upload their contents again */
 } vrg_frame_info;
 
 /* A resource a pass can name: one of its slots or an internal resource. */

@@ -91,6 +91,8 @@ int vrg_world_pick(const vrg_world *w, const float origin[3], const float dir[3]
  * staging is host-visible memory of staging_bytes (vrg_pass_host_buffer).
  * Returns the number of slots uploaded; the rest wait for the next frame. */
 int vrg_world_upload(vrg_world *w, VkCommandBuffer cmd, VkBuffer dst, void *staging, VkBuffer staging_buffer, uint64_t staging_bytes);
+/* The GPU copy was lost (new buffer): upload everything again. */
+void vrg_world_invalidate_gpu(vrg_world *w);
 /* Slots still waiting for upload. */
 int vrg_world_dirty_count(const vrg_world *w);
 
