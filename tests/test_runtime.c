@@ -558,6 +558,66 @@ static void test_terrain_world(void)
     vrg_graph_destroy(g);
 }
 
+static float srgb_decode(uint8_t v)
+{
+    float c = v / 255.0f;
+    return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);
+}
+
+/* Block textures: tiles average to their material's albedo at every level
+ * up to one texel per tile; no level mixes tiles; and the GPU samples every
+ * uploaded level as generated. */
+static void test_atlas(void)
+{
+    uint8_t *atlas = malloc(vrg_atlas_bytes());
+    vrg_atlas_generate(atlas);
+    const vrg_material *m = vrg_materials();
+    double worst = 0;
+    for (int b = 1; b < VRG_BLOCK_COUNT; b++) {
+        int tile = m[b].tile_top;
+        for (uint32_t k = 0; k <= 4; k++) {
+            uint32_t size = VRG_ATLAS_SIZE >> k, ts = VRG_ATLAS_TILE >> k;
+            const uint8_t *lv = atlas + vrg_atlas_level_offset(k);
+            for (int c = 0; c < 3; c++) {
+                double sum = 0;
+                for (uint32_t y = 0; y < ts; y++)
+                    for (uint32_t x = 0; x < ts; x++)
+                        sum += srgb_decode(lv[(((tile / 4) * ts + y) * size + (tile % 4) * ts + x) * 4 + c]);
+                worst = fmax(worst, fabs(sum / (ts * ts) - m[b].albedo[c]) / m[b].albedo[c]);
+            }
+        }
+    }
+    CHECK(worst < 0.03, "a tile's mean differs from its albedo by %.1f%%", worst * 100);
+    /* textures are not flat: level 0 of stone varies */
+    const uint8_t *l0 = atlas;
+    int lo = 255, hi = 0, stone = m[VRG_BLOCK_STONE].tile_top;
+    for (int y = 0; y < 16; y++)
+        for (int x = 0; x < 16; x++) {
+            int v = l0[(((stone / 4) * 16 + y) * VRG_ATLAS_SIZE + (stone % 4) * 16 + x) * 4];
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
+        }
+    CHECK(hi - lo > 20, "stone's texture is flat (%d..%d)", lo, hi);
+
+    vrg_graph *g = load("atlas.ini");
+    if (g) {
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+        vrg_image_data img;
+        CHECK(vrg_graph_read(g, "probe", &img) == 0, "readback failed");
+        int bad = 0;
+        for (uint32_t k = 0; k < VRG_ATLAS_MIPS; k++)
+            for (uint32_t x = 0; x < (uint32_t)(VRG_ATLAS_SIZE >> k); x++)
+                for (int c = 0; c < 3; c++) {
+                    float want = srgb_decode(atlas[vrg_atlas_level_offset(k) + x * 4 + c]);
+                    bad += fabsf(px(&img, x, k, c) - want) > 2e-3f;
+                }
+        CHECK(bad == 0, "%d sampled texels differ from the generated levels", bad);
+        free(img.pixels);
+        vrg_graph_destroy(g);
+    }
+    free(atlas);
+}
+
 int main(int argc, char **argv)
 {
     static const struct {
@@ -569,6 +629,7 @@ int main(int argc, char **argv)
         {"alias", test_alias, 1},     {"buffer", test_buffer, 1},   {"scene", test_scene, 1},           {"loader", test_loader, 0},
         {"accumulate_count", test_accumulate_count, 1}, {"validation_live", test_validation_live, 1},
         {"blocks_world", test_blocks_world, 1}, {"blocks_trace", test_blocks_trace, 1}, {"terrain_world", test_terrain_world, 1},
+        {"atlas", test_atlas, 1},
     };
     if (argc != 2) {
         fprintf(stderr, "usage: test_runtime CASE\n");

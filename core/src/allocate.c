@@ -59,6 +59,13 @@ static int create_objects(vrg_graph *g, int ri)
     vrg_resource *r = &g->res[ri];
     int copies = r->history ? 2 : 1;
     vrg_resource_extent(g, r, &r->width, &r->height);
+    r->mips = 1;
+    if (r->kind == VRG_IMAGE && r->mip_request > 1) {
+        uint32_t full = 1, m = r->width > r->height ? r->width : r->height;
+        while (m >>= 1)
+            full++;
+        r->mips = r->mip_request < full ? r->mip_request : full;
+    }
     for (int c = 0; c < copies; c++) {
         if (r->kind == VRG_IMAGE) {
             VkImageUsageFlags need;
@@ -77,7 +84,7 @@ static int create_objects(vrg_graph *g, int ri)
                 .imageType = VK_IMAGE_TYPE_2D,
                 .format = r->format,
                 .extent = {r->width, r->height, 1},
-                .mipLevels = 1,
+                .mipLevels = r->mips,
                 .arrayLayers = 1,
                 .samples = VK_SAMPLE_COUNT_1_BIT,
                 .tiling = VK_IMAGE_TILING_OPTIMAL,
@@ -185,7 +192,7 @@ int vrg_allocate(vrg_graph *g)
                     .image = r->image[c],
                     .viewType = VK_IMAGE_VIEW_TYPE_2D,
                     .format = r->format,
-                    .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1},
+                    .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, VK_REMAINING_MIP_LEVELS, 0, 1},
                 };
                 vkCreateImageView(g->ctx->dev.device, &vi, NULL, &r->view[c]);
                 vrg_name_object(g->ctx, VK_OBJECT_TYPE_IMAGE_VIEW, (uint64_t)r->view[c], "%s/%s%s", g->name, r->name, c ? " (copy 1)" : "");

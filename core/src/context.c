@@ -345,6 +345,11 @@ int vrg_context_create(const vrg_context_desc *desc, vrg_context **out)
     };
     vkCreateSampler(ctx->dev.device, &si, NULL, &ctx->sampler_linear);
     vrg_name_object(ctx, VK_OBJECT_TYPE_SAMPLER, (uint64_t)ctx->sampler_linear, "voxrg linear clamp sampler");
+    si.magFilter = si.minFilter = VK_FILTER_NEAREST;
+    si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+    si.maxLod = VK_LOD_CLAMP_NONE;
+    vkCreateSampler(ctx->dev.device, &si, NULL, &ctx->sampler_mips);
+    vrg_name_object(ctx, VK_OBJECT_TYPE_SAMPLER, (uint64_t)ctx->sampler_mips, "voxrg nearest-texel trilinear-mip sampler");
     if (!desc->quiet) {
         const vrg_features *f = &ctx->dev.features;
         fprintf(stderr, "voxrg: device %s (ray query %s, acceleration structures %s, timestamps %s)%s\n", ctx->device_name,
@@ -364,6 +369,7 @@ void vrg_context_destroy(vrg_context *ctx)
     if (ctx->dev.device) {
         vkDeviceWaitIdle(ctx->dev.device);
         vkDestroySampler(ctx->dev.device, ctx->sampler_linear, NULL);
+        vkDestroySampler(ctx->dev.device, ctx->sampler_mips, NULL);
         vkDestroyCommandPool(ctx->dev.device, ctx->cmd_pool, NULL);
         vkDestroyDevice(ctx->dev.device, NULL);
     }

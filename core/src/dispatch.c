@@ -159,7 +159,8 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
             .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstBinding = (uint32_t)i, .descriptorCount = 1, .descriptorType = types[i]};
         if (r->kind == VRG_IMAGE) {
             vrg_access_info info = vrg_access_info_of(b[i].access, VRG_IMAGE);
-            ii[i] = (VkDescriptorImageInfo){.sampler = g->ctx->sampler_linear, .imageView = r->view[copy], .imageLayout = info.layout};
+            VkSampler sampler = r->mips > 1 ? g->ctx->sampler_mips : g->ctx->sampler_linear;
+            ii[i] = (VkDescriptorImageInfo){.sampler = sampler, .imageView = r->view[copy], .imageLayout = info.layout};
             w[i].pImageInfo = &ii[i];
         } else {
             bi[i] = (VkDescriptorBufferInfo){.buffer = r->buffer[copy], .offset = 0, .range = VK_WHOLE_SIZE};

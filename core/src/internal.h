@@ -47,6 +47,7 @@ struct vrg_context {
     PFN_vkSetDebugUtilsObjectNameEXT set_name;
     PFN_vkCmdPushDescriptorSetKHR push_descriptor;
     VkSampler sampler_linear;
+    VkSampler sampler_mips;   /* nearest texels, linear between levels: voxel textures */
 };
 void vrg_name_object(vrg_context *ctx, VkObjectType type, uint64_t handle, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
 int vrg_find_memory_type(const vrg_context *ctx, uint32_t bits, VkMemoryPropertyFlags want);
@@ -104,6 +105,8 @@ typedef struct vrg_resource {
     float scale;
     uint32_t abs_width, abs_height;
     uint64_t size;           /* buffers */
+    uint32_t mip_request;    /* as the writer's slot asks: 0/1 one, VRG_MIPS_FULL all */
+    uint32_t mips;           /* allocated levels */
     int format_line, size_line; /* where an override was written, 0 if none */
     int bytes_line, extent_line;  /* size = (buffers) / scale, width, height (images) */
     int writer;              /* pass index, -1 none */

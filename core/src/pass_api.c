@@ -334,6 +334,13 @@ VkFormat vrg_res_format(const vrg_pass *p, vrg_res h)
     return r ? r->format : VK_FORMAT_UNDEFINED;
 }
 
+uint32_t vrg_res_mips(const vrg_pass *p, vrg_res h)
+{
+    int c;
+    const vrg_resource *r = res_of(p, h, &c);
+    return r ? r->mips : 0;
+}
+
 uint64_t vrg_res_size(const vrg_pass *p, vrg_res h)
 {
     int c;

@@ -26,7 +26,7 @@ static void clear_kept(vrg_graph *g, VkCommandBuffer cmd)
         vrg_resource *r = &g->res[b[k].res];
         if (r->kind == VRG_IMAGE) {
             VkClearColorValue zero = {{0}};
-            VkImageSubresourceRange range = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+            VkImageSubresourceRange range = {VK_IMAGE_ASPECT_COLOR_BIT, 0, VK_REMAINING_MIP_LEVELS, 0, 1};
             vkCmdClearColorImage(cmd, r->image[b[k].copy], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
         } else
             vkCmdFillBuffer(cmd, r->buffer[b[k].copy], 0, VK_WHOLE_SIZE, 0);

@@ -589,6 +589,7 @@ static void resolve_resources(vrg_graph *g)
         if (sd->kind == VRG_BUFFER && r->format_line)
             vrg_error_at(&g->diag, r->format_line, "format applies to images", "resource '%s' is a buffer", r->name);
         r->persistent = (sd->flags & VRG_SLOT_PERSISTENT) != 0;
+        r->mip_request = sd->mip_levels;
         if (sd->kind == VRG_IMAGE && r->bytes_line)
             vrg_error_at(&g->diag, r->bytes_line, "size = applies to buffers; images take scale or width/height", "resource '%s' is an image", r->name);
         if (sd->kind == VRG_BUFFER && r->extent_line)

@@ -13,6 +13,8 @@ static const vrg_param_desc params[] = {
 static const vrg_slot_desc slots[] = {
     {.name = "world", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_STORAGE_READ, .help = "the scene's world"},
     {.name = "frame", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_UNIFORM, .help = "the scene's per-frame uniforms"},
+    {.name = "atlas", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .flags = VRG_SLOT_OPTIONAL,
+     .help = "block textures; without them blocks show their mean albedo"},
     {.name = "color", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE,
      .format = VK_FORMAT_R16G16B16A16_SFLOAT, .help = "the view"},
 };
@@ -22,8 +24,9 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     struct {
         int32_t mode, shadows;
         float exposure, max_distance;
+        int32_t textured;
     } pc = {vrg_param_int(pass, "mode"), vrg_param_int(pass, "shadows"), (float)vrg_param(pass, "exposure"),
-            (float)vrg_param(pass, "max_distance")};
+            (float)vrg_param(pass, "max_distance"), vrg_res_connected(vrg_pass_res(pass, "atlas"))};
     (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "world_debug.comp", .push = &pc, .push_size = sizeof pc});
 }
 
@@ -31,7 +34,7 @@ static const vrg_plugin_desc desc = {
     .abi_version = VRG_ABI_VERSION,
     .name = "world_debug",
     .kind = VRG_PLUGIN_PASS,
-    .help = "debug view of the voxel world: primary rays, shaded albedo / normals / block ids / distance",
+    .help = "debug view of the voxel world: primary rays, shaded (textured) albedo / normals / block ids / distance",
     .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],

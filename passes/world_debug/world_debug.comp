@@ -6,12 +6,14 @@
 #include "trace.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 2, rgba16f) uniform writeonly image2D color;
+layout(binding = 2) uniform sampler2D atlas;
+layout(binding = 3, rgba16f) uniform writeonly image2D color;
 layout(push_constant) uniform Params {
     int mode;
     int shadows;
     float exposure;
     float max_distance;
+    int textured;
 } params;
 
 // A stable, distinct colour per block id.
@@ -49,6 +51,12 @@ void main()
             visible = trace_any(pos, l, params.max_distance) ? 0.0 : 1.0;
         }
         vec3 albedo = material_albedo(h.block);
+        if (params.textured != 0) {
+            vec3 hp = o + d * h.t;
+            float pixel_angle = 2.0 * length(frame.camera_up.xyz) / float(size.y);
+            float lod = world_texture_lod(h.t, pixel_angle, abs(dot(n, d)));
+            albedo = textureLod(atlas, world_atlas_uv(h.block, h.normal, world_face_uv(hp, h.normal)), lod).rgb;
+        }
         c = albedo * (frame.sun_radiance.rgb * ndl * visible + frame.ambient.rgb) * params.exposure;
     }
     imageStore(color, p, vec4(c, 1.0));

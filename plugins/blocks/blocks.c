@@ -23,6 +23,7 @@ static const vrg_slot_desc slots[] = {
      .flags = VRG_SLOT_PERSISTENT, .help = "voxel world (shaders/include/world.glsl)"},
     {.name = "frame", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_TRANSFER_DST,
      .size = sizeof(vrg_frame_uniforms), .flags = VRG_SLOT_PERSISTENT, .help = "per-frame uniforms (shaders/include/frame.glsl)"},
+    VRG_ATLAS_SLOT,
 };
 
 #define MAX_EXTENT 1024 /* blocks from the origin: keeps the toroidal grid small */
@@ -36,6 +37,7 @@ typedef struct scene {
     vrg_world *world;
     void *staging;
     VkBuffer staging_buffer;
+    VkBuffer atlas_staging;
     uint64_t staging_bytes;
 } scene;
 
@@ -143,15 +145,21 @@ static int create(vrg_pass *pass)
     /* one upload of everything on the first frame */
     s->staging_bytes = vrg_world_gpu_bytes(radius, height);
     s->staging = vrg_pass_host_buffer(pass, "staging", s->staging_bytes, &s->staging_buffer);
-    return s->staging ? 0 : -1;
+    void *atlas = vrg_pass_host_buffer(pass, "atlas staging", vrg_atlas_bytes(), &s->atlas_staging);
+    if (!s->staging || !atlas)
+        return -1;
+    vrg_atlas_generate(atlas);
+    return 0;
 }
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     scene *s = vrg_pass_user(pass);
     VkBuffer world = vrg_res_buffer(pass, vrg_pass_res(pass, "world"));
-    if (vrg_pass_frame(pass)->resources_new)
+    if (vrg_pass_frame(pass)->resources_new) {
         vrg_world_invalidate_gpu(s->world);
+        vrg_atlas_record_upload(pass, cmd, "atlas", s->atlas_staging);
+    }
     if (vrg_world_dirty_count(s->world))
         vrg_world_upload(s->world, cmd, world, s->staging, s->staging_buffer, s->staging_bytes);
     vrg_sky_desc sky;

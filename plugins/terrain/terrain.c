@@ -40,6 +40,7 @@ static const vrg_slot_desc slots[] = {
      .flags = VRG_SLOT_PERSISTENT, .help = "voxel world (shaders/include/world.glsl)"},
     {.name = "frame", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_TRANSFER_DST,
      .size = sizeof(vrg_frame_uniforms), .flags = VRG_SLOT_PERSISTENT, .help = "per-frame uniforms (shaders/include/frame.glsl)"},
+    VRG_ATLAS_SLOT,
 };
 
 typedef struct scene {
@@ -49,6 +50,7 @@ typedef struct scene {
     int wait;
     void *staging;
     VkBuffer staging_buffer;
+    VkBuffer atlas_staging;
     uint64_t staging_bytes;
     int threads;
 } scene;
@@ -123,7 +125,11 @@ static int create(vrg_pass *pass)
      * teleport); uploads are per changed chunk after that. */
     s->staging_bytes = vrg_world_gpu_bytes(grid_radius(pass), s->gen.height_chunks);
     s->staging = vrg_pass_host_buffer(pass, "staging", s->staging_bytes, &s->staging_buffer);
-    return s->staging ? 0 : -1;
+    void *atlas = vrg_pass_host_buffer(pass, "atlas staging", vrg_atlas_bytes(), &s->atlas_staging);
+    if (!s->staging || !atlas)
+        return -1;
+    vrg_atlas_generate(atlas);
+    return 0;
 }
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
@@ -139,8 +145,10 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     int integrated = stream_integrate(s->stream, s->wait ? 1e9 : vrg_param(pass, "budget_ms"), integrate, s->world, &spent);
     double t2 = now_ms();
     int uploaded = 0;
-    if (vrg_pass_frame(pass)->resources_new)
+    if (vrg_pass_frame(pass)->resources_new) {
         vrg_world_invalidate_gpu(s->world);
+        vrg_atlas_record_upload(pass, cmd, "atlas", s->atlas_staging);
+    }
     if (vrg_world_dirty_count(s->world))
         uploaded = vrg_world_upload(s->world, cmd, vrg_res_buffer(pass, vrg_pass_res(pass, "world")), s->staging, s->staging_buffer, s->staging_bytes);
     /* figures for `voxrg bench` and --json */

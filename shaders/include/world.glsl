@@ -66,4 +66,36 @@ float material_emissive(uint id) { return uintBitsToFloat(world_data[WORLD_MATER
 uint material_flags(uint id) { return world_data[WORLD_MATERIALS + id * 8u + 4u]; }
 // Atlas tile of a face: 0 top, 1 side, 2 bottom.
 uint material_tile(uint id, int face) { return world_data[WORLD_MATERIALS + id * 8u + 5u + uint(face)]; }
+
+// ---- Block textures (core/src/textures.c: a 4 x 4 atlas of 16x16 tiles) ----
+
+// The thesis's LOD rule: the mip whose texel matches the pixel's footprint on
+// the surface at distance t (pixel_angle: radians per pixel; cos_incidence:
+// |N.D|, limited so grazing faces do not blur away).
+float world_texture_lod(float t, float pixel_angle, float cos_incidence)
+{
+    float texels = t * pixel_angle / max(cos_incidence, 0.25) * 16.0;
+    // level 4 is one texel per tile; beyond it levels mix tiles
+    return clamp(log2(max(texels, 1e-6)), 0.0, 4.0);
+}
+
+// Texture coordinates of a hit inside its face, in [0,1]^2, v down the face.
+vec2 world_face_uv(vec3 p, ivec3 n)
+{
+    vec3 f = fract(p);
+    if (n.x != 0)
+        return vec2(n.x > 0 ? 1.0 - f.z : f.z, 1.0 - f.y);
+    if (n.z != 0)
+        return vec2(n.z > 0 ? f.x : 1.0 - f.x, 1.0 - f.y);
+    return f.xz;
+}
+
+// Atlas coordinates of (uv in a face) of block id's tile for face normal n.
+vec2 world_atlas_uv(uint id, ivec3 n, vec2 uv)
+{
+    uint tile = material_tile(id, n.y > 0 ? 0 : n.y < 0 ? 2 : 1);
+    // keep half a level-0 texel inside the tile: nearest sampling never crosses
+    uv = clamp(uv, vec2(0.5 / 16.0), vec2(1.0 - 0.5 / 16.0));
+    return (vec2(tile % 4u, tile / 4u) + uv) / 4.0;
+}
 #endif

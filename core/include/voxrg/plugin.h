@@ -92,7 +92,13 @@ typedef struct vrg_slot_desc {
     uint64_t size;
     uint32_t flags; /* vrg_slot_flags */
     const char *help;
+    /* Images: mip levels (0 or 1: one; VRG_MIPS_FULL: down to 1x1). Views
+     * and barriers cover every level; sampled images with several levels
+     * get a trilinear-in-mip, nearest-in-texel sampler. */
+    uint32_t mip_levels;
 } vrg_slot_desc;
+
+#define VRG_MIPS_FULL 0xffffffffu
 
 /* A pass (or scene) instance inside a graph. Opaque; see the functions below. */
 typedef struct vrg_pass vrg_pass;
@@ -233,6 +239,7 @@ VkBuffer vrg_res_buffer(const vrg_pass *pass, vrg_res res);
 VkExtent2D vrg_res_extent(const vrg_pass *pass, vrg_res res);
 VkFormat vrg_res_format(const vrg_pass *pass, vrg_res res);
 uint64_t vrg_res_size(const vrg_pass *pass, vrg_res res);
+uint32_t vrg_res_mips(const vrg_pass *pass, vrg_res res);
 
 /* For commands the pass records itself: bring resources to an access with
  * exact barriers (needed between two uses of an internal resource, or when

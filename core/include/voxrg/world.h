@@ -96,6 +96,28 @@ void vrg_world_invalidate_gpu(vrg_world *w);
 /* Slots still waiting for upload. */
 int vrg_world_dirty_count(const vrg_world *w);
 
+/* ---- Block textures ---------------------------------------------------
+ * Procedural 16x16 tiles (material tile_top/side/bottom index them) in a
+ * 4 x 4 atlas of 64x64 sRGB texels with a full mip chain, each level box-
+ * filtered in linear space. Tiles are power-of-two aligned, so no level mixes
+ * two tiles. Each tile's mean linear colour is its material's albedo (grass
+ * sides, half dirt and half grass, excepted). */
+#define VRG_ATLAS_TILE 16
+#define VRG_ATLAS_COLUMNS 4
+#define VRG_ATLAS_SIZE (VRG_ATLAS_TILE * VRG_ATLAS_COLUMNS)
+#define VRG_ATLAS_MIPS 7
+/* Bytes of all levels, level 0 first, each row-major RGBA8 sRGB. */
+uint64_t vrg_atlas_bytes(void);
+uint64_t vrg_atlas_level_offset(uint32_t level);
+void vrg_atlas_generate(uint8_t *out);
+/* Scenes: `atlas` output slot description, and the upload of every level
+ * (call when vrg_pass_frame()->resources_new; staging from vrg_pass_host_buffer). */
+#define VRG_ATLAS_SLOT                                                                                              \
+    {.name = "atlas", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_TRANSFER_DST,                        \
+     .format = VK_FORMAT_R8G8B8A8_SRGB, .width = VRG_ATLAS_SIZE, .height = VRG_ATLAS_SIZE, .flags = VRG_SLOT_PERSISTENT, \
+     .help = "block textures, full mip chain (world.glsl: world_texture)", .mip_levels = VRG_MIPS_FULL}
+void vrg_atlas_record_upload(vrg_pass *pass, VkCommandBuffer cmd, const char *slot, VkBuffer staging);
+
 /* ---- Per-frame uniforms (std140; shaders/include/frame.glsl) ----------- */
 
 typedef struct vrg_frame_uniforms {
