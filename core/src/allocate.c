@@ -52,12 +52,71 @@ static int needed_usage(vrg_graph *g, int ri, VkImageUsageFlags *need)
     return 0;
 }
 
+/* An acceleration structure and its backing buffer, sized for r->size
+ * instances. */
+static int create_accel(vrg_graph *g, vrg_resource *r)
+{
+    vrg_context *ctx = g->ctx;
+    VkDevice dev = ctx->dev.device;
+    if (!r->size)
+        return 0;
+    if (!ctx->dev.features.acceleration_structure) {
+        vrg_error_at(&g->diag, r->writer_line, "use the DDA traversal on this device", "resource '%s' needs VK_KHR_acceleration_structure, which '%s' lacks",
+                     r->name, ctx->device_name);
+        return -1;
+    }
+    VkAccelerationStructureGeometryKHR geom = {
+        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR,
+        .geometryType = VK_GEOMETRY_TYPE_INSTANCES_KHR,
+        .geometry.instances = {.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_INSTANCES_DATA_KHR},
+    };
+    VkAccelerationStructureBuildGeometryInfoKHR info = {
+        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR,
+        .type = VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR,
+        .flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR,
+        .mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR,
+        .geometryCount = 1,
+        .pGeometries = &geom,
+    };
+    uint32_t count = (uint32_t)r->size;
+    VkAccelerationStructureBuildSizesInfoKHR sizes = {.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
+    ctx->as.sizes(dev, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &info, &count, &sizes);
+    VkBufferCreateInfo bi = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
+                             .size = sizes.accelerationStructureSize,
+                             .usage = VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_STORAGE_BIT_KHR | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT};
+    if (vkCreateBuffer(dev, &bi, NULL, &r->buffer[0]) != VK_SUCCESS)
+        return -1;
+    vkGetBufferMemoryRequirements(dev, r->buffer[0], &r->req);
+    VkMemoryAllocateFlagsInfo flags = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO, .flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT};
+    int type = vrg_find_memory_type(ctx, r->req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .pNext = &flags, .allocationSize = r->req.size,
+                               .memoryTypeIndex = (uint32_t)type};
+    if (type < 0 || vkAllocateMemory(dev, &ai, NULL, &r->own_memory[0]) != VK_SUCCESS ||
+        vkBindBufferMemory(dev, r->buffer[0], r->own_memory[0], 0) != VK_SUCCESS) {
+        vrg_error(&g->diag, "out of device memory for acceleration structure '%s'", r->name);
+        return -1;
+    }
+    VkAccelerationStructureCreateInfoKHR ci = {.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_CREATE_INFO_KHR,
+                                               .buffer = r->buffer[0],
+                                               .size = sizes.accelerationStructureSize,
+                                               .type = VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR};
+    if (ctx->as.create(dev, &ci, NULL, &r->accel) != VK_SUCCESS) {
+        vrg_error(&g->diag, "cannot create acceleration structure '%s'", r->name);
+        return -1;
+    }
+    vrg_name_object(ctx, VK_OBJECT_TYPE_ACCELERATION_STRUCTURE_KHR, (uint64_t)r->accel, "%s/%s", g->name, r->name);
+    vrg_name_object(ctx, VK_OBJECT_TYPE_BUFFER, (uint64_t)r->buffer[0], "%s/%s (storage)", g->name, r->name);
+    return 0;
+}
+
 static int create_objects(vrg_graph *g, int ri)
 {
     vrg_context *ctx = g->ctx;
     VkDevice dev = ctx->dev.device;
     vrg_resource *r = &g->res[ri];
     int copies = r->history ? 2 : 1;
+    if (r->kind == VRG_ACCEL)
+        return create_accel(g, r);
     vrg_resource_extent(g, r, &r->width, &r->height);
     r->mips = 1;
     if (r->kind == VRG_IMAGE && r->mip_request > 1) {
@@ -141,7 +200,9 @@ static int alloc_memory(vrg_graph *g, VkDeviceSize size, uint32_t type_bits, VkD
 static void estimate_requirements(vrg_graph *g, vrg_resource *r)
 {
     vrg_resource_extent(g, r, &r->width, &r->height);
-    uint64_t bytes = r->kind == VRG_IMAGE ? (uint64_t)r->width * r->height * vrg_format_bytes(r->format) : r->size;
+    uint64_t bytes = r->kind == VRG_IMAGE ? (uint64_t)r->width * r->height * vrg_format_bytes(r->format)
+                   : r->kind == VRG_ACCEL  ? r->size * 128 /* about a node per instance */
+                                           : r->size;
     r->req = (VkMemoryRequirements){.size = (bytes + 255) / 256 * 256, .alignment = 256, .memoryTypeBits = 1};
 }
 
@@ -168,7 +229,7 @@ int vrg_allocate(vrg_graph *g)
     }
     for (int i = 0; i < g->res_count; i++) {
         vrg_resource *r = &g->res[i];
-        if (r->first_use < 0)
+        if (r->first_use < 0 || r->kind == VRG_ACCEL) /* accel: bound in create_accel */
             continue;
         int copies = r->history ? 2 : 1;
         for (int c = 0; c < copies; c++) {
@@ -212,6 +273,9 @@ void vrg_free_resources(vrg_graph *g)
     VkDevice dev = g->ctx->dev.device;
     for (int i = 0; i < g->res_count; i++) {
         vrg_resource *r = &g->res[i];
+        if (r->accel)
+            g->ctx->as.destroy(dev, r->accel, NULL);
+        r->accel = VK_NULL_HANDLE;
         for (int c = 0; c < 2; c++) {
             vkDestroyImageView(dev, r->view[c], NULL);
             vkDestroyImage(dev, r->image[c], NULL);

@@ -26,6 +26,12 @@ vrg_access_info vrg_access_info_of(vrg_access a, vrg_resource_kind kind)
         return (vrg_access_info){xfer, VK_ACCESS_2_TRANSFER_READ_BIT, img ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED, 0};
     case VRG_ACCESS_TRANSFER_DST:
         return (vrg_access_info){xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, img ? VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED, 1};
+    case VRG_ACCESS_AS_BUILD:
+        return (vrg_access_info){VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+                                 VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR | VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR,
+                                 VK_IMAGE_LAYOUT_UNDEFINED, 1};
+    case VRG_ACCESS_RAY_QUERY:
+        return (vrg_access_info){cs, VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR, VK_IMAGE_LAYOUT_UNDEFINED, 0};
     }
     return (vrg_access_info){cs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_IMAGE_LAYOUT_GENERAL, 0};
 }
@@ -51,7 +57,8 @@ int vrg_sync_use(vrg_sync *s, vrg_access_info need, int discard, vrg_barrier_rec
         needed = layout_change || b->src_stage != 0;
         if (need.writes) {
             s->write_stages = need.stage;
-            s->write_access = need.access & (VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
+            s->write_access = need.access & (VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT |
+                                             VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR);
             s->read_stages = 0;
             s->visible_stages = 0;
             s->visible_access = 0;
@@ -154,7 +161,7 @@ void vrg_emit_barriers(vrg_graph *g, VkCommandBuffer cmd, const vrg_barrier_rec 
                 .image = r->image[b[i].copy],
                 .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, VK_REMAINING_MIP_LEVELS, 0, 1},
             };
-        else if (r->kind == VRG_BUFFER && nb < 64)
+        else if ((r->kind == VRG_BUFFER || r->kind == VRG_ACCEL) && r->buffer[b[i].copy] && nb < 64)
             buf[nb++] = (VkBufferMemoryBarrier2){
                 .sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
                 .srcStageMask = src,

@@ -284,6 +284,14 @@ static int create_device(vrg_context *ctx)
     }
     vkGetDeviceQueue(ctx->dev.device, (uint32_t)family, 0, &ctx->dev.queue);
     ctx->push_descriptor = (PFN_vkCmdPushDescriptorSetKHR)vkGetDeviceProcAddr(ctx->dev.device, "vkCmdPushDescriptorSetKHR");
+    if (has_as) {
+        VkDevice d = ctx->dev.device;
+        ctx->as.create = (PFN_vkCreateAccelerationStructureKHR)vkGetDeviceProcAddr(d, "vkCreateAccelerationStructureKHR");
+        ctx->as.destroy = (PFN_vkDestroyAccelerationStructureKHR)vkGetDeviceProcAddr(d, "vkDestroyAccelerationStructureKHR");
+        ctx->as.sizes = (PFN_vkGetAccelerationStructureBuildSizesKHR)vkGetDeviceProcAddr(d, "vkGetAccelerationStructureBuildSizesKHR");
+        ctx->as.build = (PFN_vkCmdBuildAccelerationStructuresKHR)vkGetDeviceProcAddr(d, "vkCmdBuildAccelerationStructuresKHR");
+        ctx->as.address = (PFN_vkGetAccelerationStructureDeviceAddressKHR)vkGetDeviceProcAddr(d, "vkGetAccelerationStructureDeviceAddressKHR");
+    }
 
     vrg_features *f = &ctx->dev.features;
     f->ray_query = has_rq;

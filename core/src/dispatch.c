@@ -19,6 +19,8 @@ typedef struct vrg_pipeline {
 
 static VkDescriptorType descriptor_type(vrg_resource_kind kind, vrg_access a)
 {
+    if (kind == VRG_ACCEL)
+        return VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR;
     if (kind == VRG_BUFFER)
         return a == VRG_ACCESS_UNIFORM ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     return a == VRG_ACCESS_SAMPLED ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
@@ -135,8 +137,11 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
         return -1;
     VkDescriptorType types[VRG_MAX_BINDINGS];
     for (int i = 0; i < n; i++) {
-        if (b[i].access == VRG_ACCESS_TRANSFER_SRC || b[i].access == VRG_ACCESS_TRANSFER_DST)
-            return vrg_pass_error(p, "binding %d: transfer access cannot be bound to a shader", i);
+        if (b[i].access == VRG_ACCESS_TRANSFER_SRC || b[i].access == VRG_ACCESS_TRANSFER_DST || b[i].access == VRG_ACCESS_AS_BUILD)
+            return vrg_pass_error(p, "binding %d: %s access cannot be bound to a shader", i, vrg_access_name(b[i].access));
+        if (g->res[b[i].res].kind == VRG_ACCEL && !g->res[b[i].res].accel)
+            return vrg_pass_error(p, "binding %d: acceleration structure '%s' was not built (its scene uses no ray-query backend)", i,
+                                  g->res[b[i].res].name);
         types[i] = descriptor_type(g->res[b[i].res].kind, b[i].access);
     }
     if (d->push_size > 128)
@@ -150,6 +155,7 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
     VkWriteDescriptorSet w[VRG_MAX_BINDINGS];
     VkDescriptorImageInfo ii[VRG_MAX_BINDINGS];
     VkDescriptorBufferInfo bi[VRG_MAX_BINDINGS];
+    VkWriteDescriptorSetAccelerationStructureKHR ai[VRG_MAX_BINDINGS];
     for (int i = 0; i < n; i++) {
         vrg_resource *r = &g->res[b[i].res];
         int copy = vrg_copy_of(g, b[i].res, b[i].prev);
@@ -157,7 +163,11 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
             nb++;
         w[i] = (VkWriteDescriptorSet){
             .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstBinding = (uint32_t)i, .descriptorCount = 1, .descriptorType = types[i]};
-        if (r->kind == VRG_IMAGE) {
+        if (r->kind == VRG_ACCEL) {
+            ai[i] = (VkWriteDescriptorSetAccelerationStructureKHR){
+                .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR, .accelerationStructureCount = 1, .pAccelerationStructures = &r->accel};
+            w[i].pNext = &ai[i];
+        } else if (r->kind == VRG_IMAGE) {
             vrg_access_info info = vrg_access_info_of(b[i].access, VRG_IMAGE);
             VkSampler sampler = r->mips > 1 ? g->ctx->sampler_mips : g->ctx->sampler_linear;
             ii[i] = (VkDescriptorImageInfo){.sampler = sampler, .imageView = r->view[copy], .imageLayout = info.layout};

@@ -48,6 +48,13 @@ struct vrg_context {
     PFN_vkCmdPushDescriptorSetKHR push_descriptor;
     VkSampler sampler_linear;
     VkSampler sampler_mips;   /* nearest texels, linear between levels: voxel textures */
+    struct {
+        PFN_vkCreateAccelerationStructureKHR create;
+        PFN_vkDestroyAccelerationStructureKHR destroy;
+        PFN_vkGetAccelerationStructureBuildSizesKHR sizes;
+        PFN_vkCmdBuildAccelerationStructuresKHR build;
+        PFN_vkGetAccelerationStructureDeviceAddressKHR address;
+    } as;
 };
 void vrg_name_object(vrg_context *ctx, VkObjectType type, uint64_t handle, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
 int vrg_find_memory_type(const vrg_context *ctx, uint32_t bits, VkMemoryPropertyFlags want);
@@ -128,6 +135,7 @@ typedef struct vrg_resource {
     VkImageView view[2];
     VkBuffer buffer[2];
     VkDeviceMemory own_memory[2]; /* kept resources have their own memory */
+    VkAccelerationStructureKHR accel;
     VkMemoryRequirements req;
     int block;               /* alias heap index, -1 own memory */
     VkDeviceSize offset;
@@ -183,6 +191,7 @@ typedef struct vrg_param_value {
 
 typedef struct vrg_host_buffer {
     char name[VRG_NAME_MAX];
+    int host_visible;
     VkBuffer buffer;
     VkDeviceMemory memory;
     void *map;

@@ -150,38 +150,84 @@ int vrg_pass_set_buffer_size(vrg_pass *p, const char *slot, uint64_t bytes)
     return vrg_pass_error(p, "vrg_pass_set_buffer_size: no buffer output '%s'", slot);
 }
 
-void *vrg_pass_host_buffer(vrg_pass *p, const char *name, uint64_t bytes, VkBuffer *buffer)
+static const vrg_resource *res_of(const vrg_pass *p, vrg_res h, int *copy);
+
+static void free_one(VkDevice dev, vrg_host_buffer *hb)
+{
+    if (hb->map)
+        vkUnmapMemory(dev, hb->memory);
+    vkDestroyBuffer(dev, hb->buffer, NULL);
+    vkFreeMemory(dev, hb->memory, NULL);
+    free(hb);
+}
+
+void *vrg_pass_buffer(vrg_pass *p, const vrg_buffer_desc *d, VkBuffer *buffer, VkDeviceAddress *address)
 {
     vrg_context *ctx = p->graph->ctx;
     *buffer = VK_NULL_HANDLE;
+    if (address)
+        *address = 0;
     if (!ctx) {
-        vrg_pass_error(p, "host buffer '%s' needs a device", name);
+        vrg_pass_error(p, "buffer '%s' needs a device", d->name);
         return NULL;
     }
     VkDevice dev = ctx->dev.device;
+    int wants_address = (d->usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) != 0;
     vrg_host_buffer *hb = calloc(1, sizeof *hb);
-    snprintf(hb->name, sizeof hb->name, "%s", name);
-    VkBufferCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = bytes, .usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT};
-    VkMemoryRequirements req;
+    snprintf(hb->name, sizeof hb->name, "%s", d->name);
+    hb->host_visible = d->host_visible;
+    VkBufferCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = d->size ? d->size : 16, .usage = d->usage};
+    VkMemoryRequirements req = {0};
     int type = -1;
     if (vkCreateBuffer(dev, &ci, NULL, &hb->buffer) == VK_SUCCESS) {
         vkGetBufferMemoryRequirements(dev, hb->buffer, &req);
-        type = vrg_find_memory_type(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+        VkMemoryPropertyFlags want = d->host_visible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
+                                                     : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+        type = vrg_find_memory_type(ctx, req.memoryTypeBits, want);
     }
-    VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = type >= 0 ? req.size : 0, .memoryTypeIndex = (uint32_t)type};
-    if (type < 0 || vkAllocateMemory(dev, &ai, NULL, &hb->memory) != VK_SUCCESS ||
-        vkBindBufferMemory(dev, hb->buffer, hb->memory, 0) != VK_SUCCESS || vkMapMemory(dev, hb->memory, 0, VK_WHOLE_SIZE, 0, &hb->map) != VK_SUCCESS) {
-        vkDestroyBuffer(dev, hb->buffer, NULL);
-        vkFreeMemory(dev, hb->memory, NULL);
-        free(hb);
-        vrg_pass_error(p, "cannot allocate %llu bytes of host-visible memory for '%s'", (unsigned long long)bytes, name);
+    VkMemoryAllocateFlagsInfo flags = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO, .flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT};
+    VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .pNext = wants_address ? &flags : NULL,
+                               .allocationSize = req.size, .memoryTypeIndex = (uint32_t)type};
+    if (type < 0 || vkAllocateMemory(dev, &ai, NULL, &hb->memory) != VK_SUCCESS || vkBindBufferMemory(dev, hb->buffer, hb->memory, 0) != VK_SUCCESS ||
+        (d->host_visible && vkMapMemory(dev, hb->memory, 0, VK_WHOLE_SIZE, 0, &hb->map) != VK_SUCCESS)) {
+        free_one(dev, hb);
+        vrg_pass_error(p, "cannot allocate %llu bytes of %s memory for '%s'", (unsigned long long)d->size, d->host_visible ? "host-visible" : "device",
+                       d->name);
         return NULL;
     }
-    vrg_name_object(ctx, VK_OBJECT_TYPE_BUFFER, (uint64_t)hb->buffer, "%s/%s.%s (host)", p->graph->name, p->name, name);
+    vrg_name_object(ctx, VK_OBJECT_TYPE_BUFFER, (uint64_t)hb->buffer, "%s/%s.%s", p->graph->name, p->name, d->name);
+    if (wants_address && address) {
+        VkBufferDeviceAddressInfo info = {.sType = VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO, .buffer = hb->buffer};
+        *address = vkGetBufferDeviceAddress(dev, &info);
+    }
     hb->next = p->host_buffers;
     p->host_buffers = hb;
     *buffer = hb->buffer;
-    return hb->map;
+    return hb->map ? hb->map : (void *)hb;
+}
+
+void *vrg_pass_host_buffer(vrg_pass *p, const char *name, uint64_t bytes, VkBuffer *buffer)
+{
+    vrg_buffer_desc d = {.name = name, .size = bytes, .usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT, .host_visible = 1};
+    return vrg_pass_buffer(p, &d, buffer, NULL);
+}
+
+void vrg_pass_free_buffer(vrg_pass *p, VkBuffer buffer)
+{
+    for (vrg_host_buffer **at = &p->host_buffers; *at; at = &(*at)->next)
+        if ((*at)->buffer == buffer) {
+            vrg_host_buffer *hb = *at;
+            *at = hb->next;
+            free_one(p->graph->ctx->dev.device, hb);
+            return;
+        }
+}
+
+VkAccelerationStructureKHR vrg_res_accel(const vrg_pass *p, vrg_res h)
+{
+    int c;
+    const vrg_resource *r = res_of(p, h, &c);
+    return r ? r->accel : VK_NULL_HANDLE;
 }
 
 void vrg_pass_free_host_buffers(vrg_pass *p)
@@ -189,11 +235,7 @@ void vrg_pass_free_host_buffers(vrg_pass *p)
     while (p->host_buffers) {
         vrg_host_buffer *hb = p->host_buffers;
         p->host_buffers = hb->next;
-        VkDevice dev = p->graph->ctx->dev.device;
-        vkUnmapMemory(dev, hb->memory);
-        vkDestroyBuffer(dev, hb->buffer, NULL);
-        vkFreeMemory(dev, hb->memory, NULL);
-        free(hb);
+        free_one(p->graph->ctx->dev.device, hb);
     }
 }
 

@@ -12,7 +12,7 @@ static void clear_kept(vrg_graph *g, VkCommandBuffer cmd)
     int n = 0;
     for (int i = 0; i < g->res_count && n < VRG_MAX_RESOURCES - 1; i++) {
         vrg_resource *r = &g->res[i];
-        if (r->first_use < 0 || !((r->history && g->history_reset) || (r->persistent && g->fresh)))
+        if (r->first_use < 0 || r->kind == VRG_ACCEL || !((r->history && g->history_reset) || (r->persistent && g->fresh)))
             continue;
         for (int c = 0; c < (r->history ? 2 : 1); c++) {
             /* old contents are garbage: start from UNDEFINED */

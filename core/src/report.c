@@ -7,8 +7,9 @@
 
 const char *vrg_access_name(vrg_access a)
 {
-    static const char *names[] = {"?", "sampled", "storage-read", "storage-write", "storage-read-write", "uniform", "transfer-src", "transfer-dst"};
-    return a >= 1 && a <= VRG_ACCESS_TRANSFER_DST ? names[a] : "?";
+    static const char *names[] = {"?",           "sampled",      "storage-read", "storage-write", "storage-read-write",
+                                  "uniform",     "transfer-src", "transfer-dst", "as-build",      "ray-query"};
+    return a >= 1 && a <= VRG_ACCESS_RAY_QUERY ? names[a] : "?";
 }
 
 static const char *layout_name(VkImageLayout l)
@@ -38,17 +39,19 @@ static void flags_name(char *out, size_t cap, uint64_t v, const uint64_t *bits, 
 
 static void stage_name(char *out, size_t cap, VkPipelineStageFlags2 s)
 {
-    static const uint64_t bits[] = {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_PIPELINE_STAGE_2_HOST_BIT};
-    static const char *const names[] = {"COMPUTE", "TRANSFER", "HOST"};
-    flags_name(out, cap, s, bits, names, 3, "NONE");
+    static const uint64_t bits[] = {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                                    VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR};
+    static const char *const names[] = {"COMPUTE", "TRANSFER", "HOST", "AS_BUILD"};
+    flags_name(out, cap, s, bits, names, 4, "NONE");
 }
 
 static void access_name(char *out, size_t cap, VkAccessFlags2 a)
 {
     static const uint64_t bits[] = {VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                                    VK_ACCESS_2_UNIFORM_READ_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT};
-    static const char *const names[] = {"SAMPLED_READ", "STORAGE_READ", "STORAGE_WRITE", "UNIFORM_READ", "TRANSFER_READ", "TRANSFER_WRITE"};
-    flags_name(out, cap, a, bits, names, 6, "0");
+                                    VK_ACCESS_2_UNIFORM_READ_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                    VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR, VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR};
+    static const char *const names[] = {"SAMPLED_READ", "STORAGE_READ", "STORAGE_WRITE", "UNIFORM_READ", "TRANSFER_READ", "TRANSFER_WRITE", "AS_READ", "AS_WRITE"};
+    flags_name(out, cap, a, bits, names, 8, "0");
 }
 
 static void print_barrier(const vrg_graph *g, const vrg_barrier_rec *b, FILE *f)

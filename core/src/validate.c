@@ -581,16 +581,20 @@ static void resolve_resources(vrg_graph *g)
             r->scale = sd->scale > 0 ? sd->scale : 1.0f;
             r->abs_width = sd->width;
             r->abs_height = sd->height;
-            if (sd->kind == VRG_BUFFER)
+            if (sd->kind != VRG_IMAGE)
                 r->size = g->passes[r->writer].buffer_size[r->writer_slot] ? g->passes[r->writer].buffer_size[r->writer_slot] : sd->size;
         }
+        if (sd->kind == VRG_ACCEL && (r->format_line || r->extent_line))
+            vrg_error_at(&g->diag, r->format_line ? r->format_line : r->extent_line, "acceleration structures take size = INSTANCES",
+                         "resource '%s' is an acceleration structure", r->name);
         if (sd->kind == VRG_BUFFER && r->size == 0)
             vrg_error_at(&g->diag, r->writer_line, "give the buffer a size in a [resource] section", "buffer '%s' has size 0", r->name);
         if (sd->kind == VRG_BUFFER && r->format_line)
             vrg_error_at(&g->diag, r->format_line, "format applies to images", "resource '%s' is a buffer", r->name);
-        r->persistent = (sd->flags & VRG_SLOT_PERSISTENT) != 0;
+        /* an acceleration structure is rebuilt from scene data, never aliased */
+        r->persistent = (sd->flags & VRG_SLOT_PERSISTENT) != 0 || sd->kind == VRG_ACCEL;
         r->mip_request = sd->mip_levels;
-        if (sd->kind == VRG_IMAGE && r->bytes_line)
+        if (sd->kind != VRG_BUFFER && sd->kind != VRG_ACCEL && r->bytes_line)
             vrg_error_at(&g->diag, r->bytes_line, "size = applies to buffers; images take scale or width/height", "resource '%s' is an image", r->name);
         if (sd->kind == VRG_BUFFER && r->extent_line)
             vrg_error_at(&g->diag, r->extent_line, "buffers take size = BYTES", "resource '%s' is a buffer", r->name);
@@ -640,8 +644,9 @@ static void resolve_resources(vrg_graph *g)
                 continue;
             }
             if (r->kind != sd->kind) {
+                static const char *kinds[] = {"?", "an image", "a buffer", "an acceleration structure"};
                 vrg_error_at(&g->diag, b->line, NULL, "kind mismatch: resource '%s' is %s, slot '%s' of pass '%s' takes %s", r->name,
-                             r->kind == VRG_IMAGE ? "an image" : "a buffer", sd->name, p->name, sd->kind == VRG_IMAGE ? "an image" : "a buffer");
+                             kinds[r->kind], sd->name, p->name, kinds[sd->kind]);
                 continue;
             }
             if (sd->kind == VRG_IMAGE && sd->format && sd->format != r->format) {

@@ -56,6 +56,10 @@ typedef enum vrg_slot_dir {
 typedef enum vrg_resource_kind {
     VRG_IMAGE = 1,
     VRG_BUFFER = 2,
+    /* A top-level acceleration structure (VK_KHR_acceleration_structure).
+     * Its `size` is the most instances it holds; 0 creates nothing (a scene
+     * not using the ray-query backend). Never aliased. */
+    VRG_ACCEL = 3,
 } vrg_resource_kind;
 
 /* How a pass touches a resource. The runtime derives usage flags, layouts,
@@ -68,6 +72,8 @@ typedef enum vrg_access {
     VRG_ACCESS_UNIFORM,          /* buffer: uniform buffer */
     VRG_ACCESS_TRANSFER_SRC,
     VRG_ACCESS_TRANSFER_DST,
+    VRG_ACCESS_AS_BUILD,     /* acceleration structure: built (or updated) by this pass */
+    VRG_ACCESS_RAY_QUERY,    /* acceleration structure: traced with ray queries in compute */
 } vrg_access;
 
 enum vrg_slot_flags {
@@ -219,6 +225,22 @@ int vrg_pass_set_buffer_size(vrg_pass *pass, const char *slot, uint64_t bytes);
  * as a transfer source. Host writes before the frame's submission are
  * visible to it. */
 void *vrg_pass_host_buffer(vrg_pass *pass, const char *name, uint64_t bytes, VkBuffer *buffer);
+/* In create(): a buffer kept for the pass's lifetime and owned by the
+ * runtime (freed with the pass, or earlier with vrg_pass_free_buffer).
+ * Returns the mapping when host_visible (else a non-NULL token); *address
+ * gets the device address when usage has SHADER_DEVICE_ADDRESS. NULL after
+ * reporting an error. */
+typedef struct vrg_buffer_desc {
+    const char *name;
+    uint64_t size;
+    VkBufferUsageFlags usage;
+    int host_visible;
+} vrg_buffer_desc;
+void *vrg_pass_buffer(vrg_pass *pass, const vrg_buffer_desc *desc, VkBuffer *buffer, VkDeviceAddress *address);
+void vrg_pass_free_buffer(vrg_pass *pass, VkBuffer buffer);
+/* The acceleration structure of a VRG_ACCEL slot (VK_NULL_HANDLE if none). */
+VkAccelerationStructureKHR vrg_res_accel(const vrg_pass *pass, vrg_res res);
+
 /* A scene plugin hands its world to the runtime so hosts can query it. */
 typedef struct vrg_world vrg_world;
 void vrg_pass_set_world(vrg_pass *pass, vrg_world *world);
