@@ -120,6 +120,15 @@ if cmp -s "$out/t1/view.png" "$out/t3/view.png"; then bad "the seed does not cha
 expect_rc 1 "terrain, bad stream mode" "$voxrg" check "$tests/../graphs/terrain-debug.ini" --no-device --set scene.stream=sometimes
 has "$out/stderr" "expected wait or budget" "stream mode error"
 
+# the ray-query backend builds its BLASes and TLAS under synchronization validation
+if "$voxrg" check "$tests/graphs/chain.ini" 2>&1 | grep -q "ray query yes"; then
+    expect_rc 0 "terrain with traversal = rayquery" "$voxrg" render "$tests/../graphs/terrain-debug.ini" --validate --size 64x36 --frames 2 \
+        --set scene.radius=3 --set scene.traversal=rayquery --json "$out/trq.json" --out "$out/trq"
+    has "$out/trq.json" '"tlas_instances": [1-9]' "TLAS instances"
+else
+    echo "skipped: no VK_KHR_ray_query on this device"
+fi
+
 # --device by name and by index; a device that does not exist
 expect_rc 0 "--device by name" "$voxrg" check "$tests/graphs/chain.ini" --device llvmpipe
 has "$out/stderr" "device llvmpipe" "chosen device"

@@ -618,6 +618,96 @@ static void test_atlas(void)
     free(atlas);
 }
 
+#define SKIP 77
+
+/* The ray-query backend: BLAS per chunk of exactly the exposed faces (none
+ * between two blocks across a chunk border), rebuilt only when chunks
+ * change, and ray-query hit distances equal to the CPU pick ray's. */
+static int test_rayquery(void)
+{
+    if (!vrg_context_device(ctx)->features.ray_query) {
+        printf("rayquery: skipped: device '%s' has no VK_KHR_ray_query\n", vrg_context_device(ctx)->name);
+        return SKIP;
+    }
+    vrg_graph *g = load("blocks_rayquery.ini");
+    if (!g)
+        return 0;
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    const vrg_world *w = vrg_graph_world(g);
+    double built = -1, quads = -1, instances = -1;
+    vrg_graph_stat(g, "scene", "blas_built", &built);
+    vrg_graph_stat(g, "scene", "blas_quads", &quads);
+    vrg_graph_stat(g, "scene", "tlas_instances", &instances);
+    long faces = 0;
+    int chunks = 0;
+    for (int cz = -2; cz <= 2; cz++)
+        for (int cy = 0; cy < 2; cy++)
+            for (int cx = -2; cx <= 2; cx++) {
+                const vrg_block *c = vrg_world_chunk(w, cx, cy, cz);
+                int any = 0;
+                for (int i = 0; c && i < VRG_CHUNK_VOXELS; i++) {
+                    if (c[i] == VRG_BLOCK_AIR)
+                        continue;
+                    int x = cx * 16 + (i & 15), z = cz * 16 + ((i >> 4) & 15), y = cy * 16 + (i >> 8);
+                    static const int d[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+                    for (int f = 0; f < 6; f++)
+                        if (vrg_world_block(w, x + d[f][0], y + d[f][1], z + d[f][2]) == VRG_BLOCK_AIR)
+                            faces++, any = 1;
+                }
+                chunks += any;
+            }
+    CHECK(quads == (double)faces, "BLASes hold %.0f quads, the world has %ld exposed faces", quads, faces);
+    CHECK(built == chunks && instances == chunks, "built %.0f BLASes and %.0f instances for %d chunks with faces", built, instances, chunks);
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_graph_stat(g, "scene", "blas_built", &built);
+    CHECK(built == 0, "an unchanged world rebuilt %.0f BLASes", built);
+
+    vrg_image_data img;
+    CHECK(vrg_graph_read(g, "distance", &img) == 0, "readback failed");
+    const vrg_camera *cam = vrg_graph_camera(g);
+    int disagree = 0, hits = 0;
+    double worst = 0;
+    for (uint32_t y = 0; y < img.height; y++)
+        for (uint32_t x = 0; x < img.width; x++) {
+            float dir[3];
+            vrg_camera_ray(cam, img.width, img.height, (float)x, (float)y, dir);
+            vrg_world_hit hit;
+            int h = vrg_world_pick(w, cam->position, dir, 512, &hit);
+            float t = px(&img, x, y, 0);
+            if (h != (t > 0)) {
+                disagree++;
+                continue;
+            }
+            if (h) {
+                hits++;
+                worst = fmax(worst, fabs(t - hit.distance) / hit.distance);
+            }
+        }
+    CHECK(disagree <= (int)(img.width * img.height / 200), "%d pixels disagree on hit/miss", disagree);
+    CHECK(hits > 1000, "only %d hits", hits);
+    CHECK(worst < 1e-3, "ray-query distance differs by %.4f%%", worst * 100);
+    free(img.pixels);
+    vrg_graph_destroy(g);
+    return 0;
+}
+
+/* traversal = rayquery is refused clearly, naming its line, where the device lacks it. */
+static void test_traversal_errors(void)
+{
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *diag = open_memstream(&buf, &len);
+    const char *text = "[graph]\noutput = v\nwidth = 8\nheight = 8\n[scene]\nplugin = blocks\ntraversal = rtx\nbox = 0 0 0 1 1 1 red\n"
+                       "[pass v]\nplugin = world_debug\nin.world = world\nin.frame = frame\nout.color = v\n";
+    vrg_graph_desc d = {.path = "traversal.ini", .text = text, .diag = diag};
+    vrg_graph *g = NULL;
+    int rc = vrg_graph_load(NULL, &d, &g);
+    fclose(diag);
+    CHECK(rc != 0 && strstr(buf, "traversal.ini:7: error: traversal = 'rtx': expected dda or rayquery"), "bad traversal message:\n%s", buf);
+    free(buf);
+    vrg_graph_destroy(g);
+}
+
 int main(int argc, char **argv)
 {
     static const struct {
@@ -629,11 +719,24 @@ int main(int argc, char **argv)
         {"alias", test_alias, 1},     {"buffer", test_buffer, 1},   {"scene", test_scene, 1},           {"loader", test_loader, 0},
         {"accumulate_count", test_accumulate_count, 1}, {"validation_live", test_validation_live, 1},
         {"blocks_world", test_blocks_world, 1}, {"blocks_trace", test_blocks_trace, 1}, {"terrain_world", test_terrain_world, 1},
-        {"atlas", test_atlas, 1},
+        {"atlas", test_atlas, 1},         {"traversal_errors", test_traversal_errors, 0},
     };
     if (argc != 2) {
         fprintf(stderr, "usage: test_runtime CASE\n");
         return 2;
+    }
+    if (strcmp(argv[1], "rayquery") == 0) {
+        vrg_context_desc cd = {.validate = 1, .quiet = 1};
+        if (vrg_context_create(&cd, &ctx) != 0)
+            return 1;
+        int rc = test_rayquery();
+        uint32_t v = vrg_context_validation_errors(ctx);
+        CHECK(v == 0, "%u validation messages", v);
+        vrg_context_destroy(ctx);
+        if (rc == SKIP && !failures)
+            return SKIP;
+        printf("rayquery: %s\n", failures ? "FAILED" : "ok");
+        return failures ? 1 : 0;
     }
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         if (strcmp(cases[i].name, argv[1]) != 0)

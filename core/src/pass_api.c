@@ -139,7 +139,7 @@ int vrg_pass_set_buffer_size(vrg_pass *p, const char *slot, uint64_t bytes)
 {
     const vrg_plugin_desc *d = p->plugin->desc;
     for (uint32_t s = 0; s < d->slot_count; s++)
-        if (d->slots[s].dir == VRG_OUT && d->slots[s].kind == VRG_BUFFER && strcmp(d->slots[s].name, slot) == 0) {
+        if (d->slots[s].dir == VRG_OUT && d->slots[s].kind != VRG_IMAGE && strcmp(d->slots[s].name, slot) == 0) {
             if (p->graph->allocated)
                 return vrg_pass_error(p, "buffer size of '%s' set after allocation", slot);
             p->buffer_size[s] = bytes;

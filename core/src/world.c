@@ -25,6 +25,7 @@ typedef struct slot {
     int cx, cy, cz;
     int valid;
     int dirty;
+    int mesh_dirty;  /* its exposed faces may have changed (ray-query BLAS) */
     vrg_block blocks[VRG_CHUNK_VOXELS];
 } slot;
 
@@ -33,6 +34,8 @@ struct vrg_world {
     slot *slots;
     int *dirty_list; /* slot indices, each once */
     int dirty_count;
+    int *mesh_list;  /* slots whose faces changed, each once */
+    int mesh_count;
     int header_dirty;
     int loaded;
 };
@@ -83,7 +86,8 @@ vrg_world *vrg_world_create(int radius_chunks, int height_chunks)
     size_t n = (size_t)w->gx * w->gy * w->gz;
     w->slots = calloc(n, sizeof *w->slots);
     w->dirty_list = calloc(n, sizeof *w->dirty_list);
-    if (!w->slots || !w->dirty_list) {
+    w->mesh_list = calloc(n, sizeof *w->mesh_list);
+    if (!w->slots || !w->dirty_list || !w->mesh_list) {
         vrg_world_destroy(w);
         return NULL;
     }
@@ -97,6 +101,7 @@ void vrg_world_destroy(vrg_world *w)
         return;
     free(w->slots);
     free(w->dirty_list);
+    free(w->mesh_list);
     free(w);
 }
 
@@ -121,6 +126,44 @@ static void mark_dirty(vrg_world *w, int s)
     }
 }
 
+/* A chunk's faces depend on its neighbours' border voxels: when a chunk
+ * comes or goes, it and the six around it need new meshes. */
+static void mark_mesh(vrg_world *w, int cx, int cy, int cz)
+{
+    static const int d[7][3] = {{0, 0, 0}, {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    for (int i = 0; i < 7; i++) {
+        int s = slot_of(w, cx + d[i][0], cy + d[i][1], cz + d[i][2]);
+        if (s < 0 || w->slots[s].mesh_dirty)
+            continue;
+        w->slots[s].mesh_dirty = 1;
+        w->mesh_list[w->mesh_count++] = s;
+    }
+}
+
+int vrg_world_take_mesh_changes(vrg_world *w, int *slots, int max)
+{
+    int n = w->mesh_count < max ? w->mesh_count : max;
+    for (int i = 0; i < n; i++) {
+        slots[i] = w->mesh_list[i];
+        w->slots[slots[i]].mesh_dirty = 0;
+    }
+    memmove(w->mesh_list, w->mesh_list + n, (size_t)(w->mesh_count - n) * sizeof *w->mesh_list);
+    w->mesh_count -= n;
+    return n;
+}
+
+int vrg_world_slot_chunk(const vrg_world *w, int slot, int c[3])
+{
+    if (slot < 0 || slot >= w->gx * w->gy * w->gz || !w->slots[slot].valid)
+        return 0;
+    c[0] = w->slots[slot].cx;
+    c[1] = w->slots[slot].cy;
+    c[2] = w->slots[slot].cz;
+    return 1;
+}
+
+int vrg_world_slot_count(const vrg_world *w) { return w->gx * w->gy * w->gz; }
+
 void vrg_world_put_chunk(vrg_world *w, int cx, int cy, int cz, const vrg_block *blocks)
 {
     int s = slot_of(w, cx, cy, cz);
@@ -134,6 +177,7 @@ void vrg_world_put_chunk(vrg_world *w, int cx, int cy, int cz, const vrg_block *
     sl->valid = 1;
     memcpy(sl->blocks, blocks, VRG_CHUNK_VOXELS);
     mark_dirty(w, s);
+    mark_mesh(w, cx, cy, cz);
 }
 
 void vrg_world_drop_chunk(vrg_world *w, int cx, int cy, int cz)
@@ -144,6 +188,7 @@ void vrg_world_drop_chunk(vrg_world *w, int cx, int cy, int cz)
     w->slots[s].valid = 0;
     w->loaded--;
     mark_dirty(w, s);
+    mark_mesh(w, cx, cy, cz);
 }
 
 const vrg_block *vrg_world_chunk(const vrg_world *w, int cx, int cy, int cz)

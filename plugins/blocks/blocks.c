@@ -16,6 +16,7 @@ static const vrg_param_desc params[] = {
     {"box", VRG_PARAM_STRING, 0, 0, 0, "x0 y0 z0 x1 y1 z1 block: a box of blocks, corners inclusive (repeat the key)", VRG_PARAM_REPEATABLE, ""},
     {"time_of_day", VRG_PARAM_FLOAT, 10, 0, 24, "hours at the start, 12 = noon"},
     {"day_length", VRG_PARAM_FLOAT, 0, 0, 1e6, "seconds per 24-hour cycle; 0 keeps the time of day"},
+    {"traversal", VRG_PARAM_STRING, 0, 0, 0, "dda (voxel DDA only) or rayquery (also build BLAS/TLAS for ray queries)", 0, "dda"},
 };
 
 static const vrg_slot_desc slots[] = {
@@ -24,6 +25,8 @@ static const vrg_slot_desc slots[] = {
     {.name = "frame", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_TRANSFER_DST,
      .size = sizeof(vrg_frame_uniforms), .flags = VRG_SLOT_PERSISTENT, .help = "per-frame uniforms (shaders/include/frame.glsl)"},
     VRG_ATLAS_SLOT,
+    {.name = "tlas", .dir = VRG_OUT, .kind = VRG_ACCEL, .access = VRG_ACCESS_AS_BUILD,
+     .help = "top-level acceleration structure of the chunks (traversal = rayquery; empty otherwise)"},
 };
 
 #define MAX_EXTENT 1024 /* blocks from the origin: keeps the toroidal grid small */
@@ -38,6 +41,7 @@ typedef struct scene {
     void *staging;
     VkBuffer staging_buffer;
     VkBuffer atlas_staging;
+    vrg_world_accel *accel; /* traversal = rayquery */
     uint64_t staging_bytes;
 } scene;
 
@@ -100,6 +104,14 @@ static int check(vrg_pass *pass)
     if (parse_boxes(pass, &boxes, &radius, &height) < 0)
         return -1;
     free(boxes);
+    const char *traversal = vrg_param_string(pass, "traversal");
+    if (strcmp(traversal, "dda") != 0 && strcmp(traversal, "rayquery") != 0) {
+        int line = 0;
+        vrg_param_item(pass, "traversal", vrg_param_count(pass, "traversal") - 1, &line);
+        return vrg_pass_error_at(pass, line, "traversal = '%s': expected dda or rayquery", traversal);
+    }
+    uint64_t slots = (uint64_t)(2 * radius + 1) * (2 * radius + 1) * height;
+    vrg_pass_set_buffer_size(pass, "tlas", strcmp(traversal, "rayquery") == 0 ? slots : 0);
     return vrg_pass_set_buffer_size(pass, "world", vrg_world_gpu_bytes(radius, height));
 }
 
@@ -149,6 +161,18 @@ static int create(vrg_pass *pass)
     if (!s->staging || !atlas)
         return -1;
     vrg_atlas_generate(atlas);
+    if (strcmp(vrg_param_string(pass, "traversal"), "rayquery") == 0) {
+        const vrg_features *f = &vrg_pass_device(pass)->features;
+        if (!f->ray_query || !f->acceleration_structure) {
+            int line = 0;
+            vrg_param_item(pass, "traversal", vrg_param_count(pass, "traversal") - 1, &line);
+            return vrg_pass_error_at(pass, line, "traversal = rayquery needs VK_KHR_ray_query, which device '%s' lacks (use traversal = dda)",
+                                     vrg_pass_device(pass)->name);
+        }
+        s->accel = vrg_world_accel_create(pass, s->world);
+        if (!s->accel)
+            return -1;
+    }
     return 0;
 }
 
@@ -162,6 +186,8 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     }
     if (vrg_world_dirty_count(s->world))
         vrg_world_upload(s->world, cmd, world, s->staging, s->staging_buffer, s->staging_bytes);
+    if (s->accel)
+        vrg_world_accel_record(s->accel, cmd, "tlas");
     vrg_sky_desc sky;
     vrg_sky_default(&sky);
     sky.time_of_day = (float)vrg_param(pass, "time_of_day");
@@ -175,6 +201,7 @@ static void destroy(vrg_pass *pass)
     if (!s)
         return;
     vrg_pass_set_world(pass, NULL);
+    vrg_world_accel_destroy(s->accel);
     vrg_world_destroy(s->world);
     free(s);
 }

@@ -33,6 +33,7 @@ static const vrg_param_desc params[] = {
     {"budget_ms", VRG_PARAM_FLOAT, 2, 0, 1000, "stream = budget: main-thread integration time per frame"},
     {"time_of_day", VRG_PARAM_FLOAT, 10, 0, 24, "hours at the start, 12 = noon"},
     {"day_length", VRG_PARAM_FLOAT, 0, 0, 1e6, "seconds per 24-hour cycle; 0 keeps the time of day"},
+    {"traversal", VRG_PARAM_STRING, 0, 0, 0, "dda (voxel DDA only) or rayquery (also build BLAS/TLAS for ray queries)", 0, "dda"},
 };
 
 static const vrg_slot_desc slots[] = {
@@ -41,6 +42,8 @@ static const vrg_slot_desc slots[] = {
     {.name = "frame", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_TRANSFER_DST,
      .size = sizeof(vrg_frame_uniforms), .flags = VRG_SLOT_PERSISTENT, .help = "per-frame uniforms (shaders/include/frame.glsl)"},
     VRG_ATLAS_SLOT,
+    {.name = "tlas", .dir = VRG_OUT, .kind = VRG_ACCEL, .access = VRG_ACCESS_AS_BUILD,
+     .help = "top-level acceleration structure of the chunks (traversal = rayquery; empty otherwise)"},
 };
 
 typedef struct scene {
@@ -51,6 +54,7 @@ typedef struct scene {
     void *staging;
     VkBuffer staging_buffer;
     VkBuffer atlas_staging;
+    vrg_world_accel *accel; /* traversal = rayquery */
     uint64_t staging_bytes;
     int threads;
 } scene;
@@ -87,6 +91,14 @@ static int check(vrg_pass *pass)
         vrg_param_item(pass, "stream", vrg_param_count(pass, "stream") - 1, &line);
         return vrg_pass_error_at(pass, line, "stream = '%s': expected wait or budget", mode);
     }
+    const char *traversal = vrg_param_string(pass, "traversal");
+    if (strcmp(traversal, "dda") != 0 && strcmp(traversal, "rayquery") != 0) {
+        int line = 0;
+        vrg_param_item(pass, "traversal", vrg_param_count(pass, "traversal") - 1, &line);
+        return vrg_pass_error_at(pass, line, "traversal = '%s': expected dda or rayquery", traversal);
+    }
+    uint64_t g = 2 * (uint64_t)grid_radius(pass) + 1, slots = g * g * (uint64_t)vrg_param_int(pass, "height_chunks");
+    vrg_pass_set_buffer_size(pass, "tlas", strcmp(traversal, "rayquery") == 0 ? slots : 0);
     return vrg_pass_set_buffer_size(pass, "world", vrg_world_gpu_bytes(grid_radius(pass), vrg_param_int(pass, "height_chunks")));
 }
 
@@ -129,6 +141,18 @@ static int create(vrg_pass *pass)
     if (!s->staging || !atlas)
         return -1;
     vrg_atlas_generate(atlas);
+    if (strcmp(vrg_param_string(pass, "traversal"), "rayquery") == 0) {
+        const vrg_features *f = &vrg_pass_device(pass)->features;
+        if (!f->ray_query || !f->acceleration_structure) {
+            int line = 0;
+            vrg_param_item(pass, "traversal", vrg_param_count(pass, "traversal") - 1, &line);
+            return vrg_pass_error_at(pass, line, "traversal = rayquery needs VK_KHR_ray_query, which device '%s' lacks (use traversal = dda)",
+                                     vrg_pass_device(pass)->name);
+        }
+        s->accel = vrg_world_accel_create(pass, s->world);
+        if (!s->accel)
+            return -1;
+    }
     return 0;
 }
 
@@ -160,6 +184,8 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     vrg_pass_stat(pass, "chunks_loaded", vrg_world_chunk_count(s->world));
     vrg_pass_stat(pass, "chunks_pending", stream_pending(s->stream));
     vrg_pass_stat(pass, "threads", s->threads);
+    if (s->accel)
+        vrg_world_accel_record(s->accel, cmd, "tlas");
     vrg_sky_desc sky;
     vrg_sky_default(&sky);
     sky.time_of_day = (float)vrg_param(pass, "time_of_day");
@@ -173,6 +199,7 @@ static void destroy(vrg_pass *pass)
     if (!s)
         return;
     vrg_pass_set_world(pass, NULL);
+    vrg_world_accel_destroy(s->accel);
     stream_destroy(s->stream);
     vrg_world_destroy(s->world);
     free(s);

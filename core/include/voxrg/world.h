@@ -96,6 +96,28 @@ void vrg_world_invalidate_gpu(vrg_world *w);
 /* Slots still waiting for upload. */
 int vrg_world_dirty_count(const vrg_world *w);
 
+/* Slots whose exposed faces changed since the last call (at most max). */
+int vrg_world_take_mesh_changes(vrg_world *w, int *slots, int max);
+/* The chunk a slot holds: 1 and its coordinates, or 0 when empty. */
+int vrg_world_slot_chunk(const vrg_world *w, int slot, int chunk[3]);
+int vrg_world_slot_count(const vrg_world *w);
+
+/* ---- Ray-query backend: per-chunk BLAS of exposed faces + a TLAS ---------
+ * Faces between a solid block and air (also across chunk borders) become
+ * quads, Morton-sorted (lavapipe builds BVHs in primitive order), two
+ * triangles each, in one BLAS per chunk; the TLAS has one instance per
+ * chunk with a BLAS (instanceCustomIndex = slot). Only changed chunks (and
+ * their neighbours) are rebuilt; the TLAS is rebuilt every frame. */
+typedef struct vrg_world_accel vrg_world_accel;
+/* In create(): needs VK_KHR_acceleration_structure (NULL after an error). */
+vrg_world_accel *vrg_world_accel_create(vrg_pass *pass, vrg_world *world);
+void vrg_world_accel_destroy(vrg_world_accel *a);
+/* In execute(): records BLAS rebuilds and the TLAS build into `tlas` (a
+ * VRG_ACCEL output slot written with VRG_ACCESS_AS_BUILD). */
+int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *tlas_slot);
+/* Quads in the chunk's BLAS (for tests), -1 if it has none. */
+int vrg_world_accel_quads(const vrg_world_accel *a, int cx, int cy, int cz);
+
 /* ---- Block textures ---------------------------------------------------
  * Procedural 16x16 tiles (material tile_top/side/bottom index them) in a
  * 4 x 4 atlas of 64x64 sRGB texels with a full mip chain, each level box-

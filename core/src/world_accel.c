@@ -1,0 +1,340 @@
+/* The ray-query backend's data: one bottom-level acceleration structure per
+ * chunk, built from the faces between solid blocks and air, and a top-level
+ * one with an instance per chunk. See voxrg/world.h. */
+#include <stdlib.h>
+#include <string.h>
+#include "internal.h"
+#include "voxrg/world.h"
+
+typedef struct chunk_blas {
+    VkAccelerationStructureKHR as;
+    VkBuffer buffer;
+    VkDeviceAddress address;
+    int quads;
+    int chunk[3];
+} chunk_blas;
+
+struct vrg_world_accel {
+    vrg_pass *pass;
+    vrg_world *world;
+    int slots;
+    chunk_blas *blas; /* per slot */
+    int *changed;
+    /* per-frame host data: triangle vertices of rebuilt chunks, instances */
+    VkBuffer vertices, instances, scratch;
+    float *vertex_map;
+    VkAccelerationStructureInstanceKHR *instance_map;
+    VkDeviceAddress vertex_address, instance_address, scratch_address;
+    uint64_t vertex_bytes, scratch_bytes;
+    VkDeviceSize scratch_align;
+};
+
+static vrg_context *ctx_of(const vrg_world_accel *a) { return a->pass->graph->ctx; }
+
+static void *buffer(vrg_world_accel *a, const char *name, uint64_t size, VkBufferUsageFlags usage, int host, VkBuffer *b, VkDeviceAddress *addr)
+{
+    vrg_buffer_desc d = {.name = name, .size = size, .usage = usage | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT, .host_visible = host};
+    return vrg_pass_buffer(a->pass, &d, b, addr);
+}
+
+vrg_world_accel *vrg_world_accel_create(vrg_pass *pass, vrg_world *world)
+{
+    vrg_context *ctx = pass->graph->ctx;
+    if (!ctx || !ctx->dev.features.acceleration_structure || !ctx->dev.features.ray_query) {
+        vrg_pass_error(pass, "the ray-query backend needs VK_KHR_acceleration_structure and VK_KHR_ray_query, which '%s' lacks",
+                       ctx ? ctx->device_name : "(no device)");
+        return NULL;
+    }
+    vrg_world_accel *a = calloc(1, sizeof *a);
+    a->pass = pass;
+    a->world = world;
+    a->slots = vrg_world_slot_count(world);
+    a->blas = calloc((size_t)a->slots, sizeof *a->blas);
+    a->changed = calloc((size_t)a->slots, sizeof *a->changed);
+    VkPhysicalDeviceAccelerationStructurePropertiesKHR asp = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
+    VkPhysicalDeviceProperties2 p2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &asp};
+    vkGetPhysicalDeviceProperties2(ctx->dev.physical_device, &p2);
+    a->scratch_align = asp.minAccelerationStructureScratchOffsetAlignment ? asp.minAccelerationStructureScratchOffsetAlignment : 256;
+    a->instance_map = buffer(a, "tlas instances", (uint64_t)a->slots * sizeof(VkAccelerationStructureInstanceKHR),
+                             VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR, 1, &a->instances, &a->instance_address);
+    if (!a->instance_map) {
+        vrg_world_accel_destroy(a);
+        return NULL;
+    }
+    return a;
+}
+
+void vrg_world_accel_destroy(vrg_world_accel *a)
+{
+    if (!a)
+        return;
+    vrg_context *ctx = ctx_of(a);
+    for (int s = 0; s < a->slots; s++)
+        if (a->blas[s].as)
+            ctx->as.destroy(ctx->dev.device, a->blas[s].as, NULL);
+    /* the buffers belong to the pass: the runtime frees them with it */
+    free(a->blas);
+    free(a->changed);
+    free(a);
+}
+
+/* Morton order of a voxel inside its chunk (4 bits per axis). */
+static uint32_t morton16(int x, int y, int z)
+{
+    uint32_t m = 0;
+    for (int b = 0; b < 4; b++)
+        m |= ((uint32_t)(x >> b & 1) << (3 * b)) | ((uint32_t)(y >> b & 1) << (3 * b + 1)) | ((uint32_t)(z >> b & 1) << (3 * b + 2));
+    return m;
+}
+
+static int by_key(const void *x, const void *y)
+{
+    uint32_t a = *(const uint32_t *)x, b = *(const uint32_t *)y;
+    return a < b ? -1 : a > b;
+}
+
+static const int face_dir[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+
+/* Exposed faces of a chunk as quad keys: morton << 3 | face, sorted. */
+static int chunk_quads(const vrg_world *w, const int c[3], uint32_t *keys)
+{
+    const vrg_block *blocks = vrg_world_chunk(w, c[0], c[1], c[2]);
+    int n = 0;
+    for (int y = 0; y < 16; y++)
+        for (int z = 0; z < 16; z++)
+            for (int x = 0; x < 16; x++) {
+                if (blocks[vrg_chunk_index(x, y, z)] == VRG_BLOCK_AIR)
+                    continue;
+                for (int f = 0; f < 6; f++) {
+                    int nx = x + face_dir[f][0], ny = y + face_dir[f][1], nz = z + face_dir[f][2];
+                    vrg_block nb = (nx | ny | nz) & ~15 ? vrg_world_block(w, c[0] * 16 + nx, c[1] * 16 + ny, c[2] * 16 + nz)
+                                                       : blocks[vrg_chunk_index(nx, ny, nz)];
+                    if (nb == VRG_BLOCK_AIR)
+                        keys[n++] = morton16(x, y, z) << 3 | (uint32_t)f;
+                }
+            }
+    qsort(keys, (size_t)n, sizeof *keys, by_key);
+    return n;
+}
+
+/* Two triangles of a face, chunk-local coordinates, 18 floats. */
+static void quad_vertices(uint32_t key, float *out)
+{
+    int f = key & 7, x = 0, y = 0, z = 0;
+    uint32_t m = key >> 3;
+    for (int b = 0; b < 4; b++) {
+        x |= (int)((m >> (3 * b)) & 1) << b;
+        y |= (int)((m >> (3 * b + 1)) & 1) << b;
+        z |= (int)((m >> (3 * b + 2)) & 1) << b;
+    }
+    int axis = f / 2, positive = f % 2 == 0;
+    int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    float corner[4][3];
+    for (int k = 0; k < 4; k++) {
+        float p[3] = {(float)x, (float)y, (float)z};
+        p[axis] += positive ? 1.0f : 0.0f;
+        p[u] += (k == 1 || k == 2) ? 1.0f : 0.0f;
+        p[v] += (k >= 2) ? 1.0f : 0.0f;
+        memcpy(corner[k], p, sizeof p);
+    }
+    static const int tri[6] = {0, 1, 2, 0, 2, 3};
+    for (int i = 0; i < 6; i++)
+        memcpy(out + 3 * i, corner[tri[i]], 3 * sizeof(float));
+}
+
+static VkDeviceSize align_up(VkDeviceSize v, VkDeviceSize a) { return (v + a - 1) / a * a; }
+
+int vrg_world_accel_quads(const vrg_world_accel *a, int cx, int cy, int cz)
+{
+    for (int s = 0; s < a->slots; s++)
+        if (a->blas[s].as && a->blas[s].chunk[0] == cx && a->blas[s].chunk[1] == cy && a->blas[s].chunk[2] == cz)
+            return a->blas[s].quads;
+    return -1;
+}
+
+int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *tlas_slot)
+{
+    vrg_context *ctx = ctx_of(a);
+    VkDevice dev = ctx->dev.device;
+    int nchanged = vrg_world_take_mesh_changes(a->world, a->changed, a->slots);
+    size_t cap = nchanged > 0 ? (size_t)nchanged : 1;
+    uint32_t *keys = malloc(16 * 16 * 16 * 6 * sizeof *keys);
+
+    /* 1. meshes of changed chunks: count, then write into this frame's vertex memory */
+    int *quads = calloc(cap, sizeof *quads);
+    uint64_t total = 0;
+    for (int i = 0; i < nchanged; i++) {
+        int c[3];
+        quads[i] = vrg_world_slot_chunk(a->world, a->changed[i], c) ? chunk_quads(a->world, c, keys) : 0;
+        total += (uint64_t)quads[i];
+    }
+    uint64_t vbytes = total * 18 * sizeof(float);
+    if (vbytes > a->vertex_bytes) {
+        if (a->vertices)
+            vrg_pass_free_buffer(a->pass, a->vertices); /* the last frame that read it has finished */
+        a->vertex_bytes = vbytes + vbytes / 4;
+        a->vertex_map = buffer(a, "blas vertices", a->vertex_bytes, VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR, 1,
+                               &a->vertices, &a->vertex_address);
+        if (!a->vertex_map) {
+            free(keys);
+            free(quads);
+            return -1;
+        }
+    }
+    /* 2. one BLAS per changed chunk with faces */
+    VkAccelerationStructureGeometryKHR *geoms = calloc(cap, sizeof *geoms);
+    VkAccelerationStructureBuildGeometryInfoKHR *infos = calloc(cap, sizeof *infos);
+    VkAccelerationStructureBuildRangeInfoKHR *ranges = calloc(cap, sizeof *ranges);
+    const VkAccelerationStructureBuildRangeInfoKHR **range_ptrs = calloc(cap, sizeof *range_ptrs);
+    VkDeviceSize *scratch_offsets = calloc(cap + 1, sizeof *scratch_offsets);
+    uint64_t voff = 0;
+    VkDeviceSize scratch_total = 0;
+    int nbuild = 0, rc = 0;
+    for (int i = 0; i < nchanged && rc == 0; i++) {
+        int s = a->changed[i];
+        chunk_blas *b = &a->blas[s];
+        if (b->as) {
+            ctx->as.destroy(dev, b->as, NULL);
+            vrg_pass_free_buffer(a->pass, b->buffer);
+            memset(b, 0, sizeof *b);
+        }
+        int c[3];
+        if (!quads[i] || !vrg_world_slot_chunk(a->world, s, c))
+            continue;
+        int n = chunk_quads(a->world, c, keys);
+        float *v = a->vertex_map + voff / sizeof(float);
+        for (int q = 0; q < n; q++)
+            quad_vertices(keys[q], v + 18 * q);
+        VkAccelerationStructureGeometryKHR *g = &geoms[nbuild];
+        *g = (VkAccelerationStructureGeometryKHR){
+            .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR,
+            .geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR,
+            .flags = VK_GEOMETRY_OPAQUE_BIT_KHR,
+            .geometry.triangles = {.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_TRIANGLES_DATA_KHR,
+                                   .vertexFormat = VK_FORMAT_R32G32B32_SFLOAT,
+                                   .vertexData.deviceAddress = a->vertex_address + voff,
+                                   .vertexStride = 3 * sizeof(float),
+                                   .maxVertex = (uint32_t)(6 * n - 1),
+                                   .indexType = VK_INDEX_TYPE_NONE_KHR},
+        };
+        VkAccelerationStructureBuildGeometryInfoKHR *info = &infos[nbuild];
+        *info = (VkAccelerationStructureBuildGeometryInfoKHR){
+            .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR,
+            .type = VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR,
+            .flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR,
+            .mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR,
+            .geometryCount = 1,
+            .pGeometries = g,
+        };
+        uint32_t tris = (uint32_t)(2 * n);
+        VkAccelerationStructureBuildSizesInfoKHR sizes = {.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
+        ctx->as.sizes(dev, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, info, &tris, &sizes);
+        char name[64];
+        snprintf(name, sizeof name, "blas %d %d %d", c[0], c[1], c[2]);
+        if (!buffer(a, name, sizes.accelerationStructureSize, VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_STORAGE_BIT_KHR, 0, &b->buffer, NULL)) {
+            rc = -1;
+            break;
+        }
+        VkAccelerationStructureCreateInfoKHR ci = {.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_CREATE_INFO_KHR,
+                                                   .buffer = b->buffer,
+                                                   .size = sizes.accelerationStructureSize,
+                                                   .type = VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR};
+        if (ctx->as.create(dev, &ci, NULL, &b->as) != VK_SUCCESS) {
+            rc = vrg_pass_error(a->pass, "cannot create the BLAS of chunk %d %d %d", c[0], c[1], c[2]);
+            break;
+        }
+        vrg_name_object(ctx, VK_OBJECT_TYPE_ACCELERATION_STRUCTURE_KHR, (uint64_t)b->as, "%s", name);
+        VkAccelerationStructureDeviceAddressInfoKHR ai = {.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_DEVICE_ADDRESS_INFO_KHR, .accelerationStructure = b->as};
+        b->address = ctx->as.address(dev, &ai);
+        b->quads = n;
+        memcpy(b->chunk, c, sizeof c);
+        info->dstAccelerationStructure = b->as;
+        scratch_offsets[nbuild] = scratch_total;
+        scratch_total = align_up(scratch_total + sizes.buildScratchSize, a->scratch_align);
+        ranges[nbuild] = (VkAccelerationStructureBuildRangeInfoKHR){.primitiveCount = tris};
+        range_ptrs[nbuild] = &ranges[nbuild];
+        voff += (uint64_t)n * 18 * sizeof(float);
+        nbuild++;
+    }
+
+    /* 3. TLAS: every slot with a BLAS, translated to its chunk */
+    uint32_t ninst = 0;
+    for (int s = 0; s < a->slots; s++) {
+        chunk_blas *b = &a->blas[s];
+        if (!b->as)
+            continue;
+        VkAccelerationStructureInstanceKHR *in = &a->instance_map[ninst++];
+        memset(in, 0, sizeof *in);
+        in->transform.matrix[0][0] = in->transform.matrix[1][1] = in->transform.matrix[2][2] = 1.0f;
+        in->transform.matrix[0][3] = (float)(b->chunk[0] * 16);
+        in->transform.matrix[1][3] = (float)(b->chunk[1] * 16);
+        in->transform.matrix[2][3] = (float)(b->chunk[2] * 16);
+        in->instanceCustomIndex = (uint32_t)s;
+        in->mask = 0xff;
+        in->flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR | VK_GEOMETRY_INSTANCE_FORCE_OPAQUE_BIT_KHR;
+        in->accelerationStructureReference = b->address;
+    }
+    VkAccelerationStructureGeometryKHR tgeom = {
+        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR,
+        .geometryType = VK_GEOMETRY_TYPE_INSTANCES_KHR,
+        .geometry.instances = {.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_INSTANCES_DATA_KHR, .data.deviceAddress = a->instance_address},
+    };
+    VkAccelerationStructureBuildGeometryInfoKHR tinfo = {
+        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR,
+        .type = VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR,
+        .flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR,
+        .mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR,
+        .dstAccelerationStructure = vrg_res_accel(a->pass, vrg_pass_res(a->pass, tlas_slot)),
+        .geometryCount = 1,
+        .pGeometries = &tgeom,
+    };
+    VkAccelerationStructureBuildSizesInfoKHR tsizes = {.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
+    uint32_t max_inst = (uint32_t)a->slots;
+    ctx->as.sizes(dev, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &tinfo, &max_inst, &tsizes);
+    VkDeviceSize tlas_scratch = 0;
+    VkDeviceSize need = align_up(scratch_total, a->scratch_align) + tsizes.buildScratchSize + a->scratch_align;
+    if (rc == 0 && need > a->scratch_bytes) {
+        if (a->scratch)
+            vrg_pass_free_buffer(a->pass, a->scratch);
+        a->scratch_bytes = need + need / 4;
+        if (!buffer(a, "as scratch", a->scratch_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, 0, &a->scratch, &a->scratch_address))
+            rc = -1;
+    }
+    if (rc == 0 && tinfo.dstAccelerationStructure) {
+        VkDeviceAddress base = align_up(a->scratch_address, a->scratch_align);
+        /* last frame's builds used the same scratch: order them before these */
+        VkMemoryBarrier2 reuse = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+                                  .srcStageMask = VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+                                  .srcAccessMask = VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR,
+                                  .dstStageMask = VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+                                  .dstAccessMask = VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR | VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR};
+        VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1, .pMemoryBarriers = &reuse};
+        vkCmdPipelineBarrier2(cmd, &dep);
+        if (nbuild) {
+            for (int i = 0; i < nbuild; i++)
+                infos[i].scratchData.deviceAddress = base + scratch_offsets[i];
+            ctx->as.build(cmd, (uint32_t)nbuild, infos, range_ptrs);
+            /* the TLAS build reads the BLASes just written */
+            vkCmdPipelineBarrier2(cmd, &dep);
+        }
+        tlas_scratch = align_up(scratch_total, a->scratch_align);
+        tinfo.scratchData.deviceAddress = base + tlas_scratch;
+        VkAccelerationStructureBuildRangeInfoKHR trange = {.primitiveCount = ninst};
+        const VkAccelerationStructureBuildRangeInfoKHR *tr = &trange;
+        ctx->as.build(cmd, 1, &tinfo, &tr);
+    }
+    free(keys);
+    free(quads);
+    free(geoms);
+    free(infos);
+    free(ranges);
+    free(range_ptrs);
+    free(scratch_offsets);
+    vrg_pass_stat(a->pass, "blas_built", nbuild);
+    vrg_pass_stat(a->pass, "tlas_instances", ninst);
+    double all = 0;
+    for (int s2 = 0; s2 < a->slots; s2++)
+        all += a->blas[s2].quads;
+    vrg_pass_stat(a->pass, "blas_quads", all);
+    return rc;
+}
