@@ -152,6 +152,31 @@ static void test_history(void)
     vrg_graph_destroy(g);
 }
 
+/* History images are cleared: a counter that reads @prev even when history
+ * is invalid restarts at 1 on the first frame, after a reset and a resize. */
+static void test_history_cleared(void)
+{
+    static const char *sets[] = {"counter.always_read=1"};
+    vrg_graph *g = load_with("history.ini", sets, 1, NULL, 0);
+    if (!g)
+        return;
+    vrg_image_data img;
+    for (int round = 0; round < 3; round++) {
+        if (round == 1)
+            vrg_graph_reset_history(g);
+        if (round == 2)
+            CHECK(vrg_graph_resize(g, 5, 3) == 0, "resize failed");
+        for (int frame = 1; frame <= 3; frame++) {
+            CHECK(vrg_graph_frame(g) == 0, "frame failed");
+            CHECK(vrg_graph_read(g, vrg_graph_output(g), &img) == 0, "readback failed");
+            CHECK(px(&img, 0, 0, 0) == (float)frame && px(&img, img.width - 1, img.height - 1, 0) == (float)frame,
+                  "round %d frame %d: %g (history not cleared?)", round, frame, px(&img, 0, 0, 0));
+            free(img.pixels);
+        }
+    }
+    vrg_graph_destroy(g);
+}
+
 /* accumulate: out = mix(history, color, alpha) once history is valid. The
  * input changes with a --set between graphs, so use two frames of one graph
  * whose color is constant: the result must stay the colour (mix of equals),
@@ -717,6 +742,7 @@ int main(int argc, char **argv)
     } cases[] = {
         {"chain", test_chain, 1},     {"history", test_history, 1}, {"accumulate", test_accumulate, 1}, {"pingpong", test_pingpong, 1},
         {"alias", test_alias, 1},     {"buffer", test_buffer, 1},   {"scene", test_scene, 1},           {"loader", test_loader, 0},
+        {"history_cleared", test_history_cleared, 1},
         {"accumulate_count", test_accumulate_count, 1}, {"validation_live", test_validation_live, 1},
         {"blocks_world", test_blocks_world, 1}, {"blocks_trace", test_blocks_trace, 1}, {"terrain_world", test_terrain_world, 1},
         {"atlas", test_atlas, 1},         {"traversal_errors", test_traversal_errors, 0},

@@ -261,6 +261,23 @@ static double now_ms(void)
     return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
+/* A JSON string body: quotes, backslashes and control characters escaped. */
+static const char *json_str(const char *s, char *buf, size_t cap)
+{
+    size_t n = 0;
+    for (; *s && n + 7 < cap; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            n += (size_t)snprintf(buf + n, cap - n, "\\%c", c);
+        else if (c < 0x20)
+            n += (size_t)snprintf(buf + n, cap - n, "\\u%04x", c);
+        else
+            buf[n++] = (char)c;
+    }
+    buf[n] = '\0';
+    return buf;
+}
+
 static int write_json(const char *path, vrg_context *ctx, vrg_graph *g, const options *o, double *ms, uint32_t frames, double wall_ms)
 {
     FILE *f = fopen(path, "w");
@@ -271,8 +288,9 @@ static int write_json(const char *path, vrg_context *ctx, vrg_graph *g, const op
     uint32_t w, h, np = vrg_graph_pass_count(g);
     vrg_graph_size(g, &w, &h);
     vrg_memory_stats m = vrg_graph_memory(g);
-    fprintf(f, "{\n  \"graph\": \"%s\",\n  \"device\": \"%s\",\n  \"width\": %u,\n  \"height\": %u,\n  \"frames\": %u,\n", o->graph,
-            vrg_context_device(ctx)->name, w, h, frames);
+    char g_esc[2048], d_esc[1024], p_esc[256];
+    fprintf(f, "{\n  \"graph\": \"%s\",\n  \"device\": \"%s\",\n  \"width\": %u,\n  \"height\": %u,\n  \"frames\": %u,\n",
+            json_str(o->graph, g_esc, sizeof g_esc), json_str(vrg_context_device(ctx)->name, d_esc, sizeof d_esc), w, h, frames);
     fprintf(f, "  \"wall_ms_per_frame\": %.4f,\n", wall_ms / frames);
     fprintf(f, "  \"memory\": {\"transient_naive_bytes\": %llu, \"transient_aliased_bytes\": %llu, \"history_bytes\": %llu},\n",
             (unsigned long long)m.naive_bytes, (unsigned long long)m.aliased_bytes, (unsigned long long)m.history_bytes);
@@ -282,7 +300,7 @@ static int write_json(const char *path, vrg_context *ctx, vrg_graph *g, const op
         if (vrg_graph_pass_ms(g, i) < 0 && ms[i] < 0)
             continue; /* culled or not timed */
         double sum = 0;
-        fprintf(f, "%s\n    {\"name\": \"%s\", \"gpu_ms\": [", first ? "" : ",", vrg_graph_pass_name(g, i));
+        fprintf(f, "%s\n    {\"name\": \"%s\", \"gpu_ms\": [", first ? "" : ",", json_str(vrg_graph_pass_name(g, i), p_esc, sizeof p_esc));
         for (uint32_t k = 0; k < frames; k++) {
             fprintf(f, "%s%.4f", k ? ", " : "", ms[k * np + i]);
             sum += ms[k * np + i];

@@ -125,6 +125,12 @@ static int create_objects(vrg_graph *g, int ri)
             full++;
         r->mips = r->mip_request < full ? r->mip_request : full;
     }
+    uint32_t max_dim = ctx->props.limits.maxImageDimension2D;
+    if (r->kind == VRG_IMAGE && (r->width > max_dim || r->height > max_dim)) {
+        vrg_error_at(&g->diag, r->line, "lower its scale or the graph size", "resource '%s' would be %ux%u, larger than '%s' allows (%u)", r->name,
+                     r->width, r->height, ctx->device_name, max_dim);
+        return -1;
+    }
     for (int c = 0; c < copies; c++) {
         if (r->kind == VRG_IMAGE) {
             VkImageUsageFlags need;
@@ -255,7 +261,10 @@ int vrg_allocate(vrg_graph *g)
                     .format = r->format,
                     .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, VK_REMAINING_MIP_LEVELS, 0, 1},
                 };
-                vkCreateImageView(g->ctx->dev.device, &vi, NULL, &r->view[c]);
+                if (vkCreateImageView(g->ctx->dev.device, &vi, NULL, &r->view[c]) != VK_SUCCESS) {
+                    vrg_error(&g->diag, "cannot create a view of resource '%s'", r->name);
+                    return -1;
+                }
                 vrg_name_object(g->ctx, VK_OBJECT_TYPE_IMAGE_VIEW, (uint64_t)r->view[c], "%s/%s%s", g->name, r->name, c ? " (copy 1)" : "");
             }
         }

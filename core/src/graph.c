@@ -40,13 +40,16 @@ static int frame_objects(vrg_graph *g)
     VkDevice dev = ctx->dev.device;
     VkCommandBufferAllocateInfo ai = {
         .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, .commandPool = ctx->cmd_pool, .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY, .commandBufferCount = 1};
-    vkAllocateCommandBuffers(dev, &ai, &g->cmd);
     VkFenceCreateInfo fi = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    vkCreateFence(dev, &fi, NULL, &g->fence);
+    if (vkAllocateCommandBuffers(dev, &ai, &g->cmd) != VK_SUCCESS || vkCreateFence(dev, &fi, NULL, &g->fence) != VK_SUCCESS) {
+        vrg_error(&g->diag, "cannot create the frame's command buffer and fence");
+        return -1;
+    }
     if (ctx->dev.features.timestamps && g->schedule_count) {
         VkQueryPoolCreateInfo qi = {
             .sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO, .queryType = VK_QUERY_TYPE_TIMESTAMP, .queryCount = (uint32_t)(2 * g->schedule_count)};
-        vkCreateQueryPool(dev, &qi, NULL, &g->queries);
+        if (vkCreateQueryPool(dev, &qi, NULL, &g->queries) != VK_SUCCESS)
+            g->queries = VK_NULL_HANDLE; /* timings become -1; rendering goes on */
         vrg_name_object(ctx, VK_OBJECT_TYPE_QUERY_POOL, (uint64_t)g->queries, "%s/pass timestamps", g->name);
     }
     vrg_name_object(ctx, VK_OBJECT_TYPE_COMMAND_BUFFER, (uint64_t)g->cmd, "%s/frame", g->name);
@@ -68,17 +71,19 @@ static int readback_buffer(vrg_graph *g)
     if (!size)
         return 0;
     VkBufferCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = size, .usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT};
-    vkCreateBuffer(dev, &ci, NULL, &g->readback_buffer);
-    VkMemoryRequirements req;
-    vkGetBufferMemoryRequirements(dev, g->readback_buffer, &req);
-    int type = vrg_find_memory_type(g->ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    VkMemoryRequirements req = {0};
+    int type = -1;
+    if (vkCreateBuffer(dev, &ci, NULL, &g->readback_buffer) == VK_SUCCESS) {
+        vkGetBufferMemoryRequirements(dev, g->readback_buffer, &req);
+        type = vrg_find_memory_type(g->ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    }
     VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size, .memoryTypeIndex = (uint32_t)type};
-    if (type < 0 || vkAllocateMemory(dev, &ai, NULL, &g->readback_memory) != VK_SUCCESS) {
+    if (type < 0 || vkAllocateMemory(dev, &ai, NULL, &g->readback_memory) != VK_SUCCESS ||
+        vkBindBufferMemory(dev, g->readback_buffer, g->readback_memory, 0) != VK_SUCCESS ||
+        vkMapMemory(dev, g->readback_memory, 0, VK_WHOLE_SIZE, 0, &g->readback_map) != VK_SUCCESS) {
         vrg_error(&g->diag, "cannot allocate %llu bytes of host-visible memory for readback", (unsigned long long)size);
         return -1;
     }
-    vkBindBufferMemory(dev, g->readback_buffer, g->readback_memory, 0);
-    vkMapMemory(dev, g->readback_memory, 0, VK_WHOLE_SIZE, 0, &g->readback_map);
     g->readback_size = size;
     vrg_name_object(g->ctx, VK_OBJECT_TYPE_BUFFER, (uint64_t)g->readback_buffer, "%s/readback", g->name);
     return 0;
@@ -89,7 +94,7 @@ static void free_readback(vrg_graph *g)
     if (!g->ctx)
         return;
     VkDevice dev = g->ctx->dev.device;
-    if (g->readback_memory)
+    if (g->readback_map)
         vkUnmapMemory(dev, g->readback_memory);
     vkDestroyBuffer(dev, g->readback_buffer, NULL);
     vkFreeMemory(dev, g->readback_memory, NULL);
@@ -114,7 +119,7 @@ int vrg_graph_load(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph **out
     snprintf(g->name, sizeof g->name, "graph");
     int rc = vrg_parse(g->path, desc->text, ast, &g->diag);
     /* Keep going after syntax errors so one run shows every problem. */
-    if (rc == 0 || ast->section_count > 0)
+    if (!ast->fatal && (rc == 0 || ast->section_count > 0))
         rc = vrg_validate(g, ast, desc) | rc;
     free(ast);
     if (rc == 0)

@@ -89,6 +89,7 @@ typedef struct vrg_ast {
     vrg_key keys[VRG_MAX_KEYS];
     int key_count;
     int syntax_error_line; /* inih's first error, 0 if none */
+    int fatal;             /* a limit or encoding error: the file was not read whole */
 } vrg_ast;
 int vrg_parse(const char *path, const char *text, vrg_ast *ast, vrg_diag *d);
 

@@ -53,6 +53,7 @@ static int on_key(void *user, const char *section, const char *name, const char 
     }
     if (a->key_count >= VRG_MAX_KEYS) {
         vrg_error_at(r->d, r->line, NULL, "too many keys (at most %d)", VRG_MAX_KEYS);
+        a->fatal = 1;
         return 0;
     }
     vrg_key *k = &a->keys[a->key_count++];
@@ -83,7 +84,8 @@ static int scan_sections(const char *text, vrg_ast *a, vrg_diag *d)
             const char *close = memchr(s, ']', (size_t)(p + n - s));
             if (close) {
                 if (a->section_count >= (int)(sizeof a->sections / sizeof a->sections[0])) {
-                    vrg_error_at(d, line, NULL, "too many sections");
+                    vrg_error_at(d, line, NULL, "too many sections (at most %d)", (int)(sizeof a->sections / sizeof a->sections[0]));
+                    a->fatal = 1; /* the rest of the file was not read: checking it would only mislead */
                     return -1;
                 }
                 vrg_section *sec = &a->sections[a->section_count++];
@@ -126,6 +128,16 @@ int vrg_parse(const char *path, const char *text, vrg_ast *ast, vrg_diag *d)
         size_t got = fread(owned, 1, (size_t)n, f);
         owned[got] = '\0';
         fclose(f);
+        /* a NUL would silently end the text here */
+        if (strlen(owned) != got) {
+            int line = 1;
+            for (const char *c = owned; *c; c++)
+                line += *c == '\n';
+            vrg_error_at(d, line, "graph files are text", "NUL byte in the file");
+            ast->fatal = 1;
+            free(owned);
+            return -1;
+        }
         text = owned;
     }
     int errors_before = d->errors;

@@ -170,9 +170,23 @@ void vrg_graph_report(const vrg_graph *g, FILE *f)
     fprintf(f, "memory: transient naive %s, aliased %s, saved %.1f%%; history/persistent %s\n", naive, aliased, saved, hist);
 }
 
+/* A Graphviz string body: quotes and backslashes escaped. */
+static const char *dot_str(const char *s, char *buf, size_t cap)
+{
+    size_t n = 0;
+    for (; *s && n + 2 < cap; s++) {
+        if (*s == '"' || *s == '\\')
+            buf[n++] = '\\';
+        buf[n++] = *s;
+    }
+    buf[n] = '\0';
+    return buf;
+}
+
 void vrg_graph_write_dot(const vrg_graph *g, FILE *f)
 {
-    fprintf(f, "digraph \"%s\" {\n  rankdir=LR;\n  node [fontname=\"sans\"];\n", g->name);
+    char esc[2 * VRG_NAME_MAX + 8];
+    fprintf(f, "digraph \"%s\" {\n  rankdir=LR;\n  node [fontname=\"sans\"];\n", dot_str(g->name, esc, sizeof esc));
     for (int i = 0; i < g->pass_count; i++) {
         const vrg_pass *p = &g->passes[i];
         fprintf(f, "  \"pass:%s\" [shape=box, label=\"%s\\n(%s)\"%s];\n", p->name, p->name, p->plugin ? p->plugin->name : "?",

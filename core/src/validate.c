@@ -17,6 +17,10 @@ static int parse_double(const char *s, double *out)
         s++;
     if (!*s)
         return -1;
+    /* decimal only: strtod would also take hex ("0x10") and "infinity" */
+    for (const char *c = s; *c; c++)
+        if (*c == 'x' || *c == 'X')
+            return -1;
     double v = strtod(s, &end);
     while (isspace((unsigned char)*end))
         end++;
@@ -215,11 +219,11 @@ static void graph_section(vrg_graph *g, const vrg_ast *a, int si)
         else if (strcmp(k->name, "height") == 0)
             positive_int(&g->diag, k, 16384, &g->height);
         else if (strcmp(k->name, "seed") == 0) {
-            long s;
-            if (parse_int(k->value, &s) != 0 || s < 0)
-                vrg_error_at(&g->diag, k->line, "a whole number >= 0", "'seed = %s' must be a non-negative integer", k->value);
+            double d;
+            if (parse_double(k->value, &d) != 0 || d < 0 || d > 4294967295.0 || d != floor(d))
+                vrg_error_at(&g->diag, k->line, "a whole number from 0 to 4294967295", "'seed = %s' must be a non-negative integer", k->value);
             else
-                g->seed = (uint32_t)s;
+                g->seed = (uint32_t)d;
         } else if (strcmp(k->name, "fps") == 0) {
             if (parse_double(k->value, &v) != 0)
                 vrg_error_at(&g->diag, k->line, "frames per second of simulated time", "'fps = %s' is not a number", k->value);
@@ -430,6 +434,8 @@ static void resource_section(vrg_graph *g, const vrg_ast *a, int si, const char 
     }
     if ((r->abs_width != 0) != (r->abs_height != 0))
         vrg_error_at(&g->diag, r->line, "give both width and height, or scale", "[resource %s] sets only one of width and height", name);
+    if (r->abs_width && r->scale > 0)
+        vrg_error_at(&g->diag, r->line, "give width and height, or scale, not both", "[resource %s] sets both a scale and a size", name);
 }
 
 static int find_pass(const vrg_graph *g, const char *name)
@@ -509,8 +515,12 @@ static void collect_sections(vrg_graph *g, const vrg_ast *a, const char *graph_p
             p->slots[s].res = -1;
         const vrg_key *plugin_key = NULL;
         for (int i = 0; i < a->key_count; i++)
-            if (a->keys[i].section_index == si && strcmp(a->keys[i].name, "plugin") == 0)
-                plugin_key = &a->keys[i];
+            if (a->keys[i].section_index == si && strcmp(a->keys[i].name, "plugin") == 0) {
+                if (plugin_key)
+                    vrg_error_at(&g->diag, a->keys[i].line, NULL, "duplicate key 'plugin' in [%s] (first at line %d)", sec->name, plugin_key->line);
+                else
+                    plugin_key = &a->keys[i];
+            }
         if (!plugin_key) {
             vrg_error_at(&g->diag, sec->line, "add 'plugin = NAME' (`voxrg plugins` lists them)", "[%s] has no plugin", sec->name);
             continue;
@@ -589,6 +599,14 @@ static void resolve_resources(vrg_graph *g)
                          "resource '%s' is an acceleration structure", r->name);
         if (sd->kind == VRG_BUFFER && r->size == 0)
             vrg_error_at(&g->diag, r->writer_line, "give the buffer a size in a [resource] section", "buffer '%s' has size 0", r->name);
+        /* A shader writes a storage image through a format qualifier: the
+         * image must have that format. Sampled and transfer writers adapt. */
+        int storage = sd->access == VRG_ACCESS_STORAGE_WRITE || sd->access == VRG_ACCESS_STORAGE_READ_WRITE;
+        if (sd->kind == VRG_IMAGE && r->format_line && storage && sd->format && sd->format != r->format) {
+            char h[160];
+            snprintf(h, sizeof h, "pass '%s' writes it as a storage image of format %s", g->passes[r->writer].name, vrg_format_name(sd->format));
+            vrg_error_at(&g->diag, r->format_line, h, "format mismatch: resource '%s' cannot be %s", r->name, vrg_format_name(r->format));
+        }
         if (sd->kind == VRG_BUFFER && r->format_line)
             vrg_error_at(&g->diag, r->format_line, "format applies to images", "resource '%s' is a buffer", r->name);
         /* an acceleration structure is rebuilt from scene data, never aliased */
@@ -729,7 +747,8 @@ static void check_conflicting_uses(vrg_graph *g)
         for (int a = 0; a < (int)p->plugin->desc->slot_count; a++)
             for (int b = a + 1; b < (int)p->plugin->desc->slot_count; b++) {
                 const vrg_binding_ref *x = &p->slots[a], *y = &p->slots[b];
-                if (x->res < 0 || x->res != y->res || x->prev != y->prev || x->dummy || g->res[x->res].kind != VRG_IMAGE)
+                if (x->res < 0 || x->res != y->res || x->prev != y->prev || x->dummy || g->res[x->res].kind != VRG_IMAGE ||
+                    vrg_slot(p, a)->dir == VRG_OUT || vrg_slot(p, b)->dir == VRG_OUT) /* read + write: reported as a cycle */
                     continue;
                 vrg_access_info ia = vrg_access_info_of(vrg_slot(p, a)->access, VRG_IMAGE);
                 vrg_access_info ib = vrg_access_info_of(vrg_slot(p, b)->access, VRG_IMAGE);

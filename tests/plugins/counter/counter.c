@@ -5,6 +5,7 @@
 
 static const vrg_param_desc params[] = {
     {"step", VRG_PARAM_FLOAT, 1.0, -1000.0, 1000.0, "added every frame"},
+    {"always_read", VRG_PARAM_BOOL, 0, 0, 1, "read prev even when history is invalid (tests that it was cleared to 0)"},
 };
 
 static const vrg_slot_desc slots[] = {
@@ -22,7 +23,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     struct {
         float step;
         int32_t use_prev;
-    } pc = {(float)vrg_param(pass, "step"), connected && vrg_pass_frame(pass)->history_valid};
+    } pc = {(float)vrg_param(pass, "step"), connected && (vrg_pass_frame(pass)->history_valid || vrg_param_int(pass, "always_read"))};
     (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "counter.comp", .push = &pc, .push_size = sizeof pc});
 }
 
