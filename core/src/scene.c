@@ -1,6 +1,7 @@
 #define _DEFAULT_SOURCE
 /* Helpers every scene plugin shares: the per-frame uniform block. */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 #include "voxrg/world.h"
 
@@ -58,4 +59,76 @@ void vrg_scene_write_frame(vrg_pass *pass, VkCommandBuffer cmd, const char *slot
     vrg_frame_uniforms u;
     vrg_frame_uniforms_fill(f, &sky, &u);
     vkCmdUpdateBuffer(cmd, vrg_res_buffer(pass, vrg_pass_res(pass, slot)), 0, sizeof u, &u);
+}
+
+int vrg_scene_check(vrg_pass *pass, int grid_radius, int height_chunks)
+{
+    const char *traversal = vrg_param_string(pass, "traversal");
+    int rayquery = strcmp(traversal, "rayquery") == 0;
+    if (!rayquery && strcmp(traversal, "dda") != 0) {
+        int line = 0;
+        vrg_param_item(pass, "traversal", vrg_param_count(pass, "traversal") - 1, &line);
+        return vrg_pass_error_at(pass, line, "traversal = '%s': expected dda or rayquery", traversal);
+    }
+    uint64_t g = 2 * (uint64_t)grid_radius + 1;
+    vrg_pass_set_buffer_size(pass, "tlas", rayquery ? g * g * (uint64_t)height_chunks : 0);
+    return vrg_pass_set_buffer_size(pass, "world", vrg_world_gpu_bytes(grid_radius, height_chunks));
+}
+
+int vrg_scene_create(vrg_pass *pass, vrg_scene_gpu *s, vrg_world *world)
+{
+    s->world = world;
+    vrg_pass_set_world(pass, world);
+    int dims[3];
+    vrg_world_grid(world, dims);
+    /* room to upload the whole grid in one frame (the first, or after a
+     * teleport or reallocation); later only changed chunks go up */
+    s->staging_bytes = vrg_world_gpu_bytes((dims[0] - 1) / 2, dims[1]);
+    s->staging = vrg_pass_host_buffer(pass, "world staging", s->staging_bytes, &s->staging_buffer);
+    void *atlas = vrg_pass_host_buffer(pass, "atlas staging", vrg_atlas_bytes(), &s->atlas_staging);
+    if (!s->staging || !atlas)
+        return -1;
+    vrg_atlas_generate(atlas);
+    if (strcmp(vrg_param_string(pass, "traversal"), "rayquery") == 0) {
+        const vrg_device *dev = vrg_pass_device(pass);
+        if (!dev->features.ray_query || !dev->features.acceleration_structure) {
+            int line = 0;
+            vrg_param_item(pass, "traversal", vrg_param_count(pass, "traversal") - 1, &line);
+            return vrg_pass_error_at(pass, line, "traversal = rayquery needs VK_KHR_ray_query, which device '%s' lacks (use traversal = dda)",
+                                     dev->name);
+        }
+        s->accel = vrg_world_accel_create(pass, world);
+        if (!s->accel)
+            return -1;
+    }
+    return 0;
+}
+
+void vrg_scene_record(vrg_pass *pass, vrg_scene_gpu *s, VkCommandBuffer cmd)
+{
+    if (vrg_pass_frame(pass)->resources_new) {
+        /* the buffers are new and cleared: everything goes up again */
+        vrg_world_invalidate_gpu(s->world);
+        vrg_atlas_record_upload(pass, cmd, "atlas", s->atlas_staging);
+    }
+    int uploaded = 0;
+    if (vrg_world_dirty_count(s->world))
+        uploaded = vrg_world_upload(s->world, cmd, vrg_res_buffer(pass, vrg_pass_res(pass, "world")), s->staging, s->staging_buffer,
+                                    s->staging_bytes);
+    vrg_pass_stat(pass, "chunks_uploaded", uploaded);
+    if (s->accel)
+        vrg_world_accel_record(s->accel, cmd, "tlas");
+    vrg_sky_desc sky;
+    vrg_sky_default(&sky);
+    sky.time_of_day = (float)vrg_param(pass, "time_of_day");
+    sky.day_length = (float)vrg_param(pass, "day_length");
+    vrg_scene_write_frame(pass, cmd, "frame", &sky);
+}
+
+void vrg_scene_destroy(vrg_pass *pass, vrg_scene_gpu *s)
+{
+    vrg_pass_set_world(pass, NULL);
+    vrg_world_accel_destroy(s->accel);
+    vrg_world_destroy(s->world);
+    memset(s, 0, sizeof *s);
 }

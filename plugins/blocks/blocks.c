@@ -14,20 +14,10 @@
 
 static const vrg_param_desc params[] = {
     {"box", VRG_PARAM_STRING, 0, 0, 0, "x0 y0 z0 x1 y1 z1 block: a box of blocks, corners inclusive (repeat the key)", VRG_PARAM_REPEATABLE, ""},
-    {"time_of_day", VRG_PARAM_FLOAT, 10, 0, 24, "hours at the start, 12 = noon"},
-    {"day_length", VRG_PARAM_FLOAT, 0, 0, 1e6, "seconds per 24-hour cycle; 0 keeps the time of day"},
-    {"traversal", VRG_PARAM_STRING, 0, 0, 0, "dda (voxel DDA only) or rayquery (also build BLAS/TLAS for ray queries)", 0, "dda"},
+    VRG_SCENE_PARAMS,
 };
 
-static const vrg_slot_desc slots[] = {
-    {.name = "world", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_TRANSFER_DST, .size = 16,
-     .flags = VRG_SLOT_PERSISTENT, .help = "voxel world (shaders/include/world.glsl)"},
-    {.name = "frame", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_TRANSFER_DST,
-     .size = sizeof(vrg_frame_uniforms), .flags = VRG_SLOT_PERSISTENT, .help = "per-frame uniforms (shaders/include/frame.glsl)"},
-    VRG_ATLAS_SLOT,
-    {.name = "tlas", .dir = VRG_OUT, .kind = VRG_ACCEL, .access = VRG_ACCESS_AS_BUILD,
-     .help = "top-level acceleration structure of the chunks (traversal = rayquery; empty otherwise)"},
-};
+static const vrg_slot_desc slots[] = {VRG_SCENE_SLOTS};
 
 #define MAX_EXTENT 1024 /* blocks from the origin: keeps the toroidal grid small */
 
@@ -104,15 +94,7 @@ static int check(vrg_pass *pass)
     if (parse_boxes(pass, &boxes, &radius, &height) < 0)
         return -1;
     free(boxes);
-    const char *traversal = vrg_param_string(pass, "traversal");
-    if (strcmp(traversal, "dda") != 0 && strcmp(traversal, "rayquery") != 0) {
-        int line = 0;
-        vrg_param_item(pass, "traversal", vrg_param_count(pass, "traversal") - 1, &line);
-        return vrg_pass_error_at(pass, line, "traversal = '%s': expected dda or rayquery", traversal);
-    }
-    uint64_t slots = (uint64_t)(2 * radius + 1) * (2 * radius + 1) * height;
-    vrg_pass_set_buffer_size(pass, "tlas", strcmp(traversal, "rayquery") == 0 ? slots : 0);
-    return vrg_pass_set_buffer_size(pass, "world", vrg_world_gpu_bytes(radius, height));
+    return vrg_scene_check(pass, radius, height);
 }
 
 static int create(vrg_pass *pass)
@@ -122,11 +104,9 @@ static int create(vrg_pass *pass)
     int n = parse_boxes(pass, &boxes, &radius, &height);
     if (n < 0)
         return -1;
-    scene *s = calloc(1, sizeof *s);
-    vrg_pass_set_user(pass, s);
-    s->world = vrg_world_create(radius, height);
+    vrg_world *world = vrg_world_create(radius, height);
     vrg_block *chunk = malloc(VRG_CHUNK_VOXELS);
-    for (int cy = 0; cy < height; cy++)
+    for (int cy = 0; world && cy < height; cy++)
         for (int cz = -radius; cz <= radius; cz++)
             for (int cx = -radius; cx <= radius; cx++) {
                 memset(chunk, VRG_BLOCK_AIR, VRG_CHUNK_VOXELS);
@@ -149,60 +129,24 @@ static int create(vrg_pass *pass)
                     any = 1;
                 }
                 if (any)
-                    vrg_world_put_chunk(s->world, cx, cy, cz, chunk);
+                    vrg_world_put_chunk(world, cx, cy, cz, chunk);
             }
     free(chunk);
     free(boxes);
-    vrg_pass_set_world(pass, s->world);
-    /* one upload of everything on the first frame */
-    s->staging_bytes = vrg_world_gpu_bytes(radius, height);
-    s->staging = vrg_pass_host_buffer(pass, "staging", s->staging_bytes, &s->staging_buffer);
-    void *atlas = vrg_pass_host_buffer(pass, "atlas staging", vrg_atlas_bytes(), &s->atlas_staging);
-    if (!s->staging || !atlas)
-        return -1;
-    vrg_atlas_generate(atlas);
-    if (strcmp(vrg_param_string(pass, "traversal"), "rayquery") == 0) {
-        const vrg_features *f = &vrg_pass_device(pass)->features;
-        if (!f->ray_query || !f->acceleration_structure) {
-            int line = 0;
-            vrg_param_item(pass, "traversal", vrg_param_count(pass, "traversal") - 1, &line);
-            return vrg_pass_error_at(pass, line, "traversal = rayquery needs VK_KHR_ray_query, which device '%s' lacks (use traversal = dda)",
-                                     vrg_pass_device(pass)->name);
-        }
-        s->accel = vrg_world_accel_create(pass, s->world);
-        if (!s->accel)
-            return -1;
-    }
-    return 0;
+    if (!world)
+        return vrg_pass_error(pass, "out of memory for the world");
+    vrg_scene_gpu *s = calloc(1, sizeof *s);
+    vrg_pass_set_user(pass, s);
+    return vrg_scene_create(pass, s, world);
 }
 
-static void execute(vrg_pass *pass, VkCommandBuffer cmd)
-{
-    scene *s = vrg_pass_user(pass);
-    VkBuffer world = vrg_res_buffer(pass, vrg_pass_res(pass, "world"));
-    if (vrg_pass_frame(pass)->resources_new) {
-        vrg_world_invalidate_gpu(s->world);
-        vrg_atlas_record_upload(pass, cmd, "atlas", s->atlas_staging);
-    }
-    if (vrg_world_dirty_count(s->world))
-        vrg_world_upload(s->world, cmd, world, s->staging, s->staging_buffer, s->staging_bytes);
-    if (s->accel)
-        vrg_world_accel_record(s->accel, cmd, "tlas");
-    vrg_sky_desc sky;
-    vrg_sky_default(&sky);
-    sky.time_of_day = (float)vrg_param(pass, "time_of_day");
-    sky.day_length = (float)vrg_param(pass, "day_length");
-    vrg_scene_write_frame(pass, cmd, "frame", &sky);
-}
+static void execute(vrg_pass *pass, VkCommandBuffer cmd) { vrg_scene_record(pass, vrg_pass_user(pass), cmd); }
 
 static void destroy(vrg_pass *pass)
 {
-    scene *s = vrg_pass_user(pass);
-    if (!s)
-        return;
-    vrg_pass_set_world(pass, NULL);
-    vrg_world_accel_destroy(s->accel);
-    vrg_world_destroy(s->world);
+    vrg_scene_gpu *s = vrg_pass_user(pass);
+    if (s)
+        vrg_scene_destroy(pass, s);
     free(s);
 }
 

@@ -132,12 +132,7 @@ int vrg_world_accel_quads(const vrg_world_accel *a, int cx, int cy, int cz);
 uint64_t vrg_atlas_bytes(void);
 uint64_t vrg_atlas_level_offset(uint32_t level);
 void vrg_atlas_generate(uint8_t *out);
-/* Scenes: `atlas` output slot description, and the upload of every level
- * (call when vrg_pass_frame()->resources_new; staging from vrg_pass_host_buffer). */
-#define VRG_ATLAS_SLOT                                                                                              \
-    {.name = "atlas", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_TRANSFER_DST,                        \
-     .format = VK_FORMAT_R8G8B8A8_SRGB, .width = VRG_ATLAS_SIZE, .height = VRG_ATLAS_SIZE, .flags = VRG_SLOT_PERSISTENT, \
-     .help = "block textures, full mip chain (world.glsl: world_texture)", .mip_levels = VRG_MIPS_FULL}
+/* Records the upload of every level from staging (vrg_atlas_generate'd). */
 void vrg_atlas_record_upload(vrg_pass *pass, VkCommandBuffer cmd, const char *slot, VkBuffer staging);
 
 /* ---- Per-frame uniforms (std140; shaders/include/frame.glsl) ----------- */
@@ -169,6 +164,48 @@ void vrg_frame_uniforms_fill(const vrg_frame_info *frame, const vrg_sky *sky, vr
  * VRG_ACCESS_TRANSFER_DST): evaluate the sky at this frame's time and record
  * the uniforms into it. */
 void vrg_scene_write_frame(vrg_pass *pass, VkCommandBuffer cmd, const char *slot, const vrg_sky_desc *sky);
+
+/* ---- What every scene plugin shares ---------------------------------
+ * A scene declares VRG_SCENE_SLOTS among its slots and VRG_SCENE_PARAMS
+ * among its parameters, builds its vrg_world, and calls the functions
+ * below from check, create, execute and destroy (plugins/blocks/blocks.c is
+ * the shortest example). */
+#define VRG_SCENE_PARAMS                                                                                         \
+    {"time_of_day", VRG_PARAM_FLOAT, 10, 0, 24, "hours at the start, 12 = noon"},                                \
+    {"day_length", VRG_PARAM_FLOAT, 0, 0, 1e6, "seconds per 24-hour cycle; 0 keeps the time of day"},              \
+    {"traversal", VRG_PARAM_STRING, 0, 0, 0, "dda (voxel DDA only) or rayquery (also build BLAS/TLAS for ray queries)", 0, "dda"}
+
+#define VRG_SCENE_SLOTS                                                                                          \
+    {.name = "world", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_TRANSFER_DST, .size = 16,          \
+     .flags = VRG_SLOT_PERSISTENT, .help = "voxel world (shaders/include/world.glsl)"},                           \
+    {.name = "frame", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_TRANSFER_DST,                      \
+     .size = sizeof(vrg_frame_uniforms), .flags = VRG_SLOT_PERSISTENT, .help = "per-frame uniforms (shaders/include/frame.glsl)"}, \
+    {.name = "atlas", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_TRANSFER_DST,                      \
+     .format = VK_FORMAT_R8G8B8A8_SRGB, .width = VRG_ATLAS_SIZE, .height = VRG_ATLAS_SIZE, .flags = VRG_SLOT_PERSISTENT, \
+     .help = "block textures, full mip chain (world.glsl: world_atlas_uv)", .mip_levels = VRG_MIPS_FULL},          \
+    {.name = "tlas", .dir = VRG_OUT, .kind = VRG_ACCEL, .access = VRG_ACCESS_AS_BUILD,                            \
+     .help = "top-level acceleration structure of the chunks (traversal = rayquery; empty otherwise)"}
+
+typedef struct vrg_scene_gpu {
+    vrg_world *world;
+    void *staging; /* world uploads */
+    VkBuffer staging_buffer;
+    uint64_t staging_bytes;
+    VkBuffer atlas_staging;
+    vrg_world_accel *accel; /* traversal = rayquery */
+} vrg_scene_gpu;
+
+/* check(): the traversal value, and the world and TLAS sizes for a toroidal
+ * grid of grid_radius and height_chunks. */
+int vrg_scene_check(vrg_pass *pass, int grid_radius, int height_chunks);
+/* create(): takes the world; staging, the atlas, the ray-query structures if
+ * asked for; hands the world to the runtime for host queries. */
+int vrg_scene_create(vrg_pass *pass, vrg_scene_gpu *s, vrg_world *world);
+/* execute(): everything again after a reallocation, changed chunks, BLAS and
+ * TLAS, and this frame's uniforms (sun and sky from the scene parameters). */
+void vrg_scene_record(vrg_pass *pass, vrg_scene_gpu *s, VkCommandBuffer cmd);
+/* destroy(): frees the world too. */
+void vrg_scene_destroy(vrg_pass *pass, vrg_scene_gpu *s);
 
 static inline int vrg_floor_div16(int v) { return v >= 0 ? v / 16 : -((15 - v) / 16); }
 static inline int vrg_chunk_index(int lx, int ly, int lz) { return lx + VRG_CHUNK_SIZE * (lz + VRG_CHUNK_SIZE * ly); }
