@@ -371,7 +371,7 @@ static int cmd_render(int argc, char **argv)
     return finish(ctx, g, rc);
 }
 
-static const char *kind_name(vrg_resource_kind k) { return k == VRG_IMAGE ? "image" : "buffer"; }
+static const char *kind_name(vrg_resource_kind k) { return k == VRG_IMAGE ? "image" : k == VRG_BUFFER ? "buffer" : "accel"; }
 
 static int cmd_plugins(int argc, char **argv)
 {
@@ -399,7 +399,9 @@ static int cmd_plugins(int argc, char **argv)
         for (uint32_t s = 0; s < d->slot_count; s++) {
             const vrg_slot_desc *sd = &d->slots[s];
             char size[64] = "";
-            if (sd->kind == VRG_BUFFER)
+            if (sd->kind == VRG_ACCEL)
+                snprintf(size, sizeof size, "instances set by the plugin");
+            else if (sd->kind == VRG_BUFFER)
                 snprintf(size, sizeof size, "%llu bytes", (unsigned long long)sd->size);
             else if (sd->width)
                 snprintf(size, sizeof size, "%ux%u", sd->width, sd->height);
@@ -416,11 +418,17 @@ static int cmd_plugins(int argc, char **argv)
         printf("parameters:%s\n", d->param_count ? "" : " none");
         for (uint32_t p = 0; p < d->param_count; p++) {
             const vrg_param_desc *pd = &d->params[p];
-            const char *t = pd->type == VRG_PARAM_INT ? "int" : pd->type == VRG_PARAM_BOOL ? "bool" : "float";
-            char range[64] = "";
-            if (pd->min != 0 || pd->max != 0)
+            const char *t = pd->type == VRG_PARAM_INT ? "int" : pd->type == VRG_PARAM_BOOL ? "bool" : pd->type == VRG_PARAM_STRING ? "text" : "float";
+            char range[64] = "", def[64];
+            if (pd->type == VRG_PARAM_STRING)
+                snprintf(def, sizeof def, "'%s'", pd->default_string ? pd->default_string : "");
+            else
+                snprintf(def, sizeof def, "%g", pd->default_value);
+            if (pd->flags & VRG_PARAM_REPEATABLE)
+                snprintf(range, sizeof range, "(repeatable)");
+            else if (pd->type != VRG_PARAM_STRING && (pd->min != 0 || pd->max != 0))
                 snprintf(range, sizeof range, "[%g, %g]", pd->min, pd->max);
-            printf("  %-16s %-5s default %-8g %-16s %s\n", pd->name, t, pd->default_value, range, pd->help ? pd->help : "");
+            printf("  %-16s %-5s default %-8s %-16s %s\n", pd->name, t, def, range, pd->help ? pd->help : "");
         }
     }
     if (want && !found) {

@@ -125,7 +125,7 @@ int vrg_pass_barriers(vrg_graph *g, vrg_pass *p, vrg_barrier_rec *out, int max)
     int n = 0;
     for (int s = 0; s < (int)p->plugin->desc->slot_count && n < max; s++) {
         const vrg_binding_ref *b = &p->slots[s];
-        if (b->res < 0)
+        if (b->res < 0 || (g->res[b->res].kind == VRG_ACCEL && !g->res[b->res].size)) /* an empty TLAS: nothing to order */
             continue;
         int copy = vrg_copy_of(g, b->res, b->prev);
         if (barrier_for(g, b->res, copy, vrg_slot(p, s)->access, &out[n]))

@@ -86,6 +86,11 @@ static int check_desc(const vrg_plugin *p, vrg_diag *d, int line)
         vrg_error_at(d, line, NULL, "plugin '%s' (%s): %s", p->name, p->path, why);
         return -1;
     }
+    for (uint32_t i = 0; i < desc->param_count; i++)
+        if ((desc->params[i].flags & VRG_PARAM_REPEATABLE) && desc->params[i].type != VRG_PARAM_STRING) {
+            vrg_error_at(d, line, NULL, "plugin '%s' (%s): parameter '%s' is repeatable but not a string", p->name, p->path, desc->params[i].name);
+            return -1;
+        }
     for (uint32_t i = 0; i < desc->slot_count; i++) {
         const vrg_slot_desc *s = &desc->slots[i];
         if (!s->name || (s->dir != VRG_IN && s->dir != VRG_OUT) || s->kind < VRG_IMAGE || s->kind > VRG_ACCEL ||

@@ -123,6 +123,7 @@ int vrg_record_frame(vrg_graph *g)
         int n = vrg_pass_barriers(g, p, b, VRG_MAX_SLOTS);
         vrg_emit_barriers(g, cmd, b, n);
         p->failed = 0;
+        p->stat_count = 0; /* figures are this frame's */
         p->cmd = cmd;
         p->plugin->desc->execute(p, cmd);
         p->cmd = VK_NULL_HANDLE;

@@ -151,6 +151,8 @@ void vrg_graph_report(const vrg_graph *g, FILE *f)
         char what[64], mem[96], sz[32];
         if (r->kind == VRG_IMAGE)
             snprintf(what, sizeof what, "image %-8s %ux%u", vrg_format_name(r->format), r->width, r->height);
+        else if (r->kind == VRG_ACCEL)
+            snprintf(what, sizeof what, r->size ? "accel, %llu instances" : "accel, not built", (unsigned long long)r->size);
         else
             snprintf(what, sizeof what, "buffer %llu B", (unsigned long long)r->size);
         human(sz, sizeof sz, r->req.size);

@@ -16,7 +16,7 @@ static void ray_basis(const vrg_camera *c, float aspect, float right[4], float u
 {
     /* the conventions and clamps of voxrg/camera.h */
     const float deg = (float)M_PI / 180.0f;
-    float fov = !(c->fov_y >= 1) ? 1 : c->fov_y > 179 ? 179 : c->fov_y;
+    float fov = isnan(c->fov_y) ? 70 : c->fov_y < 1 ? 1 : c->fov_y > 179 ? 179 : c->fov_y; /* camera.c's rule */
     float yaw = c->yaw * deg, t = tanf(fov * deg / 2);
     vrg_camera_forward(c, forward);
     float r[3] = {cosf(yaw), 0, -sinf(yaw)};

@@ -33,7 +33,8 @@ static int parse_double(const char *s, double *out)
 static int parse_int(const char *s, long *out)
 {
     double v;
-    if (parse_double(s, &v) != 0 || v != floor(v) || fabs(v) > 2147483647.0)
+    /* up to 2^32 - 1: seeds and masks are unsigned 32-bit */
+    if (parse_double(s, &v) != 0 || v != floor(v) || v < -2147483648.0 || v > 4294967295.0)
         return -1;
     *out = (long)v;
     return 0;

@@ -26,15 +26,6 @@ typedef struct box {
     vrg_block block;
 } box;
 
-typedef struct scene {
-    vrg_world *world;
-    void *staging;
-    VkBuffer staging_buffer;
-    VkBuffer atlas_staging;
-    vrg_world_accel *accel; /* traversal = rayquery */
-    uint64_t staging_bytes;
-} scene;
-
 /* Parses every box; reports each bad one at its line. Returns the count or -1. */
 static int parse_boxes(vrg_pass *pass, box **out, int *radius, int *height)
 {

@@ -225,7 +225,7 @@ int vrg_pass_set_buffer_size(vrg_pass *pass, const char *slot, uint64_t bytes);
  * as a transfer source. Host writes before the frame's submission are
  * visible to it. */
 void *vrg_pass_host_buffer(vrg_pass *pass, const char *name, uint64_t bytes, VkBuffer *buffer);
-/* In create(): a buffer kept for the pass's lifetime and owned by the
+/* In create() or execute(): a buffer kept for the pass's lifetime and owned by the
  * runtime (freed with the pass, or earlier with vrg_pass_free_buffer).
  * Returns the mapping when host_visible (else a non-NULL token); *address
  * gets the device address when usage has SHADER_DEVICE_ADDRESS. NULL after
@@ -285,8 +285,9 @@ typedef struct vrg_dispatch_desc {
     /* GLSL compute shader. Relative paths are searched in the plugin's
      * shader_dir, then $VOXRG_SHADER_PATH, then the source tree's shaders/. */
     const char *shader;
-    /* Set 0, binding i = bindings[i]. When none are given, every connected
-     * slot of the pass is bound in declaration order. */
+    /* Set 0, binding i = bindings[i]. When none are given, every slot of
+     * the pass is bound in declaration order (unconnected optional inputs
+     * through their 1x1 stand-ins). */
     vrg_binding bindings[VRG_MAX_BINDINGS];
     const void *push; /* push constants, at most 128 bytes */
     uint32_t push_size;

@@ -38,7 +38,7 @@ enum vrg_block_id {
 };
 
 enum vrg_material_flags {
-    VRG_MATERIAL_OPAQUE = 1u << 0, /* blocks rays; water and leaves are solid but not opaque */
+    VRG_MATERIAL_OPAQUE = 1u << 0, /* not see-through (water is solid to traversal but not opaque) */
 };
 
 typedef struct vrg_material {
