@@ -8,6 +8,7 @@
 
 typedef struct vrg_pipeline {
     char path[1024];
+    char defines[256];
     VkDescriptorType types[VRG_MAX_BINDINGS];
     uint32_t count;
     uint32_t local[3];
@@ -26,26 +27,29 @@ static VkDescriptorType descriptor_type(vrg_resource_kind kind, vrg_access a)
     return a == VRG_ACCESS_SAMPLED ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 }
 
-static vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const VkDescriptorType *types, uint32_t count)
+static vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *defines, const VkDescriptorType *types, uint32_t count)
 {
+    if (!defines)
+        defines = "";
     char path[1024];
     if (vrg_shader_resolve(p, shader, path, sizeof path) != 0) {
         vrg_pass_error(p, "shader '%s' not found (searched the plugin's folder, $VOXRG_SHADER_PATH, shaders/)", shader);
         return NULL;
     }
     for (vrg_pipeline *pl = p->pipelines; pl; pl = pl->next)
-        if (strcmp(pl->path, path) == 0 && pl->count == count && memcmp(pl->types, types, count * sizeof *types) == 0)
+        if (strcmp(pl->path, path) == 0 && strcmp(pl->defines, defines) == 0 && pl->count == count && memcmp(pl->types, types, count * sizeof *types) == 0)
             return pl;
     vrg_context *ctx = p->graph->ctx;
     VkDevice dev = ctx->dev.device;
     vrg_shader_module sm;
     FILE *diag = p->graph->diag.out ? p->graph->diag.out : stderr;
-    if (vrg_shader_compile(ctx, path, &sm, diag) != 0) {
+    if (vrg_shader_compile(ctx, path, defines, &sm, diag) != 0) {
         vrg_pass_error(p, "shader %s failed to compile", path);
         return NULL;
     }
     vrg_pipeline *pl = calloc(1, sizeof *pl);
     snprintf(pl->path, sizeof pl->path, "%s", path);
+    snprintf(pl->defines, sizeof pl->defines, "%s", defines);
     memcpy(pl->types, types, count * sizeof *types);
     memcpy(pl->local, sm.local_size, sizeof pl->local);
     pl->count = count;
@@ -112,7 +116,8 @@ static int resolve_bindings(vrg_pass *p, const vrg_dispatch_desc *d, bound *out)
     int n = 0;
     if (!d->bindings[0].res) {
         for (uint32_t s = 0; s < pd->slot_count && n < VRG_MAX_BINDINGS; s++)
-            out[n++] = (bound){p->slots[s].res, p->slots[s].prev, pd->slots[s].access};
+            if (p->slots[s].res >= 0) /* only unconnected optional acceleration structures; declare them last */
+                out[n++] = (bound){p->slots[s].res, p->slots[s].prev, pd->slots[s].access};
         return n;
     }
     for (; n < VRG_MAX_BINDINGS && d->bindings[n].res; n++) {
@@ -146,7 +151,7 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
     }
     if (d->push_size > 128)
         return vrg_pass_error(p, "push constants of %u bytes (at most 128)", d->push_size);
-    vrg_pipeline *pl = get_pipeline(p, d->shader, types, (uint32_t)n);
+    vrg_pipeline *pl = get_pipeline(p, d->shader, d->defines, types, (uint32_t)n);
     if (!pl)
         return -1;
 

@@ -297,7 +297,7 @@ typedef struct vrg_shader_module {
     VkShaderModule module;
     uint32_t local_size[3];
 } vrg_shader_module;
-int vrg_shader_compile(vrg_context *ctx, const char *path, vrg_shader_module *out, FILE *diag);
+int vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, vrg_shader_module *out, FILE *diag);
 int vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t cap);
 void vrg_pipelines_destroy(vrg_pass *p);
 /* report.c */

@@ -72,6 +72,7 @@ int vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t ca
  * here, with #line directives (GL_GOOGLE_cpp_style_line_directive) so that
  * errors name the right file and line. Each file is included once. */
 typedef struct expand_ctx {
+    const char *defines; /* "A=1 B" : #define lines after #version */
     char *out;
     size_t len, cap;
     char seen[32][1024];
@@ -174,8 +175,26 @@ static void expand(expand_ctx *e, const char *path, const char *text, int depth)
             emit(e, "\n", 1);
             /* #line "file" (from includes) needs this extension, which may
              * only come after #version; #line keeps the numbering. */
-            if (depth == 0 && (size_t)(p + n - s) > 8 && strncmp(s, "#version", 8) == 0)
-                emitf(e, "#extension GL_GOOGLE_cpp_style_line_directive : enable\n#line %d \"%s\"\n", path, line + 1);
+            if (depth == 0 && (size_t)(p + n - s) > 8 && strncmp(s, "#version", 8) == 0) {
+                static const char ext[] = "#extension GL_GOOGLE_cpp_style_line_directive : enable\n";
+                emit(e, ext, sizeof ext - 1);
+                /* the pass's defines: NAME or NAME=VALUE, separated by spaces or ';' */
+                for (const char *d = e->defines; d && *d;) {
+                    while (*d == ' ' || *d == ';')
+                        d++;
+                    size_t len = strcspn(d, " ;");
+                    if (len) {
+                        char def[256];
+                        snprintf(def, sizeof def, "#define %.*s\n", (int)(len < 200 ? len : 200), d);
+                        char *eq = strchr(def, '=');
+                        if (eq)
+                            *eq = ' ';
+                        emit(e, def, strlen(def));
+                    }
+                    d += len;
+                }
+                emitf(e, "#line %d \"%s\"\n", path, line + 1);
+            }
         }
         p = end ? end + 1 : p + n;
     }
@@ -224,7 +243,7 @@ static void local_size_of(const uint32_t *spv, size_t words, uint32_t out[3])
     }
 }
 
-int vrg_shader_compile(vrg_context *ctx, const char *path, vrg_shader_module *out, FILE *diag)
+int vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, vrg_shader_module *out, FILE *diag)
 {
     pthread_once(&glslang_once, glslang_init);
     size_t len;
@@ -233,7 +252,7 @@ int vrg_shader_compile(vrg_context *ctx, const char *path, vrg_shader_module *ou
         fprintf(diag, "%s: error: cannot read shader\n", path);
         return -1;
     }
-    expand_ctx e = {.diag = diag};
+    expand_ctx e = {.diag = diag, .defines = defines};
     expand(&e, path, src, 0);
     free(src);
     src = e.out;

@@ -629,6 +629,8 @@ static void resolve_resources(vrg_graph *g)
                 continue;
             if (b->bad && b->res < 0)
                 continue; /* its error is already reported */
+            if (b->res < 0 && (sd->flags & VRG_SLOT_OPTIONAL) && sd->kind == VRG_ACCEL)
+                continue; /* no stand-in can exist: shaders compile without it (vrg_res_connected) */
             if (b->res < 0 && (sd->flags & VRG_SLOT_OPTIONAL)) {
                 /* Shaders still declare the binding: give them a 1x1 stand-in. */
                 char name[2 * VRG_NAME_MAX + 16];

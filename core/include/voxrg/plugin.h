@@ -289,6 +289,9 @@ typedef struct vrg_dispatch_desc {
      * the pass is bound in declaration order (unconnected optional inputs
      * through their 1x1 stand-ins). */
     vrg_binding bindings[VRG_MAX_BINDINGS];
+    /* Preprocessor definitions for this variant, "NAME" or "NAME=VALUE",
+     * separated by spaces or ';' (each set is its own cached pipeline). */
+    const char *defines;
     const void *push; /* push constants, at most 128 bytes */
     uint32_t push_size;
     /* Dispatch domain: this resource's extent (default: the first image
