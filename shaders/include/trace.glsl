@@ -1,6 +1,11 @@
-// Ray traversal of the voxel world: a two-level DDA (Amanatides & Woo) that
-// steps over 8^3 bricks using the chunk's brick mask, and over voxels only
-// inside bricks that hold something. Include world.glsl first.
+// Ray traversal of the voxel world, one interface for every pass:
+//   Hit trace_closest(origin, unit direction, tmax)   closest hit
+//   bool trace_any(origin, unit direction, tmax)      occlusion
+// Backend 1 (default): a two-level DDA (Amanatides & Woo) that steps over 8^3
+// bricks using the chunk's brick mask, and over voxels only inside bricks
+// that hold something. Backend 2 (#define TRACE_RAYQUERY, TLAS_BINDING):
+// VK_KHR_ray_query against the scene's per-chunk BLASes. Include world.glsl
+// first.
 #ifndef VOXRG_TRACE_GLSL
 #define VOXRG_TRACE_GLSL
 
@@ -10,7 +15,7 @@ struct Hit {
     ivec3 voxel;    // the block hit
     ivec3 normal;   // face normal (zero if the ray started inside a block)
     uint block;     // block id
-    int chunk;      // slot base of its chunk (an object id)
+    int chunk;      // the world slot of its chunk (an object id, the same in both backends)
 };
 
 int trace_min_axis(vec3 v) { return v.x < v.y ? (v.x < v.z ? 0 : 2) : (v.y < v.z ? 1 : 2); }
@@ -33,7 +38,7 @@ bool trace_brick(vec3 o, vec3 d, vec3 inv, ivec3 stp, int base, ivec3 brick, flo
             h.voxel = v;
             h.normal = n;
             h.block = world_block_local(base, v - chunk_origin);
-            h.chunk = base;
+            h.chunk = int((uint(base) - WORLD_SLOTS) / WORLD_SLOT_UINTS);
             return true;
         }
         int a = trace_min_axis(tnext);
@@ -48,6 +53,50 @@ bool trace_brick(vec3 o, vec3 d, vec3 inv, ivec3 stp, int base, ivec3 brick, flo
     return false;
 }
 
+#ifdef TRACE_RAYQUERY
+layout(binding = TLAS_BINDING) uniform accelerationStructureEXT trace_tlas;
+
+// The face a ray hit: the axis whose block boundary the hit point lies on
+// (the BLAS holds no per-face data), facing against the ray.
+Hit trace_closest(vec3 o, vec3 d, float tmax)
+{
+    Hit h;
+    h.hit = false;
+    h.t = tmax;
+    h.voxel = ivec3(0);
+    h.normal = ivec3(0);
+    h.block = 0u;
+    h.chunk = -1;
+    rayQueryEXT q;
+    rayQueryInitializeEXT(q, trace_tlas, gl_RayFlagsOpaqueEXT, 0xff, o, 0.0, d, tmax);
+    while (rayQueryProceedEXT(q)) {
+    }
+    if (rayQueryGetIntersectionTypeEXT(q, true) != gl_RayQueryCommittedIntersectionTriangleEXT)
+        return h;
+    float t = rayQueryGetIntersectionTEXT(q, true);
+    vec3 p = o + d * t;
+    vec3 off = abs(p - round(p));
+    int a = off.x < off.y ? (off.x < off.z ? 0 : 2) : (off.y < off.z ? 1 : 2);
+    ivec3 n = ivec3(0);
+    n[a] = d[a] > 0.0 ? -1 : 1;
+    h.hit = true;
+    h.t = t;
+    h.normal = n;
+    h.voxel = ivec3(floor(p - vec3(n) * 0.5));
+    h.block = world_block(h.voxel);
+    h.chunk = rayQueryGetIntersectionInstanceCustomIndexEXT(q, true);
+    return h;
+}
+
+bool trace_any(vec3 o, vec3 d, float tmax)
+{
+    rayQueryEXT q;
+    rayQueryInitializeEXT(q, trace_tlas, gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT, 0xff, o, 0.0, d, tmax);
+    while (rayQueryProceedEXT(q)) {
+    }
+    return rayQueryGetIntersectionTypeEXT(q, true) == gl_RayQueryCommittedIntersectionTriangleEXT;
+}
+#else
 // Closest hit along unit direction d from o, up to tmax.
 Hit trace_closest(vec3 o, vec3 d, float tmax)
 {
@@ -96,4 +145,5 @@ Hit trace_closest(vec3 o, vec3 d, float tmax)
 
 // Anything between o and o + d * tmax?
 bool trace_any(vec3 o, vec3 d, float tmax) { return trace_closest(o, d, tmax).hit; }
+#endif
 #endif

@@ -3,6 +3,10 @@
 // `world` slot (a storage buffer).
 #ifndef VOXRG_WORLD_GLSL
 #define VOXRG_WORLD_GLSL
+#ifdef TRACE_RAYQUERY
+// extensions come before any declaration (trace.glsl's ray-query backend)
+#extension GL_EXT_ray_query : require
+#endif
 
 layout(std430, binding = WORLD_BINDING) readonly buffer WorldBuffer { uint world_data[]; };
 

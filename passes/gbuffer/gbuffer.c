@@ -1,0 +1,64 @@
+/* G-buffer: one primary ray per pixel through the world (DDA, or ray
+ * queries when the scene built a TLAS), writing what the lighting passes and
+ * the denoiser need. On a miss: sky radiance in albedo, zero normal, w = 0
+ * in position, ids 0. */
+#include <stdio.h>
+#include "voxrg/plugin.h"
+
+static const vrg_param_desc params[] = {
+    {"max_distance", VRG_PARAM_FLOAT, 1024, 1, 16384, "primary ray length, blocks"},
+    {"textures", VRG_PARAM_BOOL, 1, 0, 1, "sample the block atlas (mip from the pixel footprint) instead of mean albedos"},
+};
+
+static const vrg_slot_desc slots[] = {
+    {.name = "world", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_STORAGE_READ, .help = "the scene's world"},
+    {.name = "frame", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_UNIFORM, .help = "the scene's per-frame uniforms"},
+    {.name = "atlas", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .flags = VRG_SLOT_OPTIONAL,
+     .help = "block textures (else mean albedos)"},
+    {.name = "position", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R32G32B32A32_SFLOAT,
+     .help = "world position of the hit; w = 1 on a hit, 0 on sky"},
+    {.name = "depth", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R32_SFLOAT,
+     .help = "linear view depth (blocks along the view axis); 0 on sky"},
+    {.name = "normal", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
+     .help = "face normal (an axis unit vector); 0 on sky"},
+    {.name = "albedo", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
+     .help = "surface albedo; sky radiance on a miss"},
+    {.name = "ids", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R32G32_UINT,
+     .help = "block id, chunk (object) id + 1; 0 0 on sky"},
+    {.name = "motion", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16_SFLOAT,
+     .help = "pixels from where the surface was last frame to where it is now"},
+    {.name = "tlas", .dir = VRG_IN, .kind = VRG_ACCEL, .access = VRG_ACCESS_RAY_QUERY, .flags = VRG_SLOT_OPTIONAL,
+     .help = "the scene's TLAS: trace with ray queries (traversal = rayquery)"},
+};
+
+static void execute(vrg_pass *pass, VkCommandBuffer cmd)
+{
+    struct {
+        float max_distance;
+        int32_t textured;
+    } pc = {(float)vrg_param(pass, "max_distance"), vrg_param_int(pass, "textures") && vrg_res_connected(vrg_pass_res(pass, "atlas"))};
+    int rayquery = vrg_res_accel(pass, vrg_pass_res(pass, "tlas")) != VK_NULL_HANDLE;
+    vrg_dispatch_desc d = {
+        .shader = "gbuffer.comp",
+        .defines = rayquery ? "TRACE_RAYQUERY TLAS_BINDING=9" : "",
+        .bindings = {{"world"}, {"frame"}, {"atlas"}, {"position"}, {"depth"}, {"normal"}, {"albedo"}, {"ids"}, {"motion"}, {rayquery ? "tlas" : NULL}},
+        .push = &pc,
+        .push_size = sizeof pc,
+    };
+    (void)vrg_dispatch(pass, cmd, &d);
+}
+
+static const vrg_plugin_desc desc = {
+    .abi_version = VRG_ABI_VERSION,
+    .name = "gbuffer",
+    .kind = VRG_PLUGIN_PASS,
+    .help = "primary rays: position, depth, normal, albedo (textured), ids, motion vectors; sky on a miss",
+    .shader_dir = VRG_PLUGIN_DIR,
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .slots = slots,
+    .slot_count = sizeof slots / sizeof slots[0],
+    .execute = execute,
+};
+
+VRG_PLUGIN(desc)

@@ -1,0 +1,61 @@
+#version 460
+#define WORLD_BINDING 0
+#define FRAME_BINDING 1
+#include "world.glsl"
+#include "frame.glsl"
+#include "trace.glsl"
+#include "tiles.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 2) uniform sampler2D atlas;
+layout(binding = 3, rgba32f) uniform writeonly image2D out_position;
+layout(binding = 4, r32f) uniform writeonly image2D out_depth;
+layout(binding = 5, rgba16f) uniform writeonly image2D out_normal;
+layout(binding = 6, rgba16f) uniform writeonly image2D out_albedo;
+layout(binding = 7, rg32ui) uniform writeonly uimage2D out_ids;
+layout(binding = 8, rg16f) uniform writeonly image2D out_motion;
+layout(push_constant) uniform Params {
+    float max_distance;
+    int textured;
+} params;
+
+// Where a world point (w = 1) or direction (w = 0) was on screen last frame, in pixels.
+vec2 previous_pixel(vec4 p, vec2 size)
+{
+    vec4 clip = frame.prev_view_proj * p;
+    return (clip.xy / clip.w * 0.5 + 0.5) * size - 0.5;
+}
+
+void main()
+{
+    ivec2 size = imageSize(out_albedo);
+    ivec2 p = tile_pixel();
+    if (any(greaterThanEqual(p, size)))
+        return;
+    vec3 o = frame.camera_pos.xyz;
+    vec3 d = frame_ray_dir(vec2(p), vec2(size));
+    Hit h = trace_closest(o, d, params.max_distance);
+    if (!h.hit) {
+        imageStore(out_position, p, vec4(0.0));
+        imageStore(out_depth, p, vec4(0.0));
+        imageStore(out_normal, p, vec4(0.0));
+        imageStore(out_albedo, p, vec4(frame_sky(d), 1.0));
+        imageStore(out_ids, p, uvec4(0u));
+        imageStore(out_motion, p, vec4(vec2(p) - previous_pixel(vec4(d, 0.0), vec2(size)), 0.0, 0.0));
+        return;
+    }
+    vec3 hp = o + d * h.t;
+    vec3 n = vec3(h.normal);
+    vec3 albedo = material_albedo(h.block);
+    if (params.textured != 0) {
+        float pixel_angle = 2.0 * length(frame.camera_up.xyz) / float(size.y);
+        float lod = world_texture_lod(h.t, pixel_angle, abs(dot(n, d)));
+        albedo = textureLod(atlas, world_atlas_uv(h.block, h.normal, world_face_uv(hp, h.normal)), lod).rgb;
+    }
+    imageStore(out_position, p, vec4(hp, 1.0));
+    imageStore(out_depth, p, vec4(h.t * dot(d, frame.camera_forward.xyz)));
+    imageStore(out_normal, p, vec4(n, 0.0));
+    imageStore(out_albedo, p, vec4(albedo, 1.0));
+    imageStore(out_ids, p, uvec4(h.block, uint(h.chunk) + 1u, 0u, 0u));
+    imageStore(out_motion, p, vec4(vec2(p) - previous_pixel(vec4(hp, 1.0), vec2(size)), 0.0, 0.0));
+}
