@@ -4,7 +4,6 @@
 #include "world.glsl"
 #include "frame.glsl"
 #include "trace.glsl"
-#include "tiles.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 2) uniform sampler2D atlas;
@@ -29,7 +28,7 @@ vec2 previous_pixel(vec4 p, vec2 size)
 void main()
 {
     ivec2 size = imageSize(out_albedo);
-    ivec2 p = tile_pixel();
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, size)))
         return;
     vec3 o = frame.camera_pos.xyz;

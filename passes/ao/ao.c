@@ -1,0 +1,59 @@
+/* Ambient occlusion: `rays` cosine-weighted rays per pixel in the hemisphere
+ * around the face normal, each of length `radius` blocks, traced through the
+ * world (DDA, or ray queries when the scene built a TLAS).
+ *   ao = (rays that travel `radius` without a hit) / rays, in [0, 1]
+ * With cosine-weighted directions (pdf cos/pi) this estimates the
+ * cosine-weighted ambient visibility (1/pi) * integral of V(w) cos(w) dw over
+ * the hemisphere: 1 on an open floor. Sky pixels (position.w == 0): 1, no
+ * rays. Rays start at position + normal * 1e-3. */
+#include "voxrg/plugin.h"
+
+static const vrg_param_desc params[] = {
+    {"rays", VRG_PARAM_INT, 4, 1, 64, "AO rays per pixel"},
+    {"radius", VRG_PARAM_FLOAT, 4, 0.01, 1024, "AO ray length, blocks"},
+};
+
+static const vrg_slot_desc slots[] = {
+    {.name = "world", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_STORAGE_READ, .help = "the scene's world"},
+    {.name = "frame", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_UNIFORM, .help = "the scene's per-frame uniforms"},
+    {.name = "position", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_READ, .format = VK_FORMAT_R32G32B32A32_SFLOAT,
+     .help = "gbuffer position: world hit point, w = 1 on a hit, 0 on sky"},
+    {.name = "normal", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_READ, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
+     .help = "gbuffer normal: the face normal"},
+    {.name = "ao", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16_SFLOAT,
+     .help = "ambient visibility, [0,1]; 1 on sky"},
+    {.name = "tlas", .dir = VRG_IN, .kind = VRG_ACCEL, .access = VRG_ACCESS_RAY_QUERY, .flags = VRG_SLOT_OPTIONAL,
+     .help = "the scene's TLAS: trace with ray queries (traversal = rayquery)"},
+};
+
+static void execute(vrg_pass *pass, VkCommandBuffer cmd)
+{
+    struct {
+        int32_t rays;
+        float radius;
+    } pc = {vrg_param_int(pass, "rays"), (float)vrg_param(pass, "radius")};
+    int rayquery = vrg_res_accel(pass, vrg_pass_res(pass, "tlas")) != VK_NULL_HANDLE;
+    vrg_dispatch_desc d = {
+        .shader = "ao.comp",
+        .defines = rayquery ? "TRACE_RAYQUERY TLAS_BINDING=5" : "",
+        .bindings = {{"world"}, {"frame"}, {"position"}, {"normal"}, {"ao"}, {rayquery ? "tlas" : NULL}},
+        .push = &pc,
+        .push_size = sizeof pc,
+    };
+    (void)vrg_dispatch(pass, cmd, &d);
+}
+
+static const vrg_plugin_desc desc = {
+    .abi_version = VRG_ABI_VERSION,
+    .name = "ao",
+    .kind = VRG_PLUGIN_PASS,
+    .help = "ambient occlusion: fraction of cosine-weighted hemisphere rays that travel `radius` blocks unoccluded",
+    .shader_dir = VRG_PLUGIN_DIR,
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .slots = slots,
+    .slot_count = sizeof slots / sizeof slots[0],
+    .execute = execute,
+};
+
+VRG_PLUGIN(desc)

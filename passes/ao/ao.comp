@@ -1,0 +1,43 @@
+#version 460
+// Ambient occlusion (see ao.c): the fraction of `rays` cosine-weighted
+// hemisphere rays that travel `radius` blocks without a hit.
+#define WORLD_BINDING 0
+#define FRAME_BINDING 1
+#include "world.glsl"
+#include "frame.glsl"
+#include "trace.glsl"
+#include "random.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 2, rgba32f) uniform readonly image2D in_position;
+layout(binding = 3, rgba16f) uniform readonly image2D in_normal;
+layout(binding = 4, r16f) uniform writeonly image2D out_ao;
+layout(push_constant) uniform Params {
+    int rays;
+    float radius;
+} params;
+
+const uint SALT = 0x414f0002u;  // this pass's random stream
+
+void main()
+{
+    ivec2 size = imageSize(out_ao);
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, size)))
+        return;
+    vec4 pos = imageLoad(in_position, p);
+    if (pos.w == 0.0) {
+        imageStore(out_ao, p, vec4(1.0));
+        return;
+    }
+    vec3 n = imageLoad(in_normal, p).xyz;
+    vec3 o = pos.xyz + n * 1e-3;
+    Rng r = rng_init(uvec2(p), frame.frame_info.x, frame.frame_info.w, SALT);
+    int open = 0;
+    for (int i = 0; i < params.rays; i++) {
+        float u1 = rng_next(r), u2 = rng_next(r);
+        if (!trace_any(o, sample_cosine(n, u1, u2), params.radius))
+            open++;
+    }
+    imageStore(out_ao, p, vec4(float(open) / float(params.rays)));
+}

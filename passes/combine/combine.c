@@ -1,0 +1,84 @@
+/* combine: the albedo-demodulated illumination L that the denoiser filters
+ * and modulate multiplies by albedo (final radiance = albedo x L), from sun
+ * visibility, ambient occlusion and one-bounce indirect light. Two formulas
+ * (docs/lighting.md):
+ *   physical (default, Lambertian, in the units of voxrg/camera.h):
+ *     L = direct_scale * sun_radiance * max(N.L, 0) * V
+ *       + indirect_scale * indirect                      (indirect connected)
+ *       | ambient * AO                                   (else: sky stand-in)
+ *   thesis: colour = (2 L_I + L_D / pi) * A with AO multiplied into direct:
+ *     L = 2 * indirect_scale * (indirect | ambient * AO)
+ *       + direct_scale * sun_radiance * max(N.L, 0) * V * AO / pi
+ * AO strength: AO' = 1 - ao_scale * (1 - AO). Sky pixels (normal 0): L = 1,
+ * so modulate passes the sky radiance the G-buffer keeps in albedo. */
+#include <string.h>
+#include "voxrg/plugin.h"
+
+static const vrg_param_desc params[] = {
+    {"mode", VRG_PARAM_STRING, 0, 0, 0, "physical (Lambertian, default) or thesis ((2 L_I + L_D/pi) A, AO on direct)", 0, "physical"},
+    {"direct_scale", VRG_PARAM_FLOAT, 1, 0, 1000, "multiplies the sun term"},
+    {"indirect_scale", VRG_PARAM_FLOAT, 1, 0, 1000, "multiplies the indirect term (or its ambient stand-in)"},
+    {"ao_scale", VRG_PARAM_FLOAT, 1, 0, 1, "AO strength: AO' = 1 - ao_scale (1 - AO); 0 ignores AO"},
+};
+
+static const vrg_slot_desc slots[] = {
+    {.name = "normal", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "G-buffer normal; 0 on sky"},
+    {.name = "frame", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_UNIFORM, .help = "the scene's per-frame uniforms (sun, ambient)"},
+    {.name = "visibility", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .flags = VRG_SLOT_OPTIONAL,
+     .help = "sun visibility in [0, 1] (sun_shadow); unconnected: 1, no shadows"},
+    {.name = "ao", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .flags = VRG_SLOT_OPTIONAL,
+     .help = "ambient visibility in [0, 1] (ao); unconnected: 1"},
+    {.name = "indirect", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .flags = VRG_SLOT_OPTIONAL,
+     .help = "one-bounce irradiance / pi (indirect); unconnected: ambient * AO stands in"},
+    {.name = "illumination", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE,
+     .format = VK_FORMAT_R16G16B16A16_SFLOAT, .help = "albedo-demodulated illumination L (radiance = albedo x L); 1 on sky"},
+};
+
+static int mode_of(const char *s)
+{
+    return strcmp(s, "physical") == 0 ? 0 : strcmp(s, "thesis") == 0 ? 1 : -1;
+}
+
+static int check(vrg_pass *pass)
+{
+    const char *mode = vrg_param_string(pass, "mode");
+    if (mode_of(mode) < 0) {
+        int line = 0;
+        vrg_param_item(pass, "mode", vrg_param_count(pass, "mode") - 1, &line);
+        return vrg_pass_error_at(pass, line, "mode = '%s': expected physical or thesis", mode);
+    }
+    return 0;
+}
+
+static void execute(vrg_pass *pass, VkCommandBuffer cmd)
+{
+    struct {
+        float direct_scale, indirect_scale, ao_scale;
+        int32_t mode, has_visibility, has_ao, has_indirect;
+    } pc = {
+        (float)vrg_param(pass, "direct_scale"),
+        (float)vrg_param(pass, "indirect_scale"),
+        (float)vrg_param(pass, "ao_scale"),
+        mode_of(vrg_param_string(pass, "mode")),
+        vrg_res_connected(vrg_pass_res(pass, "visibility")),
+        vrg_res_connected(vrg_pass_res(pass, "ao")),
+        vrg_res_connected(vrg_pass_res(pass, "indirect")),
+    };
+    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "combine.comp", .push = &pc, .push_size = sizeof pc});
+}
+
+static const vrg_plugin_desc desc = {
+    .abi_version = VRG_ABI_VERSION,
+    .name = "combine",
+    .kind = VRG_PLUGIN_PASS,
+    .help = "illumination L (radiance / albedo) from sun visibility, AO and indirect; mode physical or thesis",
+    .shader_dir = VRG_PLUGIN_DIR,
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .slots = slots,
+    .slot_count = sizeof slots / sizeof slots[0],
+    .execute = execute,
+    .check = check,
+};
+
+VRG_PLUGIN(desc)

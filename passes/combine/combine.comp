@@ -1,0 +1,46 @@
+#version 460
+// combine.c has the formulas; docs/lighting.md derives them.
+#define FRAME_BINDING 1
+#include "frame.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0) uniform sampler2D in_normal;
+layout(binding = 2) uniform sampler2D in_visibility;
+layout(binding = 3) uniform sampler2D in_ao;
+layout(binding = 4) uniform sampler2D in_indirect;
+layout(binding = 5, rgba16f) uniform writeonly image2D out_illumination;
+layout(push_constant) uniform Params {
+    float direct_scale, indirect_scale, ao_scale;
+    int mode; // 0 physical, 1 thesis
+    int has_visibility, has_ao, has_indirect;
+} params;
+
+const float PI = 3.14159265358979;
+
+void main()
+{
+    ivec2 size = imageSize(out_illumination);
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, size)))
+        return;
+    vec3 n = texelFetch(in_normal, p, 0).xyz;
+    if (dot(n, n) < 0.25) { // sky: modulate passes albedo (the sky radiance) through
+        imageStore(out_illumination, p, vec4(1.0));
+        return;
+    }
+    n = normalize(n);
+    float v = params.has_visibility != 0 ? clamp(texelFetch(in_visibility, p, 0).r, 0.0, 1.0) : 1.0;
+    float ao = params.has_ao != 0 ? clamp(texelFetch(in_ao, p, 0).r, 0.0, 1.0) : 1.0;
+    ao = 1.0 - params.ao_scale * (1.0 - ao);
+    // reflected radiance of a white Lambertian surface lit by the sun (camera.h's units)
+    vec3 sun = frame.sun_radiance.rgb * max(dot(n, frame.sun_dir.xyz), 0.0) * v;
+    // cosine-weighted mean incoming radiance = irradiance / pi = what a white surface reflects
+    vec3 indirect = params.has_indirect != 0 ? max(texelFetch(in_indirect, p, 0).rgb, vec3(0.0))
+                                             : frame.ambient.rgb * ao;
+    vec3 l;
+    if (params.mode == 0)
+        l = params.direct_scale * sun + params.indirect_scale * indirect;
+    else
+        l = params.direct_scale * sun * ao / PI + 2.0 * params.indirect_scale * indirect;
+    imageStore(out_illumination, p, vec4(l, 1.0));
+}

@@ -1,0 +1,57 @@
+#version 460
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0) uniform sampler2D in_position;
+layout(binding = 1) uniform sampler2D in_depth;
+layout(binding = 2) uniform sampler2D in_normal;
+layout(binding = 3) uniform sampler2D in_albedo;
+layout(binding = 4) uniform sampler2D in_motion;
+layout(binding = 5, rgba8) uniform writeonly image2D out_view;
+layout(push_constant) uniform Params {
+    float far_depth, motion_scale;
+} params;
+
+vec3 srgb_encode(vec3 c)
+{
+    c = clamp(c, 0.0, 1.0);
+    return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
+}
+
+vec3 hue(float h) // h in [0, 1): fully saturated colour wheel
+{
+    return clamp(abs(fract(h + vec3(0.0, 2.0, 1.0) / 3.0) * 6.0 - 3.0) - 1.0, 0.0, 1.0);
+}
+
+// Source texel for a quadrant-local pixel q: every other texel, clamped.
+ivec2 source(sampler2D s, ivec2 q)
+{
+    return min(q * 2, textureSize(s, 0) - 1);
+}
+
+void main()
+{
+    ivec2 size = imageSize(out_view);
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, size)))
+        return;
+    ivec2 half_size = (size + 1) / 2;
+    ivec2 quad = ivec2(greaterThanEqual(p, half_size));
+    ivec2 q = p - quad * half_size;
+    bool sky = texelFetch(in_position, source(in_position, q), 0).w == 0.0;
+    vec3 c = vec3(0.0);
+    if (quad == ivec2(0, 0)) {
+        if (!sky)
+            c = texelFetch(in_normal, source(in_normal, q), 0).xyz * 0.5 + 0.5;
+    } else if (quad == ivec2(1, 0)) {
+        if (!sky)
+            c = vec3(clamp(1.0 - texelFetch(in_depth, source(in_depth, q), 0).r / params.far_depth, 0.0, 1.0));
+    } else if (quad == ivec2(0, 1)) {
+        c = srgb_encode(texelFetch(in_albedo, source(in_albedo, q), 0).rgb);
+    } else {
+        vec2 m = texelFetch(in_motion, source(in_motion, q), 0).xy;
+        float len = length(m);
+        if (len > 0.0 && !isnan(len))
+            c = hue(atan(-m.y, m.x) / 6.28318530718 + 0.5) * min(len * params.motion_scale, 1.0);
+    }
+    imageStore(out_view, p, vec4(c, 1.0));
+}

@@ -1,0 +1,82 @@
+/* One-bounce diffuse indirect light: `rays` cosine-weighted rays per pixel
+ * around the face normal n, from position + n * 1e-3, traced through the
+ * world (DDA, or ray queries when the scene built a TLAS). Each ray brings
+ * back the radiance L_in arriving along it:
+ *   miss (nothing within max_distance):  L_in = frame_sky(d)
+ *   hit block b, face normal n2, at x2:  L_in = albedo(b, n2) * (sun_radiance * max(n2.L, 0) * V + ambient)
+ * L = sun_dir; V = 1 if the shadow ray from x2 + n2 * 1e-3 toward L travels
+ * max_distance unoccluded (else 0; always 1 with shadow = 0; not traced when
+ * n2.L <= 0 or the sun is below the horizon). The issue's "albedo x (sun
+ * radiance x N.L x one shadow ray) plus sky" reads "plus sky" as the sky's
+ * ambient term: frame.ambient (the cosine-weighted mean sky radiance, what a
+ * white up-facing unoccluded surface reflects), times the albedo, unoccluded
+ * and the same for every face orientation. sun_radiance and ambient are
+ * already reflected (outgoing) radiance of a white Lambertian surface, so
+ * the bracket times albedo is the hit's outgoing radiance, with no 1/pi.
+ * albedo(b, n2): material_albedo(b), or, with the atlas connected and
+ * textures = 1, the mean of the face's atlas tile (mip level 4: one texel per
+ * tile; differs from the material's for grass sides and bottoms).
+ *
+ * Output, rgb (a = 1): irradiance = (1/rays) * sum of L_in, the mean incoming
+ * radiance over cosine-weighted directions (pdf cos/pi). That estimates
+ * E / pi, E = the irradiance integral of L_in cos over the hemisphere, so a
+ * Lambertian surface of albedo A reflects A * irradiance (no further 1/pi).
+ * Sky pixels (position.w == 0): 0, no rays. */
+#include "voxrg/plugin.h"
+
+static const vrg_param_desc params[] = {
+    {"rays", VRG_PARAM_INT, 4, 1, 64, "indirect rays per pixel"},
+    {"max_distance", VRG_PARAM_FLOAT, 64, 1, 16384, "indirect and secondary shadow ray length, blocks"},
+    {"shadow", VRG_PARAM_BOOL, 1, 0, 1, "trace a shadow ray toward the sun at each secondary hit (0: assume lit)"},
+    {"textures", VRG_PARAM_BOOL, 1, 0, 1, "with the atlas connected, use its per-face tile means instead of material albedos"},
+};
+
+static const vrg_slot_desc slots[] = {
+    {.name = "world", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_STORAGE_READ, .help = "the scene's world"},
+    {.name = "frame", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_UNIFORM, .help = "the scene's per-frame uniforms"},
+    {.name = "position", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_READ, .format = VK_FORMAT_R32G32B32A32_SFLOAT,
+     .help = "gbuffer position: world hit point, w = 1 on a hit, 0 on sky"},
+    {.name = "normal", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_READ, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
+     .help = "gbuffer normal: the face normal"},
+    {.name = "atlas", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .flags = VRG_SLOT_OPTIONAL,
+     .help = "block textures: per-face albedo at secondary hits (else material albedos)"},
+    {.name = "irradiance", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
+     .help = "mean incoming radiance over cosine-weighted directions (= irradiance / pi); 0 on sky"},
+    {.name = "tlas", .dir = VRG_IN, .kind = VRG_ACCEL, .access = VRG_ACCESS_RAY_QUERY, .flags = VRG_SLOT_OPTIONAL,
+     .help = "the scene's TLAS: trace with ray queries (traversal = rayquery)"},
+};
+
+static void execute(vrg_pass *pass, VkCommandBuffer cmd)
+{
+    struct {
+        int32_t rays;
+        float max_distance;
+        int32_t shadow;
+        int32_t textured;
+    } pc = {vrg_param_int(pass, "rays"), (float)vrg_param(pass, "max_distance"), vrg_param_int(pass, "shadow"),
+            vrg_param_int(pass, "textures") && vrg_res_connected(vrg_pass_res(pass, "atlas"))};
+    int rayquery = vrg_res_accel(pass, vrg_pass_res(pass, "tlas")) != VK_NULL_HANDLE;
+    vrg_dispatch_desc d = {
+        .shader = "indirect.comp",
+        .defines = rayquery ? "TRACE_RAYQUERY TLAS_BINDING=6" : "",
+        .bindings = {{"world"}, {"frame"}, {"position"}, {"normal"}, {"atlas"}, {"irradiance"}, {rayquery ? "tlas" : NULL}},
+        .push = &pc,
+        .push_size = sizeof pc,
+    };
+    (void)vrg_dispatch(pass, cmd, &d);
+}
+
+static const vrg_plugin_desc desc = {
+    .abi_version = VRG_ABI_VERSION,
+    .name = "indirect",
+    .kind = VRG_PLUGIN_PASS,
+    .help = "one-bounce diffuse indirect light: cosine-weighted rays, sun (with a shadow ray) and ambient sky at the hit, sky on a miss",
+    .shader_dir = VRG_PLUGIN_DIR,
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .slots = slots,
+    .slot_count = sizeof slots / sizeof slots[0],
+    .execute = execute,
+};
+
+VRG_PLUGIN(desc)

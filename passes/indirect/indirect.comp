@@ -1,0 +1,61 @@
+#version 460
+// One-bounce indirect light (formulas in indirect.c): the mean, over `rays`
+// cosine-weighted directions, of the radiance arriving along each.
+#define WORLD_BINDING 0
+#define FRAME_BINDING 1
+#include "world.glsl"
+#include "frame.glsl"
+#include "trace.glsl"
+#include "random.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 2, rgba32f) uniform readonly image2D in_position;
+layout(binding = 3, rgba16f) uniform readonly image2D in_normal;
+layout(binding = 4) uniform sampler2D atlas;
+layout(binding = 5, rgba16f) uniform writeonly image2D out_irradiance;
+layout(push_constant) uniform Params {
+    int rays;
+    float max_distance;
+    int shadow;
+    int textured;
+} params;
+
+const uint SALT = 0x494e0003u;  // this pass's random stream
+
+// Radiance leaving the face n2 of block b at x2 toward the first surface.
+vec3 bounce(vec3 x2, ivec3 n2, uint b)
+{
+    vec3 albedo = params.textured != 0 ? textureLod(atlas, world_atlas_uv(b, n2, vec2(0.5)), 4.0).rgb : material_albedo(b);
+    vec3 l = frame.sun_dir.xyz;
+    float ndl = max(dot(vec3(n2), l), 0.0);
+    float v = 1.0;
+    if (ndl <= 0.0 || l.y <= 0.0)
+        v = 0.0;
+    else if (params.shadow != 0 && trace_any(x2 + vec3(n2) * 1e-3, l, params.max_distance))
+        v = 0.0;
+    return albedo * (frame.sun_radiance.rgb * ndl * v + frame.ambient.rgb);
+}
+
+void main()
+{
+    ivec2 size = imageSize(out_irradiance);
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, size)))
+        return;
+    vec4 pos = imageLoad(in_position, p);
+    if (pos.w == 0.0) {
+        imageStore(out_irradiance, p, vec4(0.0));
+        return;
+    }
+    vec3 n = imageLoad(in_normal, p).xyz;
+    vec3 o = pos.xyz + n * 1e-3;
+    Rng r = rng_init(uvec2(p), frame.frame_info.x, frame.frame_info.w, SALT);
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < params.rays; i++) {
+        float u1 = rng_next(r), u2 = rng_next(r);
+        vec3 d = sample_cosine(n, u1, u2);
+        Hit h = trace_closest(o, d, params.max_distance);
+        sum += h.hit ? bounce(o + d * h.t, h.normal, h.block) : frame_sky(d);
+    }
+    imageStore(out_irradiance, p, vec4(sum / float(params.rays), 1.0));
+}

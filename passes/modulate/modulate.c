@@ -1,0 +1,29 @@
+/* modulate: colour = albedo x illumination. Sky pixels keep the sky radiance
+ * the G-buffer stores in albedo (combine writes illumination 1 there). */
+#include "voxrg/plugin.h"
+
+static const vrg_slot_desc slots[] = {
+    {.name = "illumination", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED,
+     .help = "albedo-demodulated illumination (combine, or a denoised copy)"},
+    {.name = "albedo", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "G-buffer albedo (sky radiance on a miss)"},
+    {.name = "color", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE,
+     .format = VK_FORMAT_R16G16B16A16_SFLOAT, .help = "linear radiance: albedo x illumination"},
+};
+
+static void execute(vrg_pass *pass, VkCommandBuffer cmd)
+{
+    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "modulate.comp"});
+}
+
+static const vrg_plugin_desc desc = {
+    .abi_version = VRG_ABI_VERSION,
+    .name = "modulate",
+    .kind = VRG_PLUGIN_PASS,
+    .help = "colour = albedo x illumination (sky passes through)",
+    .shader_dir = VRG_PLUGIN_DIR,
+    .slots = slots,
+    .slot_count = sizeof slots / sizeof slots[0],
+    .execute = execute,
+};
+
+VRG_PLUGIN(desc)

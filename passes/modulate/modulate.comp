@@ -1,0 +1,17 @@
+#version 460
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0) uniform sampler2D in_illumination;
+layout(binding = 1) uniform sampler2D in_albedo;
+layout(binding = 2, rgba16f) uniform writeonly image2D out_color;
+
+void main()
+{
+    ivec2 size = imageSize(out_color);
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, size)))
+        return;
+    vec3 l = texelFetch(in_illumination, p, 0).rgb;
+    vec3 a = texelFetch(in_albedo, p, 0).rgb;
+    imageStore(out_color, p, vec4(a * l, 1.0));
+}

@@ -1,0 +1,68 @@
+/* Sun visibility: `rays` shadow rays per pixel toward points spread
+ * uniformly over the sun's disc (a cone of half-angle sun_radius around
+ * frame.sun_dir), traced through the world (DDA, or ray queries when the
+ * scene built a TLAS). visibility = unoccluded rays / rays traced, in [0, 1].
+ *   sky pixel (position.w == 0)            1, no rays
+ *   sun at or below the horizon (y <= 0)   0, no rays
+ *   face turned away (N.L <= 0)            0, no rays
+ *   sun_radius == 0 (hard shadows)         one ray exactly along sun_dir,
+ *                                          whatever `rays` says (they would
+ *                                          all be the same ray)
+ * A disc sample below the face's horizon (N.D <= 0) counts as occluded
+ * without tracing. Rays start at position + normal * 1e-3. */
+#include "voxrg/plugin.h"
+
+static const vrg_param_desc params[] = {
+    {"rays", VRG_PARAM_INT, 4, 1, 64, "shadow rays per pixel (one when sun_radius is 0)"},
+    {"sun_radius", VRG_PARAM_FLOAT, 0.27, 0, 45, "angular radius of the sun's disc, degrees (0.27: the real sun; 0: hard shadows)"},
+    {"max_distance", VRG_PARAM_FLOAT, 256, 1, 16384, "shadow ray length, blocks"},
+};
+
+static const vrg_slot_desc slots[] = {
+    {.name = "world", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_STORAGE_READ, .help = "the scene's world"},
+    {.name = "frame", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_UNIFORM, .help = "the scene's per-frame uniforms"},
+    {.name = "position", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_READ, .format = VK_FORMAT_R32G32B32A32_SFLOAT,
+     .help = "gbuffer position: world hit point, w = 1 on a hit, 0 on sky"},
+    {.name = "normal", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_READ, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
+     .help = "gbuffer normal: the face normal"},
+    {.name = "visibility", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16_SFLOAT,
+     .help = "fraction of the sun's disc seen, [0,1]; 1 on sky"},
+    {.name = "tlas", .dir = VRG_IN, .kind = VRG_ACCEL, .access = VRG_ACCESS_RAY_QUERY, .flags = VRG_SLOT_OPTIONAL,
+     .help = "the scene's TLAS: trace with ray queries (traversal = rayquery)"},
+};
+
+static void execute(vrg_pass *pass, VkCommandBuffer cmd)
+{
+    struct {
+        int32_t rays;
+        float sun_radius; /* radians */
+        float max_distance;
+    } pc = {vrg_param_int(pass, "rays"), (float)(vrg_param(pass, "sun_radius") * 3.14159265358979323846 / 180.0),
+            (float)vrg_param(pass, "max_distance")};
+    if (pc.sun_radius <= 0.0f)
+        pc.rays = 1;
+    int rayquery = vrg_res_accel(pass, vrg_pass_res(pass, "tlas")) != VK_NULL_HANDLE;
+    vrg_dispatch_desc d = {
+        .shader = "sun_shadow.comp",
+        .defines = rayquery ? "TRACE_RAYQUERY TLAS_BINDING=5" : "",
+        .bindings = {{"world"}, {"frame"}, {"position"}, {"normal"}, {"visibility"}, {rayquery ? "tlas" : NULL}},
+        .push = &pc,
+        .push_size = sizeof pc,
+    };
+    (void)vrg_dispatch(pass, cmd, &d);
+}
+
+static const vrg_plugin_desc desc = {
+    .abi_version = VRG_ABI_VERSION,
+    .name = "sun_shadow",
+    .kind = VRG_PLUGIN_PASS,
+    .help = "sun visibility: shadow rays toward the sun's disc (soft), or exactly toward the sun (sun_radius = 0)",
+    .shader_dir = VRG_PLUGIN_DIR,
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .slots = slots,
+    .slot_count = sizeof slots / sizeof slots[0],
+    .execute = execute,
+};
+
+VRG_PLUGIN(desc)

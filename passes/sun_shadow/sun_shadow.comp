@@ -1,0 +1,53 @@
+#version 460
+// Sun visibility (see sun_shadow.c): the fraction of `rays` rays toward
+// points of the sun's disc that reach max_distance without a hit.
+#define WORLD_BINDING 0
+#define FRAME_BINDING 1
+#include "world.glsl"
+#include "frame.glsl"
+#include "trace.glsl"
+#include "random.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 2, rgba32f) uniform readonly image2D in_position;
+layout(binding = 3, rgba16f) uniform readonly image2D in_normal;
+layout(binding = 4, r16f) uniform writeonly image2D out_visibility;
+layout(push_constant) uniform Params {
+    int rays;
+    float sun_radius;  // radians; 0: exactly sun_dir, and rays == 1
+    float max_distance;
+} params;
+
+const uint SALT = 0x53554e01u;  // this pass's random stream
+
+void main()
+{
+    ivec2 size = imageSize(out_visibility);
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, size)))
+        return;
+    vec4 pos = imageLoad(in_position, p);
+    if (pos.w == 0.0) {
+        imageStore(out_visibility, p, vec4(1.0));
+        return;
+    }
+    vec3 n = imageLoad(in_normal, p).xyz;
+    vec3 l = frame.sun_dir.xyz;
+    if (l.y <= 0.0 || dot(n, l) <= 0.0) {
+        imageStore(out_visibility, p, vec4(0.0));
+        return;
+    }
+    vec3 o = pos.xyz + n * 1e-3;
+    Rng r = rng_init(uvec2(p), frame.frame_info.x, frame.frame_info.w, SALT);
+    int seen = 0;
+    for (int i = 0; i < params.rays; i++) {
+        vec3 d = l;
+        if (params.sun_radius > 0.0) {
+            float u1 = rng_next(r), u2 = rng_next(r);
+            d = sample_cone(l, params.sun_radius, u1, u2);
+        }
+        if (dot(n, d) > 0.0 && !trace_any(o, d, params.max_distance))
+            seen++;
+    }
+    imageStore(out_visibility, p, vec4(float(seen) / float(params.rays)));
+}

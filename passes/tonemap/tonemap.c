@@ -1,0 +1,63 @@
+/* tonemap: ldr = srgb_encode(curve(exposure x colour)), stored in an UNORM
+ * image (the PNG writer stores UNORM8 values as they are). Curves: aces
+ * (Narkowicz's fit of the ACES filmic curve, default), reinhard (x / (1 + x))
+ * and linear (clamped). */
+#include <string.h>
+#include "voxrg/plugin.h"
+
+static const vrg_param_desc params[] = {
+    {"exposure", VRG_PARAM_FLOAT, 1, 0, 1e6, "multiplies the linear colour before the curve"},
+    {"curve", VRG_PARAM_STRING, 0, 0, 0, "aces (Narkowicz's fit, default), reinhard or linear", 0, "aces"},
+};
+
+static const vrg_slot_desc slots[] = {
+    {.name = "color", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "linear radiance"},
+    {.name = "ldr", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE,
+     .format = VK_FORMAT_R8G8B8A8_UNORM, .help = "sRGB-encoded display values in an UNORM image"},
+};
+
+static const char *const curves[] = {"aces", "reinhard", "linear"};
+
+static int curve_of(const char *s)
+{
+    for (int i = 0; i < (int)(sizeof curves / sizeof curves[0]); i++)
+        if (strcmp(s, curves[i]) == 0)
+            return i;
+    return -1;
+}
+
+static int check(vrg_pass *pass)
+{
+    const char *curve = vrg_param_string(pass, "curve");
+    if (curve_of(curve) < 0) {
+        int line = 0;
+        vrg_param_item(pass, "curve", vrg_param_count(pass, "curve") - 1, &line);
+        return vrg_pass_error_at(pass, line, "curve = '%s': expected aces, reinhard or linear", curve);
+    }
+    return 0;
+}
+
+static void execute(vrg_pass *pass, VkCommandBuffer cmd)
+{
+    struct {
+        float exposure;
+        int32_t curve;
+    } pc = {(float)vrg_param(pass, "exposure"), curve_of(vrg_param_string(pass, "curve"))};
+    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "tonemap.comp", .push = &pc, .push_size = sizeof pc});
+}
+
+static const vrg_plugin_desc desc = {
+    .abi_version = VRG_ABI_VERSION,
+    .name = "tonemap",
+    .kind = VRG_PLUGIN_PASS,
+    .help = "exposure, a filmic curve (aces, reinhard, linear) and sRGB encoding into rgba8",
+    .shader_dir = VRG_PLUGIN_DIR,
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .slots = slots,
+    .slot_count = sizeof slots / sizeof slots[0],
+    .execute = execute,
+    .check = check,
+};
+
+VRG_PLUGIN(desc)

@@ -1,0 +1,35 @@
+#version 460
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0) uniform sampler2D in_color;
+layout(binding = 1, rgba8) uniform writeonly image2D out_ldr;
+layout(push_constant) uniform Params {
+    float exposure;
+    int curve; // 0 aces, 1 reinhard, 2 linear
+} params;
+
+// Krzysztof Narkowicz, "ACES Filmic Tone Mapping Curve" (2016)
+vec3 aces(vec3 x)
+{
+    return clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+}
+
+vec3 srgb_encode(vec3 c)
+{
+    c = clamp(c, 0.0, 1.0);
+    return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
+}
+
+void main()
+{
+    ivec2 size = imageSize(out_ldr);
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, size)))
+        return;
+    vec3 c = texelFetch(in_color, p, 0).rgb * params.exposure;
+    if (any(isnan(c)))
+        c = vec3(0.0);
+    c = clamp(c, 0.0, 65504.0); // negative and infinite values would make the curves NaN
+    vec3 m = params.curve == 0 ? aces(c) : params.curve == 1 ? c / (1.0 + c) : clamp(c, 0.0, 1.0);
+    imageStore(out_ldr, p, vec4(srgb_encode(m), 1.0));
+}
