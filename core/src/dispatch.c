@@ -115,9 +115,14 @@ static int resolve_bindings(vrg_pass *p, const vrg_dispatch_desc *d, bound *out)
     const vrg_plugin_desc *pd = p->plugin->desc;
     int n = 0;
     if (!d->bindings[0].res) {
-        for (uint32_t s = 0; s < pd->slot_count && n < VRG_MAX_BINDINGS; s++)
-            if (p->slots[s].res >= 0) /* only unconnected optional acceleration structures; declare them last */
-                out[n++] = (bound){p->slots[s].res, p->slots[s].prev, pd->slots[s].access};
+        for (uint32_t s = 0; s < pd->slot_count && n < VRG_MAX_BINDINGS; s++) {
+            int r = p->slots[s].res;
+            /* acceleration structures that do not exist (unconnected, or a scene
+             * on the DDA backend) are left out: declare them last */
+            if (r < 0 || (p->graph->res[r].kind == VRG_ACCEL && !p->graph->res[r].accel))
+                continue;
+            out[n++] = (bound){r, p->slots[s].prev, pd->slots[s].access};
+        }
         return n;
     }
     for (; n < VRG_MAX_BINDINGS && d->bindings[n].res; n++) {
@@ -151,7 +156,16 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
     }
     if (d->push_size > 128)
         return vrg_pass_error(p, "push constants of %u bytes (at most 128)", d->push_size);
-    vrg_pipeline *pl = get_pipeline(p, d->shader, d->defines, types, (uint32_t)n);
+    /* A bound acceleration structure selects trace.glsl's ray-query backend. */
+    char defines[256];
+    snprintf(defines, sizeof defines, "%s", d->defines ? d->defines : "");
+    for (int i = 0; i < n; i++)
+        if (g->res[b[i].res].kind == VRG_ACCEL) {
+            size_t len = strlen(defines);
+            snprintf(defines + len, sizeof defines - len, " TRACE_RAYQUERY TLAS_BINDING=%d", i);
+            break;
+        }
+    vrg_pipeline *pl = get_pipeline(p, d->shader, defines, types, (uint32_t)n);
     if (!pl)
         return -1;
 

@@ -32,11 +32,8 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         int32_t rays;
         float radius;
     } pc = {vrg_param_int(pass, "rays"), (float)vrg_param(pass, "radius")};
-    int rayquery = vrg_res_accel(pass, vrg_pass_res(pass, "tlas")) != VK_NULL_HANDLE;
     vrg_dispatch_desc d = {
         .shader = "ao.comp",
-        .defines = rayquery ? "TRACE_RAYQUERY TLAS_BINDING=5" : "",
-        .bindings = {{"world"}, {"frame"}, {"position"}, {"normal"}, {"ao"}, {rayquery ? "tlas" : NULL}},
         .push = &pc,
         .push_size = sizeof pc,
     };

@@ -37,11 +37,8 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         float max_distance;
         int32_t textured;
     } pc = {(float)vrg_param(pass, "max_distance"), vrg_param_int(pass, "textures") && vrg_res_connected(vrg_pass_res(pass, "atlas"))};
-    int rayquery = vrg_res_accel(pass, vrg_pass_res(pass, "tlas")) != VK_NULL_HANDLE;
     vrg_dispatch_desc d = {
         .shader = "gbuffer.comp",
-        .defines = rayquery ? "TRACE_RAYQUERY TLAS_BINDING=9" : "",
-        .bindings = {{"world"}, {"frame"}, {"atlas"}, {"position"}, {"depth"}, {"normal"}, {"albedo"}, {"ids"}, {"motion"}, {rayquery ? "tlas" : NULL}},
         .push = &pc,
         .push_size = sizeof pc,
     };

@@ -55,11 +55,8 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         int32_t textured;
     } pc = {vrg_param_int(pass, "rays"), (float)vrg_param(pass, "max_distance"), vrg_param_int(pass, "shadow"),
             vrg_param_int(pass, "textures") && vrg_res_connected(vrg_pass_res(pass, "atlas"))};
-    int rayquery = vrg_res_accel(pass, vrg_pass_res(pass, "tlas")) != VK_NULL_HANDLE;
     vrg_dispatch_desc d = {
         .shader = "indirect.comp",
-        .defines = rayquery ? "TRACE_RAYQUERY TLAS_BINDING=6" : "",
-        .bindings = {{"world"}, {"frame"}, {"position"}, {"normal"}, {"atlas"}, {"irradiance"}, {rayquery ? "tlas" : NULL}},
         .push = &pc,
         .push_size = sizeof pc,
     };

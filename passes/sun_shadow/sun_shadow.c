@@ -41,11 +41,8 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
             (float)vrg_param(pass, "max_distance")};
     if (pc.sun_radius <= 0.0f)
         pc.rays = 1;
-    int rayquery = vrg_res_accel(pass, vrg_pass_res(pass, "tlas")) != VK_NULL_HANDLE;
     vrg_dispatch_desc d = {
         .shader = "sun_shadow.comp",
-        .defines = rayquery ? "TRACE_RAYQUERY TLAS_BINDING=5" : "",
-        .bindings = {{"world"}, {"frame"}, {"position"}, {"normal"}, {"visibility"}, {rayquery ? "tlas" : NULL}},
         .push = &pc,
         .push_size = sizeof pc,
     };

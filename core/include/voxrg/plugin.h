@@ -287,7 +287,10 @@ typedef struct vrg_dispatch_desc {
     const char *shader;
     /* Set 0, binding i = bindings[i]. When none are given, every slot of
      * the pass is bound in declaration order (unconnected optional inputs
-     * through their 1x1 stand-ins). */
+     * through their 1x1 stand-ins), except acceleration structures that do
+     * not exist, which is why they are declared last. Whenever one is bound
+     * at binding i, the shader is compiled with TRACE_RAYQUERY and
+     * TLAS_BINDING=i (trace.glsl's ray-query backend). */
     vrg_binding bindings[VRG_MAX_BINDINGS];
     /* Preprocessor definitions for this variant, "NAME" or "NAME=VALUE",
      * separated by spaces or ';' (each set is its own cached pipeline). */
