@@ -3,7 +3,9 @@
 #define FRAME_BINDING 1
 #include "frame.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+// One-row workgroups: on lavapipe they run image passes ~1.4x faster than 8x8
+// (its image stores cost less), and 32 lanes still fill a GPU warp.
+layout(local_size_x = 32, local_size_y = 1) in;
 layout(binding = 0) uniform sampler2D in_normal;
 layout(binding = 2) uniform sampler2D in_visibility;
 layout(binding = 3) uniform sampler2D in_ao;
@@ -17,25 +19,33 @@ layout(push_constant) uniform Params {
 
 const float PI = 3.14159265358979;
 
+// Texel of an input covering output pixel p: the same pixel when the sizes
+// match, else the nearest (ray passes may run at a lower resolution).
+vec4 fetch(sampler2D s, ivec2 p, ivec2 size)
+{
+    ivec2 ts = textureSize(s, 0);
+    return texelFetch(s, min(p * ts / size, ts - 1), 0);
+}
+
 void main()
 {
     ivec2 size = imageSize(out_illumination);
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, size)))
         return;
-    vec3 n = texelFetch(in_normal, p, 0).xyz;
+    vec3 n = fetch(in_normal, p, size).xyz;
     if (dot(n, n) < 0.25) { // sky: modulate passes albedo (the sky radiance) through
         imageStore(out_illumination, p, vec4(1.0));
         return;
     }
     n = normalize(n);
-    float v = params.has_visibility != 0 ? clamp(texelFetch(in_visibility, p, 0).r, 0.0, 1.0) : 1.0;
-    float ao = params.has_ao != 0 ? clamp(texelFetch(in_ao, p, 0).r, 0.0, 1.0) : 1.0;
+    float v = params.has_visibility != 0 ? clamp(fetch(in_visibility, p, size).r, 0.0, 1.0) : 1.0;
+    float ao = params.has_ao != 0 ? clamp(fetch(in_ao, p, size).r, 0.0, 1.0) : 1.0;
     ao = 1.0 - params.ao_scale * (1.0 - ao);
     // reflected radiance of a white Lambertian surface lit by the sun (camera.h's units)
     vec3 sun = frame.sun_radiance.rgb * max(dot(n, frame.sun_dir.xyz), 0.0) * v;
     // cosine-weighted mean incoming radiance = irradiance / pi = what a white surface reflects
-    vec3 indirect = params.has_indirect != 0 ? max(texelFetch(in_indirect, p, 0).rgb, vec3(0.0))
+    vec3 indirect = params.has_indirect != 0 ? max(fetch(in_indirect, p, size).rgb, vec3(0.0))
                                              : frame.ambient.rgb * ao;
     vec3 l;
     if (params.mode == 0)
