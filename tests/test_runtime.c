@@ -1054,6 +1054,41 @@ static void test_light_corner(void)
     vrg_graph_destroy(g);
 }
 
+/* combine → modulate → tonemap on a lit white floor: the pixel equals
+ * exposure * albedo * (sun_radiance * N.L + ambient), sRGB-encoded; with
+ * mode = thesis it is exposure * albedo * (2 * ambient + sun * N.L / pi). */
+static void test_light_chain(void)
+{
+    vrg_sky_desc sd;
+    vrg_sky_default(&sd);
+    sd.time_of_day = 12;
+    vrg_sky sky;
+    vrg_sky_eval(&sd, 0, &sky);
+    const float *albedo = vrg_materials()[VRG_BLOCK_WHITE].albedo;
+    for (int thesis = 0; thesis < 2; thesis++) {
+        static const char *sets[] = {"combine.mode=thesis"};
+        vrg_graph *g = load_with("light_chain.ini", sets, (uint32_t)thesis, NULL, 0);
+        if (!g)
+            return;
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+        vrg_image_data img;
+        CHECK(vrg_graph_read(g, "ldr", &img) == 0, "readback failed");
+        float got[3], want[3];
+        for (int c = 0; c < 3; c++) {
+            float sun = sky.sun_radiance[c] * sky.sun_dir[1]; /* floor normal is +y */
+            float l = thesis ? 2.0f * sky.ambient[c] + sun / 3.14159265f : sun + sky.ambient[c];
+            float lin = fminf(0.25f * albedo[c] * l, 1.0f);
+            /* the readback decodes nothing for UNORM: compare in the encoded domain */
+            want[c] = lin <= 0.0031308f ? lin * 12.92f : 1.055f * powf(lin, 1.0f / 2.4f) - 0.055f;
+            got[c] = px(&img, img.width / 2, img.height / 2, c);
+        }
+        CHECK(fabsf(got[0] - want[0]) < 3.0f / 255 && fabsf(got[1] - want[1]) < 3.0f / 255 && fabsf(got[2] - want[2]) < 3.0f / 255,
+              "%s: pixel (%.3f %.3f %.3f), want (%.3f %.3f %.3f)", thesis ? "thesis" : "physical", got[0], got[1], got[2], want[0], want[1], want[2]);
+        free(img.pixels);
+        vrg_graph_destroy(g);
+    }
+}
+
 int main(int argc, char **argv)
 {
     static const struct {
@@ -1070,6 +1105,7 @@ int main(int argc, char **argv)
         {"gbuffer_normals", test_gbuffer_normals, 1}, {"gbuffer_motion", test_gbuffer_motion, 1},
         {"light_floor", test_light_floor, 1},         {"light_wall", test_light_wall, 1},
         {"light_penumbra", test_light_penumbra, 1},   {"light_corner", test_light_corner, 1},
+        {"light_chain", test_light_chain, 1},
     };
     if (argc != 2) {
         fprintf(stderr, "usage: test_runtime CASE\n");
