@@ -120,6 +120,27 @@ const char *vrg_param_item(const vrg_pass *p, const char *name, int k, int *line
     return NULL;
 }
 
+int vrg_param_line(const vrg_pass *p, const char *name)
+{
+    int line = 0, n = vrg_param_count(p, name);
+    if (n > 0)
+        vrg_param_item(p, name, n - 1, &line);
+    return line;
+}
+
+int vrg_param_choice(vrg_pass *p, const char *name, const char *const *choices, int count)
+{
+    const char *v = vrg_param_string(p, name);
+    for (int i = 0; i < count; i++)
+        if (strcmp(v, choices[i]) == 0)
+            return i;
+    char list[256] = "";
+    for (int i = 0; i < count; i++)
+        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i == 0 ? "" : i == count - 1 ? " or " : ", ", choices[i]);
+    vrg_pass_error_at(p, vrg_param_line(p, name), "%s = '%s': expected %s", name, v, list);
+    return -1;
+}
+
 int vrg_pass_error_at(vrg_pass *p, int line, const char *fmt, ...)
 {
     char msg[1536];

@@ -61,15 +61,14 @@ void vrg_scene_write_frame(vrg_pass *pass, VkCommandBuffer cmd, const char *slot
     vkCmdUpdateBuffer(cmd, vrg_res_buffer(pass, vrg_pass_res(pass, slot)), 0, sizeof u, &u);
 }
 
+static const char *const traversals[] = {"dda", "rayquery"};
+
 int vrg_scene_check(vrg_pass *pass, int grid_radius, int height_chunks)
 {
-    const char *traversal = vrg_param_string(pass, "traversal");
-    int rayquery = strcmp(traversal, "rayquery") == 0;
-    if (!rayquery && strcmp(traversal, "dda") != 0) {
-        int line = 0;
-        vrg_param_item(pass, "traversal", vrg_param_count(pass, "traversal") - 1, &line);
-        return vrg_pass_error_at(pass, line, "traversal = '%s': expected dda or rayquery", traversal);
-    }
+    int traversal = vrg_param_choice(pass, "traversal", traversals, 2);
+    if (traversal < 0)
+        return -1;
+    int rayquery = traversal == 1;
     uint64_t g = 2 * (uint64_t)grid_radius + 1;
     vrg_pass_set_buffer_size(pass, "tlas", rayquery ? g * g * (uint64_t)height_chunks : 0);
     return vrg_pass_set_buffer_size(pass, "world", vrg_world_gpu_bytes(grid_radius, height_chunks));
@@ -89,12 +88,10 @@ int vrg_scene_create(vrg_pass *pass, vrg_scene_gpu *s, vrg_world *world)
     if (!s->staging || !atlas)
         return -1;
     vrg_atlas_generate(atlas);
-    if (strcmp(vrg_param_string(pass, "traversal"), "rayquery") == 0) {
+    if (vrg_param_choice(pass, "traversal", traversals, 2) == 1) {
         const vrg_device *dev = vrg_pass_device(pass);
         if (!dev->features.ray_query || !dev->features.acceleration_structure) {
-            int line = 0;
-            vrg_param_item(pass, "traversal", vrg_param_count(pass, "traversal") - 1, &line);
-            return vrg_pass_error_at(pass, line, "traversal = rayquery needs VK_KHR_ray_query, which device '%s' lacks (use traversal = dda)",
+            return vrg_pass_error_at(pass, vrg_param_line(pass, "traversal"), "traversal = rayquery needs VK_KHR_ray_query, which device '%s' lacks (use traversal = dda)",
                                      dev->name);
         }
         s->accel = vrg_world_accel_create(pass, world);

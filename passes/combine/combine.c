@@ -11,7 +11,6 @@
  *       + direct_scale * sun_radiance * max(N.L, 0) * V * AO / pi
  * AO strength: AO' = 1 - ao_scale * (1 - AO). Sky pixels (normal 0): L = 1,
  * so modulate passes the sky radiance the G-buffer keeps in albedo. */
-#include <string.h>
 #include "voxrg/plugin.h"
 
 static const vrg_param_desc params[] = {
@@ -34,21 +33,9 @@ static const vrg_slot_desc slots[] = {
      .format = VK_FORMAT_R16G16B16A16_SFLOAT, .help = "albedo-demodulated illumination L (radiance = albedo x L); 1 on sky"},
 };
 
-static int mode_of(const char *s)
-{
-    return strcmp(s, "physical") == 0 ? 0 : strcmp(s, "thesis") == 0 ? 1 : -1;
-}
+static const char *const modes[] = {"physical", "thesis"};
 
-static int check(vrg_pass *pass)
-{
-    const char *mode = vrg_param_string(pass, "mode");
-    if (mode_of(mode) < 0) {
-        int line = 0;
-        vrg_param_item(pass, "mode", vrg_param_count(pass, "mode") - 1, &line);
-        return vrg_pass_error_at(pass, line, "mode = '%s': expected physical or thesis", mode);
-    }
-    return 0;
-}
+static int check(vrg_pass *pass) { return vrg_param_choice(pass, "mode", modes, 2) < 0 ? -1 : 0; }
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
@@ -59,7 +46,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         (float)vrg_param(pass, "direct_scale"),
         (float)vrg_param(pass, "indirect_scale"),
         (float)vrg_param(pass, "ao_scale"),
-        mode_of(vrg_param_string(pass, "mode")),
+        vrg_param_choice(pass, "mode", modes, 2),
         vrg_res_connected(vrg_pass_res(pass, "visibility")),
         vrg_res_connected(vrg_pass_res(pass, "ao")),
         vrg_res_connected(vrg_pass_res(pass, "indirect")),

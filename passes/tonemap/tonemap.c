@@ -2,7 +2,6 @@
  * image (the PNG writer stores UNORM8 values as they are). Curves: aces
  * (Narkowicz's fit of the ACES filmic curve, default), reinhard (x / (1 + x))
  * and linear (clamped). */
-#include <string.h>
 #include "voxrg/plugin.h"
 
 static const vrg_param_desc params[] = {
@@ -18,31 +17,14 @@ static const vrg_slot_desc slots[] = {
 
 static const char *const curves[] = {"aces", "reinhard", "linear"};
 
-static int curve_of(const char *s)
-{
-    for (int i = 0; i < (int)(sizeof curves / sizeof curves[0]); i++)
-        if (strcmp(s, curves[i]) == 0)
-            return i;
-    return -1;
-}
-
-static int check(vrg_pass *pass)
-{
-    const char *curve = vrg_param_string(pass, "curve");
-    if (curve_of(curve) < 0) {
-        int line = 0;
-        vrg_param_item(pass, "curve", vrg_param_count(pass, "curve") - 1, &line);
-        return vrg_pass_error_at(pass, line, "curve = '%s': expected aces, reinhard or linear", curve);
-    }
-    return 0;
-}
+static int check(vrg_pass *pass) { return vrg_param_choice(pass, "curve", curves, 3) < 0 ? -1 : 0; }
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     struct {
         float exposure;
         int32_t curve;
-    } pc = {(float)vrg_param(pass, "exposure"), curve_of(vrg_param_string(pass, "curve"))};
+    } pc = {(float)vrg_param(pass, "exposure"), vrg_param_choice(pass, "curve", curves, 3)};
     (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "tonemap.comp", .push = &pc, .push_size = sizeof pc});
 }
 

@@ -36,6 +36,8 @@ static const vrg_param_desc params[] = {
 
 static const vrg_slot_desc slots[] = {VRG_SCENE_SLOTS};
 
+static const char *const stream_modes[] = {"wait", "budget"};
+
 typedef struct scene {
     vrg_scene_gpu gpu;
     terrain_params gen;
@@ -70,12 +72,8 @@ static int grid_radius(vrg_pass *pass) { return vrg_param_int(pass, "radius") + 
 
 static int check(vrg_pass *pass)
 {
-    const char *mode = vrg_param_string(pass, "stream");
-    if (strcmp(mode, "wait") != 0 && strcmp(mode, "budget") != 0) {
-        int line = 0;
-        vrg_param_item(pass, "stream", vrg_param_count(pass, "stream") - 1, &line);
-        return vrg_pass_error_at(pass, line, "stream = '%s': expected wait or budget", mode);
-    }
+    if (vrg_param_choice(pass, "stream", stream_modes, 2) < 0)
+        return -1;
     return vrg_scene_check(pass, grid_radius(pass), vrg_param_int(pass, "height_chunks"));
 }
 
@@ -92,7 +90,7 @@ static int create(vrg_pass *pass)
     scene *s = calloc(1, sizeof *s);
     vrg_pass_set_user(pass, s);
     params_from(pass, &s->gen);
-    s->wait = strcmp(vrg_param_string(pass, "stream"), "wait") == 0;
+    s->wait = vrg_param_choice(pass, "stream", stream_modes, 2) == 0;
     int threads = vrg_param_int(pass, "threads");
     if (threads == 0) {
         long n = sysconf(_SC_NPROCESSORS_ONLN);

@@ -216,6 +216,11 @@ const char *vrg_param_string(const vrg_pass *pass, const char *name);
  * (0 when it came from --set or the default). */
 int vrg_param_count(const vrg_pass *pass, const char *name);
 const char *vrg_param_item(const vrg_pass *pass, const char *name, int i, int *line);
+/* Graph line of the string value in effect (0: the default or --set). */
+int vrg_param_line(const vrg_pass *pass, const char *name);
+/* A string parameter that names one of `choices`: its index, or -1 after
+ * reporting "NAME = 'VALUE': expected A, B or C" at the value's line. */
+int vrg_param_choice(vrg_pass *pass, const char *name, const char *const *choices, int count);
 
 /* In check() or create(): the byte size of a buffer output, when it depends
  * on parameters (readers' minimum sizes are checked against it). */
