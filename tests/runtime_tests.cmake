@@ -9,6 +9,7 @@ set(VRG_TEST_ENV
 
 add_executable(test_runtime test_runtime.c)
 target_link_libraries(test_runtime PRIVATE voxrg m)
+vrg_use_fast_malloc(test_runtime)
 target_compile_definitions(test_runtime PRIVATE TEST_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
 set(VRG_LOADER_DIR ${CMAKE_CURRENT_BINARY_DIR}/loader_plugins)
 file(MAKE_DIRECTORY ${VRG_LOADER_DIR})

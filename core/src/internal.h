@@ -48,6 +48,7 @@ struct vrg_context {
     PFN_vkCmdPushDescriptorSetKHR push_descriptor;
     VkSampler sampler_linear;
     VkSampler sampler_mips;   /* nearest texels, linear between levels: voxel textures */
+    uint32_t group_size[2];   /* VRG_GROUP_X/Y for shaders: see shader.c */
     struct {
         PFN_vkCreateAccelerationStructureKHR create;
         PFN_vkDestroyAccelerationStructureKHR destroy;

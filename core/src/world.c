@@ -4,7 +4,11 @@
  *   uint header[16]   = {GX, GY, GZ, SLOT_UINTS, SLOTS_OFFSET, BLOCK_COUNT, ...}
  *   uint materials[32][8] = {albedo r,g,b (float bits), emissive, flags, tile top, side, bottom}
  *   slots[GX*GY*GZ][SLOT_UINTS]:
- *     [0..2] chunk coords, [3] brick mask (bit b: brick b has a solid voxel) | valid << 31
+ *     [0..2] chunk coords,
+ *     [3] brick mask (bits 0-7, bit b: brick b has a solid voxel)
+ *         | (cx div GX) & 0x7ff << 8 | (cz div GZ) & 0x7ff << 19 | valid << 31
+ *         (the toroidal "lap" of the chunk in its slot: a shader checks that a
+ *         slot holds the chunk it wants with this one load, not four)
  *     [4..131] occupancy: 8 bricks x 16 uints, 1 bit per voxel
  *     [132..1155] block ids, 4 per uint
  * A brick is 8^3 voxels: brick b = bx + 2*(bz + 2*by), bit = x + 8*(z + 8*y). */
@@ -283,7 +287,9 @@ static void pack_header(const vrg_world *w, uint32_t *out)
     }
 }
 
-static void pack_slot(const slot *sl, uint32_t *out)
+static int floor_div(int a, int n) { return a >= 0 ? a / n : -((-a + n - 1) / n); }
+
+static void pack_slot(const vrg_world *w, const slot *sl, uint32_t *out)
 {
     memset(out, 0, SLOT_UINTS * 4);
     if (!sl->valid)
@@ -306,7 +312,8 @@ static void pack_slot(const slot *sl, uint32_t *out)
                 occ[brick * 16 + (bit >> 5)] |= 1u << (bit & 31);
                 mask |= 1u << brick;
             }
-    out[3] = mask | 1u << 31;
+    uint32_t lap_x = (uint32_t)floor_div(sl->cx, w->gx) & 0x7ffu, lap_z = (uint32_t)floor_div(sl->cz, w->gz) & 0x7ffu;
+    out[3] = mask | lap_x << 8 | lap_z << 19 | 1u << 31;
 }
 
 int vrg_world_upload(vrg_world *w, VkCommandBuffer cmd, VkBuffer dst, void *staging, VkBuffer staging_buffer, uint64_t staging_bytes)
@@ -325,7 +332,7 @@ int vrg_world_upload(vrg_world *w, VkCommandBuffer cmd, VkBuffer dst, void *stag
     int done = 0;
     while (done < w->dirty_count && used + SLOT_UINTS * 4 <= staging_bytes) {
         int s = w->dirty_list[done++];
-        pack_slot(&w->slots[s], (uint32_t *)((char *)staging + used));
+        pack_slot(w, &w->slots[s], (uint32_t *)((char *)staging + used));
         regions[nr++] = (VkBufferCopy){.srcOffset = used, .dstOffset = 4 * (SLOTS_OFFSET + (uint64_t)s * SLOT_UINTS), .size = SLOT_UINTS * 4};
         used += SLOT_UINTS * 4;
         w->slots[s].dirty = 0;

@@ -4,8 +4,9 @@
 #include "world.glsl"
 #include "frame.glsl"
 #include "trace.glsl"
+#include "pixel.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
 layout(binding = 2) uniform sampler2D atlas;
 layout(binding = 3, rgba32f) uniform writeonly image2D out_position;
 layout(binding = 4, r32f) uniform writeonly image2D out_depth;
@@ -28,7 +29,7 @@ vec2 previous_pixel(vec4 p, vec2 size)
 void main()
 {
     ivec2 size = imageSize(out_albedo);
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 p = vrg_pixel();
     if (any(greaterThanEqual(p, size)))
         return;
     vec3 o = frame.camera_pos.xyz;

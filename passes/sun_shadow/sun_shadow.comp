@@ -6,9 +6,10 @@
 #include "world.glsl"
 #include "frame.glsl"
 #include "trace.glsl"
+#include "pixel.glsl"
 #include "random.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
 layout(binding = 2, rgba32f) uniform readonly image2D in_position;
 layout(binding = 3, rgba16f) uniform readonly image2D in_normal;
 layout(binding = 4, r16f) uniform writeonly image2D out_visibility;
@@ -23,7 +24,7 @@ const uint SALT = 0x53554e01u;  // this pass's random stream
 void main()
 {
     ivec2 size = imageSize(out_visibility);
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 p = vrg_pixel();
     if (any(greaterThanEqual(p, size)))
         return;
     vec4 pos = imageLoad(in_position, p);

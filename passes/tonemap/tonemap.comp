@@ -1,8 +1,7 @@
 #version 460
 
-// One-row workgroups: on lavapipe they run image passes ~1.4x faster than 8x8
-// (its image stores cost less), and 32 lanes still fill a GPU warp.
-layout(local_size_x = 32, local_size_y = 1) in;
+// The device's workgroup shape (VRG_GROUP_X/Y: pixel.glsl, core/src/shader.c).
+layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
 layout(binding = 0) uniform sampler2D in_color;
 layout(binding = 1, rgba8) uniform writeonly image2D out_ldr;
 layout(push_constant) uniform Params {

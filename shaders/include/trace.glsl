@@ -6,6 +6,13 @@
 // that hold something. Backend 2 (#define TRACE_RAYQUERY, TLAS_BINDING):
 // VK_KHR_ray_query against the scene's per-chunk BLASes. Include world.glsl
 // first.
+//
+// What the DDA is shaped by (measured on lavapipe, docs/benchmarks.md): a
+// buffer load with a per-invocation address is a scalar loop over the SIMD
+// lanes, integer division is scalar, and a dynamically indexed vector spills
+// to memory. So steps are one-hot masks, a chunk costs one load (world_chunk)
+// and its brick mask is kept in a register, voxel words are reloaded only
+// when the word changes, and the ray is clipped to the world's height first.
 #ifndef VOXRG_TRACE_GLSL
 #define VOXRG_TRACE_GLSL
 
@@ -18,39 +25,12 @@ struct Hit {
     int chunk;      // the world slot of its chunk (an object id, the same in both backends)
 };
 
-int trace_min_axis(vec3 v) { return v.x < v.y ? (v.x < v.z ? 0 : 2) : (v.y < v.z ? 1 : 2); }
-
-// Voxel DDA inside one brick (cell = brick coordinate), from distance t.
-bool trace_brick(vec3 o, vec3 d, vec3 inv, ivec3 stp, int base, ivec3 brick, float t, ivec3 entry_normal, float tmax, inout Hit h)
+// One-hot mask of the axis whose boundary comes first (ties: x, then y, z).
+ivec3 trace_step_mask(vec3 tnext)
 {
-    ivec3 lo = brick * 8, hi = lo + 7;
-    ivec3 v = clamp(ivec3(floor(o + d * t)), lo, hi);
-    vec3 tnext = (vec3(v) + max(vec3(stp), vec3(0.0)) - o) * inv;
-    vec3 tdelta = abs(inv);
-    ivec3 n = entry_normal;
-    ivec3 chunk_origin = (brick >> 1) * 16;
-    for (int i = 0; i < 25; i++) {
-        if (t > tmax)
-            return false;
-        if (world_voxel_solid(base, v - chunk_origin)) {
-            h.hit = true;
-            h.t = t;
-            h.voxel = v;
-            h.normal = n;
-            h.block = world_block_local(base, v - chunk_origin);
-            h.chunk = int((uint(base) - WORLD_SLOTS) / WORLD_SLOT_UINTS);
-            return true;
-        }
-        int a = trace_min_axis(tnext);
-        t = tnext[a];
-        tnext[a] += tdelta[a];
-        v[a] += stp[a];
-        n = ivec3(0);
-        n[a] = -stp[a];
-        if (v[a] < lo[a] || v[a] > hi[a])
-            return false;
-    }
-    return false;
+    bool x = tnext.x <= tnext.y && tnext.x <= tnext.z;
+    bool y = !x && tnext.y <= tnext.z;
+    return ivec3(x, y, !x && !y);
 }
 
 #ifdef TRACE_RAYQUERY
@@ -97,6 +77,48 @@ bool trace_any(vec3 o, vec3 d, float tmax)
     return rayQueryGetIntersectionTypeEXT(q, true) == gl_RayQueryCommittedIntersectionTriangleEXT;
 }
 #else
+// Voxel DDA inside one brick (cell = brick coordinate), from distance t.
+bool trace_brick(vec3 o, vec3 d, vec3 inv, ivec3 stp, int base, ivec3 brick, float t, ivec3 entry_normal, float tmax, inout Hit h)
+{
+    ivec3 lo = brick * 8, hi = lo + 7;
+    ivec3 v = clamp(ivec3(floor(o + d * t)), lo, hi);
+    vec3 tnext = (vec3(v) + max(vec3(stp), vec3(0.0)) - o) * inv;
+    vec3 tdelta = abs(inv);
+    ivec3 n = entry_normal;
+    ivec3 chunk_origin = (brick >> 1) * 16;
+    // consecutive voxels often share an occupancy word, and every buffer
+    // load with a per-lane address is a scalar loop on a CPU device
+    uint brick_words = uint(base) + WORLD_OCC + uint((brick.x & 1) + 2 * ((brick.z & 1) + 2 * (brick.y & 1))) * 16u;
+    uint cached_word = 0xffffffffu, bits = 0u;
+    for (int i = 0; i < 25; i++) {
+        if (t > tmax)
+            return false;
+        ivec3 l = v & 7;
+        uint vbit = uint(l.x + 8 * (l.z + 8 * l.y));
+        if ((vbit >> 5) != cached_word) {
+            cached_word = vbit >> 5;
+            bits = world_data[brick_words + cached_word];
+        }
+        if ((bits & (1u << (vbit & 31u))) != 0u) {
+            h.hit = true;
+            h.t = t;
+            h.voxel = v;
+            h.normal = n;
+            h.block = world_block_local(base, v - chunk_origin);
+            h.chunk = int((uint(base) - WORLD_SLOTS) / WORLD_SLOT_UINTS);
+            return true;
+        }
+        ivec3 m = trace_step_mask(tnext);
+        t = dot(vec3(m), tnext);
+        tnext += vec3(m) * tdelta;
+        v += m * stp;
+        n = -m * stp;
+        if (any(lessThan(v, lo)) || any(greaterThan(v, hi)))
+            return false;
+    }
+    return false;
+}
+
 // Closest hit along unit direction d from o, up to tmax.
 Hit trace_closest(vec3 o, vec3 d, float tmax)
 {
@@ -111,35 +133,40 @@ Hit trace_closest(vec3 o, vec3 d, float tmax)
     d = mix(d, vec3(1e-7), lessThan(abs(d), vec3(1e-7)));
     vec3 inv = 1.0 / d;
     ivec3 stp = ivec3(sign(d));
-    ivec3 cell = ivec3(floor(o / 8.0));
+    // Only the slab 0 <= y <= height holds blocks: start where the ray
+    // enters it and stop where it leaves (primary rays from above the
+    // terrain skip their empty descent, rays into the sky end early).
+    int top_brick = world_height() / 8;
+    float ty0 = -o.y * inv.y, ty1 = (float(world_height()) - o.y) * inv.y;
+    float t = max(min(ty0, ty1), 0.0);
+    tmax = min(tmax, max(ty0, ty1));
+    if (t > tmax)
+        return h;
+    ivec3 n = t > 0.0 ? ivec3(0, -stp.y, 0) : ivec3(0);
+    ivec3 cell = ivec3(floor((o + d * t) / 8.0));
+    cell.y = clamp(cell.y, 0, top_brick - 1);
     vec3 tnext = ((vec3(cell) + max(vec3(stp), vec3(0.0))) * 8.0 - o) * inv;
     vec3 tdelta = abs(8.0 * inv);
-    float t = 0.0;
-    ivec3 n = ivec3(0);
-    int top_brick = world_height() / 8;
     int base = -1;
+    uint chunk_mask = 0u;
     ivec3 base_chunk = ivec3(-2147483647);
-    int steps = int(tmax / 8.0) * 3 + 8;
+    int steps = int((tmax - t) / 8.0) * 3 + 8;
     for (int i = 0; i < steps && t <= tmax; i++) {
-        // above or below the world and moving away: nothing more to hit
-        if ((cell.y < 0 && stp.y <= 0) || (cell.y >= top_brick && stp.y >= 0))
-            break;
         ivec3 chunk = cell >> 1;
         if (chunk != base_chunk) {
             base_chunk = chunk;
             base = world_chunk(chunk);
+            chunk_mask = base >= 0 ? world_brick_mask(base) : 0u;
         }
-        if (base >= 0 && world_brick_solid(base, cell & 1) && trace_brick(o, d, inv, stp, base, cell, t, n, tmax, h))
+        ivec3 b = cell & 1;
+        if ((chunk_mask & (1u << uint(b.x + 2 * (b.z + 2 * b.y)))) != 0u && trace_brick(o, d, inv, stp, base, cell, t, n, tmax, h))
             return h;
-        int a = trace_min_axis(tnext);
-        t = tnext[a];
-        tnext[a] += tdelta[a];
-        cell[a] += stp[a];
-        n = ivec3(0);
-        n[a] = -stp[a];
+        ivec3 m = trace_step_mask(tnext);
+        t = dot(vec3(m), tnext);
+        tnext += vec3(m) * tdelta;
+        cell += m * stp;
+        n = -m * stp;
     }
-    h.hit = false;
-    h.t = tmax;
     return h;
 }
 

@@ -19,25 +19,31 @@ const uint WORLD_IDS = 132u;       // slot-relative: block ids, 4 per uint
 ivec3 world_grid() { return ivec3(world_data[0], world_data[1], world_data[2]); }
 int world_height() { return int(world_data[1]) * 16; }
 
-int world_imod(int a, int n) { return ((a % n) + n) % n; }
-
 // First uint of the slot holding chunk c, or -1 when c is not loaded (the
-// toroidal slot is empty or holds another chunk).
+// toroidal slot is empty or holds another chunk). Slot word 3 holds the valid
+// bit and the chunk's lap (c div grid) in x and z, so one load checks it; the
+// division is in floats (exact here, fixed up by one step) because integer
+// division has no SIMD instruction on a CPU device.
 int world_chunk(ivec3 c)
 {
     ivec3 g = world_grid();
     if (c.y < 0 || c.y >= g.y)
         return -1;
-    uint base = WORLD_SLOTS + uint(world_imod(c.x, g.x) + g.x * (world_imod(c.z, g.z) + g.z * c.y)) * WORLD_SLOT_UINTS;
-    if ((world_data[base + 3u] & 0x80000000u) == 0u)
-        return -1;
-    if (int(world_data[base]) != c.x || int(world_data[base + 1u]) != c.y || int(world_data[base + 2u]) != c.z)
-        return -1;
-    return int(base);
+    ivec2 gxz = g.xz, cxz = c.xz;
+    ivec2 lap = ivec2(floor(vec2(cxz) / vec2(gxz)));
+    ivec2 m = cxz - lap * gxz;
+    lap += ivec2(greaterThanEqual(m, gxz)) - ivec2(lessThan(m, ivec2(0)));
+    m = cxz - lap * gxz;
+    uint base = WORLD_SLOTS + uint(m.x + g.x * (m.y + g.z * c.y)) * WORLD_SLOT_UINTS;
+    uint w = world_data[base + 3u];
+    uint want = 0x80000000u | (uint(lap.x) & 0x7ffu) << 8 | (uint(lap.y) & 0x7ffu) << 19;
+    return (w & 0xffffff00u) == want ? int(base) : -1;
 }
 
 // Brick b = bx + 2*(bz + 2*by) of a loaded chunk holds a solid voxel.
 bool world_brick_solid(int base, ivec3 brick) { return (world_data[base + 3] & (1u << uint(brick.x + 2 * (brick.z + 2 * brick.y)))) != 0u; }
+// The brick mask of a loaded chunk: bit b for brick b.
+uint world_brick_mask(int base) { return world_data[base + 3] & 0xffu; }
 
 // Occupancy bit of chunk-local voxel l.
 bool world_voxel_solid(int base, ivec3 l)

@@ -1,0 +1,36 @@
+// The pixel an invocation shades, for a pass dispatched over an image with
+//   layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
+// (the runtime defines VRG_GROUP_X/Y per device: one SIMD row on a CPU
+// device, 8x8 on a GPU; core/src/shader.c).
+//
+// Rows of workgroups are interleaved: dispatch row r shades screen row
+// k + j*S, where row r is the j-th member of stride class k. lavapipe gives
+// each of its threads one contiguous block of a dispatch's workgroups, so
+// without this one thread gets the cheap sky at the top of the screen and
+// the other the terrain below it; with it, every contiguous block of the
+// dispatch covers the whole screen height. A bijection for any row count.
+#ifndef VOXRG_PIXEL_GLSL
+#define VOXRG_PIXEL_GLSL
+const uint PIXEL_ROW_STRIDE = 16u;
+
+uint pixel_group_row(uint r, uint rows)
+{
+    uint S = PIXEL_ROW_STRIDE, B = rows / S, q = rows % S;
+    uint k, j;
+    if (r < q * (B + 1u)) {  // the first q classes hold B + 1 rows
+        k = r / (B + 1u);
+        j = r % (B + 1u);
+    } else {                 // the rest hold B (B > 0 here)
+        uint r2 = r - q * (B + 1u), b = max(B, 1u);
+        k = q + r2 / b;
+        j = r2 % b;
+    }
+    return j * S + k;
+}
+
+ivec2 vrg_pixel()
+{
+    uint row = pixel_group_row(gl_WorkGroupID.y, gl_NumWorkGroups.y);
+    return ivec2(gl_GlobalInvocationID.x, row * gl_WorkGroupSize.y + gl_LocalInvocationID.y);
+}
+#endif
