@@ -62,7 +62,7 @@ Hit trace_closest(vec3 o, vec3 d, float tmax)
     h.hit = true;
     h.t = t;
     h.normal = n;
-    h.voxel = ivec3(floor(p - vec3(n) * 0.5));
+    h.voxel = world_floor3(p - vec3(n) * 0.5);
     h.block = world_block(h.voxel);
     h.chunk = rayQueryGetIntersectionInstanceCustomIndexEXT(q, true);
     return h;
@@ -81,7 +81,7 @@ bool trace_any(vec3 o, vec3 d, float tmax)
 bool trace_brick(vec3 o, vec3 d, vec3 inv, ivec3 stp, int base, ivec3 brick, float t, ivec3 entry_normal, float tmax, inout Hit h)
 {
     ivec3 lo = brick * 8, hi = lo + 7;
-    ivec3 v = clamp(ivec3(floor(o + d * t)), lo, hi);
+    ivec3 v = clamp(world_floor3(o + d * t), lo, hi);
     vec3 tnext = (vec3(v) + max(vec3(stp), vec3(0.0)) - o) * inv;
     vec3 tdelta = abs(inv);
     ivec3 n = entry_normal;
@@ -132,7 +132,7 @@ Hit trace_closest(vec3 o, vec3 d, float tmax)
     // no division by zero: a tiny component behaves like a parallel ray
     d = mix(d, vec3(1e-7), lessThan(abs(d), vec3(1e-7)));
     vec3 inv = 1.0 / d;
-    ivec3 stp = ivec3(sign(d));
+    ivec3 stp = ivec3(greaterThan(d, vec3(0.0))) * 2 - 1;  // d has no zero component here
     // Only the slab 0 <= y <= height holds blocks: start where the ray
     // enters it and stop where it leaves (primary rays from above the
     // terrain skip their empty descent, rays into the sky end early).
@@ -143,14 +143,14 @@ Hit trace_closest(vec3 o, vec3 d, float tmax)
     if (t > tmax)
         return h;
     ivec3 n = t > 0.0 ? ivec3(0, -stp.y, 0) : ivec3(0);
-    ivec3 cell = ivec3(floor((o + d * t) / 8.0));
+    ivec3 cell = world_floor3((o + d * t) / 8.0);
     cell.y = clamp(cell.y, 0, top_brick - 1);
     vec3 tnext = ((vec3(cell) + max(vec3(stp), vec3(0.0))) * 8.0 - o) * inv;
     vec3 tdelta = abs(8.0 * inv);
     int base = -1;
     uint chunk_mask = 0u;
     ivec3 base_chunk = ivec3(-2147483647);
-    int steps = int((tmax - t) / 8.0) * 3 + 8;
+    int steps = world_floor1(min((tmax - t) / 8.0, 1e6)) * 3 + 8;
     for (int i = 0; i < steps && t <= tmax; i++) {
         ivec3 chunk = cell >> 1;
         if (chunk != base_chunk) {
