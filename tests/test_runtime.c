@@ -519,21 +519,19 @@ static void test_blocks_world(void)
     vrg_graph_destroy(g);
 }
 
-/* The GPU's primary rays and two-level DDA against the CPU camera and pick
- * ray, pixel by pixel, on the wall scene (world_debug mode 3: distance). */
-static void test_blocks_trace(void)
+/* Pixels of a world_debug distance view (mode 3, pass "view") whose hit or
+ * miss differs from the CPU pick ray through the same pixel; counts hits
+ * and misses, and the worst relative distance error of the hits. */
+static int trace_disagreement(vrg_graph *g, int *hits, int *misses, double *worst, int *pixels)
 {
-    static const char *sets[] = {"view.mode=3"};
-    vrg_graph *g = load_with("blocks_wall.ini", sets, 1, NULL, 0);
-    if (!g)
-        return;
-    CHECK(vrg_graph_frame(g) == 0, "frame failed");
     vrg_image_data img;
-    CHECK(vrg_graph_read(g, "view", &img) == 0, "readback failed");
+    if (vrg_graph_read(g, "view", &img) != 0)
+        return -1;
     const vrg_world *w = vrg_graph_world(g);
     const vrg_camera *cam = vrg_graph_camera(g);
-    int disagree = 0, hits = 0, misses = 0;
-    double worst = 0;
+    int disagree = 0;
+    *hits = *misses = 0;
+    *worst = 0;
     for (uint32_t y = 0; y < img.height; y++)
         for (uint32_t x = 0; x < img.width; x++) {
             float dir[3];
@@ -546,16 +544,57 @@ static void test_blocks_trace(void)
                 continue;
             }
             if (h) {
-                hits++;
-                worst = fmax(worst, fabs(gpu - hit.distance) / hit.distance);
+                (*hits)++;
+                *worst = fmax(*worst, fabs(gpu - hit.distance) / hit.distance);
             } else
-                misses++;
+                (*misses)++;
         }
+    *pixels = (int)(img.width * img.height);
+    free(img.pixels);
+    return disagree;
+}
+
+/* The GPU's primary rays and two-level DDA against the CPU camera and pick
+ * ray, pixel by pixel, on the wall scene (world_debug mode 3: distance). */
+static void test_blocks_trace(void)
+{
+    static const char *sets[] = {"view.mode=3"};
+    vrg_graph *g = load_with("blocks_wall.ini", sets, 1, NULL, 0);
+    if (!g)
+        return;
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    int hits, misses, pixels;
+    double worst;
+    int disagree = trace_disagreement(g, &hits, &misses, &worst, &pixels);
     /* rays grazing an edge may fall either side in float */
-    CHECK(disagree <= (int)(img.width * img.height / 200), "%d pixels disagree on hit/miss", disagree);
+    CHECK(disagree >= 0 && disagree <= pixels / 200, "%d pixels disagree on hit/miss", disagree);
     CHECK(hits > 1000 && misses > 300, "scene not in view: %d hits, %d misses", hits, misses);
     CHECK(worst < 2e-3, "distance differs by %.4f%%", worst * 100);
-    free(img.pixels);
+    vrg_graph_destroy(g);
+}
+
+/* Streamed terrain seen toward the horizon: rays leave the box of loaded
+ * chunks sideways (the DDA clips to it), and after the camera moves four
+ * chunks the box and the GPU copy follow; GPU and CPU rays agree both times. */
+static void test_terrain_trace(void)
+{
+    vrg_graph *g = load("terrain_trace.ini");
+    if (!g)
+        return;
+    for (int move = 0; move < 2; move++) {
+        if (move) {
+            vrg_camera cam = *vrg_graph_camera(g);
+            cam.position[0] += 4 * 16;
+            vrg_graph_set_camera(g, &cam);
+        }
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+        int hits, misses, pixels;
+        double worst;
+        int disagree = trace_disagreement(g, &hits, &misses, &worst, &pixels);
+        CHECK(disagree >= 0 && disagree <= pixels / 200, "camera %d: %d of %d pixels disagree on hit/miss", move, disagree, pixels);
+        CHECK(hits > pixels / 4 && misses > pixels / 10, "camera %d: %d hits, %d misses", move, hits, misses);
+        CHECK(worst < 2e-3, "camera %d: distance differs by %.4f%%", move, worst * 100);
+    }
     vrg_graph_destroy(g);
 }
 
@@ -1101,6 +1140,7 @@ int main(int argc, char **argv)
         {"history_cleared", test_history_cleared, 1}, {"pingpong_alias", test_pingpong_alias, 1},
         {"accumulate_count", test_accumulate_count, 1}, {"validation_live", test_validation_live, 1},
         {"blocks_world", test_blocks_world, 1}, {"blocks_trace", test_blocks_trace, 1}, {"terrain_world", test_terrain_world, 1},
+        {"terrain_trace", test_terrain_trace, 1},
         {"atlas", test_atlas, 1},         {"traversal_errors", test_traversal_errors, 0},
         {"gbuffer_normals", test_gbuffer_normals, 1}, {"gbuffer_motion", test_gbuffer_motion, 1},
         {"light_floor", test_light_floor, 1},         {"light_wall", test_light_wall, 1},

@@ -306,6 +306,7 @@ static int create_device(vrg_context *ctx)
     int cpu = ctx->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     ctx->group_size[0] = cpu && sg.subgroupSize >= 4 && sg.subgroupSize <= 64 ? sg.subgroupSize : 8;
     ctx->group_size[1] = cpu ? 1 : 8;
+    ctx->pixel_rows = cpu ? 8 : 1;
     return 0;
 }
 

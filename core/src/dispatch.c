@@ -214,6 +214,8 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
         }
         gx = (g->res[dom].width + pl->local[0] - 1) / pl->local[0];
         gy = (g->res[dom].height + pl->local[1] - 1) / pl->local[1];
+        if (d->pixel_loop)
+            gy = (gy + g->ctx->pixel_rows - 1) / g->ctx->pixel_rows;
         gz = 1;
     }
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pl->pipeline);

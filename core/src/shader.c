@@ -252,12 +252,15 @@ int vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, 
         fprintf(diag, "%s: error: cannot read shader\n", path);
         return -1;
     }
-    /* Every shader sees the device's preferred workgroup shape (pixel.glsl):
-     * on a CPU device one SIMD row, since lavapipe runs each group of
-     * subgroup-size invocations as a coroutine with its own allocations and
-     * 8x1 groups measured 2-3x faster than 8x8 there; on a GPU 8x8 tiles. */
+    /* Every shader sees the device's preferred workgroup shape and pixel
+     * loop (pixel.glsl). On a CPU device: one SIMD row per group and 8 rows
+     * per invocation. lavapipe runs every 8 invocations as a coroutine with
+     * its own allocation and set-up; 8x1 groups ran passes 2-3x faster than
+     * 8x8, and 8 rows per invocation another 1.5-8x (docs/benchmarks.md).
+     * On a GPU: 8x8 groups, one pixel per invocation. */
     char all_defines[1200];
-    snprintf(all_defines, sizeof all_defines, "VRG_GROUP_X=%u VRG_GROUP_Y=%u %s", ctx->group_size[0], ctx->group_size[1], defines ? defines : "");
+    snprintf(all_defines, sizeof all_defines, "VRG_GROUP_X=%u VRG_GROUP_Y=%u VRG_PIXEL_ROWS=%uu %s", ctx->group_size[0], ctx->group_size[1],
+             ctx->pixel_rows, defines ? defines : "");
     expand_ctx e = {.diag = diag, .defines = all_defines};
     expand(&e, path, src, 0);
     free(src);

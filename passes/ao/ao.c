@@ -34,6 +34,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     } pc = {vrg_param_int(pass, "rays"), (float)vrg_param(pass, "radius")};
     vrg_dispatch_desc d = {
         .shader = "ao.comp",
+        .pixel_loop = 1,
         .push = &pc,
         .push_size = sizeof pc,
     };

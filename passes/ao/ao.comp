@@ -20,10 +20,9 @@ layout(push_constant) uniform Params {
 
 const uint SALT = 0x414f0002u;  // this pass's random stream
 
-void main()
+void shade(ivec2 p)
 {
     ivec2 size = imageSize(out_ao);
-    ivec2 p = vrg_pixel();
     if (any(greaterThanEqual(p, size)))
         return;
     vec4 pos = imageLoad(in_position, p);
@@ -41,4 +40,10 @@ void main()
             open++;
     }
     imageStore(out_ao, p, vec4(float(open) / float(params.rays)));
+}
+
+void main()
+{
+    for (uint k = 0u; k < VRG_PIXEL_ROWS; k++)
+        shade(vrg_pixel(k));
 }

@@ -51,7 +51,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         vrg_res_connected(vrg_pass_res(pass, "ao")),
         vrg_res_connected(vrg_pass_res(pass, "indirect")),
     };
-    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "combine.comp", .push = &pc, .push_size = sizeof pc});
+    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "combine.comp", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1});
 }
 
 static const vrg_plugin_desc desc = {

@@ -2,8 +2,9 @@
 // combine.c has the formulas; docs/lighting.md derives them.
 #define FRAME_BINDING 1
 #include "frame.glsl"
+#include "pixel.glsl"
 
-// The device's workgroup shape (VRG_GROUP_X/Y: pixel.glsl, core/src/shader.c).
+// The device's workgroup shape and rows per invocation: pixel.glsl.
 layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
 layout(binding = 0) uniform sampler2D in_normal;
 layout(binding = 2) uniform sampler2D in_visibility;
@@ -29,10 +30,9 @@ vec4 fetch(sampler2D s, ivec2 p, ivec2 size)
     return texelFetch(s, min(floatBitsToInt(f + 12582912.0) - 0x4B400000, ts - 1), 0);
 }
 
-void main()
+void shade(ivec2 p)
 {
     ivec2 size = imageSize(out_illumination);
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, size)))
         return;
     vec3 n = fetch(in_normal, p, size).xyz;
@@ -55,4 +55,10 @@ void main()
     else
         l = params.direct_scale * sun * ao / PI + 2.0 * params.indirect_scale * indirect;
     imageStore(out_illumination, p, vec4(l, 1.0));
+}
+
+void main()
+{
+    for (uint k = 0u; k < VRG_PIXEL_ROWS; k++)
+        shade(vrg_pixel(k));
 }

@@ -39,6 +39,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     } pc = {(float)vrg_param(pass, "max_distance"), vrg_param_int(pass, "textures") && vrg_res_connected(vrg_pass_res(pass, "atlas"))};
     vrg_dispatch_desc d = {
         .shader = "gbuffer.comp",
+        .pixel_loop = 1,
         .push = &pc,
         .push_size = sizeof pc,
     };

@@ -26,10 +26,9 @@ vec2 previous_pixel(vec4 p, vec2 size)
     return (clip.xy / clip.w * 0.5 + 0.5) * size - 0.5;
 }
 
-void main()
+void shade(ivec2 p)
 {
     ivec2 size = imageSize(out_albedo);
-    ivec2 p = vrg_pixel();
     if (any(greaterThanEqual(p, size)))
         return;
     vec3 o = frame.camera_pos.xyz;
@@ -58,4 +57,10 @@ void main()
     imageStore(out_albedo, p, vec4(albedo, 1.0));
     imageStore(out_ids, p, uvec4(h.block, uint(h.chunk) + 1u, 0u, 0u));
     imageStore(out_motion, p, vec4(vec2(p) - previous_pixel(vec4(hp, 1.0), vec2(size)), 0.0, 0.0));
+}
+
+void main()
+{
+    for (uint k = 0u; k < VRG_PIXEL_ROWS; k++)
+        shade(vrg_pixel(k));
 }

@@ -28,7 +28,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     struct {
         float far_depth, motion_scale;
     } pc = {(float)vrg_param(pass, "far"), (float)vrg_param(pass, "motion_scale")};
-    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "gbuffer_view.comp", .push = &pc, .push_size = sizeof pc});
+    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "gbuffer_view.comp", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1});
 }
 
 static const vrg_plugin_desc desc = {

@@ -1,6 +1,7 @@
 #version 460
+#include "pixel.glsl"
 
-// The device's workgroup shape (VRG_GROUP_X/Y: pixel.glsl, core/src/shader.c).
+// The device's workgroup shape and rows per invocation: pixel.glsl.
 layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
 layout(binding = 0) uniform sampler2D in_position;
 layout(binding = 1) uniform sampler2D in_depth;
@@ -29,10 +30,9 @@ ivec2 source(sampler2D s, ivec2 q)
     return min(q * 2, textureSize(s, 0) - 1);
 }
 
-void main()
+void shade(ivec2 p)
 {
     ivec2 size = imageSize(out_view);
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, size)))
         return;
     ivec2 half_size = (size + 1) / 2;
@@ -55,4 +55,10 @@ void main()
             c = hue(atan(-m.y, m.x) / 6.28318530718 + 0.5) * min(len * params.motion_scale, 1.0);
     }
     imageStore(out_view, p, vec4(c, 1.0));
+}
+
+void main()
+{
+    for (uint k = 0u; k < VRG_PIXEL_ROWS; k++)
+        shade(vrg_pixel(k));
 }

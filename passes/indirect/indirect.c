@@ -57,6 +57,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
             vrg_param_int(pass, "textures") && vrg_res_connected(vrg_pass_res(pass, "atlas"))};
     vrg_dispatch_desc d = {
         .shader = "indirect.comp",
+        .pixel_loop = 1,
         .push = &pc,
         .push_size = sizeof pc,
     };

@@ -37,10 +37,9 @@ vec3 bounce(vec3 x2, ivec3 n2, uint b)
     return albedo * (frame.sun_radiance.rgb * ndl * v + frame.ambient.rgb);
 }
 
-void main()
+void shade(ivec2 p)
 {
     ivec2 size = imageSize(out_irradiance);
-    ivec2 p = vrg_pixel();
     if (any(greaterThanEqual(p, size)))
         return;
     vec4 pos = imageLoad(in_position, p);
@@ -59,4 +58,10 @@ void main()
         sum += h.hit ? bounce(o + d * h.t, h.normal, h.block) : frame_sky(d);
     }
     imageStore(out_irradiance, p, vec4(sum / float(params.rays), 1.0));
+}
+
+void main()
+{
+    for (uint k = 0u; k < VRG_PIXEL_ROWS; k++)
+        shade(vrg_pixel(k));
 }

@@ -12,7 +12,7 @@ static const vrg_slot_desc slots[] = {
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "modulate.comp"});
+    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "modulate.comp", .pixel_loop = 1});
 }
 
 static const vrg_plugin_desc desc = {

@@ -1,18 +1,24 @@
 #version 460
+#include "pixel.glsl"
 
-// The device's workgroup shape (VRG_GROUP_X/Y: pixel.glsl, core/src/shader.c).
+// The device's workgroup shape and rows per invocation: pixel.glsl.
 layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
 layout(binding = 0) uniform sampler2D in_illumination;
 layout(binding = 1) uniform sampler2D in_albedo;
 layout(binding = 2, rgba16f) uniform writeonly image2D out_color;
 
-void main()
+void shade(ivec2 p)
 {
     ivec2 size = imageSize(out_color);
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, size)))
         return;
     vec3 l = texelFetch(in_illumination, p, 0).rgb;
     vec3 a = texelFetch(in_albedo, p, 0).rgb;
     imageStore(out_color, p, vec4(a * l, 1.0));
+}
+
+void main()
+{
+    for (uint k = 0u; k < VRG_PIXEL_ROWS; k++)
+        shade(vrg_pixel(k));
 }

@@ -43,6 +43,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         pc.rays = 1;
     vrg_dispatch_desc d = {
         .shader = "sun_shadow.comp",
+        .pixel_loop = 1,
         .push = &pc,
         .push_size = sizeof pc,
     };

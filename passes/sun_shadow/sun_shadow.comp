@@ -21,10 +21,9 @@ layout(push_constant) uniform Params {
 
 const uint SALT = 0x53554e01u;  // this pass's random stream
 
-void main()
+void shade(ivec2 p)
 {
     ivec2 size = imageSize(out_visibility);
-    ivec2 p = vrg_pixel();
     if (any(greaterThanEqual(p, size)))
         return;
     vec4 pos = imageLoad(in_position, p);
@@ -51,4 +50,10 @@ void main()
             seen++;
     }
     imageStore(out_visibility, p, vec4(float(seen) / float(params.rays)));
+}
+
+void main()
+{
+    for (uint k = 0u; k < VRG_PIXEL_ROWS; k++)
+        shade(vrg_pixel(k));
 }

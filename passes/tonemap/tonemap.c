@@ -25,7 +25,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         float exposure;
         int32_t curve;
     } pc = {(float)vrg_param(pass, "exposure"), vrg_param_choice(pass, "curve", curves, 3)};
-    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "tonemap.comp", .push = &pc, .push_size = sizeof pc});
+    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "tonemap.comp", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1});
 }
 
 static const vrg_plugin_desc desc = {

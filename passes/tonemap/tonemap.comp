@@ -1,6 +1,7 @@
 #version 460
+#include "pixel.glsl"
 
-// The device's workgroup shape (VRG_GROUP_X/Y: pixel.glsl, core/src/shader.c).
+// The device's workgroup shape and rows per invocation: pixel.glsl.
 layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
 layout(binding = 0) uniform sampler2D in_color;
 layout(binding = 1, rgba8) uniform writeonly image2D out_ldr;
@@ -21,10 +22,9 @@ vec3 srgb_encode(vec3 c)
     return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
 }
 
-void main()
+void shade(ivec2 p)
 {
     ivec2 size = imageSize(out_ldr);
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, size)))
         return;
     vec3 c = texelFetch(in_color, p, 0).rgb * params.exposure;
@@ -33,4 +33,10 @@ void main()
     c = clamp(c, 0.0, 65504.0); // negative and infinite values would make the curves NaN
     vec3 m = params.curve == 0 ? aces(c) : params.curve == 1 ? c / (1.0 + c) : clamp(c, 0.0, 1.0);
     imageStore(out_ldr, p, vec4(srgb_encode(m), 1.0));
+}
+
+void main()
+{
+    for (uint k = 0u; k < VRG_PIXEL_ROWS; k++)
+        shade(vrg_pixel(k));
 }

@@ -27,7 +27,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         int32_t textured;
     } pc = {vrg_param_int(pass, "mode"), vrg_param_int(pass, "shadows"), (float)vrg_param(pass, "exposure"),
             (float)vrg_param(pass, "max_distance"), vrg_res_connected(vrg_pass_res(pass, "atlas"))};
-    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "world_debug.comp", .push = &pc, .push_size = sizeof pc});
+    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "world_debug.comp", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1});
 }
 
 static const vrg_plugin_desc desc = {

@@ -24,10 +24,9 @@ vec3 id_color(uint id)
     return vec3((h >> 8) & 255u, (h >> 16) & 255u, (h >> 24) & 255u) / 255.0;
 }
 
-void main()
+void shade(ivec2 p)
 {
     ivec2 size = imageSize(color);
-    ivec2 p = vrg_pixel();
     if (any(greaterThanEqual(p, size)))
         return;
     vec3 o = frame.camera_pos.xyz;
@@ -61,4 +60,10 @@ void main()
         c = albedo * (frame.sun_radiance.rgb * ndl * visible + frame.ambient.rgb) * params.exposure;
     }
     imageStore(color, p, vec4(c, 1.0));
+}
+
+void main()
+{
+    for (uint k = 0u; k < VRG_PIXEL_ROWS; k++)
+        shade(vrg_pixel(k));
 }

@@ -1,46 +1,26 @@
-// The pixel an invocation shades, for a pass dispatched over an image with
+// Which pixels an invocation shades, for a pass dispatched over an image
+// with vrg_dispatch_desc.pixel_loop = 1 and
 //   layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
-// (the runtime defines VRG_GROUP_X/Y per device: one SIMD row on a CPU
-// device, 8x8 on a GPU; core/src/shader.c).
+//   void shade(ivec2 p) { ... }
+//   void main() { for (uint k = 0u; k < VRG_PIXEL_ROWS; k++) shade(vrg_pixel(k)); }
+// The runtime defines VRG_GROUP_X/Y and VRG_PIXEL_ROWS per device
+// (core/src/shader.c): on a CPU device 8x1 groups and 8 rows per invocation,
+// on a GPU 8x8 groups and one pixel per invocation.
 //
-// Rows of workgroups are interleaved: dispatch row r shades screen row
-// k + j*S, where row r is the j-th member of stride class k. lavapipe gives
-// each of its threads one contiguous block of a dispatch's workgroups, so
-// without this one thread gets the cheap sky at the top of the screen and
-// the other the terrain below it; with it, every contiguous block of the
-// dispatch covers the whole screen height. A bijection for any row count.
+// Why a loop: lavapipe runs every SIMD row of invocations as a coroutine with
+// its own allocation and set-up, which cost more than a simple pass's work;
+// shading 8 pixels per invocation made such passes up to 8x faster.
+// Why these rows: the dispatch covers Q rows of invocations and invocation
+// row q shades rows q, q + Q, q + 2Q, ... lavapipe gives each of its threads
+// one contiguous block of a dispatch's workgroups, so with plain rows one
+// thread would get the cheap sky at the top of the screen and the other the
+// terrain; this way every block of the dispatch samples the whole height.
+// The loop may run past the image: shade() checks the bounds.
 #ifndef VOXRG_PIXEL_GLSL
 #define VOXRG_PIXEL_GLSL
-const uint PIXEL_ROW_STRIDE = 16u;
-
-// a / n and a % n through a float division fixed up by one step: exact for
-// the sizes here, and a CPU device has no SIMD integer division (eight
-// scalar divides per row of invocations cost a ray pass 20-30%).
-uint pixel_div(uint a, uint n, out uint rem)
+ivec2 vrg_pixel(uint k)
 {
-    // the bit trick of world_floor1: int(floor()) is scalar per lane on a CPU
-    int q = floatBitsToInt(floor(float(a) / float(n)) + 12582912.0) - 0x4B400000;
-    int r = int(a) - q * int(n);
-    q += r >= int(n) ? 1 : (r < 0 ? -1 : 0);
-    rem = uint(int(a) - q * int(n));
-    return uint(q);
-}
-
-uint pixel_group_row(uint r, uint rows)
-{
-    uint S = PIXEL_ROW_STRIDE, B = rows / S, q = rows % S;  // S is a power of two
-    uint k, j;
-    if (r < q * (B + 1u)) {  // the first q classes hold B + 1 rows
-        k = pixel_div(r, B + 1u, j);
-    } else {                 // the rest hold B (B > 0 here)
-        k = q + pixel_div(r - q * (B + 1u), max(B, 1u), j);
-    }
-    return j * S + k;
-}
-
-ivec2 vrg_pixel()
-{
-    uint row = pixel_group_row(gl_WorkGroupID.y, gl_NumWorkGroups.y);
-    return ivec2(gl_GlobalInvocationID.x, row * gl_WorkGroupSize.y + gl_LocalInvocationID.y);
+    uint rows = gl_NumWorkGroups.y * gl_WorkGroupSize.y;
+    return ivec2(gl_GlobalInvocationID.x, gl_GlobalInvocationID.y + k * rows);
 }
 #endif

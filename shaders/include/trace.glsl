@@ -133,18 +133,24 @@ Hit trace_closest(vec3 o, vec3 d, float tmax)
     d = mix(d, vec3(1e-7), lessThan(abs(d), vec3(1e-7)));
     vec3 inv = 1.0 / d;
     ivec3 stp = ivec3(greaterThan(d, vec3(0.0))) * 2 - 1;  // d has no zero component here
-    // Only the slab 0 <= y <= height holds blocks: start where the ray
-    // enters it and stop where it leaves (primary rays from above the
-    // terrain skip their empty descent, rays into the sky end early).
-    int top_brick = world_height() / 8;
-    float ty0 = -o.y * inv.y, ty1 = (float(world_height()) - o.y) * inv.y;
-    float t = max(min(ty0, ty1), 0.0);
-    tmax = min(tmax, max(ty0, ty1));
+    // Only the box around the loaded chunks holds blocks: start where the
+    // ray enters it and stop where it leaves (primary rays from above the
+    // terrain skip their empty descent; rays toward the horizon stop at the
+    // last loaded chunk instead of stepping through unloaded space).
+    vec3 lo, hi;
+    world_bounds(lo, hi);
+    if (any(greaterThanEqual(lo, hi)))  // nothing loaded
+        return h;
+    vec3 t0 = (lo - o) * inv, t1 = (hi - o) * inv;
+    vec3 tin = min(t0, t1), tout = max(t0, t1);
+    float t = max(max(tin.x, max(tin.y, tin.z)), 0.0);
+    tmax = min(tmax, min(tout.x, min(tout.y, tout.z)));
     if (t > tmax)
         return h;
-    ivec3 n = t > 0.0 ? ivec3(0, -stp.y, 0) : ivec3(0);
-    ivec3 cell = world_floor3((o + d * t) / 8.0);
-    cell.y = clamp(cell.y, 0, top_brick - 1);
+    // entering the box: the face crossed last, facing the ray
+    ivec3 n = t > 0.0 ? -trace_step_mask(-tin) * stp : ivec3(0);
+    // the brick at the entry point, inside the box (t is on its boundary)
+    ivec3 cell = clamp(world_floor3((o + d * t) / 8.0), world_floor3(lo / 8.0), world_floor3(hi / 8.0) - 1);
     vec3 tnext = ((vec3(cell) + max(vec3(stp), vec3(0.0))) * 8.0 - o) * inv;
     vec3 tdelta = abs(8.0 * inv);
     int base = -1;

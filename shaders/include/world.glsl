@@ -19,6 +19,13 @@ const uint WORLD_IDS = 132u;       // slot-relative: block ids, 4 per uint
 ivec3 world_grid() { return ivec3(world_data[0], world_data[1], world_data[2]); }
 int world_height() { return int(world_data[1]) * 16; }
 
+// The box (in blocks) around every loaded chunk; empty (lo > hi) when none.
+void world_bounds(out vec3 lo, out vec3 hi)
+{
+    lo = vec3(int(world_data[6]), int(world_data[7]), int(world_data[8])) * 16.0;
+    hi = vec3(int(world_data[9]), int(world_data[10]), int(world_data[11])) * 16.0 + 16.0;
+}
+
 // floor(x) as integers for |x| < 2^22: adding 1.5 * 2^23 puts an integral
 // float's value in the low mantissa bits. A plain int(floor(x)) is a scalar
 // saturating conversion per lane on a CPU device (lavapipe): ~6 instructions

@@ -306,6 +306,10 @@ typedef struct vrg_dispatch_desc {
      * output), divided by the shader's local size, rounded up. */
     const char *domain;
     uint32_t groups_x, groups_y, groups_z; /* explicit group counts, if set */
+    /* The shader shades VRG_PIXEL_ROWS rows per invocation (pixel.glsl's
+     * vrg_pixel(k) for k < VRG_PIXEL_ROWS): the runtime divides the group
+     * count in y by it. VRG_PIXEL_ROWS is 8 on a CPU device, 1 on a GPU. */
+    int pixel_loop;
 } vrg_dispatch_desc;
 
 /* Compiles (once, cached per pass) and records the dispatch, with barriers

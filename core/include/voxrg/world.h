@@ -89,7 +89,9 @@ int vrg_world_pick(const vrg_world *w, const float origin[3], const float dir[3]
 /* Records copies of changed chunks (at most what fits the staging ring)
  * into dst, the world buffer a scene writes with VRG_ACCESS_TRANSFER_DST.
  * staging is host-visible memory of staging_bytes (vrg_pass_host_buffer).
- * Returns the number of slots uploaded; the rest wait for the next frame. */
+ * Returns the number of slots uploaded; the rest wait for the next frame.
+ * The header (with the box of the slots valid in the GPU copy) goes up
+ * whenever that box may have changed. */
 int vrg_world_upload(vrg_world *w, VkCommandBuffer cmd, VkBuffer dst, void *staging, VkBuffer staging_buffer, uint64_t staging_bytes);
 /* The GPU copy was lost (new buffer): upload everything again. */
 void vrg_world_invalidate_gpu(vrg_world *w);
