@@ -1034,6 +1034,34 @@ static void test_light_wall(void)
     vrg_graph_destroy(g);
 }
 
+/* A ray pass at half the G-buffer's resolution reads the G-buffer pixel
+ * under each of its pixels' centres: with hard shadows (deterministic), half
+ * pixel (x, y) equals full pixel (2x + 1, 2y + 1), shadow edge included. */
+static void test_light_half_res(void)
+{
+    static const char *reads[] = {"shadow.visibility", "half"};
+    vrg_graph *g = load_with("light_half.ini", NULL, 0, reads, 2);
+    if (!g)
+        return;
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_image_data full, half;
+    CHECK(vrg_graph_read(g, "shadow.visibility", &full) == 0 && vrg_graph_read(g, "half", &half) == 0, "readback failed");
+    CHECK(half.width * 2 == full.width && half.height * 2 == full.height, "half is %ux%u, full %ux%u", half.width, half.height, full.width,
+          full.height);
+    int differ = 0, shadowed = 0, lit = 0;
+    for (uint32_t y = 0; y < half.height; y++)
+        for (uint32_t x = 0; x < half.width; x++) {
+            float v = px(&half, x, y, 0);
+            differ += v != px(&full, 2 * x + 1, 2 * y + 1, 0);
+            shadowed += v == 0.0f;
+            lit += v == 1.0f;
+        }
+    CHECK(differ == 0, "%d half-resolution pixels differ from the full-resolution pixel under them", differ);
+    CHECK(shadowed > 20 && lit > 100, "shadow not in view (%d shadowed, %d lit)", shadowed, lit);
+    free(full.pixels), free(half.pixels);
+    vrg_graph_destroy(g);
+}
+
 /* With a sun radius > 0 the penumbra widens with the occluder's distance:
  * the 12-high wall's is wider than the 4-high wall's. */
 static void test_light_penumbra(void)
@@ -1144,6 +1172,7 @@ int main(int argc, char **argv)
         {"atlas", test_atlas, 1},         {"traversal_errors", test_traversal_errors, 0},
         {"gbuffer_normals", test_gbuffer_normals, 1}, {"gbuffer_motion", test_gbuffer_motion, 1},
         {"light_floor", test_light_floor, 1},         {"light_wall", test_light_wall, 1},
+        {"light_half_res", test_light_half_res, 1},
         {"light_penumbra", test_light_penumbra, 1},   {"light_corner", test_light_corner, 1},
         {"light_chain", test_light_chain, 1},
     };

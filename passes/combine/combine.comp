@@ -19,16 +19,8 @@ layout(push_constant) uniform Params {
 
 const float PI = 3.14159265358979;
 
-// Texel of an input under output pixel p's centre: the same pixel when the
-// sizes match, else the nearest (ray passes may run at a lower resolution).
-// Float maths and the bit trick of world.glsl's world_floor: integer division
-// and int(float) are scalar per lane on a CPU device.
-vec4 fetch(sampler2D s, ivec2 p, ivec2 size)
-{
-    ivec2 ts = textureSize(s, 0);
-    vec2 f = floor((vec2(p) + 0.5) * vec2(ts) / vec2(size));
-    return texelFetch(s, min(floatBitsToInt(f + 12582912.0) - 0x4B400000, ts - 1), 0);
-}
+// Texel of an input under output pixel p (inputs may differ in size).
+vec4 fetch(sampler2D s, ivec2 p, ivec2 size) { return texelFetch(s, vrg_pixel_in(p, size, textureSize(s, 0)), 0); }
 
 void shade(ivec2 p)
 {

@@ -42,12 +42,13 @@ void shade(ivec2 p)
     ivec2 size = imageSize(out_irradiance);
     if (any(greaterThanEqual(p, size)))
         return;
-    vec4 pos = imageLoad(in_position, p);
+    ivec2 g = vrg_pixel_in(p, size, imageSize(in_position));  // the G-buffer may differ in size
+    vec4 pos = imageLoad(in_position, g);
     if (pos.w == 0.0) {
         imageStore(out_irradiance, p, vec4(0.0));
         return;
     }
-    vec3 n = imageLoad(in_normal, p).xyz;
+    vec3 n = imageLoad(in_normal, g).xyz;
     vec3 o = pos.xyz + n * 1e-3;
     Rng r = rng_init(uvec2(p), frame.frame_info.x, frame.frame_info.w, SALT);
     vec3 sum = vec3(0.0);

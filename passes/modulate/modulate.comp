@@ -12,8 +12,9 @@ void shade(ivec2 p)
     ivec2 size = imageSize(out_color);
     if (any(greaterThanEqual(p, size)))
         return;
-    vec3 l = texelFetch(in_illumination, p, 0).rgb;
-    vec3 a = texelFetch(in_albedo, p, 0).rgb;
+    // inputs may differ in size: nearest texel under the pixel
+    vec3 l = texelFetch(in_illumination, vrg_pixel_in(p, size, textureSize(in_illumination, 0)), 0).rgb;
+    vec3 a = texelFetch(in_albedo, vrg_pixel_in(p, size, textureSize(in_albedo, 0)), 0).rgb;
     imageStore(out_color, p, vec4(a * l, 1.0));
 }
 

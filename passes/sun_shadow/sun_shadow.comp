@@ -26,12 +26,13 @@ void shade(ivec2 p)
     ivec2 size = imageSize(out_visibility);
     if (any(greaterThanEqual(p, size)))
         return;
-    vec4 pos = imageLoad(in_position, p);
+    ivec2 g = vrg_pixel_in(p, size, imageSize(in_position));  // the G-buffer may differ in size
+    vec4 pos = imageLoad(in_position, g);
     if (pos.w == 0.0) {
         imageStore(out_visibility, p, vec4(1.0));
         return;
     }
-    vec3 n = imageLoad(in_normal, p).xyz;
+    vec3 n = imageLoad(in_normal, g).xyz;
     vec3 l = frame.sun_dir.xyz;
     if (l.y <= 0.0 || dot(n, l) <= 0.0) {
         imageStore(out_visibility, p, vec4(0.0));

@@ -27,7 +27,7 @@ void shade(ivec2 p)
     ivec2 size = imageSize(out_ldr);
     if (any(greaterThanEqual(p, size)))
         return;
-    vec3 c = texelFetch(in_color, p, 0).rgb * params.exposure;
+    vec3 c = texelFetch(in_color, vrg_pixel_in(p, size, textureSize(in_color, 0)), 0).rgb * params.exposure;
     if (any(isnan(c)))
         c = vec3(0.0);
     c = clamp(c, 0.0, 65504.0); // negative and infinite values would make the curves NaN
