@@ -896,6 +896,36 @@ static void test_gbuffer_motion(void)
     CHECK(checked > 1000 && bad == 0, "moving camera: %d of %d motion vectors off (worst %g px)", bad, checked, worst);
     free(m.pixels);
     free(pos.pixels);
+
+    /* a 150-degree turn: points behind the previous camera must not be
+     * mirrored onto its screen, their previous pixel is far off screen */
+    before.position[0] = before.position[2] = 16.0f; /* above the middle of the floor, looking down */
+    before.position[1] = 10.0f;
+    before.pitch = -50.0f;
+    vrg_graph_set_camera(g, &before);
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    after = before;
+    after.yaw += 150.0f;
+    vrg_graph_set_camera(g, &after);
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    CHECK(vrg_graph_read(g, "gbuffer.motion", &m) == 0 && vrg_graph_read(g, "gbuffer.position", &pos) == 0, "readback failed");
+    vrg_camera_view_projection(&before, (float)m.width / (float)m.height, vp);
+    int behind = 0, mirrored = 0;
+    for (uint32_t y = 0; y < m.height; y++)
+        for (uint32_t x = 0; x < m.width; x++) {
+            if (px(&pos, x, y, 3) == 0)
+                continue;
+            float P[4] = {px(&pos, x, y, 0), px(&pos, x, y, 1), px(&pos, x, y, 2), 1};
+            float w = vp[3] * P[0] + vp[7] * P[1] + vp[11] * P[2] + vp[15];
+            if (w > 0)
+                continue;
+            behind++;
+            float prev_x = (float)x - px(&m, x, y, 0), prev_y = (float)y - px(&m, x, y, 1);
+            mirrored += prev_x > -1000 && prev_x < (float)m.width + 1000 && prev_y > -1000 && prev_y < (float)m.height + 1000;
+        }
+    CHECK(behind > 100 && mirrored == 0, "turn: %d of %d points behind the previous camera reproject onto its screen", mirrored, behind);
+    free(m.pixels);
+    free(pos.pixels);
     vrg_graph_destroy(g);
 }
 

@@ -26,7 +26,7 @@ static const vrg_slot_desc slots[] = {
     {.name = "ids", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R32G32_UINT,
      .help = "block id, chunk (object) id + 1; 0 0 on sky"},
     {.name = "motion", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16_SFLOAT,
-     .help = "pixels from where the surface was last frame to where it is now"},
+     .help = "pixels from where the surface was last frame to where it is now (about 1e4 when it was behind the previous camera)"},
     {.name = "tlas", .dir = VRG_IN, .kind = VRG_ACCEL, .access = VRG_ACCESS_RAY_QUERY, .flags = VRG_SLOT_OPTIONAL,
      .help = "the scene's TLAS: trace with ray queries (traversal = rayquery)"},
 };

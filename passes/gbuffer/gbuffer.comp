@@ -20,9 +20,14 @@ layout(push_constant) uniform Params {
 } params;
 
 // Where a world point (w = 1) or direction (w = 0) was on screen last frame, in pixels.
+// Behind the previous camera (clip w <= 0) the projection would mirror it
+// onto the screen: report a position far off screen instead, so
+// reprojection finds no history there.
 vec2 previous_pixel(vec4 p, vec2 size)
 {
     vec4 clip = frame.prev_view_proj * p;
+    if (clip.w <= 1e-6)
+        return vec2(-1e4);  // representable in the rg16f motion image
     return (clip.xy / clip.w * 0.5 + 0.5) * size - 0.5;
 }
 
