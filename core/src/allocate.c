@@ -164,8 +164,8 @@ static int create_objects(vrg_graph *g, int ri)
             vrg_name_object(ctx, VK_OBJECT_TYPE_IMAGE, (uint64_t)r->image[c], "%s/%s%s", g->name, r->name, c ? " (copy 1)" : "");
             vkGetImageMemoryRequirements(dev, r->image[c], &r->req);
         } else {
-            r->buffer_usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-                              VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+            r->buffer_usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT |
+                              VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
             VkBufferCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = r->size, .usage = r->buffer_usage};
             if (vkCreateBuffer(dev, &ci, NULL, &r->buffer[c]) != VK_SUCCESS) {
                 vrg_error_at(&g->diag, r->line, NULL, "resource '%s': vkCreateBuffer failed (%llu bytes)", r->name, (unsigned long long)r->size);
@@ -287,6 +287,8 @@ void vrg_free_resources(vrg_graph *g)
         r->accel = VK_NULL_HANDLE;
         for (int c = 0; c < 2; c++) {
             vkDestroyImageView(dev, r->view[c], NULL);
+            vkDestroyBufferView(dev, r->texel_view[c], NULL);
+            r->texel_view[c] = VK_NULL_HANDLE;
             vkDestroyImage(dev, r->image[c], NULL);
             vkDestroyBuffer(dev, r->buffer[c], NULL);
             vkFreeMemory(dev, r->own_memory[c], NULL);

@@ -32,6 +32,8 @@ vrg_access_info vrg_access_info_of(vrg_access a, vrg_resource_kind kind)
                                  VK_IMAGE_LAYOUT_UNDEFINED, 1};
     case VRG_ACCESS_RAY_QUERY:
         return (vrg_access_info){cs, VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR, VK_IMAGE_LAYOUT_UNDEFINED, 0};
+    case VRG_ACCESS_TEXEL_READ:
+        return (vrg_access_info){cs, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED, 0};
     }
     return (vrg_access_info){cs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_IMAGE_LAYOUT_GENERAL, 0};
 }

@@ -23,7 +23,9 @@ static VkDescriptorType descriptor_type(vrg_resource_kind kind, vrg_access a)
     if (kind == VRG_ACCEL)
         return VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR;
     if (kind == VRG_BUFFER)
-        return a == VRG_ACCESS_UNIFORM ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        return a == VRG_ACCESS_UNIFORM       ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
+               : a == VRG_ACCESS_TEXEL_READ ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER
+                                            : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     return a == VRG_ACCESS_SAMPLED ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 }
 
@@ -175,6 +177,7 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
     VkDescriptorImageInfo ii[VRG_MAX_BINDINGS];
     VkDescriptorBufferInfo bi[VRG_MAX_BINDINGS];
     VkWriteDescriptorSetAccelerationStructureKHR ai[VRG_MAX_BINDINGS];
+    VkBufferView tv[VRG_MAX_BINDINGS];
     for (int i = 0; i < n; i++) {
         vrg_resource *r = &g->res[b[i].res];
         int copy = vrg_copy_of(g, b[i].res, b[i].prev);
@@ -191,6 +194,19 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
             VkSampler sampler = r->mips > 1 ? g->ctx->sampler_mips : g->ctx->sampler_linear;
             ii[i] = (VkDescriptorImageInfo){.sampler = sampler, .imageView = r->view[copy], .imageLayout = info.layout};
             w[i].pImageInfo = &ii[i];
+        } else if (types[i] == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) {
+            uint64_t words = r->size / 4, max = g->ctx->dev.features.max_texel_buffer_words;
+            if (words > max)
+                return vrg_pass_error(p, "binding %d: buffer '%s' holds %llu words, more than this device's texel buffers can (%llu)", i, r->name,
+                                      (unsigned long long)words, (unsigned long long)max);
+            if (!r->texel_view[copy]) {
+                VkBufferViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO, .buffer = r->buffer[copy],
+                                             .format = VK_FORMAT_R32_UINT, .range = VK_WHOLE_SIZE};
+                if (vkCreateBufferView(g->ctx->dev.device, &vi, NULL, &r->texel_view[copy]) != VK_SUCCESS)
+                    return vrg_pass_error(p, "binding %d: cannot create a texel view of buffer '%s'", i, r->name);
+            }
+            tv[i] = r->texel_view[copy];
+            w[i].pTexelBufferView = &tv[i];
         } else {
             bi[i] = (VkDescriptorBufferInfo){.buffer = r->buffer[copy], .offset = 0, .range = VK_WHOLE_SIZE};
             w[i].pBufferInfo = &bi[i];

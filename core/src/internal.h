@@ -137,6 +137,7 @@ typedef struct vrg_resource {
     VkImage image[2];
     VkImageView view[2];
     VkBuffer buffer[2];
+    VkBufferView texel_view[2];   /* R32_UINT views for VRG_ACCESS_TEXEL_READ, made on first use */
     VkDeviceMemory own_memory[2]; /* kept resources have their own memory */
     VkAccelerationStructureKHR accel;
     VkMemoryRequirements req;

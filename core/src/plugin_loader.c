@@ -94,12 +94,12 @@ static int check_desc(const vrg_plugin *p, vrg_diag *d, int line)
     for (uint32_t i = 0; i < desc->slot_count; i++) {
         const vrg_slot_desc *s = &desc->slots[i];
         if (!s->name || (s->dir != VRG_IN && s->dir != VRG_OUT) || s->kind < VRG_IMAGE || s->kind > VRG_ACCEL ||
-            s->access < VRG_ACCESS_SAMPLED || s->access > VRG_ACCESS_RAY_QUERY) {
+            s->access < VRG_ACCESS_SAMPLED || s->access > VRG_ACCESS_TEXEL_READ) {
             vrg_error_at(d, line, NULL, "plugin '%s' (%s): slot %u is malformed (name, dir, kind, access)", p->name, p->path, i);
             return -1;
         }
         int as_access = s->access == VRG_ACCESS_AS_BUILD || s->access == VRG_ACCESS_RAY_QUERY;
-        if ((s->access == VRG_ACCESS_SAMPLED && s->kind != VRG_IMAGE) || (s->access == VRG_ACCESS_UNIFORM && s->kind != VRG_BUFFER) ||
+        if ((s->access == VRG_ACCESS_SAMPLED && s->kind != VRG_IMAGE) || ((s->access == VRG_ACCESS_UNIFORM || s->access == VRG_ACCESS_TEXEL_READ) && s->kind != VRG_BUFFER) ||
             as_access != (s->kind == VRG_ACCEL)) {
             vrg_error_at(d, line, NULL, "plugin '%s' (%s): slot '%s': %s access does not fit a%s", p->name, p->path, s->name,
                          vrg_access_name(s->access), s->kind == VRG_IMAGE ? "n image" : s->kind == VRG_BUFFER ? " buffer" : "n acceleration structure");

@@ -8,8 +8,9 @@
 const char *vrg_access_name(vrg_access a)
 {
     static const char *names[] = {"?",           "sampled",      "storage-read", "storage-write", "storage-read-write",
-                                  "uniform",     "transfer-src", "transfer-dst", "as-build",      "ray-query"};
-    return a >= 1 && a <= VRG_ACCESS_RAY_QUERY ? names[a] : "?";
+                                  "uniform",     "transfer-src", "transfer-dst", "as-build",      "ray-query",
+                                  "texel-read"};
+    return a >= 1 && a <= VRG_ACCESS_TEXEL_READ ? names[a] : "?";
 }
 
 static const char *layout_name(VkImageLayout l)

@@ -71,7 +71,13 @@ int vrg_scene_check(vrg_pass *pass, int grid_radius, int height_chunks)
     int rayquery = traversal == 1;
     uint64_t g = 2 * (uint64_t)grid_radius + 1;
     vrg_pass_set_buffer_size(pass, "tlas", rayquery ? g * g * (uint64_t)height_chunks : 0);
-    return vrg_pass_set_buffer_size(pass, "world", vrg_world_gpu_bytes(grid_radius, height_chunks));
+    /* passes read the world as a texel buffer (VRG_ACCESS_TEXEL_READ) */
+    uint64_t bytes = vrg_world_gpu_bytes(grid_radius, height_chunks);
+    const vrg_device *dev = vrg_pass_device(pass);
+    if (dev && bytes / 4 > dev->features.max_texel_buffer_words)
+        return vrg_pass_error(pass, "a world of radius %d and %d chunks height needs %llu words, more than this device's texel buffers hold (%u): lower radius",
+                              grid_radius, height_chunks, (unsigned long long)(bytes / 4), dev->features.max_texel_buffer_words);
+    return vrg_pass_set_buffer_size(pass, "world", bytes);
 }
 
 int vrg_scene_create(vrg_pass *pass, vrg_scene_gpu *s, vrg_world *world)

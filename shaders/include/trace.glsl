@@ -97,7 +97,7 @@ bool trace_brick(vec3 o, vec3 d, vec3 inv, ivec3 stp, int base, ivec3 brick, flo
         uint vbit = uint(l.x + 8 * (l.z + 8 * l.y));
         if ((vbit >> 5) != cached_word) {
             cached_word = vbit >> 5;
-            bits = world_data[brick_words + cached_word];
+            bits = world_word(brick_words + cached_word);
         }
         if ((bits & (1u << (vbit & 31u))) != 0u) {
             h.hit = true;

@@ -8,7 +8,11 @@
 #extension GL_EXT_ray_query : require
 #endif
 
-layout(std430, binding = WORLD_BINDING) readonly buffer WorldBuffer { uint world_data[]; };
+// The pass's world slot is read as a texel buffer (VRG_ACCESS_TEXEL_READ):
+// on a CPU device texel fetches are SIMD gathers, storage-buffer loads with
+// per-invocation addresses a scalar loop per lane.
+layout(binding = WORLD_BINDING) uniform usamplerBuffer world_texels;
+uint world_word(uint i) { return texelFetch(world_texels, int(i)).x; }
 
 const uint WORLD_MATERIALS = 16u;  // header uints before the material table
 const uint WORLD_SLOTS = 272u;     // header + 32 materials x 8 uints
@@ -16,14 +20,14 @@ const uint WORLD_SLOT_UINTS = 1156u;
 const uint WORLD_OCC = 4u;         // slot-relative: occupancy bits (8 bricks x 16 uints)
 const uint WORLD_IDS = 132u;       // slot-relative: block ids, 4 per uint
 
-ivec3 world_grid() { return ivec3(world_data[0], world_data[1], world_data[2]); }
-int world_height() { return int(world_data[1]) * 16; }
+ivec3 world_grid() { return ivec3(world_word(0u), world_word(1u), world_word(2u)); }
+int world_height() { return int(world_word(1u)) * 16; }
 
 // The box (in blocks) around every loaded chunk; empty (lo > hi) when none.
 void world_bounds(out vec3 lo, out vec3 hi)
 {
-    lo = vec3(int(world_data[6]), int(world_data[7]), int(world_data[8])) * 16.0;
-    hi = vec3(int(world_data[9]), int(world_data[10]), int(world_data[11])) * 16.0 + 16.0;
+    lo = vec3(int(world_word(6u)), int(world_word(7u)), int(world_word(8u))) * 16.0;
+    hi = vec3(int(world_word(9u)), int(world_word(10u)), int(world_word(11u))) * 16.0 + 16.0;
 }
 
 // floor(x) as integers for |x| < 2^22: adding 1.5 * 2^23 puts an integral
@@ -50,29 +54,29 @@ int world_chunk(ivec3 c)
     lap += ivec2(greaterThanEqual(m, gxz)) - ivec2(lessThan(m, ivec2(0)));
     m = cxz - lap * gxz;
     uint base = WORLD_SLOTS + uint(m.x + g.x * (m.y + g.z * c.y)) * WORLD_SLOT_UINTS;
-    uint w = world_data[base + 3u];
+    uint w = world_word(uint(base + 3u));
     uint want = 0x80000000u | (uint(lap.x) & 0x7ffu) << 8 | (uint(lap.y) & 0x7ffu) << 19;
     return (w & 0xffffff00u) == want ? int(base) : -1;
 }
 
 // Brick b = bx + 2*(bz + 2*by) of a loaded chunk holds a solid voxel.
-bool world_brick_solid(int base, ivec3 brick) { return (world_data[base + 3] & (1u << uint(brick.x + 2 * (brick.z + 2 * brick.y)))) != 0u; }
+bool world_brick_solid(int base, ivec3 brick) { return (world_word(uint(base + 3)) & (1u << uint(brick.x + 2 * (brick.z + 2 * brick.y)))) != 0u; }
 // The brick mask of a loaded chunk: bit b for brick b.
-uint world_brick_mask(int base) { return world_data[base + 3] & 0xffu; }
+uint world_brick_mask(int base) { return world_word(uint(base + 3)) & 0xffu; }
 
 // Occupancy bit of chunk-local voxel l.
 bool world_voxel_solid(int base, ivec3 l)
 {
     ivec3 b = l >> 3, v = l & 7;
     uint bit = uint(v.x + 8 * (v.z + 8 * v.y));
-    uint word = world_data[uint(base) + WORLD_OCC + uint(b.x + 2 * (b.z + 2 * b.y)) * 16u + (bit >> 5)];
+    uint word = world_word(uint(base) + WORLD_OCC + uint(b.x + 2 * (b.z + 2 * b.y)) * 16u + (bit >> 5));
     return (word & (1u << (bit & 31u))) != 0u;
 }
 
 uint world_block_local(int base, ivec3 l)
 {
     uint i = uint(l.x + 16 * (l.z + 16 * l.y));
-    return (world_data[uint(base) + WORLD_IDS + (i >> 2)] >> (8u * (i & 3u))) & 0xffu;
+    return (world_word(uint(base) + WORLD_IDS + (i >> 2)) >> (8u * (i & 3u))) & 0xffu;
 }
 
 // Block id at a world position; 0 (air) where no chunk is loaded.
@@ -85,12 +89,12 @@ uint world_block(ivec3 p)
 vec3 material_albedo(uint id)
 {
     uint m = WORLD_MATERIALS + id * 8u;
-    return vec3(uintBitsToFloat(world_data[m]), uintBitsToFloat(world_data[m + 1u]), uintBitsToFloat(world_data[m + 2u]));
+    return vec3(uintBitsToFloat(world_word(uint(m))), uintBitsToFloat(world_word(uint(m + 1u))), uintBitsToFloat(world_word(uint(m + 2u))));
 }
-float material_emissive(uint id) { return uintBitsToFloat(world_data[WORLD_MATERIALS + id * 8u + 3u]); }
-uint material_flags(uint id) { return world_data[WORLD_MATERIALS + id * 8u + 4u]; }
+float material_emissive(uint id) { return uintBitsToFloat(world_word(uint(WORLD_MATERIALS + id * 8u + 3u))); }
+uint material_flags(uint id) { return world_word(uint(WORLD_MATERIALS + id * 8u + 4u)); }
 // Atlas tile of a face: 0 top, 1 side, 2 bottom.
-uint material_tile(uint id, int face) { return world_data[WORLD_MATERIALS + id * 8u + 5u + uint(face)]; }
+uint material_tile(uint id, int face) { return world_word(uint(WORLD_MATERIALS + id * 8u + 5u + uint(face))); }
 
 // ---- Block textures (core/src/textures.c: a 4 x 4 atlas of 16x16 tiles) ----
 

@@ -74,6 +74,13 @@ typedef enum vrg_access {
     VRG_ACCESS_TRANSFER_DST,
     VRG_ACCESS_AS_BUILD,     /* acceleration structure: built (or updated) by this pass */
     VRG_ACCESS_RAY_QUERY,    /* acceleration structure: traced with ray queries in compute */
+    /* buffer: read as a uniform texel buffer of 32-bit words (an R32_UINT
+     * view; GLSL `usamplerBuffer`, texelFetch). For data read at addresses
+     * that differ per invocation: lavapipe fetches texels with SIMD gathers
+     * but loads such storage-buffer words one lane at a time (the world is
+     * read this way: ~1.3x faster traversal). At most the device's
+     * maxTexelBufferElements words. */
+    VRG_ACCESS_TEXEL_READ,
 } vrg_access;
 
 enum vrg_slot_flags {
@@ -160,6 +167,7 @@ typedef struct vrg_features {
     int timestamps;             /* per-pass GPU timestamps work */
     float timestamp_period_ns;
     uint32_t subgroup_size;
+    uint32_t max_texel_buffer_words; /* maxTexelBufferElements: VRG_ACCESS_TEXEL_READ's limit */
 } vrg_features;
 
 typedef struct vrg_device {

@@ -14,7 +14,7 @@ static const vrg_param_desc params[] = {
 };
 
 static const vrg_slot_desc slots[] = {
-    {.name = "world", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_STORAGE_READ},
+    {.name = "world", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_TEXEL_READ},
     {.name = "probes", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R32G32_UINT},
 };
 
