@@ -155,13 +155,14 @@ Hit trace_closest(vec3 o, vec3 d, float tmax)
     vec3 tdelta = abs(8.0 * inv);
     int base = -1;
     uint chunk_mask = 0u;
+    ivec3 grid = world_grid();
     ivec3 base_chunk = ivec3(-2147483647);
     int steps = world_floor1(min((tmax - t) / 8.0, 1e6)) * 3 + 8;
     for (int i = 0; i < steps && t <= tmax; i++) {
         ivec3 chunk = cell >> 1;
         if (chunk != base_chunk) {
             base_chunk = chunk;
-            base = world_chunk(chunk);
+            base = world_chunk_in(grid, chunk);
             chunk_mask = base >= 0 ? world_brick_mask(base) : 0u;
         }
         ivec3 b = cell & 1;

@@ -38,14 +38,13 @@ ivec3 world_floor3(vec3 x) { return floatBitsToInt(floor(x) + 12582912.0) - 0x4B
 ivec2 world_floor2(vec2 x) { return floatBitsToInt(floor(x) + 12582912.0) - 0x4B400000; }
 int world_floor1(float x) { return floatBitsToInt(floor(x) + 12582912.0) - 0x4B400000; }
 
-// First uint of the slot holding chunk c, or -1 when c is not loaded (the
+// First uint of the slot holding chunk c of a world with grid g, or -1 when c is not loaded (the
 // toroidal slot is empty or holds another chunk). Slot word 3 holds the valid
 // bit and the chunk's lap (c div grid) in x and z, so one load checks it; the
 // division is in floats (exact here, fixed up by one step) because integer
 // division has no SIMD instruction on a CPU device.
-int world_chunk(ivec3 c)
+int world_chunk_in(ivec3 g, ivec3 c)
 {
-    ivec3 g = world_grid();
     if (c.y < 0 || c.y >= g.y)
         return -1;
     ivec2 gxz = g.xz, cxz = c.xz;
@@ -54,10 +53,12 @@ int world_chunk(ivec3 c)
     lap += ivec2(greaterThanEqual(m, gxz)) - ivec2(lessThan(m, ivec2(0)));
     m = cxz - lap * gxz;
     uint base = WORLD_SLOTS + uint(m.x + g.x * (m.y + g.z * c.y)) * WORLD_SLOT_UINTS;
-    uint w = world_word(uint(base + 3u));
+    uint w = world_word(base + 3u);
     uint want = 0x80000000u | (uint(lap.x) & 0x7ffu) << 8 | (uint(lap.y) & 0x7ffu) << 19;
     return (w & 0xffffff00u) == want ? int(base) : -1;
 }
+// The same for one lookup (g = world_grid(): hot loops fetch it once).
+int world_chunk(ivec3 c) { return world_chunk_in(world_grid(), c); }
 
 // Brick b = bx + 2*(bz + 2*by) of a loaded chunk holds a solid voxel.
 bool world_brick_solid(int base, ivec3 brick) { return (world_word(uint(base + 3)) & (1u << uint(brick.x + 2 * (brick.z + 2 * brick.y)))) != 0u; }
