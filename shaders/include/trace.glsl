@@ -78,7 +78,7 @@ bool trace_any(vec3 o, vec3 d, float tmax)
 }
 #else
 // Voxel DDA inside one brick (cell = brick coordinate), from distance t.
-bool trace_brick(vec3 o, vec3 d, vec3 inv, ivec3 stp, int base, ivec3 brick, float t, ivec3 entry_normal, float tmax, inout Hit h)
+bool trace_brick(vec3 o, vec3 d, vec3 inv, ivec3 stp, int base, ivec3 brick, float t, ivec3 entry_normal, float tmax, bool any_hit, inout Hit h)
 {
     ivec3 lo = brick * 8, hi = lo + 7;
     ivec3 v = clamp(world_floor3(o + d * t), lo, hi);
@@ -104,7 +104,8 @@ bool trace_brick(vec3 o, vec3 d, vec3 inv, ivec3 stp, int base, ivec3 brick, flo
             h.t = t;
             h.voxel = v;
             h.normal = n;
-            h.block = world_block_local(base, v - chunk_origin);
+            if (!any_hit)  // occlusion needs no block id: save the fetch
+                h.block = world_block_local(base, v - chunk_origin);
             h.chunk = int((uint(base) - WORLD_SLOTS) / WORLD_SLOT_UINTS);
             return true;
         }
@@ -119,8 +120,8 @@ bool trace_brick(vec3 o, vec3 d, vec3 inv, ivec3 stp, int base, ivec3 brick, flo
     return false;
 }
 
-// Closest hit along unit direction d from o, up to tmax.
-Hit trace_closest(vec3 o, vec3 d, float tmax)
+// The DDA for both queries: any_hit skips what only the closest hit needs.
+Hit trace_dda(vec3 o, vec3 d, float tmax, bool any_hit)
 {
     Hit h;
     h.hit = false;
@@ -166,7 +167,7 @@ Hit trace_closest(vec3 o, vec3 d, float tmax)
             chunk_mask = base >= 0 ? world_brick_mask(base) : 0u;
         }
         ivec3 b = cell & 1;
-        if ((chunk_mask & (1u << uint(b.x + 2 * (b.z + 2 * b.y)))) != 0u && trace_brick(o, d, inv, stp, base, cell, t, n, tmax, h))
+        if ((chunk_mask & (1u << uint(b.x + 2 * (b.z + 2 * b.y)))) != 0u && trace_brick(o, d, inv, stp, base, cell, t, n, tmax, any_hit, h))
             return h;
         ivec3 m = trace_step_mask(tnext);
         t = dot(vec3(m), tnext);
@@ -178,6 +179,9 @@ Hit trace_closest(vec3 o, vec3 d, float tmax)
 }
 
 // Anything between o and o + d * tmax?
-bool trace_any(vec3 o, vec3 d, float tmax) { return trace_closest(o, d, tmax).hit; }
+// Closest hit along unit direction d from o, up to tmax.
+Hit trace_closest(vec3 o, vec3 d, float tmax) { return trace_dda(o, d, tmax, false); }
+
+bool trace_any(vec3 o, vec3 d, float tmax) { return trace_dda(o, d, tmax, true).hit; }
 #endif
 #endif
