@@ -51,13 +51,30 @@ void vrg_frame_uniforms_fill(const vrg_frame_info *f, const vrg_sky *sky, vrg_fr
     u->hours = sky->hours;
 }
 
-void vrg_scene_write_frame(vrg_pass *pass, VkCommandBuffer cmd, const char *slot, const vrg_sky_desc *desc)
+void vrg_frame_uniforms_world(const vrg_world *world, vrg_frame_uniforms *u)
+{
+    int grid[3] = {0, 0, 0}, lo[3] = {1, 1, 1}, hi[3] = {-1, -1, -1};
+    if (world) {
+        vrg_world_grid(world, grid);
+        vrg_world_gpu_box(world, lo, hi);
+    }
+    for (int a = 0; a < 3; a++) {
+        u->world_grid[a] = grid[a];
+        u->world_lo[a] = (float)lo[a] * 16.0f;
+        u->world_hi[a] = (float)hi[a] * 16.0f + 16.0f;
+    }
+    u->world_grid[3] = 0;
+    u->world_lo[3] = u->world_hi[3] = 0;
+}
+
+void vrg_scene_write_frame(vrg_pass *pass, VkCommandBuffer cmd, const char *slot, const vrg_sky_desc *desc, const vrg_world *world)
 {
     const vrg_frame_info *f = vrg_pass_frame(pass);
     vrg_sky sky;
     vrg_sky_eval(desc, f->time_s, &sky);
     vrg_frame_uniforms u;
     vrg_frame_uniforms_fill(f, &sky, &u);
+    vrg_frame_uniforms_world(world, &u);
     vkCmdUpdateBuffer(cmd, vrg_res_buffer(pass, vrg_pass_res(pass, slot)), 0, sizeof u, &u);
 }
 
@@ -125,7 +142,7 @@ void vrg_scene_record(vrg_pass *pass, vrg_scene_gpu *s, VkCommandBuffer cmd)
     vrg_sky_default(&sky);
     sky.time_of_day = (float)vrg_param(pass, "time_of_day");
     sky.day_length = (float)vrg_param(pass, "day_length");
-    vrg_scene_write_frame(pass, cmd, "frame", &sky);
+    vrg_scene_write_frame(pass, cmd, "frame", &sky, s->world);
 }
 
 void vrg_scene_destroy(vrg_pass *pass, vrg_scene_gpu *s)

@@ -271,16 +271,11 @@ static uint32_t float_bits(float f)
     return u;
 }
 
-static void pack_header(const vrg_world *w, uint32_t *out)
+void vrg_world_gpu_box(const vrg_world *w, int lo[3], int hi[3])
 {
-    memset(out, 0, SLOTS_OFFSET * 4);
-    out[0] = (uint32_t)w->gx;
-    out[1] = (uint32_t)w->gy;
-    out[2] = (uint32_t)w->gz;
-    out[3] = SLOT_UINTS;
-    out[4] = SLOTS_OFFSET;
-    out[5] = VRG_BLOCK_COUNT;
-    int lo[3] = {1, 1, 1}, hi[3] = {-1, -1, -1}, any = 0; /* none: hi < lo */
+    int any = 0;
+    for (int a = 0; a < 3; a++)
+        lo[a] = 1, hi[a] = -1; /* none: hi < lo */
     for (int s = 0; s < w->gx * w->gy * w->gz; s++) {
         const slot *sl = &w->slots[s];
         if (!sl->gpu_valid)
@@ -291,6 +286,19 @@ static void pack_header(const vrg_world *w, uint32_t *out)
         }
         any = 1;
     }
+}
+
+static void pack_header(const vrg_world *w, uint32_t *out)
+{
+    memset(out, 0, SLOTS_OFFSET * 4);
+    out[0] = (uint32_t)w->gx;
+    out[1] = (uint32_t)w->gy;
+    out[2] = (uint32_t)w->gz;
+    out[3] = SLOT_UINTS;
+    out[4] = SLOTS_OFFSET;
+    out[5] = VRG_BLOCK_COUNT;
+    int lo[3], hi[3];
+    vrg_world_gpu_box(w, lo, hi);
     for (int a = 0; a < 3; a++) {
         out[6 + a] = (uint32_t)lo[a];
         out[9 + a] = (uint32_t)hi[a];

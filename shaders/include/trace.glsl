@@ -5,7 +5,7 @@
 // bricks using the chunk's brick mask, and over voxels only inside bricks
 // that hold something. Backend 2 (#define TRACE_RAYQUERY, TLAS_BINDING):
 // VK_KHR_ray_query against the scene's per-chunk BLASes. Include world.glsl
-// first.
+// and frame.glsl first.
 //
 // What the DDA is shaped by (measured on lavapipe, docs/benchmarks.md): a
 // buffer load with a per-invocation address is a scalar loop over the SIMD
@@ -15,6 +15,9 @@
 // when the word changes, and the ray is clipped to the world's height first.
 #ifndef VOXRG_TRACE_GLSL
 #define VOXRG_TRACE_GLSL
+#if !defined(VOXRG_WORLD_GLSL) || !defined(VOXRG_FRAME_GLSL)
+#error "include world.glsl and frame.glsl before trace.glsl"
+#endif
 
 struct Hit {
     bool hit;
@@ -138,8 +141,9 @@ Hit trace_dda(vec3 o, vec3 d, float tmax, bool any_hit)
     // ray enters it and stop where it leaves (primary rays from above the
     // terrain skip their empty descent; rays toward the horizon stop at the
     // last loaded chunk instead of stepping through unloaded space).
-    vec3 lo, hi;
-    world_bounds(lo, hi);
+    // the world's box and grid from the frame uniforms: scalar loads,
+    // where the world header would be texel fetches per ray
+    vec3 lo = frame.world_lo.xyz, hi = frame.world_hi.xyz;
     if (any(greaterThanEqual(lo, hi)))  // nothing loaded
         return h;
     vec3 t0 = (lo - o) * inv, t1 = (hi - o) * inv;
@@ -156,14 +160,15 @@ Hit trace_dda(vec3 o, vec3 d, float tmax, bool any_hit)
     vec3 tdelta = abs(8.0 * inv);
     int base = -1;
     uint chunk_mask = 0u;
-    ivec3 grid = world_grid();
+    ivec3 grid = frame.world_grid.xyz;
+    vec2 inv_grid = 1.0 / vec2(grid.xz);
     ivec3 base_chunk = ivec3(-2147483647);
     int steps = world_floor1(min((tmax - t) / 8.0, 1e6)) * 3 + 8;
     for (int i = 0; i < steps && t <= tmax; i++) {
         ivec3 chunk = cell >> 1;
         if (chunk != base_chunk) {
             base_chunk = chunk;
-            base = world_chunk_in(grid, chunk);
+            base = world_chunk_in(grid, inv_grid, chunk);
             chunk_mask = base >= 0 ? world_brick_mask(base) : 0u;
         }
         ivec3 b = cell & 1;

@@ -43,12 +43,12 @@ int world_floor1(float x) { return floatBitsToInt(floor(x) + 12582912.0) - 0x4B4
 // bit and the chunk's lap (c div grid) in x and z, so one load checks it; the
 // division is in floats (exact here, fixed up by one step) because integer
 // division has no SIMD instruction on a CPU device.
-int world_chunk_in(ivec3 g, ivec3 c)
+int world_chunk_in(ivec3 g, vec2 inv_gxz, ivec3 c)
 {
     if (c.y < 0 || c.y >= g.y)
         return -1;
     ivec2 gxz = g.xz, cxz = c.xz;
-    ivec2 lap = world_floor2(vec2(cxz) / vec2(gxz));
+    ivec2 lap = world_floor2(vec2(cxz) * inv_gxz);  // inv_gxz = 1 / g.xz
     ivec2 m = cxz - lap * gxz;
     lap += ivec2(greaterThanEqual(m, gxz)) - ivec2(lessThan(m, ivec2(0)));
     m = cxz - lap * gxz;
@@ -58,7 +58,11 @@ int world_chunk_in(ivec3 g, ivec3 c)
     return (w & 0xffffff00u) == want ? int(base) : -1;
 }
 // The same for one lookup (g = world_grid(): hot loops fetch it once).
-int world_chunk(ivec3 c) { return world_chunk_in(world_grid(), c); }
+int world_chunk(ivec3 c)
+{
+    ivec3 g = world_grid();
+    return world_chunk_in(g, 1.0 / vec2(g.xz), c);
+}
 
 // Brick b = bx + 2*(bz + 2*by) of a loaded chunk holds a solid voxel.
 bool world_brick_solid(int base, ivec3 brick) { return (world_word(uint(base + 3)) & (1u << uint(brick.x + 2 * (brick.z + 2 * brick.y)))) != 0u; }

@@ -93,6 +93,9 @@ int vrg_world_pick(const vrg_world *w, const float origin[3], const float dir[3]
  * The header (with the box of the slots valid in the GPU copy) goes up
  * whenever that box may have changed. */
 int vrg_world_upload(vrg_world *w, VkCommandBuffer cmd, VkBuffer dst, void *staging, VkBuffer staging_buffer, uint64_t staging_bytes);
+/* The box of chunks (inclusive) valid in the GPU copy after the last upload;
+ * lo > hi when it holds none. */
+void vrg_world_gpu_box(const vrg_world *w, int lo[3], int hi[3]);
 /* The GPU copy was lost (new buffer): upload everything again. */
 void vrg_world_invalidate_gpu(vrg_world *w);
 /* Slots still waiting for upload. */
@@ -159,13 +162,24 @@ typedef struct vrg_frame_uniforms {
     float ambient[4];
     uint32_t frame_index, width, height, seed;
     float time_s, hours, pad0, pad1;
+    /* The world's slot grid (x, y, z; chunks) and the box (blocks) around
+     * the chunks its GPU copy holds after this frame's upload (empty: lo >=
+     * hi). The world header holds the same; the traversal reads it here
+     * because a uniform is one scalar load on a CPU device, a texel fetch a
+     * call per SIMD row (the header fetches cost shadow rays half their
+     * time). */
+    int32_t world_grid[4];
+    float world_lo[4];
+    float world_hi[4];
 } vrg_frame_uniforms;
 
 void vrg_frame_uniforms_fill(const vrg_frame_info *frame, const vrg_sky *sky, vrg_frame_uniforms *out);
+/* The world part of the uniforms (world may be NULL: an empty box). */
+void vrg_frame_uniforms_world(const vrg_world *world, vrg_frame_uniforms *out);
 /* What a scene plugin does each frame for its `frame` output (a buffer with
- * VRG_ACCESS_TRANSFER_DST): evaluate the sky at this frame's time and record
- * the uniforms into it. */
-void vrg_scene_write_frame(vrg_pass *pass, VkCommandBuffer cmd, const char *slot, const vrg_sky_desc *sky);
+ * VRG_ACCESS_TRANSFER_DST), after uploading its world: evaluate the sky at
+ * this frame's time and record the uniforms into it. */
+void vrg_scene_write_frame(vrg_pass *pass, VkCommandBuffer cmd, const char *slot, const vrg_sky_desc *sky, const vrg_world *world);
 
 /* ---- What every scene plugin shares ---------------------------------
  * A scene declares VRG_SCENE_SLOTS among its slots and VRG_SCENE_PARAMS
