@@ -1,0 +1,118 @@
+/* svgf_atrous: the edge-avoiding à-trous wavelet filter of SVGF (Schied et
+ * al. 2017), one dispatch per iteration i = 0 .. iterations-1 with taps 2^i
+ * pixels apart, through two runtime-owned images (so they alias with every
+ * other transient). Input: illumination with its luminance variance in
+ * alpha (svgf_variance). A tap q of pixel p weighs
+ *   h(q) * w_z * w_n * w_l
+ *   h:   B3 spline (5x5: 1/16 1/4 3/8 1/4 1/16) or 3x3 (1/4 1/2 1/4)
+ *   w_z = exp(-|N_p . (X_q - X_p)| / (sigma_z * |p - q| * footprint + eps))
+ *         the distance of q's point from p's plane against what one pixel
+ *         step at p's distance spans (the paper's depth-gradient test, in
+ *         world positions: exact planes in a voxel world)
+ *   w_n = max(0, N_p . N_q)^sigma_n
+ *   w_l = exp(-|l_p - l_q| / (sigma_l * sqrt(g3x3(variance)_p) + eps))
+ * The variance is filtered with the squared weights. Pixels whose variance
+ * is below skip_variance (the thesis's threshold; 0: never) are copied
+ * unfiltered, as are sky pixels. feedback = k writes iteration k's output
+ * (0: the unfiltered input) to `feedback`, the history svgf_reproject reads
+ * next frame (the paper: 1). */
+#include "voxrg/plugin.h"
+
+static const vrg_param_desc params[] = {
+    {"iterations", VRG_PARAM_INT, 5, 1, 10, "filter iterations (thesis 7, paper 5); step 2^i"},
+    {"kernel", VRG_PARAM_INT, 5, 3, 5, "3 (3x3) or 5 (5x5 B3 spline)"},
+    {"sigma_z", VRG_PARAM_FLOAT, 1, 0.001, 1000, "position (plane) edge-stopping"},
+    {"sigma_n", VRG_PARAM_FLOAT, 128, 0, 1024, "normal edge-stopping exponent"},
+    {"sigma_l", VRG_PARAM_FLOAT, 4, 0.001, 1000, "luminance edge-stopping, in prefiltered standard deviations"},
+    {"skip_variance", VRG_PARAM_FLOAT, 0, 0, 1e6, "copy pixels whose variance is below this (0: filter all)"},
+    {"feedback", VRG_PARAM_INT, 1, 0, 10, "iteration whose output becomes next frame's history (0: the input)"},
+};
+
+static const vrg_slot_desc slots[] = {
+    {.name = "illumination", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED,
+     .help = "illumination with its luminance variance in alpha (svgf_variance)"},
+    {.name = "position", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "G-buffer position; w = 0 on sky"},
+    {.name = "normal", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "G-buffer normal"},
+    {.name = "frame", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_UNIFORM, .help = "the scene's per-frame uniforms (camera)"},
+    {.name = "color", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
+     .help = "filtered illumination (variance in alpha)"},
+    {.name = "feedback", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
+     .help = "the iteration `feedback` output: connect svgf_reproject's history to feedback@prev"},
+};
+
+static int check(vrg_pass *pass)
+{
+    int k = vrg_param_int(pass, "kernel"), it = vrg_param_int(pass, "iterations"), fb = vrg_param_int(pass, "feedback");
+    if (k != 3 && k != 5)
+        return vrg_pass_error(pass, "kernel = %d: expected 3 or 5", k);
+    if (fb > it)
+        return vrg_pass_error(pass, "feedback = %d: there are only %d iterations", fb, it);
+    return 0;
+}
+
+static int create(vrg_pass *pass)
+{
+    const char *names[] = {"ping", "pong"};
+    for (int i = 0; i < 2; i++)
+        if (!vrg_res_connected(vrg_pass_request_image(pass, names[i], VK_FORMAT_R16G16B16A16_SFLOAT, 1.0f, VRG_ACCESS_STORAGE_WRITE)))
+            return -1;
+    return 0;
+}
+
+static int copy(vrg_pass *pass, VkCommandBuffer cmd, const char *from, const char *to)
+{
+    vrg_dispatch_desc d = {.shader = "svgf_atrous.comp", .defines = "COPY", .pixel_loop = 1, .domain = to,
+                           .bindings = {{from, VRG_ACCESS_SAMPLED}, {to, VRG_ACCESS_STORAGE_WRITE}}};
+    return vrg_dispatch(pass, cmd, &d);
+}
+
+static void execute(vrg_pass *pass, VkCommandBuffer cmd)
+{
+    VkExtent2D out = vrg_res_extent(pass, vrg_pass_res(pass, "color"));
+    static const char *same[] = {"illumination", "position", "normal"};
+    for (int i = 0; i < 3; i++) {
+        VkExtent2D e = vrg_res_extent(pass, vrg_pass_res(pass, same[i]));
+        if (e.width != out.width || e.height != out.height) {
+            vrg_pass_error(pass, "input '%s' is %ux%u, the output %ux%u: the filter needs every input at the output's size", same[i], e.width,
+                           e.height, out.width, out.height);
+            return;
+        }
+    }
+    int n = vrg_param_int(pass, "iterations"), fb = vrg_param_int(pass, "feedback");
+    struct {
+        float sigma_z, sigma_n, sigma_l, skip_variance;
+        int32_t step, kernel;
+    } pc = {(float)vrg_param(pass, "sigma_z"), (float)vrg_param(pass, "sigma_n"), (float)vrg_param(pass, "sigma_l"),
+            (float)vrg_param(pass, "skip_variance"), 1, vrg_param_int(pass, "kernel")};
+    if (fb == 0 && copy(pass, cmd, "illumination", "feedback") != 0)
+        return;
+    const char *src = "illumination", *spare[2] = {"ping", "pong"};
+    for (int i = 0; i < n; i++) {
+        const char *dst = i == n - 1 ? "color" : spare[i & 1];
+        pc.step = 1 << i;
+        vrg_dispatch_desc d = {.shader = "svgf_atrous.comp", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1, .domain = dst,
+                               .bindings = {{src, VRG_ACCESS_SAMPLED}, {"position"}, {"normal"}, {"frame"}, {dst, VRG_ACCESS_STORAGE_WRITE}}};
+        if (vrg_dispatch(pass, cmd, &d) != 0)
+            return;
+        if (i + 1 == fb && copy(pass, cmd, dst, "feedback") != 0)
+            return;
+        src = dst;
+    }
+}
+
+static const vrg_plugin_desc desc = {
+    .abi_version = VRG_ABI_VERSION,
+    .name = "svgf_atrous",
+    .kind = VRG_PLUGIN_PASS,
+    .help = "SVGF edge-avoiding a-trous filter: iterations, 3x3 or 5x5, position/normal/luminance edge-stopping, variance skip, feedback",
+    .shader_dir = VRG_PLUGIN_DIR,
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .slots = slots,
+    .slot_count = sizeof slots / sizeof slots[0],
+    .check = check,
+    .create = create,
+    .execute = execute,
+};
+
+VRG_PLUGIN(desc)

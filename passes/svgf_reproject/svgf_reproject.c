@@ -1,0 +1,97 @@
+/* svgf_reproject: temporal accumulation of SVGF (Schied et al. 2017) and of
+ * the thesis. Each pixel's surface point is looked up where the previous
+ * camera saw it (motion vectors); the previous frame's G-buffer decides
+ * whether that history belongs to the same surface:
+ *   - object id (the chunk) equal,
+ *   - normals agree: dot >= normal_threshold,
+ *   - the previous point lies on this pixel's plane: |N.(X' - X)| <=
+ *     plane_distance blocks (voxel normals are axis-aligned, so neighbouring
+ *     faces share normals and the plane test is what separates them).
+ * Bilinear 2x2 taps that pass are renormalised; if none pass, the 3x3 taps
+ * around the nearest pixel are averaged (as the SVGF paper does); if none of
+ * those pass either, history restarts: length 0, colour and moments from
+ * this frame alone. Otherwise
+ *   length  = min(previous length + 1, max_length)   (frames in the history)
+ *   a       = length_alpha ? max(alpha, 1 / (length + 1)) : alpha
+ *   colour  = mix(history, this frame, a)
+ *   moments = mix(previous moments, (l, l^2), max(moments_alpha, 1 / (length + 1)) or moments_alpha)
+ * with l the luminance of this frame. The thesis's k = 0.8 is alpha = 0.2.
+ * Sky pixels pass through with length 0. On the first frame, after a resize
+ * or reload (frame history_valid = 0) every pixel restarts. */
+#include "voxrg/plugin.h"
+
+static const vrg_param_desc params[] = {
+    {"alpha", VRG_PARAM_FLOAT, 0.2, 0.001, 1, "weight of this frame's colour (thesis k = 0.8 => alpha = 0.2)"},
+    {"moments_alpha", VRG_PARAM_FLOAT, 0.2, 0.001, 1, "weight of this frame's luminance moments"},
+    {"length_alpha", VRG_PARAM_INT, 1, 0, 1, "1: use max(alpha, 1 / (length + 1)) so young history averages evenly"},
+    {"max_length", VRG_PARAM_INT, 32, 1, 1000, "cap on the history length (frames)"},
+    {"normal_threshold", VRG_PARAM_FLOAT, 0.9, -1, 1, "least dot(normal, previous normal) of the same surface"},
+    {"plane_distance", VRG_PARAM_FLOAT, 0.05, 0, 100, "most distance (blocks) of the previous point from this pixel's plane"},
+};
+
+static const vrg_slot_desc slots[] = {
+    {.name = "illumination", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "this frame's noisy illumination (combine)"},
+    {.name = "motion", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "G-buffer motion vectors (pixels)"},
+    {.name = "position", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "G-buffer world position; w = 0 on sky"},
+    {.name = "normal", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "G-buffer normal"},
+    {.name = "ids", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_READ, .format = VK_FORMAT_R32G32_UINT,
+     .help = "G-buffer ids (block, chunk + 1)"},
+    {.name = "history", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED,
+     .help = "last frame's accumulated colour: this pass's color@prev, or svgf_atrous's feedback@prev"},
+    {.name = "prev_moments", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "this pass's moments@prev"},
+    {.name = "prev_length", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "this pass's length@prev"},
+    {.name = "prev_position", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "the G-buffer's position@prev"},
+    {.name = "prev_normal", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "the G-buffer's normal@prev"},
+    {.name = "prev_ids", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_READ, .format = VK_FORMAT_R32G32_UINT,
+     .help = "the G-buffer's ids@prev"},
+    {.name = "color", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
+     .help = "accumulated illumination"},
+    {.name = "moments", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R32G32_SFLOAT,
+     .help = "accumulated first and second moments of luminance"},
+    {.name = "length", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16_SFLOAT,
+     .help = "history length: earlier frames in the accumulation (0: restarted this frame)"},
+};
+
+static void execute(vrg_pass *pass, VkCommandBuffer cmd)
+{
+    /* the history images are read at reprojected positions: all at one size */
+    VkExtent2D out = vrg_res_extent(pass, vrg_pass_res(pass, "color"));
+    static const char *same[] = {"illumination", "motion", "position", "normal", "ids", "history", "prev_moments", "prev_length",
+                                 "prev_position", "prev_normal", "prev_ids"};
+    for (unsigned i = 0; i < sizeof same / sizeof same[0]; i++) {
+        VkExtent2D e = vrg_res_extent(pass, vrg_pass_res(pass, same[i]));
+        if (e.width != out.width || e.height != out.height) {
+            vrg_pass_error(pass, "input '%s' is %ux%u, the output %ux%u: reprojection needs every input at the output's size", same[i],
+                           e.width, e.height, out.width, out.height);
+            return;
+        }
+    }
+    struct {
+        float alpha, moments_alpha, normal_threshold, plane_distance;
+        int32_t length_alpha, max_length, history_valid;
+    } pc = {
+        (float)vrg_param(pass, "alpha"),
+        (float)vrg_param(pass, "moments_alpha"),
+        (float)vrg_param(pass, "normal_threshold"),
+        (float)vrg_param(pass, "plane_distance"),
+        vrg_param_int(pass, "length_alpha"),
+        vrg_param_int(pass, "max_length"),
+        vrg_pass_frame(pass)->history_valid,
+    };
+    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "svgf_reproject.comp", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1});
+}
+
+static const vrg_plugin_desc desc = {
+    .abi_version = VRG_ABI_VERSION,
+    .name = "svgf_reproject",
+    .kind = VRG_PLUGIN_PASS,
+    .help = "SVGF temporal accumulation: reprojected history with disocclusion tests (id, normal, plane), colour and luminance moments",
+    .shader_dir = VRG_PLUGIN_DIR,
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .slots = slots,
+    .slot_count = sizeof slots / sizeof slots[0],
+    .execute = execute,
+};
+
+VRG_PLUGIN(desc)

@@ -1,0 +1,92 @@
+/* svgf_variance: the per-pixel luminance variance that steers the à-trous
+ * filter, stored with the colour (rgb, variance in alpha).
+ *   mode = spatial (the thesis): the sample variance of luminance over a
+ *     size x size window (default 7), with Bessel's correction
+ *     (sum (l - mean)^2 / (n - 1)), n the window's non-sky pixels; computed
+ *     separably: a horizontal pass sums l, l^2 and n into an internal image,
+ *     a vertical pass finishes.
+ *   mode = temporal (the SVGF paper): m2 - m1^2 from the accumulated
+ *     moments once the history holds min_history frames (length + 1 >=
+ *     min_history, default 4); younger pixels use the moments averaged over
+ *     the size x size window's pixels of the same surface (normal dot >=
+ *     0.9 and within 0.1 blocks per pixel of offset from this pixel's
+ *     plane), an edge-aware spatial estimate.
+ * Sky pixels get variance 0. */
+#include "voxrg/plugin.h"
+
+static const vrg_param_desc params[] = {
+    {"mode", VRG_PARAM_STRING, 0, 0, 0, "spatial (thesis: windowed variance) or temporal (SVGF paper: from moments)", 0, "spatial"},
+    {"size", VRG_PARAM_INT, 7, 3, 15, "window width (odd)"},
+    {"min_history", VRG_PARAM_INT, 4, 1, 100, "temporal: frames of history before the moments are trusted"},
+};
+
+static const vrg_slot_desc slots[] = {
+    {.name = "illumination", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "accumulated illumination (svgf_reproject color)"},
+    {.name = "moments", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .flags = VRG_SLOT_OPTIONAL,
+     .help = "temporal: accumulated luminance moments (svgf_reproject)"},
+    {.name = "length", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .flags = VRG_SLOT_OPTIONAL,
+     .help = "temporal: history length (svgf_reproject)"},
+    {.name = "position", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "G-buffer position; w = 0 on sky"},
+    {.name = "normal", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "G-buffer normal"},
+    {.name = "color", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
+     .help = "illumination with its luminance variance in alpha"},
+};
+
+static const char *const modes[] = {"spatial", "temporal"};
+
+static int check(vrg_pass *pass)
+{
+    int mode = vrg_param_choice(pass, "mode", modes, 2);
+    if (mode < 0)
+        return -1;
+    if (vrg_param_int(pass, "size") % 2 == 0)
+        return vrg_pass_error(pass, "size = %d: the window needs a centre, give an odd size", vrg_param_int(pass, "size"));
+    if (mode == 1 && (!vrg_res_connected(vrg_pass_res(pass, "moments")) || !vrg_res_connected(vrg_pass_res(pass, "length"))))
+        return vrg_pass_error(pass, "mode = temporal reads the moments and the history length: connect in.moments and in.length");
+    return 0;
+}
+
+static int create(vrg_pass *pass)
+{
+    /* spatial mode's row sums: l, l^2, non-sky count */
+    return vrg_res_connected(vrg_pass_request_image(pass, "rows", VK_FORMAT_R32G32B32A32_SFLOAT, 1.0f, VRG_ACCESS_STORAGE_WRITE)) ? 0 : -1;
+}
+
+static void execute(vrg_pass *pass, VkCommandBuffer cmd)
+{
+    int mode = vrg_param_choice(pass, "mode", modes, 2);
+    struct {
+        int32_t radius, min_history;
+    } pc = {vrg_param_int(pass, "size") / 2, vrg_param_int(pass, "min_history")};
+    if (mode == 1) {
+        vrg_dispatch_desc d = {.shader = "svgf_variance.comp", .defines = "TEMPORAL", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1,
+                               .bindings = {{"illumination"}, {"moments"}, {"length"}, {"position"}, {"normal"}, {"color"}}};
+        (void)vrg_dispatch(pass, cmd, &d);
+        return;
+    }
+    vrg_dispatch_desc rows = {.shader = "svgf_variance.comp", .defines = "ROWS", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1,
+                              .domain = "rows",
+                              .bindings = {{"illumination"}, {"position"}, {"rows", VRG_ACCESS_STORAGE_WRITE}}};
+    if (vrg_dispatch(pass, cmd, &rows) != 0)
+        return;
+    vrg_dispatch_desc cols = {.shader = "svgf_variance.comp", .defines = "COLUMNS", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1,
+                              .bindings = {{"illumination"}, {"rows", VRG_ACCESS_STORAGE_READ}, {"color"}}};
+    (void)vrg_dispatch(pass, cmd, &cols);
+}
+
+static const vrg_plugin_desc desc = {
+    .abi_version = VRG_ABI_VERSION,
+    .name = "svgf_variance",
+    .kind = VRG_PLUGIN_PASS,
+    .help = "luminance variance for the a-trous filter: spatial (thesis, 7x7 with Bessel) or temporal (SVGF moments)",
+    .shader_dir = VRG_PLUGIN_DIR,
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .slots = slots,
+    .slot_count = sizeof slots / sizeof slots[0],
+    .check = check,
+    .create = create,
+    .execute = execute,
+};
+
+VRG_PLUGIN(desc)
