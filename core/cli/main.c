@@ -38,7 +38,9 @@ static const char *usage_render =
     "plus DIR/RES.png for each dumped image (DIR/RES.bin for buffers). --json writes\n"
     "per-pass GPU timings. --camera plays a camera path (graphs/paths/*.path) at the\n"
     "graph's fps. --validate turns on the Khronos validation layer with\n"
-    "synchronization validation; any message fails the run.\n";
+    "synchronization validation; any message fails the run. A graph that accumulates\n"
+    "(the accumulate pass's samples_per_frame) gets that many graph frames per output\n"
+    "frame, the camera held still: a converged reference per camera-path frame.\n";
 
 static const char *usage_plugins =
     "usage: voxrg plugins [NAME]\n"
@@ -338,15 +340,19 @@ static int cmd_render(int argc, char **argv)
     double *ms = calloc((size_t)o.frames * np, sizeof *ms);
     double start = now_ms();
     int isatty_err = isatty(2);
+    uint32_t sub = vrg_graph_subframes(g);
     for (uint32_t k = 0; k < o.frames && rc == 0; k++) {
         if (path.count) {
             vrg_camera_path_eval(&path, (float)(k * vrg_graph_frame_seconds(g)), &camera);
             vrg_graph_set_camera(g, &camera);
         }
-        if (vrg_graph_frame(g) != 0) {
-            fprintf(stderr, "error: frame %u failed\n", k);
-            rc = 1;
-        }
+        /* a graph that accumulates (vrg_pass_set_subframes) gets its frames
+         * per output frame with the camera held */
+        for (uint32_t s = 0; s < sub && rc == 0; s++)
+            if (vrg_graph_frame(g) != 0) {
+                fprintf(stderr, "error: frame %u failed\n", k);
+                rc = 1;
+            }
         double total = 0;
         for (uint32_t i = 0; i < np; i++) {
             ms[k * np + i] = vrg_graph_pass_ms(g, i);

@@ -335,6 +335,7 @@ uint32_t vrg_graph_pass_count(const vrg_graph *g) { return (uint32_t)g->pass_cou
 const char *vrg_graph_pass_name(const vrg_graph *g, uint32_t i) { return i < (uint32_t)g->pass_count ? g->passes[i].name : NULL; }
 double vrg_graph_pass_ms(const vrg_graph *g, uint32_t i) { return i < (uint32_t)g->pass_count ? g->pass_ms[i] : -1; }
 const char *vrg_graph_output(const vrg_graph *g) { return g->output_name; }
+uint32_t vrg_graph_subframes(const vrg_graph *g) { return g->subframes > 1 ? g->subframes : 1; }
 void vrg_graph_size(const vrg_graph *g, uint32_t *w, uint32_t *h)
 {
     *w = g->width;

@@ -222,6 +222,7 @@ typedef struct vrg_heap_block {
 
 struct vrg_graph {
     vrg_context *ctx;
+    uint32_t subframes; /* graph frames per output frame (vrg_pass_set_subframes), 0 or 1: one */
     vrg_diag diag;
     char path[1024];
     char name[VRG_NAME_MAX];

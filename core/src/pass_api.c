@@ -262,6 +262,12 @@ void vrg_pass_free_host_buffers(vrg_pass *p)
 
 void vrg_pass_set_world(vrg_pass *p, vrg_world *world) { p->graph->world = world; }
 
+void vrg_pass_set_subframes(vrg_pass *p, uint32_t n)
+{
+    if (n > p->graph->subframes)
+        p->graph->subframes = n;
+}
+
 static vrg_res request(vrg_pass *p, const char *name, vrg_resource_kind kind)
 {
     vrg_graph *g = p->graph;

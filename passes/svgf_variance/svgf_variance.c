@@ -70,7 +70,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     if (vrg_dispatch(pass, cmd, &rows) != 0)
         return;
     vrg_dispatch_desc cols = {.shader = "svgf_variance.comp", .defines = "COLUMNS", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1,
-                              .bindings = {{"illumination"}, {"rows", VRG_ACCESS_STORAGE_READ}, {"color"}}};
+                              .bindings = {{"illumination"}, {"position"}, {"rows", VRG_ACCESS_STORAGE_READ}, {"color"}}};
     (void)vrg_dispatch(pass, cmd, &cols);
 }
 

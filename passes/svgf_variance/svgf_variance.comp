@@ -33,14 +33,20 @@ void shade(ivec2 p)
 }
 #elif defined(COLUMNS)
 layout(binding = 0) uniform sampler2D in_illumination;
-layout(binding = 1, rgba32f) uniform readonly image2D in_rows;
-layout(binding = 2, rgba16f) uniform writeonly image2D out_color;
+layout(binding = 1) uniform sampler2D in_position;
+layout(binding = 2, rgba32f) uniform readonly image2D in_rows;
+layout(binding = 3, rgba16f) uniform writeonly image2D out_color;
 
 void shade(ivec2 p)
 {
     ivec2 size = imageSize(out_color);
     if (any(greaterThanEqual(p, size)))
         return;
+    vec3 c = texelFetch(in_illumination, p, 0).rgb;
+    if (texelFetch(in_position, p, 0).w == 0.0) { // sky
+        imageStore(out_color, p, vec4(c, 0.0));
+        return;
+    }
     vec3 s = vec3(0.0);
     for (int dy = -params.radius; dy <= params.radius; dy++) {
         int y = p.y + dy;
@@ -49,7 +55,7 @@ void shade(ivec2 p)
     }
     // Bessel's correction: sum (l - mean)^2 / (n - 1) = (S2 - S1^2 / n) / (n - 1)
     float var = s.z > 1.5 ? max(0.0, (s.y - s.x * s.x / s.z) / (s.z - 1.0)) : 0.0;
-    imageStore(out_color, p, vec4(texelFetch(in_illumination, p, 0).rgb, var));
+    imageStore(out_color, p, vec4(c, var));
 }
 #else // TEMPORAL
 layout(binding = 0) uniform sampler2D in_illumination;

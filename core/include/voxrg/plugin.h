@@ -254,6 +254,11 @@ void vrg_pass_free_buffer(vrg_pass *pass, VkBuffer buffer);
 /* The acceleration structure of a VRG_ACCEL slot (VK_NULL_HANDLE if none). */
 VkAccelerationStructureKHR vrg_res_accel(const vrg_pass *pass, vrg_res res);
 
+/* In check() or create(): this pass wants n graph frames rendered per output
+ * frame with the camera held still (a progressive accumulation converging to
+ * a reference). Hosts read the largest request with vrg_graph_subframes. */
+void vrg_pass_set_subframes(vrg_pass *pass, uint32_t n);
+
 /* A scene plugin hands its world to the runtime so hosts can query it. */
 typedef struct vrg_world vrg_world;
 void vrg_pass_set_world(vrg_pass *pass, vrg_world *world);

@@ -81,6 +81,10 @@ uint32_t vrg_graph_pass_count(const vrg_graph *g);
 const char *vrg_graph_pass_name(const vrg_graph *g, uint32_t i);
 double vrg_graph_pass_ms(const vrg_graph *g, uint32_t i);
 const char *vrg_graph_output(const vrg_graph *g);
+/* Graph frames per output frame: the largest vrg_pass_set_subframes request,
+ * at least 1. `voxrg render` holds the camera for that many frames per
+ * output frame (a reference graph's accumulation converges meanwhile). */
+uint32_t vrg_graph_subframes(const vrg_graph *g);
 void vrg_graph_size(const vrg_graph *g, uint32_t *width, uint32_t *height);
 
 typedef struct vrg_memory_stats {

@@ -1,4 +1,4 @@
-/* Test plugin: exponential moving average through history,
+/* Test plugin "ema": exponential moving average through history,
  * color = history valid ? mix(history, src, alpha) : src.
  * The input is "src", not "color": slots are looked up by name alone
  * (vrg_pass_res, bindings, in.X/out.X keys), so one plugin cannot have both
@@ -25,12 +25,12 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         float alpha;
         int32_t use_history;
     } pc = {(float)vrg_param(pass, "alpha"), connected && vrg_pass_frame(pass)->history_valid};
-    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "accumulate.comp", .push = &pc, .push_size = sizeof pc});
+    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "ema.comp", .push = &pc, .push_size = sizeof pc});
 }
 
 static const vrg_plugin_desc desc = {
     .abi_version = VRG_ABI_VERSION,
-    .name = "accumulate",
+    .name = "ema",
     .kind = VRG_PLUGIN_PASS,
     .help = "test: temporal accumulation, mix(history, src, alpha)",
     .shader_dir = VRG_PLUGIN_DIR,
