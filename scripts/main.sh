@@ -6,5 +6,5 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
 cmake --build build -j"$(nproc)"
-./build/voxrg render graphs/default.ini --frames 16 --out out --json out/timings.json "$@"
-echo "main: wrote out/$(sed -n 's/^output *= *\([A-Za-z0-9_.-]*\).*/\1/p' graphs/default.ini | head -1).png"
+./build/voxrg render graphs/thesis.ini --frames 16 --out out --json out/timings.json "$@"
+echo "main: wrote out/$(sed -n 's/^output *= *\([A-Za-z0-9_.-]*\).*/\1/p' graphs/thesis.ini | head -1).png"
