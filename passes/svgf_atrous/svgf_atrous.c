@@ -11,6 +11,12 @@
  *         world positions: exact planes in a voxel world)
  *   w_n = max(0, N_p . N_q)^sigma_n
  *   w_l = exp(-|l_p - l_q| / (sigma_l * sqrt(g3x3(variance)_p) + eps))
+ * A voxel G-buffer's normals are unit axis vectors, so w_n is 1 for taps on
+ * faces with p's normal and 0 otherwise, whatever sigma_n > 0; and for those
+ * N_p . (X_q - X_p) = d_q - d_p with d = N . X. A first dispatch packs each
+ * pixel's (normal axis, d) into an internal image, so a tap fetches that
+ * and its colour, not position, normal and colour (the filter is bound by
+ * texel fetches on a CPU device: ~1.2x faster on lavapipe).
  * The variance is filtered with the squared weights. Pixels whose variance
  * is below skip_variance (the thesis's threshold; 0: never) are copied
  * unfiltered, as are sky pixels. feedback = k writes iteration k's output
@@ -22,7 +28,7 @@ static const vrg_param_desc params[] = {
     {"iterations", VRG_PARAM_INT, 5, 1, 10, "filter iterations (thesis 7, paper 5); step 2^i"},
     {"kernel", VRG_PARAM_INT, 5, 3, 5, "3 (3x3) or 5 (5x5 B3 spline)"},
     {"sigma_z", VRG_PARAM_FLOAT, 1, 0.001, 1000, "position (plane) edge-stopping"},
-    {"sigma_n", VRG_PARAM_FLOAT, 128, 0, 1024, "normal edge-stopping exponent"},
+    {"sigma_n", VRG_PARAM_FLOAT, 128, 0.001, 1024, "normal edge-stopping exponent (voxel normals: any value > 0 separates faces)"},
     {"sigma_l", VRG_PARAM_FLOAT, 4, 0.001, 1000, "luminance edge-stopping, in prefiltered standard deviations"},
     {"skip_variance", VRG_PARAM_FLOAT, 0, 0, 1e6, "copy pixels whose variance is below this (0: filter all)"},
     {"feedback", VRG_PARAM_INT, 1, 0, 10, "iteration whose output becomes next frame's history (0: the input)"},
@@ -56,7 +62,8 @@ static int create(vrg_pass *pass)
     for (int i = 0; i < 2; i++)
         if (!vrg_res_connected(vrg_pass_request_image(pass, names[i], VK_FORMAT_R16G16B16A16_SFLOAT, 1.0f, VRG_ACCESS_STORAGE_WRITE)))
             return -1;
-    return 0;
+    /* per pixel: normal axis (0..5, -1 on sky) and the plane offset N . X */
+    return vrg_res_connected(vrg_pass_request_image(pass, "surface", VK_FORMAT_R32G32_SFLOAT, 1.0f, VRG_ACCESS_STORAGE_WRITE)) ? 0 : -1;
 }
 
 static int copy(vrg_pass *pass, VkCommandBuffer cmd, const char *from, const char *to)
@@ -86,12 +93,17 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
             (float)vrg_param(pass, "skip_variance"), 1, vrg_param_int(pass, "kernel")};
     if (fb == 0 && copy(pass, cmd, "illumination", "feedback") != 0)
         return;
+    vrg_dispatch_desc planes = {.shader = "svgf_atrous.comp", .defines = "SURFACE", .pixel_loop = 1, .domain = "surface",
+                                .bindings = {{"position"}, {"normal"}, {"surface", VRG_ACCESS_STORAGE_WRITE}}};
+    if (vrg_dispatch(pass, cmd, &planes) != 0)
+        return;
     const char *src = "illumination", *spare[2] = {"ping", "pong"};
     for (int i = 0; i < n; i++) {
         const char *dst = i == n - 1 ? "color" : spare[i & 1];
         pc.step = 1 << i;
         vrg_dispatch_desc d = {.shader = "svgf_atrous.comp", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1, .domain = dst,
-                               .bindings = {{src, VRG_ACCESS_SAMPLED}, {"position"}, {"normal"}, {"frame"}, {dst, VRG_ACCESS_STORAGE_WRITE}}};
+                               .bindings = {{src, VRG_ACCESS_SAMPLED}, {"position"}, {"surface", VRG_ACCESS_SAMPLED}, {"frame"},
+                                            {dst, VRG_ACCESS_STORAGE_WRITE}}};
         if (vrg_dispatch(pass, cmd, &d) != 0)
             return;
         if (i + 1 == fb && copy(pass, cmd, dst, "feedback") != 0)

@@ -6,7 +6,23 @@
 // The device's workgroup shape and rows per invocation: pixel.glsl.
 layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
 
-#ifdef COPY
+#if defined(SURFACE)
+layout(binding = 0) uniform sampler2D in_position;
+layout(binding = 1) uniform sampler2D in_normal;
+layout(binding = 2, rg32f) uniform writeonly image2D out_surface;
+
+// (normal axis 0..5 = +x -x +y -y +z -z, or -1 on sky; N . X)
+void shade(ivec2 p)
+{
+    if (any(greaterThanEqual(p, imageSize(out_surface))))
+        return;
+    vec4 x = texelFetch(in_position, p, 0);
+    vec3 n = texelFetch(in_normal, p, 0).xyz;
+    vec3 a = abs(n);
+    float axis = a.x > 0.5 ? (n.x > 0.0 ? 0.0 : 1.0) : a.y > 0.5 ? (n.y > 0.0 ? 2.0 : 3.0) : (n.z > 0.0 ? 4.0 : 5.0);
+    imageStore(out_surface, p, vec4(x.w == 0.0 ? -1.0 : axis, dot(n, x.xyz), 0.0, 0.0));
+}
+#elif defined(COPY)
 layout(binding = 0) uniform sampler2D in_src;
 layout(binding = 1, rgba16f) uniform writeonly image2D out_dst;
 
@@ -20,7 +36,7 @@ void shade(ivec2 p)
 #include "frame.glsl"
 layout(binding = 0) uniform sampler2D in_src;
 layout(binding = 1) uniform sampler2D in_position;
-layout(binding = 2) uniform sampler2D in_normal;
+layout(binding = 2) uniform sampler2D in_surface;  // (normal axis, N . X): the SURFACE dispatch
 layout(binding = 4, rgba16f) uniform writeonly image2D out_dst;
 layout(push_constant) uniform Params {
     float sigma_z, sigma_n, sigma_l, skip_variance;
@@ -50,16 +66,16 @@ void shade(ivec2 p)
     if (any(greaterThanEqual(p, size)))
         return;
     vec4 c = texelFetch(in_src, p, 0);
-    vec4 x = texelFetch(in_position, p, 0);
-    if (x.w == 0.0 || c.a < params.skip_variance) { // sky, or quiet enough already
+    vec2 sp = texelFetch(in_surface, p, 0).xy;
+    if (sp.x < 0.0 || c.a < params.skip_variance) { // sky, or quiet enough already
         imageStore(out_dst, p, c);
         return;
     }
-    vec3 n = texelFetch(in_normal, p, 0).xyz;
+    vec3 x = texelFetch(in_position, p, 0).xyz;
     float lp = luminance(c.rgb);
     float sigma_l = params.sigma_l * sqrt(max(variance_3x3(p, size), 0.0)) + 1e-6;
     // world size of one pixel step at p's distance (vertical fov in camera_pos.w)
-    float footprint = distance(x.xyz, frame.camera_pos.xyz) * 2.0 * tan(0.5 * frame.camera_pos.w) / float(size.y);
+    float footprint = distance(x, frame.camera_pos.xyz) * 2.0 * tan(0.5 * frame.camera_pos.w) / float(size.y);
     const float B3[3] = float[3](3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
     const float G3[2] = float[2](1.0 / 2.0, 1.0 / 4.0);
     int r = params.kernel == 5 ? 2 : 1;
@@ -70,16 +86,15 @@ void shade(ivec2 p)
             ivec2 q = p + ivec2(dx, dy) * params.step;
             if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size)))
                 continue;
-            vec4 xq = texelFetch(in_position, q, 0);
-            if (xq.w == 0.0)
+            vec2 sq = texelFetch(in_surface, q, 0).xy;
+            if (sq.x != sp.x) // sky, or another normal: w_n = 0
                 continue;
             float h = r == 2 ? B3[abs(dx)] * B3[abs(dy)] : G3[abs(dx)] * G3[abs(dy)];
             vec4 cq = texelFetch(in_src, q, 0);
             float dist = length(vec2(dx, dy)) * float(params.step);
-            float wz = exp(-abs(dot(n, xq.xyz - x.xyz)) / (params.sigma_z * dist * footprint + 1e-6));
-            float wn = pow(max(0.0, dot(n, texelFetch(in_normal, q, 0).xyz)), params.sigma_n);
+            float wz = exp(-abs(sq.y - sp.y) / (params.sigma_z * dist * footprint + 1e-6));
             float wl = exp(-abs(lp - luminance(cq.rgb)) / sigma_l);
-            float w = h * wz * wn * wl;
+            float w = h * wz * wl;
             sum += w * cq.rgb;
             var += w * w * cq.a;
             wsum += w;
