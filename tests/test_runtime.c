@@ -1404,6 +1404,91 @@ static void test_svgf_edge(void)
     vrg_graph_destroy(g);
 }
 
+/* accumulate: the running mean of frames n = 1..N is (N + 1) / 2 with N in
+ * alpha; a camera move restarts it at this frame's value; max_frames turns
+ * it into a moving average; samples_per_frame reaches hosts as subframes. */
+static void test_accumulate_mean(void)
+{
+    static const char *reads[] = {"mean.color"};
+    vrg_graph *g = load_with("progressive.ini", NULL, 0, reads, 1);
+    if (!g)
+        return;
+    CHECK(vrg_graph_subframes(g) == 1, "subframes %u, want 1", vrg_graph_subframes(g));
+    vrg_image_data img;
+    for (int n = 1; n <= 6; n++) {
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+        CHECK(vrg_graph_read(g, "mean.color", &img) == 0, "readback failed");
+        CHECK(px(&img, 3, 5, 0) == (n + 1) / 2.0f && px(&img, 3, 5, 3) == (float)n, "frame %d: mean %g over %g frames, want %g over %d", n,
+              px(&img, 3, 5, 0), px(&img, 3, 5, 3), (n + 1) / 2.0, n);
+        free(img.pixels);
+    }
+    vrg_camera cam = *vrg_graph_camera(g);
+    cam.yaw += 1.0f;
+    vrg_graph_set_camera(g, &cam);
+    CHECK(vrg_graph_frame(g) == 0 && vrg_graph_read(g, "mean.color", &img) == 0, "frame failed");
+    CHECK(px(&img, 3, 5, 0) == 7.0f && px(&img, 3, 5, 3) == 1.0f, "after a camera move: %g over %g frames, want 7 over 1", px(&img, 3, 5, 0),
+          px(&img, 3, 5, 3));
+    free(img.pixels);
+    CHECK(vrg_graph_frame(g) == 0 && vrg_graph_read(g, "mean.color", &img) == 0, "frame failed");
+    CHECK(px(&img, 3, 5, 0) == 7.5f && px(&img, 3, 5, 3) == 2.0f, "still again: %g over %g frames, want 7.5 over 2", px(&img, 3, 5, 0),
+          px(&img, 3, 5, 3));
+    free(img.pixels);
+    vrg_graph_destroy(g);
+
+    static const char *sets[] = {"mean.max_frames=2", "mean.samples_per_frame=5"};
+    g = load_with("progressive.ini", sets, 2, reads, 1);
+    if (!g)
+        return;
+    CHECK(vrg_graph_subframes(g) == 5, "subframes %u, want 5", vrg_graph_subframes(g));
+    float want = 1; /* n = 1; then mean += (n - mean) / 2 */
+    for (int n = 1; n <= 4; n++) {
+        if (n > 1)
+            want += ((float)n - want) / 2.0f;
+        CHECK(vrg_graph_frame(g) == 0 && vrg_graph_read(g, "mean.color", &img) == 0, "frame failed");
+        CHECK(fabsf(px(&img, 3, 5, 0) - want) < 1e-6f, "max_frames 2, frame %d: %g, want %g", n, px(&img, 3, 5, 0), want);
+        free(img.pixels);
+    }
+    vrg_graph_destroy(g);
+}
+
+/* svgf_atrous's options: feedback 0 is the unfiltered input, feedback =
+ * iterations is the output; a variance threshold above every pixel's copies
+ * the input through; the 3x3 kernel filters too. */
+static void test_svgf_atrous_options(void)
+{
+    static const char *reads[] = {"variance.color", "atrous.color", "atrous.feedback"};
+    struct {
+        const char *sets[3];
+        int expect; /* 0: feedback == input; 1: feedback == output; 2: output == input; 3: output != input */
+    } cases[] = {
+        {{"atrous.feedback=0", "atrous.iterations=3", "atrous.kernel=5"}, 0},
+        {{"atrous.feedback=2", "atrous.iterations=2", "atrous.kernel=5"}, 1},
+        {{"atrous.skip_variance=1000000", "atrous.iterations=3", "atrous.kernel=3"}, 2},
+        {{"atrous.feedback=1", "atrous.iterations=3", "atrous.kernel=3"}, 3},
+    };
+    for (unsigned c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        vrg_graph *g = load_with("svgf_blocks.ini", cases[c].sets, 3, reads, 3);
+        if (!g)
+            return;
+        CHECK(vrg_graph_frame(g) == 0 && vrg_graph_frame(g) == 0, "frame failed");
+        vrg_image_data in, out, fb;
+        CHECK(vrg_graph_read(g, "variance.color", &in) == 0 && vrg_graph_read(g, "atrous.color", &out) == 0 &&
+                  vrg_graph_read(g, "atrous.feedback", &fb) == 0,
+              "readback failed");
+        const vrg_image_data *a = cases[c].expect == 1 ? &out : cases[c].expect == 0 ? &in : &out;
+        const vrg_image_data *b = cases[c].expect == 0 || cases[c].expect == 1 ? &fb : &in;
+        int differ = 0;
+        for (uint32_t i = 0; i < 4 * in.width * in.height; i++)
+            differ += a->pixels[i] != b->pixels[i];
+        if (cases[c].expect == 3)
+            CHECK(differ > (int)(in.width * in.height), "case %u (%s): the 3x3 filter changed only %d values", c, cases[c].sets[2], differ);
+        else
+            CHECK(differ == 0, "case %u (%s, %s): %d values differ", c, cases[c].sets[0], cases[c].sets[1], differ);
+        free(in.pixels), free(out.pixels), free(fb.pixels);
+        vrg_graph_destroy(g);
+    }
+}
+
 /* With a sun radius > 0 the penumbra widens with the occluder's distance:
  * the 12-high wall's is wider than the 4-high wall's. */
 static void test_light_penumbra(void)
@@ -1516,7 +1601,8 @@ int main(int argc, char **argv)
         {"light_floor", test_light_floor, 1},         {"light_wall", test_light_wall, 1},
         {"svgf_disocclusion", test_svgf_disocclusion, 1}, {"svgf_mse", test_svgf_mse, 1},
         {"svgf_history_reset", test_svgf_history_reset, 1}, {"svgf_variance", test_svgf_variance, 1},
-        {"svgf_edge", test_svgf_edge, 1},
+        {"svgf_edge", test_svgf_edge, 1}, {"accumulate_mean", test_accumulate_mean, 1},
+        {"svgf_atrous_options", test_svgf_atrous_options, 1},
         {"light_half_res", test_light_half_res, 1},
         {"light_penumbra", test_light_penumbra, 1},   {"light_corner", test_light_corner, 1},
         {"light_chain", test_light_chain, 1},
