@@ -2,6 +2,7 @@
 // One à-trous iteration of SVGF (or, with COPY, a copy): svgf_atrous.c has
 // the weights.
 #include "pixel.glsl"
+#include "color.glsl"
 
 // The device's workgroup shape and rows per invocation: pixel.glsl.
 layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
@@ -42,8 +43,6 @@ layout(push_constant) uniform Params {
     float sigma_z, sigma_n, sigma_l, skip_variance;
     int step, kernel;
 } params;
-
-float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
 // 3x3 Gaussian (1/4 1/2 1/4) of the variance around p: steadier than the
 // pixel's own for the luminance test

@@ -1,6 +1,7 @@
 #version 460
 // SVGF temporal accumulation: svgf_reproject.c has the rules.
 #include "pixel.glsl"
+#include "color.glsl"
 
 // The device's workgroup shape and rows per invocation: pixel.glsl.
 layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
@@ -22,8 +23,6 @@ layout(push_constant) uniform Params {
     float alpha, moments_alpha, normal_threshold, plane_distance;
     int length_alpha, max_length, history_valid;
 } params;
-
-float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
 // Does the previous frame's pixel t show this pixel's surface (x, n, chunk)?
 bool same_surface(ivec2 t, ivec2 size, vec3 x, vec3 n, uint chunk)

@@ -1,14 +1,13 @@
 #version 460
 // Luminance variance for SVGF: svgf_variance.c has the definitions.
 #include "pixel.glsl"
+#include "color.glsl"
 
 // The device's workgroup shape and rows per invocation: pixel.glsl.
 layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
 layout(push_constant) uniform Params {
     int radius, min_history;
 } params;
-
-float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
 #if defined(ROWS)
 layout(binding = 0) uniform sampler2D in_illumination;

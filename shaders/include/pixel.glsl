@@ -18,6 +18,7 @@
 // The loop may run past the image: shade() checks the bounds.
 #ifndef VOXRG_PIXEL_GLSL
 #define VOXRG_PIXEL_GLSL
+#include "ifloor.glsl"
 ivec2 vrg_pixel(uint k)
 {
     uint rows = gl_NumWorkGroups.y * gl_WorkGroupSize.y;
@@ -27,11 +28,10 @@ ivec2 vrg_pixel(uint k)
 // The pixel under pixel p's centre in an input of size src, for an output of
 // size dst: p itself when the sizes match, else the nearest (a pass may run
 // at a lower or higher resolution than its inputs: [resource] scale). Float
-// maths and world.glsl's bit trick: integer division and int(float) are
-// scalar per lane on a CPU device.
+// maths and ifloor: integer division and int(float) are scalar per lane on
+// a CPU device.
 ivec2 vrg_pixel_in(ivec2 p, ivec2 dst, ivec2 src)
 {
-    vec2 f = floor((vec2(p) + 0.5) * vec2(src) / vec2(dst));
-    return clamp(floatBitsToInt(f + 12582912.0) - 0x4B400000, ivec2(0), src - 1);
+    return clamp(ifloor((vec2(p) + 0.5) * vec2(src) / vec2(dst)), ivec2(0), src - 1);
 }
 #endif

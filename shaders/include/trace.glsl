@@ -65,7 +65,7 @@ Hit trace_closest(vec3 o, vec3 d, float tmax)
     h.hit = true;
     h.t = t;
     h.normal = n;
-    h.voxel = world_floor3(p - vec3(n) * 0.5);
+    h.voxel = ifloor(p - vec3(n) * 0.5);
     h.block = world_block(h.voxel);
     h.chunk = rayQueryGetIntersectionInstanceCustomIndexEXT(q, true);
     return h;
@@ -84,7 +84,7 @@ bool trace_any(vec3 o, vec3 d, float tmax)
 bool trace_brick(vec3 o, vec3 d, vec3 inv, ivec3 stp, int base, ivec3 brick, float t, ivec3 entry_normal, float tmax, bool any_hit, inout Hit h)
 {
     ivec3 lo = brick * 8, hi = lo + 7;
-    ivec3 v = clamp(world_floor3(o + d * t), lo, hi);
+    ivec3 v = clamp(ifloor(o + d * t), lo, hi);
     vec3 tnext = (vec3(v) + max(vec3(stp), vec3(0.0)) - o) * inv;
     vec3 tdelta = abs(inv);
     ivec3 n = entry_normal;
@@ -155,7 +155,7 @@ Hit trace_dda(vec3 o, vec3 d, float tmax, bool any_hit)
     // entering the box: the face crossed last, facing the ray
     ivec3 n = t > 0.0 ? -trace_step_mask(-tin) * stp : ivec3(0);
     // the brick at the entry point, inside the box (t is on its boundary)
-    ivec3 cell = clamp(world_floor3((o + d * t) / 8.0), world_floor3(lo / 8.0), world_floor3(hi / 8.0) - 1);
+    ivec3 cell = clamp(ifloor((o + d * t) / 8.0), ifloor(lo / 8.0), ifloor(hi / 8.0) - 1);
     vec3 tnext = ((vec3(cell) + max(vec3(stp), vec3(0.0))) * 8.0 - o) * inv;
     vec3 tdelta = abs(8.0 * inv);
     int base = -1;
@@ -163,7 +163,7 @@ Hit trace_dda(vec3 o, vec3 d, float tmax, bool any_hit)
     ivec3 grid = frame.world_grid.xyz;
     vec2 inv_grid = 1.0 / vec2(grid.xz);
     ivec3 base_chunk = ivec3(-2147483647);
-    int steps = world_floor1(min((tmax - t) / 8.0, 1e6)) * 3 + 8;
+    int steps = ifloor(min((tmax - t) / 8.0, 1e6)) * 3 + 8;
     for (int i = 0; i < steps && t <= tmax; i++) {
         ivec3 chunk = cell >> 1;
         if (chunk != base_chunk) {

@@ -3,6 +3,7 @@
 // `world` slot (a storage buffer).
 #ifndef VOXRG_WORLD_GLSL
 #define VOXRG_WORLD_GLSL
+#include "ifloor.glsl"
 #ifdef TRACE_RAYQUERY
 // extensions come before any declaration (trace.glsl's ray-query backend)
 #extension GL_EXT_ray_query : require
@@ -30,13 +31,6 @@ void world_bounds(out vec3 lo, out vec3 hi)
     hi = vec3(int(world_word(9u)), int(world_word(10u)), int(world_word(11u))) * 16.0 + 16.0;
 }
 
-// floor(x) as integers for |x| < 2^22: adding 1.5 * 2^23 puts an integral
-// float's value in the low mantissa bits. A plain int(floor(x)) is a scalar
-// saturating conversion per lane on a CPU device (lavapipe): ~6 instructions
-// per component and lane, in the traversal's inner loops.
-ivec3 world_floor3(vec3 x) { return floatBitsToInt(floor(x) + 12582912.0) - 0x4B400000; }
-ivec2 world_floor2(vec2 x) { return floatBitsToInt(floor(x) + 12582912.0) - 0x4B400000; }
-int world_floor1(float x) { return floatBitsToInt(floor(x) + 12582912.0) - 0x4B400000; }
 
 // First uint of the slot holding chunk c of a world with grid g, or -1 when c is not loaded (the
 // toroidal slot is empty or holds another chunk). Slot word 3 holds the valid
@@ -48,7 +42,7 @@ int world_chunk_in(ivec3 g, vec2 inv_gxz, ivec3 c)
     if (c.y < 0 || c.y >= g.y)
         return -1;
     ivec2 gxz = g.xz, cxz = c.xz;
-    ivec2 lap = world_floor2(vec2(cxz) * inv_gxz);  // inv_gxz = 1 / g.xz
+    ivec2 lap = ifloor(vec2(cxz) * inv_gxz);  // inv_gxz = 1 / g.xz
     ivec2 m = cxz - lap * gxz;
     lap += ivec2(greaterThanEqual(m, gxz)) - ivec2(lessThan(m, ivec2(0)));
     m = cxz - lap * gxz;
