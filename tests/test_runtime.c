@@ -1489,6 +1489,30 @@ static void test_svgf_atrous_options(void)
     }
 }
 
+/* An SVGF input at another size than the output is an error naming it,
+ * not a silently wrong reprojection. */
+static void test_svgf_size_mismatch(void)
+{
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *diag = open_memstream(&buf, &len);
+    const char *text = "[graph]\noutput = r.color\nwidth = 16\nheight = 16\n[scene]\nplugin = blocks\nbox = 0 0 0 7 0 7 white\n"
+                       "[pass gbuffer]\nplugin = gbuffer\nin.world = world\nin.frame = frame\nin.atlas = atlas\n"
+                       "[pass half]\nplugin = pattern\nout.color = small\n[resource small]\nscale = 0.5\n"
+                       "[pass r]\nplugin = svgf_reproject\nin.illumination = small\nin.motion = gbuffer.motion\n"
+                       "in.position = gbuffer.position\nin.normal = gbuffer.normal\nin.ids = gbuffer.ids\nin.history = r.color@prev\n"
+                       "in.prev_moments = r.moments@prev\nin.prev_length = r.length@prev\nin.prev_position = gbuffer.position@prev\n"
+                       "in.prev_normal = gbuffer.normal@prev\nin.prev_ids = gbuffer.ids@prev\n";
+    vrg_graph_desc d = {.path = "size.ini", .text = text, .diag = diag};
+    vrg_graph *g = NULL;
+    int rc = vrg_graph_load(ctx, &d, &g);
+    int frame_rc = rc == 0 ? vrg_graph_frame(g) : 0;
+    fclose(diag);
+    CHECK(rc == 0 && frame_rc != 0 && strstr(buf, "input 'illumination' is 8x8, 'color' 16x16"), "size mismatch not reported:\n%s", buf);
+    free(buf);
+    vrg_graph_destroy(g);
+}
+
 /* With a sun radius > 0 the penumbra widens with the occluder's distance:
  * the 12-high wall's is wider than the 4-high wall's. */
 static void test_light_penumbra(void)
@@ -1602,7 +1626,7 @@ int main(int argc, char **argv)
         {"svgf_disocclusion", test_svgf_disocclusion, 1}, {"svgf_mse", test_svgf_mse, 1},
         {"svgf_history_reset", test_svgf_history_reset, 1}, {"svgf_variance", test_svgf_variance, 1},
         {"svgf_edge", test_svgf_edge, 1}, {"accumulate_mean", test_accumulate_mean, 1},
-        {"svgf_atrous_options", test_svgf_atrous_options, 1},
+        {"svgf_atrous_options", test_svgf_atrous_options, 1}, {"svgf_size_mismatch", test_svgf_size_mismatch, 1},
         {"light_half_res", test_light_half_res, 1},
         {"light_penumbra", test_light_penumbra, 1},   {"light_corner", test_light_corner, 1},
         {"light_chain", test_light_chain, 1},

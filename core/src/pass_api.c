@@ -262,6 +262,18 @@ void vrg_pass_free_host_buffers(vrg_pass *p)
 
 void vrg_pass_set_world(vrg_pass *p, vrg_world *world) { p->graph->world = world; }
 
+int vrg_pass_require_same_size(vrg_pass *p, const char *ref, const char *const *names, int count)
+{
+    VkExtent2D want = vrg_res_extent(p, vrg_pass_res(p, ref));
+    for (int i = 0; i < count; i++) {
+        VkExtent2D e = vrg_res_extent(p, vrg_pass_res(p, names[i]));
+        if (e.width != want.width || e.height != want.height)
+            return vrg_pass_error(p, "input '%s' is %ux%u, '%s' %ux%u: this pass needs them at one size", names[i], e.width, e.height, ref,
+                                  want.width, want.height);
+    }
+    return 0;
+}
+
 void vrg_pass_set_subframes(vrg_pass *p, uint32_t n)
 {
     if (n > p->graph->subframes)

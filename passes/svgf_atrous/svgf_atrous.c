@@ -75,16 +75,9 @@ static int copy(vrg_pass *pass, VkCommandBuffer cmd, const char *from, const cha
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    VkExtent2D out = vrg_res_extent(pass, vrg_pass_res(pass, "color"));
     static const char *same[] = {"illumination", "position", "normal"};
-    for (int i = 0; i < 3; i++) {
-        VkExtent2D e = vrg_res_extent(pass, vrg_pass_res(pass, same[i]));
-        if (e.width != out.width || e.height != out.height) {
-            vrg_pass_error(pass, "input '%s' is %ux%u, the output %ux%u: the filter needs every input at the output's size", same[i], e.width,
-                           e.height, out.width, out.height);
-            return;
-        }
-    }
+    if (vrg_pass_require_same_size(pass, "color", same, 3) != 0)
+        return;
     int n = vrg_param_int(pass, "iterations"), fb = vrg_param_int(pass, "feedback");
     struct {
         float sigma_z, sigma_n, sigma_l, skip_variance;

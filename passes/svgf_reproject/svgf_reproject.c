@@ -55,17 +55,10 @@ static const vrg_slot_desc slots[] = {
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     /* the history images are read at reprojected positions: all at one size */
-    VkExtent2D out = vrg_res_extent(pass, vrg_pass_res(pass, "color"));
     static const char *same[] = {"illumination", "motion", "position", "normal", "ids", "history", "prev_moments", "prev_length",
                                  "prev_position", "prev_normal", "prev_ids"};
-    for (unsigned i = 0; i < sizeof same / sizeof same[0]; i++) {
-        VkExtent2D e = vrg_res_extent(pass, vrg_pass_res(pass, same[i]));
-        if (e.width != out.width || e.height != out.height) {
-            vrg_pass_error(pass, "input '%s' is %ux%u, the output %ux%u: reprojection needs every input at the output's size", same[i],
-                           e.width, e.height, out.width, out.height);
-            return;
-        }
-    }
+    if (vrg_pass_require_same_size(pass, "color", same, sizeof same / sizeof same[0]) != 0)
+        return;
     struct {
         float alpha, moments_alpha, normal_threshold, plane_distance;
         int32_t length_alpha, max_length, history_valid;

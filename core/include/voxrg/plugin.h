@@ -277,6 +277,9 @@ VkImage vrg_res_image(const vrg_pass *pass, vrg_res res);
 VkImageView vrg_res_view(const vrg_pass *pass, vrg_res res);
 VkBuffer vrg_res_buffer(const vrg_pass *pass, vrg_res res);
 VkExtent2D vrg_res_extent(const vrg_pass *pass, vrg_res res);
+/* 0 when every named slot has the extent of slot `ref`; else reports the
+ * first that differs ("input 'X' is WxH, 'ref' WxH: ...") and returns -1. */
+int vrg_pass_require_same_size(vrg_pass *pass, const char *ref, const char *const *names, int count);
 VkFormat vrg_res_format(const vrg_pass *pass, vrg_res res);
 uint64_t vrg_res_size(const vrg_pass *pass, vrg_res res);
 uint32_t vrg_res_mips(const vrg_pass *pass, vrg_res res);
