@@ -23,6 +23,11 @@ endforeach()
 add_test(NAME cli COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test_cli.sh $<TARGET_FILE:voxrg_cli> ${CMAKE_CURRENT_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}/cli_out)
 set_tests_properties(cli PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}" TIMEOUT 600)
 
+# The complete pass of docs/plugin-abi.md builds and renders as the page says.
+add_test(NAME docs_example COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test_docs_example.sh $<TARGET_FILE:voxrg_cli> ${PROJECT_SOURCE_DIR}
+         $<TARGET_FILE_DIR:voxrg> ${VOXRG_PLUGIN_OUTPUT_DIR} ${CMAKE_CURRENT_BINARY_DIR}/docs_example)
+set_tests_properties(docs_example PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}" TIMEOUT 300)
+
 # The shipped graphs render under validation.
 file(GLOB shipped_graphs ${PROJECT_SOURCE_DIR}/graphs/*.ini)
 foreach(graph ${shipped_graphs})
