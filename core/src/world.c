@@ -1,10 +1,9 @@
 /* The world store. CPU side: a toroidal grid of chunk slots holding block
  * ids. GPU side: the same grid in one storage buffer, in the layout
  * shaders/include/world.glsl reads:
- *   uint header[16]   = {GX, GY, GZ, SLOT_UINTS, SLOTS_OFFSET, BLOCK_COUNT,
- *                        min chunk x, y, z, max chunk x, y, z (int bits), ...}
- *     min..max: the box of the chunks valid in the GPU copy (min > max when
- *     none), so rays clip to it instead of stepping through unloaded space
+ *   uint header[16]   = {GX, GY, GZ, SLOT_UINTS, SLOTS_OFFSET, BLOCK_COUNT, ...}
+ * (the box of the chunks the GPU copy holds, which rays clip to, travels in
+ * the frame uniforms: vrg_world_gpu_box)
  *   uint materials[32][8] = {albedo r,g,b (float bits), emissive, flags, tile top, side, bottom}
  *   slots[GX*GY*GZ][SLOT_UINTS]:
  *     [0..2] chunk coords,
@@ -297,12 +296,6 @@ static void pack_header(const vrg_world *w, uint32_t *out)
     out[3] = SLOT_UINTS;
     out[4] = SLOTS_OFFSET;
     out[5] = VRG_BLOCK_COUNT;
-    int lo[3], hi[3];
-    vrg_world_gpu_box(w, lo, hi);
-    for (int a = 0; a < 3; a++) {
-        out[6 + a] = (uint32_t)lo[a];
-        out[9 + a] = (uint32_t)hi[a];
-    }
     for (int i = 0; i < VRG_BLOCK_COUNT; i++) {
         uint32_t *m = out + HEADER_UINTS + i * MATERIAL_UINTS;
         const vrg_material *mt = &materials[i];
@@ -353,20 +346,18 @@ int vrg_world_upload(vrg_world *w, VkCommandBuffer cmd, VkBuffer dst, void *stag
     VkBufferCopy regions[256];
     uint32_t nr = 0;
     uint64_t used = 0;
-    /* the header goes first in the staging memory but is packed last: it
-     * holds the box of the slots valid after this upload */
-    if (staging_bytes < SLOTS_OFFSET * 4)
-        return 0;
-    used = SLOTS_OFFSET * 4;
+    if (w->header_dirty && staging_bytes >= SLOTS_OFFSET * 4) {
+        pack_header(w, staging);
+        regions[nr++] = (VkBufferCopy){.srcOffset = 0, .dstOffset = 0, .size = SLOTS_OFFSET * 4};
+        used = SLOTS_OFFSET * 4;
+        w->header_dirty = 0;
+    }
     int done = 0;
     while (done < w->dirty_count && used + SLOT_UINTS * 4 <= staging_bytes) {
         int s = w->dirty_list[done++];
         slot *sl = &w->slots[s];
-        int gpu_c[3] = {sl->cx, sl->cy, sl->cz};
-        if (sl->gpu_valid != sl->valid || (sl->valid && memcmp(sl->gpu_c, gpu_c, sizeof gpu_c) != 0))
-            w->header_dirty = 1;
-        sl->gpu_valid = sl->valid;
-        memcpy(sl->gpu_c, gpu_c, sizeof gpu_c);
+        sl->gpu_valid = sl->valid; /* what vrg_world_gpu_box reports */
+        sl->gpu_c[0] = sl->cx, sl->gpu_c[1] = sl->cy, sl->gpu_c[2] = sl->cz;
         pack_slot(w, sl, (uint32_t *)((char *)staging + used));
         regions[nr++] = (VkBufferCopy){.srcOffset = used, .dstOffset = 4 * (SLOTS_OFFSET + (uint64_t)s * SLOT_UINTS), .size = SLOT_UINTS * 4};
         used += SLOT_UINTS * 4;
@@ -378,15 +369,6 @@ int vrg_world_upload(vrg_world *w, VkCommandBuffer cmd, VkBuffer dst, void *stag
     }
     memmove(w->dirty_list, w->dirty_list + done, (size_t)(w->dirty_count - done) * sizeof *w->dirty_list);
     w->dirty_count -= done;
-    if (w->header_dirty) {
-        if (nr == 256) {
-            vkCmdCopyBuffer(cmd, staging_buffer, dst, nr, regions);
-            nr = 0;
-        }
-        pack_header(w, staging);
-        regions[nr++] = (VkBufferCopy){.srcOffset = 0, .dstOffset = 0, .size = SLOTS_OFFSET * 4};
-        w->header_dirty = 0;
-    }
     if (nr)
         vkCmdCopyBuffer(cmd, staging_buffer, dst, nr, regions);
     return done;

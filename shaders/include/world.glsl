@@ -22,18 +22,9 @@ const uint WORLD_OCC = 4u;         // slot-relative: occupancy bits (8 bricks x 
 const uint WORLD_IDS = 132u;       // slot-relative: block ids, 4 per uint
 
 ivec3 world_grid() { return ivec3(world_word(0u), world_word(1u), world_word(2u)); }
-int world_height() { return int(world_word(1u)) * 16; }
 
-// The box (in blocks) around every loaded chunk; empty (lo > hi) when none.
-void world_bounds(out vec3 lo, out vec3 hi)
-{
-    lo = vec3(int(world_word(6u)), int(world_word(7u)), int(world_word(8u))) * 16.0;
-    hi = vec3(int(world_word(9u)), int(world_word(10u)), int(world_word(11u))) * 16.0 + 16.0;
-}
-
-
-// First uint of the slot holding chunk c of a world with grid g, or -1 when c is not loaded (the
-// toroidal slot is empty or holds another chunk). Slot word 3 holds the valid
+// First uint of the slot holding chunk c of a world with grid g, or -1 when
+// c is not loaded (the toroidal slot is empty or holds another chunk). Slot word 3 holds the valid
 // bit and the chunk's lap (c div grid) in x and z, so one load checks it; the
 // division is in floats (exact here, fixed up by one step) because integer
 // division has no SIMD instruction on a CPU device.

@@ -89,9 +89,7 @@ int vrg_world_pick(const vrg_world *w, const float origin[3], const float dir[3]
 /* Records copies of changed chunks (at most what fits the staging ring)
  * into dst, the world buffer a scene writes with VRG_ACCESS_TRANSFER_DST.
  * staging is host-visible memory of staging_bytes (vrg_pass_host_buffer).
- * Returns the number of slots uploaded; the rest wait for the next frame.
- * The header (with the box of the slots valid in the GPU copy) goes up
- * whenever that box may have changed. */
+ * Returns the number of slots uploaded; the rest wait for the next frame. */
 int vrg_world_upload(vrg_world *w, VkCommandBuffer cmd, VkBuffer dst, void *staging, VkBuffer staging_buffer, uint64_t staging_bytes);
 /* The box of chunks (inclusive) valid in the GPU copy after the last upload;
  * lo > hi when it holds none. */
@@ -164,10 +162,9 @@ typedef struct vrg_frame_uniforms {
     float time_s, hours, pad0, pad1;
     /* The world's slot grid (x, y, z; chunks) and the box (blocks) around
      * the chunks its GPU copy holds after this frame's upload (empty: lo >=
-     * hi). The world header holds the same; the traversal reads it here
-     * because a uniform is one scalar load on a CPU device, a texel fetch a
-     * call per SIMD row (the header fetches cost shadow rays half their
-     * time). */
+     * hi). The traversal clips rays to it; it reads the grid here rather
+     * than from the world header because a uniform is one scalar load on a
+     * CPU device, a texel fetch a call per SIMD row. */
     int32_t world_grid[4];
     float world_lo[4];
     float world_hi[4];
