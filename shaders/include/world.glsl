@@ -24,10 +24,10 @@ const uint WORLD_IDS = 132u;       // slot-relative: block ids, 4 per uint
 ivec3 world_grid() { return ivec3(world_word(0u), world_word(1u), world_word(2u)); }
 
 // First uint of the slot holding chunk c of a world with grid g, or -1 when
-// c is not loaded (the toroidal slot is empty or holds another chunk). Slot word 3 holds the valid
-// bit and the chunk's lap (c div grid) in x and z, so one load checks it; the
-// division is in floats (exact here, fixed up by one step) because integer
-// division has no SIMD instruction on a CPU device.
+// c is not loaded (the toroidal slot is empty or holds another chunk). Slot
+// word 3 holds the valid bit and the chunk's lap (c div grid) in x and z, so
+// one load checks it; the division is in floats (exact here, fixed up by one
+// step) because integer division has no SIMD instruction on a CPU device.
 int world_chunk_in(ivec3 g, vec2 inv_gxz, ivec3 c)
 {
     if (c.y < 0 || c.y >= g.y)
