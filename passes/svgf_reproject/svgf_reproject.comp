@@ -65,7 +65,7 @@ void shade(ivec2 p)
         uint chunk = imageLoad(in_ids, p).y;
         // where the previous camera saw this point, in pixel coordinates
         vec2 q = vec2(p) - texelFetch(in_motion, p, 0).xy;
-        ivec2 q0 = ivec2(floor(q));
+        ivec2 q0 = ifloor(q);
         vec2 f = q - vec2(q0);
         for (int i = 0; i < 4; i++) {
             ivec2 o = ivec2(i & 1, i >> 1);
@@ -78,7 +78,7 @@ void shade(ivec2 p)
         if (wsum < 1e-4) { // no bilinear tap: the 3x3 around the nearest pixel
             h = History(vec3(0.0), vec2(0.0), 0.0);
             wsum = 0.0;
-            ivec2 r = ivec2(floor(q + 0.5));
+            ivec2 r = ifloor(q + 0.5);
             for (int i = 0; i < 9; i++) {
                 ivec2 t = r + ivec2(i % 3 - 1, i / 3 - 1);
                 if (same_surface(t, size, pos.xyz, n, chunk)) {
