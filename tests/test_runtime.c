@@ -6,6 +6,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include "voxrg/voxrg.h"
 #include "voxrg/world.h"
 
@@ -1513,6 +1514,89 @@ static void test_svgf_size_mismatch(void)
     vrg_graph_destroy(g);
 }
 
+/* Writes text to path the way editors save: a new file renamed over the old. */
+static void save_file(const char *path, const char *text)
+{
+    char tmp[1100];
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    FILE *f = fopen(tmp, "w");
+    if (!f)
+        return;
+    fputs(text, f);
+    fclose(f);
+    rename(tmp, path);
+}
+
+static const char *user_shader =
+    "#version 450\n#include \"tint.glsl\"\nlayout(local_size_x = 8, local_size_y = 8) in;\n"
+    "layout(binding = 0, rgba16f) uniform writeonly image2D dst;\n"
+    "void main() { imageStore(dst, ivec2(gl_GlobalInvocationID.xy), vec4(TINT, 1.0)); }\n";
+
+/* Hot reload of shaders: a saved shader (or a file it #includes) is in use
+ * on the next frame; a broken one is reported with FILE:LINE while the last
+ * good pipeline keeps rendering; fixing it brings the new version. */
+static void test_hot_reload_shader(void)
+{
+    char dir[] = "/tmp/voxrg-reload-XXXXXX";
+    if (!mkdtemp(dir)) {
+        CHECK(0, "mkdtemp failed");
+        return;
+    }
+    char user[1100], tint[1100];
+    snprintf(user, sizeof user, "%s/user.comp", dir);
+    snprintf(tint, sizeof tint, "%s/tint.glsl", dir);
+    save_file(user, user_shader);
+    save_file(tint, "#define TINT vec3(0.25, 0.5, 0.75)\n");
+    setenv("VOXRG_SHADER_PATH", dir, 1);
+    char *log = NULL;
+    size_t len = 0;
+    FILE *diag = open_memstream(&log, &len);
+    char path[1024];
+    snprintf(path, sizeof path, "%s/graphs/shader_file.ini", TEST_DIR);
+    static const char *reads[] = {"color"};
+    vrg_graph_desc d = {.path = path, .diag = diag, .readback = reads, .readback_count = 1};
+    vrg_graph *g = NULL;
+    if (vrg_graph_load(ctx, &d, &g) != 0) {
+        CHECK(0, "cannot load shader_file.ini");
+        fclose(diag);
+        free(log);
+        return;
+    }
+    CHECK(vrg_graph_watch(g, 1) == 0, "watch failed");
+    vrg_image_data img;
+    float want[4][3] = {{0.25f, 0.5f, 0.75f}, {1, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    for (int step = 0; step < 4; step++) {
+        if (step == 1) /* the included file changes */
+            save_file(tint, "#define TINT vec3(1.0, 0.0, 0.0)\n");
+        if (step == 2) /* a syntax error in the main file */
+            save_file(user, "#version 450\nlayout(local_size_x = 8) in;\nvoid main() { this is not glsl }\n");
+        if (step == 3) { /* fixed again, and a new colour */
+            save_file(user, user_shader);
+            save_file(tint, "#define TINT vec3(0.0, 1.0, 0.0)\n");
+        }
+        CHECK(vrg_graph_frame(g) == 0, "step %d: the frame failed: a reload must not stop the graph", step);
+        CHECK(vrg_graph_read(g, "color", &img) == 0, "readback failed");
+        for (int c = 0; c < 3; c++)
+            CHECK(fabsf(px(&img, 5, 7, c) - want[step][c]) < 1e-3f, "step %d: channel %d is %g, want %g", step, c, px(&img, 5, 7, c),
+                  want[step][c]);
+        free(img.pixels);
+        const char *err = vrg_graph_reload_error(g);
+        if (step == 2) {
+            fflush(diag);
+            CHECK(err && strstr(err, "user.comp:3: error"), "no FILE:LINE reload error: %s", err ? err : "(none)");
+            CHECK(log && strstr(log, "user.comp:3: error"), "the error was not printed: %s", log ? log : "");
+        } else
+            CHECK(!err, "step %d: unexpected reload error %s", step, err);
+        if (step == 1 || step == 3)
+            CHECK(vrg_graph_reload_ms(g) >= 0 && vrg_graph_reload_ms(g) < 60000, "step %d: reload time %g ms", step, vrg_graph_reload_ms(g));
+    }
+    vrg_graph_destroy(g);
+    fclose(diag);
+    free(log);
+    unsetenv("VOXRG_SHADER_PATH");
+    remove(user), remove(tint), rmdir(dir);
+}
+
 /* With a sun radius > 0 the penumbra widens with the occluder's distance:
  * the 12-high wall's is wider than the 4-high wall's. */
 static void test_light_penumbra(void)
@@ -1627,6 +1711,7 @@ int main(int argc, char **argv)
         {"svgf_history_reset", test_svgf_history_reset, 1}, {"svgf_variance", test_svgf_variance, 1},
         {"svgf_edge", test_svgf_edge, 1}, {"accumulate_mean", test_accumulate_mean, 1},
         {"svgf_atrous_options", test_svgf_atrous_options, 1}, {"svgf_size_mismatch", test_svgf_size_mismatch, 1},
+        {"hot_reload_shader", test_hot_reload_shader, 1},
         {"light_half_res", test_light_half_res, 1},
         {"light_penumbra", test_light_penumbra, 1},   {"light_corner", test_light_corner, 1},
         {"light_chain", test_light_chain, 1},

@@ -33,14 +33,17 @@ static const char *usage_check =
 
 static const char *usage_render =
     "usage: voxrg render GRAPH [--frames N] [--size WxH] [--out DIR] [--set PASS.PARAM=VALUE]...\n"
-    "                          [--camera PATH] [--dump RES[,RES...]] [--json FILE] [--validate] [--device NAME|INDEX]\n"
+    "                          [--camera PATH] [--dump RES[,RES...]] [--json FILE] [--validate] [--watch] [--device NAME|INDEX]\n"
     "Renders N frames (default 1) headless and writes DIR/OUTPUT.png (default DIR: out),\n"
     "plus DIR/RES.png for each dumped image (DIR/RES.bin for buffers). --json writes\n"
     "per-pass GPU timings. --camera plays a camera path (graphs/paths/*.path) at the\n"
     "graph's fps. --validate turns on the Khronos validation layer with\n"
     "synchronization validation; any message fails the run. A graph that accumulates\n"
     "(the accumulate pass's samples_per_frame) gets that many graph frames per output\n"
-    "frame, the camera held still: a converged reference per camera-path frame.\n";
+    "frame, the camera held still: a converged reference per camera-path frame.\n"
+    "--watch reloads saved shaders (and the files they #include) between frames; a\n"
+    "shader that fails to compile is reported with FILE:LINE and the last good one\n"
+    "keeps running.\n";
 
 static const char *usage_plugins =
     "usage: voxrg plugins [NAME]\n"
@@ -55,7 +58,7 @@ typedef struct options {
     int dump_count;
     char dump_buf[4096];
     uint32_t width, height, frames;
-    int validate, no_device, help;
+    int validate, no_device, help, watch;
 } options;
 
 static int usage_error(const char *usage, const char *fmt, const char *arg)
@@ -103,6 +106,8 @@ static int parse_options(int argc, char **argv, options *o, const char *usage)
             takes = 0;
         } else if (!strcmp(a, "--validate"))
             o->validate = 1, takes = 0;
+        else if (!strcmp(a, "--watch"))
+            o->watch = 1, takes = 0;
         else if (!strcmp(a, "--no-device"))
             o->no_device = 1, takes = 0;
         else if (a[0] == '-' && !is_valued_option(a))
@@ -340,7 +345,10 @@ static int cmd_render(int argc, char **argv)
     double *ms = calloc((size_t)o.frames * np, sizeof *ms);
     double start = now_ms();
     int isatty_err = isatty(2);
+    if (o.watch && vrg_graph_watch(g, 1) != 0)
+        return finish(ctx, g, 1);
     uint32_t sub = vrg_graph_subframes(g);
+    double reloaded = -1;
     for (uint32_t k = 0; k < o.frames && rc == 0; k++) {
         if (path.count) {
             vrg_camera_path_eval(&path, (float)(k * vrg_graph_frame_seconds(g)), &camera);
@@ -353,6 +361,10 @@ static int cmd_render(int argc, char **argv)
                 fprintf(stderr, "error: frame %u failed\n", k);
                 rc = 1;
             }
+        if (o.watch && vrg_graph_reload_ms(g) != reloaded) {
+            reloaded = vrg_graph_reload_ms(g);
+            fprintf(stderr, "\nframe %u: shaders reloaded, %.0f ms from save to frame\n", k, reloaded);
+        }
         double total = 0;
         for (uint32_t i = 0; i < np; i++) {
             ms[k * np + i] = vrg_graph_pass_ms(g, i);

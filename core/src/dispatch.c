@@ -2,12 +2,15 @@
  * resources bound". Pipelines are cached per pass; descriptors are pushed
  * (VK_KHR_push_descriptor), so there are no pools to manage; barriers for the
  * bound resources come from the same tracker the runtime uses between passes. */
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 #include "internal.h"
 
 typedef struct vrg_pipeline {
     char path[1024];
+    char shader[256]; /* as the pass named it */
+    char *deps;       /* files it was compiled from (shader.c), for hot reload */
     char defines[256];
     VkDescriptorType types[VRG_MAX_BINDINGS];
     uint32_t count;
@@ -29,39 +32,28 @@ static VkDescriptorType descriptor_type(vrg_resource_kind kind, vrg_access a)
     return a == VRG_ACCESS_SAMPLED ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 }
 
-static vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *defines, const VkDescriptorType *types, uint32_t count)
+/* Compiles pl->path with pl->defines and makes its layouts and pipeline.
+ * On failure pl's Vulkan objects stay unset and -1 is returned after the
+ * compile errors (FILE:LINE) went to the graph's diagnostics. */
+static int build_pipeline(vrg_pass *p, vrg_pipeline *pl)
 {
-    if (!defines)
-        defines = "";
-    char path[1024];
-    if (vrg_shader_resolve(p, shader, path, sizeof path) != 0) {
-        vrg_pass_error(p, "shader '%s' not found (searched the plugin's folder, $VOXRG_SHADER_PATH, shaders/)", shader);
-        return NULL;
-    }
-    for (vrg_pipeline *pl = p->pipelines; pl; pl = pl->next)
-        if (strcmp(pl->path, path) == 0 && strcmp(pl->defines, defines) == 0 && pl->count == count && memcmp(pl->types, types, count * sizeof *types) == 0)
-            return pl;
     vrg_context *ctx = p->graph->ctx;
     VkDevice dev = ctx->dev.device;
     vrg_shader_module sm;
     FILE *diag = p->graph->diag.out ? p->graph->diag.out : stderr;
-    if (vrg_shader_compile(ctx, path, defines, &sm, diag) != 0) {
-        vrg_pass_error(p, "shader %s failed to compile", path);
-        return NULL;
+    if (vrg_shader_compile(ctx, pl->path, pl->defines, &sm, diag) != 0) {
+        vrg_pass_error(p, "shader %s failed to compile", pl->path);
+        return -1;
     }
-    vrg_pipeline *pl = calloc(1, sizeof *pl);
-    snprintf(pl->path, sizeof pl->path, "%s", path);
-    snprintf(pl->defines, sizeof pl->defines, "%s", defines);
-    memcpy(pl->types, types, count * sizeof *types);
+    pl->deps = sm.deps;
     memcpy(pl->local, sm.local_size, sizeof pl->local);
-    pl->count = count;
     VkDescriptorSetLayoutBinding b[VRG_MAX_BINDINGS];
-    for (uint32_t i = 0; i < count; i++)
-        b[i] = (VkDescriptorSetLayoutBinding){.binding = i, .descriptorType = types[i], .descriptorCount = 1, .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT};
+    for (uint32_t i = 0; i < pl->count; i++)
+        b[i] = (VkDescriptorSetLayoutBinding){.binding = i, .descriptorType = pl->types[i], .descriptorCount = 1, .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT};
     VkDescriptorSetLayoutCreateInfo sli = {
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
         .flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR,
-        .bindingCount = count,
+        .bindingCount = pl->count,
         .pBindings = b,
     };
     vkCreateDescriptorSetLayout(dev, &sli, NULL, &pl->set_layout);
@@ -84,14 +76,108 @@ static vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *d
     if (res != VK_SUCCESS) {
         vkDestroyPipelineLayout(dev, pl->layout, NULL);
         vkDestroyDescriptorSetLayout(dev, pl->set_layout, NULL);
-        free(pl);
-        vrg_pass_error(p, "vkCreateComputePipelines failed for %s (%d)", path, res);
+        free(pl->deps);
+        pl->deps = NULL;
+        pl->layout = VK_NULL_HANDLE;
+        pl->set_layout = VK_NULL_HANDLE;
+        vrg_pass_error(p, "vkCreateComputePipelines failed for %s (%d)", pl->path, res);
+        return -1;
+    }
+    vrg_name_object(ctx, VK_OBJECT_TYPE_PIPELINE, (uint64_t)pl->pipeline, "%s/%s: %s", p->graph->name, p->name, pl->shader);
+    return 0;
+}
+
+static void free_pipeline_objects(VkDevice dev, vrg_pipeline *pl)
+{
+    vkDestroyPipeline(dev, pl->pipeline, NULL);
+    vkDestroyPipelineLayout(dev, pl->layout, NULL);
+    vkDestroyDescriptorSetLayout(dev, pl->set_layout, NULL);
+    free(pl->deps);
+}
+
+static vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *defines, const VkDescriptorType *types, uint32_t count)
+{
+    if (!defines)
+        defines = "";
+    char path[1024];
+    if (vrg_shader_resolve(p, shader, path, sizeof path) != 0) {
+        vrg_pass_error(p, "shader '%s' not found (searched the plugin's folder, $VOXRG_SHADER_PATH, shaders/)", shader);
         return NULL;
     }
-    vrg_name_object(ctx, VK_OBJECT_TYPE_PIPELINE, (uint64_t)pl->pipeline, "%s/%s: %s", p->graph->name, p->name, shader);
+    for (vrg_pipeline *pl = p->pipelines; pl; pl = pl->next)
+        if (strcmp(pl->path, path) == 0 && strcmp(pl->defines, defines) == 0 && pl->count == count && memcmp(pl->types, types, count * sizeof *types) == 0)
+            return pl;
+    vrg_pipeline *pl = calloc(1, sizeof *pl);
+    snprintf(pl->path, sizeof pl->path, "%s", path);
+    snprintf(pl->shader, sizeof pl->shader, "%s", shader);
+    snprintf(pl->defines, sizeof pl->defines, "%s", defines);
+    memcpy(pl->types, types, count * sizeof *types);
+    pl->count = count;
+    if (build_pipeline(p, pl) != 0) {
+        free(pl);
+        return NULL;
+    }
     pl->next = p->pipelines;
     p->pipelines = pl;
+    vrg_graph_watch_pipeline(p->graph, pl->deps);
     return pl;
+}
+
+static int uses_file(const char *deps, const char *path)
+{
+    size_t n = strlen(path);
+    for (const char *d = deps; d && *d;) {
+        const char *end = strchr(d, '\n');
+        size_t len = end ? (size_t)(end - d) : strlen(d);
+        if (len == n && strncmp(d, path, n) == 0)
+            return 1;
+        d = end ? end + 1 : d + len;
+    }
+    return 0;
+}
+
+int vrg_pipelines_reload(vrg_pass *p, char (*changed)[VRG_PATH_MAX], int count)
+{
+    VkDevice dev = p->graph->ctx->dev.device;
+    int swapped = 0, failed = 0;
+    for (vrg_pipeline *pl = p->pipelines; pl; pl = pl->next) {
+        int hit = 0;
+        for (int i = 0; i < count && !hit; i++)
+            hit = uses_file(pl->deps, changed[i]);
+        if (!hit)
+            continue;
+        /* build the new version beside the old; frames are synchronous, so
+         * the old objects are idle by now and can go once it works */
+        vrg_pipeline fresh = *pl;
+        fresh.deps = NULL;
+        fresh.pipeline = VK_NULL_HANDLE;
+        fresh.layout = VK_NULL_HANDLE;
+        fresh.set_layout = VK_NULL_HANDLE;
+        if (build_pipeline(p, &fresh) != 0) {
+            failed = 1;
+            continue;
+        }
+        free_pipeline_objects(dev, pl);
+        vrg_pipeline *next = pl->next;
+        *pl = fresh;
+        pl->next = next;
+        vrg_graph_watch_pipeline(p->graph, pl->deps);
+        swapped++;
+    }
+    p->failed = 0; /* a failed reload keeps the pass running on its old pipeline */
+    return failed ? -1 : swapped;
+}
+
+void vrg_pipelines_deps(vrg_pass *p, void (*fn)(void *user, const char *path), void *user)
+{
+    for (vrg_pipeline *pl = p->pipelines; pl; pl = pl->next)
+        for (const char *d = pl->deps; d && *d;) {
+            const char *end = strchr(d, '\n');
+            char path[VRG_PATH_MAX];
+            snprintf(path, sizeof path, "%.*s", (int)(end ? end - d : (ptrdiff_t)strlen(d)), d);
+            fn(user, path);
+            d = end ? end + 1 : d + strlen(d);
+        }
 }
 
 void vrg_pipelines_destroy(vrg_pass *p)
@@ -100,9 +186,7 @@ void vrg_pipelines_destroy(vrg_pass *p)
     while (p->pipelines) {
         vrg_pipeline *pl = p->pipelines;
         p->pipelines = pl->next;
-        vkDestroyPipeline(dev, pl->pipeline, NULL);
-        vkDestroyPipelineLayout(dev, pl->layout, NULL);
-        vkDestroyDescriptorSetLayout(dev, pl->set_layout, NULL);
+        free_pipeline_objects(dev, pl);
         free(pl);
     }
 }

@@ -1,6 +1,10 @@
 /* The graph's life: load (parse → validate → compile → create → allocate),
  * frames, resize, readback, destroy. Each phase is its own file. */
+#define _GNU_SOURCE
+#include <errno.h>
 #include <math.h>
+#include <sys/stat.h>
+#include <time.h>
 #include <stdlib.h>
 #include <string.h>
 #include "internal.h"
@@ -151,6 +155,7 @@ void vrg_graph_destroy(vrg_graph *g)
 {
     if (!g)
         return;
+    vrg_watch_destroy(g->watch);
     if (g->ctx) {
         VkDevice dev = g->ctx->dev.device;
         vkDeviceWaitIdle(dev);
@@ -173,14 +178,104 @@ void vrg_graph_destroy(vrg_graph *g)
     free(g);
 }
 
+/* ---- hot reload ---- */
+
+static void watch_path(void *user, const char *path) { vrg_watch_add(user, path); }
+
+void vrg_graph_watch_pipeline(vrg_graph *g, const char *deps)
+{
+    if (!g->watch)
+        return;
+    for (const char *d = deps; d && *d;) {
+        const char *end = strchr(d, '\n');
+        char path[VRG_PATH_MAX];
+        snprintf(path, sizeof path, "%.*s", (int)(end ? end - d : (long)strlen(d)), d);
+        vrg_watch_add(g->watch, path);
+        d = end ? end + 1 : d + strlen(d);
+    }
+}
+
+int vrg_graph_watch(vrg_graph *g, int on)
+{
+    if (!on) {
+        vrg_watch_destroy(g->watch);
+        g->watch = NULL;
+        return 0;
+    }
+    if (g->watch)
+        return 0;
+    g->watch = vrg_watch_create();
+    if (!g->watch) {
+        vrg_error(&g->diag, "hot reload: cannot watch files (inotify: %s)", strerror(errno));
+        return -1;
+    }
+    g->reload_ms = -1;
+    for (int i = 0; i < g->pass_count; i++)
+        vrg_pipelines_deps(&g->passes[i], watch_path, g->watch);
+    return 0;
+}
+
+/* Saved shaders: recompile the pipelines that read them before this frame
+ * records. Failures keep the old pipeline; their messages (FILE:LINE) go to
+ * the diagnostics as usual and are kept for vrg_graph_reload_error. */
+static void apply_reloads(vrg_graph *g)
+{
+    char changed[32][VRG_PATH_MAX];
+    int n = vrg_watch_poll(g->watch, changed, 32);
+    if (n == 0)
+        return;
+    char *text = NULL;
+    size_t len = 0;
+    FILE *mem = open_memstream(&text, &len);
+    FILE *real = g->diag.out;
+    if (mem)
+        g->diag.out = mem;
+    int failed = 0, swapped = 0;
+    for (int i = 0; i < g->pass_count; i++) {
+        int r = vrg_pipelines_reload(&g->passes[i], changed, n);
+        failed |= r < 0;
+        swapped += r > 0 ? r : 0;
+    }
+    if (mem) {
+        g->diag.out = real;
+        fclose(mem);
+        fputs(text ? text : "", real ? real : stderr);
+        snprintf(g->reload_error, sizeof g->reload_error, "%s", failed && text ? text : "");
+        free(text);
+    }
+    if (swapped) { /* the newest save among the files: the start of the save-to-frame time */
+        double newest = 0;
+        for (int i = 0; i < n; i++) {
+            struct stat st;
+            if (stat(changed[i], &st) == 0) {
+                double t = (double)st.st_mtim.tv_sec + 1e-9 * (double)st.st_mtim.tv_nsec;
+                newest = t > newest ? t : newest;
+            }
+        }
+        g->pending_since = newest;
+    }
+}
+
 int vrg_graph_frame(vrg_graph *g)
 {
     if (!g->ctx || !g->allocated) {
         vrg_error(&g->diag, "graph '%s' has no device resources (loaded without a context)", g->name);
         return -1;
     }
-    return vrg_record_frame(g);
+    if (g->watch)
+        apply_reloads(g);
+    int rc = vrg_record_frame(g);
+    if (g->pending_since > 0) { /* this frame used the change: it is on screen now */
+        struct timespec now;
+        clock_gettime(CLOCK_REALTIME, &now);
+        g->reload_ms = ((double)now.tv_sec + 1e-9 * (double)now.tv_nsec - g->pending_since) * 1e3;
+        g->pending_since = 0;
+    }
+    return rc;
 }
+
+const char *vrg_graph_reload_error(const vrg_graph *g) { return g->reload_error[0] ? g->reload_error : NULL; }
+double vrg_graph_reload_ms(const vrg_graph *g) { return g->watch ? g->reload_ms : -1; }
 
 int vrg_graph_resize(vrg_graph *g, uint32_t width, uint32_t height)
 {

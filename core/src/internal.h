@@ -4,6 +4,8 @@
 #ifndef VRG_INTERNAL_H
 #define VRG_INTERNAL_H
 
+#include <limits.h>
+#define VRG_PATH_MAX 4096 /* as PATH_MAX, which <limits.h> defines only for some feature macros */
 #include <stdarg.h>
 #include <stdio.h>
 #include "voxrg/voxrg.h"
@@ -222,6 +224,11 @@ typedef struct vrg_heap_block {
 
 struct vrg_graph {
     vrg_context *ctx;
+    /* hot reload (graph.c: vrg_graph_watch) */
+    struct vrg_watch *watch;
+    char reload_error[4096];   /* the last failed reload's messages; "" after a good one */
+    double reload_ms;          /* save-to-frame time of the last reload, -1 if none */
+    double pending_since;      /* newest save (epoch seconds) reloaded in this frame, 0: none */
     uint32_t subframes; /* graph frames per output frame (vrg_pass_set_subframes), 0 or 1: one */
     vrg_diag diag;
     char path[1024];
@@ -300,10 +307,27 @@ int vrg_resource_barrier(vrg_graph *g, int res, int copy, vrg_access access, vrg
 typedef struct vrg_shader_module {
     VkShaderModule module;
     uint32_t local_size[3];
+    char *deps; /* the file and every file it includes, real paths, one per line (free()) */
 } vrg_shader_module;
 int vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, vrg_shader_module *out, FILE *diag);
 int vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t cap);
 void vrg_pipelines_destroy(vrg_pass *p);
+/* Hot reload: recompile this pass's pipelines that use any of the changed
+ * files; a pipeline whose new version fails keeps running (the errors go to
+ * diag). Returns how many were swapped, -1 if any failed. */
+int vrg_pipelines_reload(vrg_pass *p, char (*changed)[VRG_PATH_MAX], int count);
+/* Adds a pipeline's files (newline-separated) to the graph's watch, if any. */
+void vrg_graph_watch_pipeline(vrg_graph *g, const char *deps);
+/* Calls fn for every file the pass's pipelines read (hot reload watches them). */
+void vrg_pipelines_deps(vrg_pass *p, void (*fn)(void *user, const char *path), void *user);
+
+/* ---- hot reload (watch.c) ---- */
+typedef struct vrg_watch vrg_watch;
+vrg_watch *vrg_watch_create(void);
+void vrg_watch_destroy(vrg_watch *w);
+int vrg_watch_add(vrg_watch *w, const char *path);
+/* Tracked files whose write completed since the last poll (at most max). */
+int vrg_watch_poll(vrg_watch *w, char (*changed)[VRG_PATH_MAX], int max);
 /* report.c */
 const char *vrg_access_name(vrg_access a);
 

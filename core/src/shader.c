@@ -265,9 +265,18 @@ int vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, 
     expand(&e, path, src, 0);
     free(src);
     src = e.out;
+    out->deps = NULL;
     if (e.failed) {
         free(src);
         return -1;
+    }
+    /* the files this module was made of, for hot reload */
+    size_t cap = (size_t)(e.seen_count + 1) * (PATH_MAX + 1) + 1, used = 0;
+    out->deps = calloc(1, cap);
+    for (int i = -1; out->deps && i < e.seen_count; i++) {
+        char real[PATH_MAX];
+        if (realpath(i < 0 ? path : e.seen[i], real))
+            used += (size_t)snprintf(out->deps + used, cap - used, "%s\n", real);
     }
     glslang_input_t input = {
         .language = GLSLANG_SOURCE_GLSL,
@@ -312,5 +321,9 @@ int vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, 
         glslang_program_delete(program);
     glslang_shader_delete(shader);
     free(src);
+    if (rc != 0) {
+        free(out->deps);
+        out->deps = NULL;
+    }
     return rc;
 }

@@ -85,6 +85,18 @@ const char *vrg_graph_output(const vrg_graph *g);
  * at least 1. `voxrg render` holds the camera for that many frames per
  * output frame (a reference graph's accumulation converges meanwhile). */
 uint32_t vrg_graph_subframes(const vrg_graph *g);
+
+/* Hot reload. With on = 1 the graph watches (inotify) every shader file its
+ * passes compiled, #included ones too; when one is saved (a completed write
+ * or a rename into place) the pipelines that read it are recompiled before
+ * the next frame and swapped in. A file that fails to compile leaves the
+ * previous pipeline running; its FILE:LINE messages are printed and kept
+ * for vrg_graph_reload_error until a reload succeeds. */
+int vrg_graph_watch(vrg_graph *g, int on);
+const char *vrg_graph_reload_error(const vrg_graph *g);
+/* Milliseconds from the save (the file's mtime) to the end of the first
+ * frame that used it, for the last reload; -1 if none. */
+double vrg_graph_reload_ms(const vrg_graph *g);
 void vrg_graph_size(const vrg_graph *g, uint32_t *width, uint32_t *height);
 
 typedef struct vrg_memory_stats {
