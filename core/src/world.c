@@ -6,7 +6,10 @@
  * the frame uniforms: vrg_world_gpu_box)
  *   uint materials[32][8] = {albedo r,g,b (float bits), emissive, flags, tile top, side, bottom}
  *   slots[GX*GY*GZ][SLOT_UINTS]:
- *     [0..2] chunk coords,
+ *     [0..1] sub-brick masks: bit 8*b + s is set when 4^3 sub-brick
+ *         s = sx + 2*(sz + 2*sy) of brick b holds a solid voxel (bricks 0-3
+ *         in word 0, 4-7 in word 1): the traversal skips empty ones
+ *     [2] unused
  *     [3] brick mask (bits 0-7, bit b: brick b has a solid voxel)
  *         | (cx div GX) & 0x7ff << 8 | (cz div GZ) & 0x7ff << 19 | valid << 31
  *         (the toroidal "lap" of the chunk in its slot: a shader checks that a
@@ -317,9 +320,6 @@ static void pack_slot(const vrg_world *w, const slot *sl, uint32_t *out)
     memset(out, 0, SLOT_UINTS * 4);
     if (!sl->valid)
         return; /* valid bit 0: the shaders treat it as empty */
-    out[0] = (uint32_t)sl->cx;
-    out[1] = (uint32_t)sl->cy;
-    out[2] = (uint32_t)sl->cz;
     uint32_t mask = 0;
     uint32_t *occ = out + SLOT_HEADER, *ids = out + SLOT_HEADER + SLOT_OCC_UINTS;
     for (int y = 0; y < 16; y++)
@@ -334,6 +334,8 @@ static void pack_slot(const vrg_world *w, const slot *sl, uint32_t *out)
                 int bit = (x & 7) + 8 * ((z & 7) + 8 * (y & 7));
                 occ[brick * 16 + (bit >> 5)] |= 1u << (bit & 31);
                 mask |= 1u << brick;
+                int sub = ((x & 7) >> 2) + 2 * (((z & 7) >> 2) + 2 * ((y & 7) >> 2));
+                out[brick >> 2] |= 1u << (8 * (brick & 3) + sub);
             }
     uint32_t lap_x = (uint32_t)floor_div(sl->cx, w->gx) & 0x7ffu, lap_z = (uint32_t)floor_div(sl->cz, w->gz) & 0x7ffu;
     out[3] = mask | lap_x << 8 | lap_z << 19 | 1u << 31;

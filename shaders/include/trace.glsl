@@ -3,7 +3,7 @@
 //   bool trace_any(origin, unit direction, tmax)      occlusion
 // Backend 1 (default): a two-level DDA (Amanatides & Woo) that steps over 8^3
 // bricks using the chunk's brick mask, and over voxels only inside bricks
-// that hold something. Backend 2 (#define TRACE_RAYQUERY, TLAS_BINDING):
+// that hold something, crossing their empty 4^3 sub-bricks in one step. Backend 2 (#define TRACE_RAYQUERY, TLAS_BINDING):
 // VK_KHR_ray_query against the scene's per-chunk BLASes. Include world.glsl
 // and frame.glsl first.
 //
@@ -81,7 +81,10 @@ bool trace_any(vec3 o, vec3 d, float tmax)
 }
 #else
 // Voxel DDA inside one brick (cell = brick coordinate), from distance t.
-bool trace_brick(vec3 o, vec3 d, vec3 inv, ivec3 stp, int base, ivec3 brick, float t, ivec3 entry_normal, float tmax, bool any_hit, inout Hit h)
+// sub: the brick's 4^3 sub-brick mask; an empty sub-brick is crossed in one
+// step (to where the ray leaves it) instead of voxel by voxel.
+bool trace_brick(vec3 o, vec3 d, vec3 inv, ivec3 stp, int base, ivec3 brick, uint sub, float t, ivec3 entry_normal, float tmax, bool any_hit,
+                 inout Hit h)
 {
     ivec3 lo = brick * 8, hi = lo + 7;
     ivec3 v = clamp(ifloor(o + d * t), lo, hi);
@@ -93,10 +96,27 @@ bool trace_brick(vec3 o, vec3 d, vec3 inv, ivec3 stp, int base, ivec3 brick, flo
     // load with a per-lane address is a scalar loop on a CPU device
     uint brick_words = uint(base) + WORLD_OCC + uint((brick.x & 1) + 2 * ((brick.z & 1) + 2 * (brick.y & 1))) * 16u;
     uint cached_word = 0xffffffffu, bits = 0u;
+    vec3 up = max(vec3(stp), vec3(0.0));
+    ivec3 beyond = ivec3(greaterThan(stp, ivec3(0))) * 5 - 1; // from a 4^3 cell's low corner: +4 or -1
     for (int i = 0; i < 25; i++) {
         if (t > tmax)
             return false;
         ivec3 l = v & 7;
+        ivec3 s = l >> 2;
+        if ((sub & (1u << uint(s.x + 2 * (s.z + 2 * s.y)))) == 0u) {
+            // leave the empty sub-brick: its exit face, and the voxel past it
+            ivec3 c4 = v & ~3;
+            vec3 t4 = ((vec3(c4) + up * 4.0) - o) * inv;
+            ivec3 m = trace_step_mask(t4);
+            t = dot(vec3(m), t4);
+            ivec3 pv = clamp(ifloor(o + d * t), c4, c4 + 3);
+            v = pv + m * (c4 + beyond - pv);
+            tnext = (vec3(v) + up - o) * inv;
+            n = -m * stp;
+            if (any(lessThan(v, lo)) || any(greaterThan(v, hi)))
+                return false;
+            continue;
+        }
         uint vbit = uint(l.x + 8 * (l.z + 8 * l.y));
         if ((vbit >> 5) != cached_word) {
             cached_word = vbit >> 5;
@@ -160,6 +180,7 @@ Hit trace_dda(vec3 o, vec3 d, float tmax, bool any_hit)
     vec3 tdelta = abs(8.0 * inv);
     int base = -1;
     uint chunk_mask = 0u;
+    uvec2 chunk_sub = uvec2(0u);
     ivec3 grid = frame.world_grid.xyz;
     vec2 inv_grid = 1.0 / vec2(grid.xz);
     ivec3 base_chunk = ivec3(-2147483647);
@@ -170,9 +191,13 @@ Hit trace_dda(vec3 o, vec3 d, float tmax, bool any_hit)
             base_chunk = chunk;
             base = world_chunk_in(grid, inv_grid, chunk);
             chunk_mask = base >= 0 ? world_brick_mask(base) : 0u;
+            if (chunk_mask != 0u)
+                chunk_sub = uvec2(world_word(uint(base)), world_word(uint(base) + 1u));
         }
         ivec3 b = cell & 1;
-        if ((chunk_mask & (1u << uint(b.x + 2 * (b.z + 2 * b.y)))) != 0u && trace_brick(o, d, inv, stp, base, cell, t, n, tmax, any_hit, h))
+        uint bi = uint(b.x + 2 * (b.z + 2 * b.y));
+        uint sub = ((bi < 4u ? chunk_sub.x : chunk_sub.y) >> (8u * (bi & 3u))) & 0xffu;
+        if ((chunk_mask & (1u << bi)) != 0u && trace_brick(o, d, inv, stp, base, cell, sub, t, n, tmax, any_hit, h))
             return h;
         ivec3 m = trace_step_mask(tnext);
         t = dot(vec3(m), tnext);
