@@ -1597,6 +1597,83 @@ static void test_hot_reload_shader(void)
     remove(user), remove(tint), rmdir(dir);
 }
 
+static const char *reload_graph_text(float step, int structural, int broken)
+{
+    static char text[1024];
+    snprintf(text, sizeof text,
+             "[graph]\noutput = mean.color\nwidth = 8\nheight = 8\n"
+             "[pass counter]\nplugin = counter\nin.prev = %s@prev\nout.count = %s\nstep = %g\n"
+             "[pass mean]\nplugin = accumulate\nin.src = %s\nin.history = mean.color@prev\n%s",
+             structural ? "total" : "count", structural ? "total" : "count", step, structural ? "total" : "count",
+             broken ? "this line is not ini\n" : "");
+    return text;
+}
+
+/* Hot reload of the graph file: a parameter-only change keeps history (the
+ * counter continues) and restarts accumulations; a structural change starts
+ * history anew; a broken file leaves the running graph as it was, with the
+ * error kept at FILE:LINE. */
+static void test_hot_reload_graph(void)
+{
+    char dir[] = "/tmp/voxrg-graph-XXXXXX";
+    if (!mkdtemp(dir)) {
+        CHECK(0, "mkdtemp failed");
+        return;
+    }
+    char path[1100];
+    snprintf(path, sizeof path, "%s/reload.ini", dir);
+    save_file(path, reload_graph_text(1, 0, 0));
+    char *log = NULL;
+    size_t len = 0;
+    FILE *diag = open_memstream(&log, &len);
+    static const char *reads[] = {"mean.color"};
+    vrg_graph_desc d = {.path = path, .diag = diag, .readback = reads, .readback_count = 1};
+    vrg_graph *g = NULL;
+    if (vrg_graph_load(ctx, &d, &g) != 0) {
+        CHECK(0, "cannot load the reload graph");
+        fclose(diag);
+        free(log);
+        return;
+    }
+    CHECK(vrg_graph_watch(g, 1) == 0, "watch failed");
+    vrg_image_data img;
+    /* each step: the file saved before it, then one frame that notices the
+     * save (still the old graph), the reload, and one frame read back */
+    struct {
+        float step;
+        int structural, broken;
+        float mean, frames;
+    } steps[] = {
+        {1, 0, 0, 2, 3}, /* frames 1..3 as loaded: counts 1 2 3 */
+        {2, 0, 0, 6, 1}, /* parameters only: 4 (noticing), then 4 + 2 = 6 kept going; the mean restarts */
+        {2, 1, 0, 2, 1}, /* another resource name: history starts anew, count 2 */
+        {5, 1, 1, 4, 3}, /* broken: the running graph goes on: 4, 6, mean of 2 4 6 */
+    };
+    for (int s = 0; s < 4; s++) {
+        if (s > 0) {
+            save_file(path, reload_graph_text(steps[s].step, steps[s].structural, steps[s].broken));
+            CHECK(vrg_graph_frame(g) == 0, "frame failed"); /* notices the save */
+            CHECK(vrg_graph_source_changed(g), "step %d: the save was not noticed", s);
+            int rc = vrg_graph_reload(&g);
+            CHECK((rc == 0) == !steps[s].broken, "step %d: reload returned %d", s, rc);
+            if (steps[s].broken) {
+                const char *err = vrg_graph_reload_error(g);
+                CHECK(err && strstr(err, "reload.ini:14: error"), "no FILE:LINE error for the broken graph: %s", err ? err : "(none)");
+            }
+        } else
+            for (int i = 0; i < 2; i++)
+                CHECK(vrg_graph_frame(g) == 0, "frame failed");
+        CHECK(vrg_graph_frame(g) == 0 && vrg_graph_read(g, "mean.color", &img) == 0, "step %d: frame failed", s);
+        CHECK(px(&img, 2, 3, 0) == steps[s].mean && px(&img, 2, 3, 3) == steps[s].frames, "step %d: mean %g over %g frames, want %g over %g",
+              s, px(&img, 2, 3, 0), px(&img, 2, 3, 3), steps[s].mean, steps[s].frames);
+        free(img.pixels);
+    }
+    vrg_graph_destroy(g);
+    fclose(diag);
+    free(log);
+    remove(path), rmdir(dir);
+}
+
 /* With a sun radius > 0 the penumbra widens with the occluder's distance:
  * the 12-high wall's is wider than the 4-high wall's. */
 static void test_light_penumbra(void)
@@ -1711,7 +1788,7 @@ int main(int argc, char **argv)
         {"svgf_history_reset", test_svgf_history_reset, 1}, {"svgf_variance", test_svgf_variance, 1},
         {"svgf_edge", test_svgf_edge, 1}, {"accumulate_mean", test_accumulate_mean, 1},
         {"svgf_atrous_options", test_svgf_atrous_options, 1}, {"svgf_size_mismatch", test_svgf_size_mismatch, 1},
-        {"hot_reload_shader", test_hot_reload_shader, 1},
+        {"hot_reload_shader", test_hot_reload_shader, 1}, {"hot_reload_graph", test_hot_reload_graph, 1},
         {"light_half_res", test_light_half_res, 1},
         {"light_penumbra", test_light_penumbra, 1},   {"light_corner", test_light_corner, 1},
         {"light_chain", test_light_chain, 1},

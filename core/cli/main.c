@@ -41,9 +41,9 @@ static const char *usage_render =
     "synchronization validation; any message fails the run. A graph that accumulates\n"
     "(the accumulate pass's samples_per_frame) gets that many graph frames per output\n"
     "frame, the camera held still: a converged reference per camera-path frame.\n"
-    "--watch reloads saved shaders (and the files they #include) between frames; a\n"
-    "shader that fails to compile is reported with FILE:LINE and the last good one\n"
-    "keeps running.\n";
+    "--watch reloads saved shaders (and the files they #include) and the graph file\n"
+    "between frames; a shader or graph with errors is reported with FILE:LINE and the\n"
+    "last good one keeps running.\n";
 
 static const char *usage_plugins =
     "usage: voxrg plugins [NAME]\n"
@@ -285,14 +285,17 @@ static const char *json_str(const char *s, char *buf, size_t cap)
     return buf;
 }
 
-static int write_json(const char *path, vrg_context *ctx, vrg_graph *g, const options *o, double *ms, uint32_t frames, double wall_ms)
+/* ms: per frame, `stride` passes (the pass count when rendering began; a
+ * reload under --watch may change it) */
+static int write_json(const char *path, vrg_context *ctx, vrg_graph *g, const options *o, double *ms, uint32_t stride, uint32_t frames,
+                      double wall_ms)
 {
     FILE *f = fopen(path, "w");
     if (!f) {
         fprintf(stderr, "error: cannot write %s: %s\n", path, strerror(errno));
         return -1;
     }
-    uint32_t w, h, np = vrg_graph_pass_count(g);
+    uint32_t w, h, np = vrg_graph_pass_count(g) < stride ? vrg_graph_pass_count(g) : stride;
     vrg_graph_size(g, &w, &h);
     vrg_memory_stats m = vrg_graph_memory(g);
     char g_esc[2048], d_esc[1024], p_esc[256];
@@ -309,8 +312,8 @@ static int write_json(const char *path, vrg_context *ctx, vrg_graph *g, const op
         double sum = 0;
         fprintf(f, "%s\n    {\"name\": \"%s\", \"gpu_ms\": [", first ? "" : ",", json_str(vrg_graph_pass_name(g, i), p_esc, sizeof p_esc));
         for (uint32_t k = 0; k < frames; k++) {
-            fprintf(f, "%s%.4f", k ? ", " : "", ms[k * np + i]);
-            sum += ms[k * np + i];
+            fprintf(f, "%s%.4f", k ? ", " : "", ms[k * stride + i]);
+            sum += ms[k * stride + i];
         }
         fprintf(f, "], \"mean_gpu_ms\": %.4f", sum / frames);
         double v;
@@ -363,10 +366,13 @@ static int cmd_render(int argc, char **argv)
             }
         if (o.watch && vrg_graph_reload_ms(g) != reloaded) {
             reloaded = vrg_graph_reload_ms(g);
-            fprintf(stderr, "\nframe %u: shaders reloaded, %.0f ms from save to frame\n", k, reloaded);
+            fprintf(stderr, "\nframe %u: reloaded, %.0f ms from save to frame\n", k, reloaded);
         }
+        /* a saved graph file: load it beside the running graph, swap on success */
+        if (o.watch && vrg_graph_source_changed(g))
+            (void)vrg_graph_reload(&g); /* errors are printed; the running graph stays */
         double total = 0;
-        for (uint32_t i = 0; i < np; i++) {
+        for (uint32_t i = 0; i < np && i < vrg_graph_pass_count(g); i++) {
             ms[k * np + i] = vrg_graph_pass_ms(g, i);
             if (ms[k * np + i] > 0)
                 total += ms[k * np + i];
@@ -384,7 +390,7 @@ static int cmd_render(int argc, char **argv)
     for (int i = 0; rc == 0 && i < o.dump_count; i++)
         rc |= write_resource(g, o.out, o.dumps[i]) != 0;
     if (rc == 0 && o.json)
-        rc |= write_json(o.json, ctx, g, &o, ms, o.frames, wall) != 0;
+        rc |= write_json(o.json, ctx, g, &o, ms, np, o.frames, wall) != 0;
     free(ms);
     return finish(ctx, g, rc);
 }

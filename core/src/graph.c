@@ -115,6 +115,8 @@ int vrg_graph_load(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph **out
     vrg_ast *ast = calloc(1, sizeof *ast);
     g->ctx = ctx;
     snprintf(g->path, sizeof g->path, "%s", desc->path ? desc->path : "<graph>");
+    g->desc = *desc;
+    g->loaded_from_file = desc->path && !desc->text;
     g->diag = (vrg_diag){.out = desc->diag, .file = g->path, .collect = 1};
     for (int i = 0; i < VRG_MAX_PASSES; i++)
         g->pass_ms[i] = -1;
@@ -210,6 +212,8 @@ int vrg_graph_watch(vrg_graph *g, int on)
         return -1;
     }
     g->reload_ms = -1;
+    if (g->loaded_from_file)
+        vrg_watch_add(g->watch, g->path);
     for (int i = 0; i < g->pass_count; i++)
         vrg_pipelines_deps(&g->passes[i], watch_path, g->watch);
     return 0;
@@ -220,10 +224,14 @@ int vrg_graph_watch(vrg_graph *g, int on)
  * the diagnostics as usual and are kept for vrg_graph_reload_error. */
 static void apply_reloads(vrg_graph *g)
 {
-    char changed[32][VRG_PATH_MAX];
+    char changed[32][VRG_PATH_MAX], self[VRG_PATH_MAX];
     int n = vrg_watch_poll(g->watch, changed, 32);
     if (n == 0)
         return;
+    /* the graph file itself: the host reloads it (vrg_graph_reload) */
+    if (g->loaded_from_file && realpath(g->path, self))
+        for (int i = 0; i < n; i++)
+            g->source_changed |= strcmp(changed[i], self) == 0;
     char *text = NULL;
     size_t len = 0;
     FILE *mem = open_memstream(&text, &len);

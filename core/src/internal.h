@@ -229,6 +229,10 @@ struct vrg_graph {
     char reload_error[4096];   /* the last failed reload's messages; "" after a good one */
     double reload_ms;          /* save-to-frame time of the last reload, -1 if none */
     double pending_since;      /* newest save (epoch seconds) reloaded in this frame, 0: none */
+    int source_changed;        /* the graph file was saved since load (reload.c) */
+    int params_changed;        /* the next frame is the first after a parameter-only reload */
+    vrg_graph_desc desc;       /* as loaded (the host keeps its arrays): reload reuses it */
+    int loaded_from_file;
     uint32_t subframes; /* graph frames per output frame (vrg_pass_set_subframes), 0 or 1: one */
     vrg_diag diag;
     char path[1024];

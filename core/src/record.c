@@ -111,6 +111,8 @@ int vrg_record_frame(vrg_graph *g)
     for (int i = 0; i < g->res_count; i++)
         g->res[i].touched[0] = g->res[i].touched[1] = 0;
     g->frame.resources_new = g->fresh;
+    g->frame.params_changed = g->params_changed;
+    g->params_changed = 0;
     clear_kept(g, cmd);
     g->history_reset = 0;
     g->fresh = 0;

@@ -4,8 +4,8 @@
  *   n = previous n + 1, colour = previous + (this frame - previous) / n
  * (n in alpha, float32, so thousands of frames add up exactly enough). It
  * resets to this frame alone when the camera moves (any difference from the
- * previous frame's camera) and whenever the runtime invalidates history
- * (first frame, resize, reload). max_frames > 0 caps n: past it the mean
+ * previous frame's camera), when a reload changed parameters, and whenever
+ * the runtime invalidates history (first frame, resize, structural reload). max_frames > 0 caps n: past it the mean
  * becomes a moving average of the last ~max_frames frames.
  * samples_per_frame asks hosts to render that many graph frames per output
  * frame with the camera held (vrg_pass_set_subframes): `voxrg render
@@ -40,7 +40,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     const vrg_frame_info *f = vrg_pass_frame(pass);
     struct {
         int32_t reset, max_frames;
-    } pc = {!f->history_valid || camera_moved(&f->camera, &f->prev_camera), vrg_param_int(pass, "max_frames")};
+    } pc = {!f->history_valid || f->params_changed || camera_moved(&f->camera, &f->prev_camera), vrg_param_int(pass, "max_frames")};
     vrg_pass_stat(pass, "reset", pc.reset);
     (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "accumulate.comp", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1});
 }

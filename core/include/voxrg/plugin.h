@@ -190,6 +190,8 @@ typedef struct vrg_frame_info {
     vrg_camera prev_camera; /* last frame's; equal to camera when history is not valid */
     int resources_new;      /* every resource was just (re)allocated: persistent ones are
                              * cleared, so upload their contents again */
+    int params_changed;     /* first frame after a reload that changed parameter values
+                             * only: history stays valid, but accumulations restart */
 } vrg_frame_info;
 
 /* A resource a pass can name: one of its slots or an internal resource. */

@@ -97,6 +97,16 @@ const char *vrg_graph_reload_error(const vrg_graph *g);
 /* Milliseconds from the save (the file's mtime) to the end of the first
  * frame that used it, for the last reload; -1 if none. */
 double vrg_graph_reload_ms(const vrg_graph *g);
+/* While watching: the graph file was saved since it was loaded. */
+int vrg_graph_source_changed(const vrg_graph *g);
+/* Loads the graph's file again. On any error the running graph stays (*g is
+ * unchanged; the messages are printed and kept for vrg_graph_reload_error).
+ * On success *g is the new graph and the old one is destroyed: with the same
+ * structure (only parameter values changed) history resources are copied
+ * over and stay valid (frame params_changed tells passes once); otherwise
+ * history starts anew. Frame counter, camera and size carry over. The
+ * host's arrays in the original vrg_graph_desc must still be alive. */
+int vrg_graph_reload(vrg_graph **g);
 void vrg_graph_size(const vrg_graph *g, uint32_t *width, uint32_t *height);
 
 typedef struct vrg_memory_stats {

@@ -1,0 +1,142 @@
+/* Graph hot reload: the saved graph file is loaded as a new graph beside the
+ * running one; on any error the running graph stays. When the new graph has
+ * the same structure (passes, plugins, connections, resources: a change of
+ * parameter values only), its history resources are copied over from the
+ * old graph and history stays valid, so temporal passes carry on; passes
+ * see frame->params_changed once. A structural change starts history anew.
+ * The frame counter and the camera carry over either way. */
+#define _GNU_SOURCE
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include "internal.h"
+
+static int same_resource(const vrg_resource *a, const vrg_resource *b)
+{
+    return strcmp(a->name, b->name) == 0 && a->kind == b->kind && a->format == b->format && a->width == b->width &&
+           a->height == b->height && a->size == b->size && a->mips == b->mips && a->history == b->history &&
+           a->persistent == b->persistent && (a->first_use < 0) == (b->first_use < 0);
+}
+
+/* Same passes, plugins, connections and resources: only parameter values differ. */
+static int same_structure(const vrg_graph *a, const vrg_graph *b)
+{
+    if (a->pass_count != b->pass_count || a->res_count != b->res_count)
+        return 0;
+    for (int i = 0; i < a->res_count; i++)
+        if (!same_resource(&a->res[i], &b->res[i]))
+            return 0;
+    for (int i = 0; i < a->pass_count; i++) {
+        const vrg_pass *p = &a->passes[i], *q = &b->passes[i];
+        if (strcmp(p->name, q->name) != 0 || strcmp(p->plugin->path, q->plugin->path) != 0 || p->culled != q->culled)
+            return 0;
+        for (uint32_t s = 0; s < p->plugin->desc->slot_count; s++)
+            if (p->slots[s].res != q->slots[s].res || p->slots[s].prev != q->slots[s].prev || p->slots[s].dummy != q->slots[s].dummy)
+                return 0;
+    }
+    return 1;
+}
+
+/* Both copies of every history resource, old graph to new, on the new
+ * graph's command buffer; the trackers of both graphs learn the transfer. */
+static int copy_history(vrg_graph *old, vrg_graph *g)
+{
+    VkDevice dev = g->ctx->dev.device;
+    VkCommandBuffer cmd = g->cmd;
+    VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
+    vkBeginCommandBuffer(cmd, &bi);
+    for (int i = 0; i < g->res_count; i++) {
+        vrg_resource *to = &g->res[i], *from = &old->res[i];
+        if (!to->history || to->first_use < 0 || to->kind == VRG_ACCEL)
+            continue;
+        for (int c = 0; c < 2; c++) {
+            vrg_barrier_rec src, dst;
+            if (vrg_sync_use(&from->sync[c], vrg_access_info_of(VRG_ACCESS_TRANSFER_SRC, from->kind), 0, &src)) {
+                src.res = i, src.copy = c;
+                vrg_emit_barriers(old, cmd, &src, 1);
+            }
+            if (vrg_sync_use(&to->sync[c], vrg_access_info_of(VRG_ACCESS_TRANSFER_DST, to->kind), 1, &dst)) {
+                dst.res = i, dst.copy = c;
+                vrg_emit_barriers(g, cmd, &dst, 1);
+            }
+            if (to->kind == VRG_IMAGE) {
+                VkImageCopy region = {
+                    .srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                    .dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                    .extent = {to->width, to->height, 1},
+                };
+                vkCmdCopyImage(cmd, from->image[c], VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, to->image[c], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                               &region);
+            } else {
+                VkBufferCopy region = {.size = to->size};
+                vkCmdCopyBuffer(cmd, from->buffer[c], to->buffer[c], 1, &region);
+            }
+        }
+    }
+    vkEndCommandBuffer(cmd);
+    VkCommandBufferSubmitInfo cbi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = cmd};
+    VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cbi};
+    vkResetFences(dev, 1, &g->fence);
+    if (vkQueueSubmit2(g->ctx->dev.queue, 1, &si, g->fence) != VK_SUCCESS ||
+        vkWaitForFences(dev, 1, &g->fence, VK_TRUE, UINT64_MAX) != VK_SUCCESS) {
+        vrg_error(&g->diag, "reload: copying history failed");
+        return -1;
+    }
+    return 0;
+}
+
+int vrg_graph_reload(vrg_graph **pg)
+{
+    vrg_graph *old = *pg;
+    if (!old->ctx || !old->loaded_from_file) {
+        vrg_error(&old->diag, "reload: the graph was not loaded from a file with a device");
+        return -1;
+    }
+    vrg_graph_desc d = old->desc;
+    d.text = NULL;
+    d.path = old->path;
+    d.width = old->width, d.height = old->height; /* a resized graph keeps its size */
+    /* the messages of a failed load are kept for the host (overlay) too */
+    char *text = NULL;
+    size_t len = 0;
+    FILE *mem = open_memstream(&text, &len);
+    FILE *real = old->desc.diag ? old->desc.diag : stderr;
+    d.diag = mem ? mem : real;
+    vrg_graph *g = NULL;
+    int rc = vrg_graph_load(old->ctx, &d, &g);
+    if (mem) {
+        fclose(mem);
+        fputs(text ? text : "", real);
+    }
+    if (rc != 0) {
+        snprintf(old->reload_error, sizeof old->reload_error, "%s", text ? text : "reload failed");
+        old->source_changed = 0;
+        free(text);
+        return -1;
+    }
+    free(text);
+    g->desc.diag = old->desc.diag;
+    g->diag.out = old->desc.diag;
+    g->frame.frame_index = old->frame.frame_index; /* random sequences and history copies continue */
+    g->camera = old->camera;
+    g->last_camera = old->last_camera;
+    if (same_structure(old, g)) {
+        if (copy_history(old, g) != 0) {
+            vrg_graph_destroy(g);
+            return -1;
+        }
+        g->history_reset = 0;
+        g->params_changed = 1;
+    }
+    struct stat st;
+    if (stat(old->path, &st) == 0)
+        g->pending_since = (double)st.st_mtim.tv_sec + 1e-9 * (double)st.st_mtim.tv_nsec;
+    if (old->watch)
+        vrg_graph_watch(g, 1);
+    vrg_graph_destroy(old);
+    *pg = g;
+    return 0;
+}
+
+int vrg_graph_source_changed(const vrg_graph *g) { return g->source_changed; }
