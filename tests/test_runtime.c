@@ -1674,6 +1674,112 @@ static void test_hot_reload_graph(void)
     remove(path), rmdir(dir);
 }
 
+static const char *reloadme_source =
+    "#include <stdlib.h>\n#include <string.h>\n#include \"voxrg/plugin.h\"\n"
+    "static const vrg_slot_desc slots[] = {{.name = \"color\", .dir = VRG_OUT, .kind = VRG_IMAGE,\n"
+    "    .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT}};\n"
+    "typedef struct { int frames; } state;\n"
+    "static int create(vrg_pass *p) { vrg_pass_set_user(p, calloc(1, sizeof(state))); return 0; }\n"
+    "static void destroy(vrg_pass *p) { free(vrg_pass_user(p)); }\n"
+    "static void execute(vrg_pass *p, VkCommandBuffer cmd) {\n"
+    "    state *s = vrg_pass_user(p);\n    s->frames++;\n"
+    "    float pc[4] = {VERSION == 1, VERSION == 2, s->frames / 100.0f, 1};\n"
+    "    (void)vrg_dispatch(p, cmd, &(vrg_dispatch_desc){.shader = \"reloadme.comp\", .push = pc, .push_size = sizeof pc});\n}\n"
+    "static size_t save(vrg_pass *p, void *dst, size_t cap) {\n"
+    "    if (cap < sizeof(state)) return 0;\n    memcpy(dst, vrg_pass_user(p), sizeof(state));\n    return sizeof(state);\n}\n"
+    "static int restore(vrg_pass *p, const void *src, size_t n) {\n"
+    "    if (n != sizeof(state)) return -1;\n    memcpy(vrg_pass_user(p), src, n);\n    return 0;\n}\n"
+    "static const vrg_plugin_desc desc = {.abi_version = ABI, .name = \"reloadme\", .kind = VRG_PLUGIN_PASS,\n"
+    "    .help = \"test: hot reload\", .shader_dir = DIR, .slots = slots, .slot_count = 1, .create = create,\n"
+    "    .destroy = destroy, .execute = execute, .save_state = save, .restore_state = restore};\n"
+    "VRG_PLUGIN(desc)\n";
+
+/* Builds the test plugin `reloadme` (VERSION paints red or green, ABI its
+ * declared ABI version) into dir/reloadme.so with the system compiler. */
+static int build_reloadme(const char *dir, int version, const char *abi)
+{
+    char src[1100], cmd[4096];
+    snprintf(src, sizeof src, "%s/reloadme.c", dir);
+    save_file(src, reloadme_source);
+    snprintf(cmd, sizeof cmd,
+             "cc -std=c11 -shared -fPIC -I'%s/../core/include' -DVERSION=%d -DABI=%s -DDIR='\"%s\"' '%s' -o '%s/reloadme.so.new' && "
+             "mv '%s/reloadme.so.new' '%s/reloadme.so'",
+             TEST_DIR, version, abi, dir, src, dir, dir, dir);
+    return system(cmd);
+}
+
+/* Hot reload of a rebuilt plugin: the new build runs from the next graph
+ * instance on, with the old instance's state handed over (save_state ->
+ * restore_state: its frame count goes on); a rebuild with another ABI
+ * version is refused and the running version keeps going. */
+static void test_hot_reload_plugin(void)
+{
+    char dir[] = "/tmp/voxrg-plugin-test-XXXXXX";
+    if (!mkdtemp(dir)) {
+        CHECK(0, "mkdtemp failed");
+        return;
+    }
+    char path[1100], shader[1100];
+    snprintf(path, sizeof path, "%s/reload.ini", dir);
+    snprintf(shader, sizeof shader, "%s/reloadme.comp", dir);
+    save_file(path, "[graph]\noutput = color\nwidth = 8\nheight = 8\n[pass r]\nplugin = reloadme\nout.color = color\n");
+    save_file(shader, "#version 450\nlayout(local_size_x = 8, local_size_y = 8) in;\n"
+                      "layout(binding = 0, rgba16f) uniform writeonly image2D dst;\n"
+                      "layout(push_constant) uniform P { vec4 c; } pc;\n"
+                      "void main() { imageStore(dst, ivec2(gl_GlobalInvocationID.xy), pc.c); }\n");
+    if (build_reloadme(dir, 1, "VRG_ABI_VERSION") != 0) {
+        CHECK(0, "cannot build the test plugin with cc");
+        return;
+    }
+    setenv("VOXRG_PLUGIN_PATH", dir, 1);
+    char *log = NULL;
+    size_t len = 0;
+    FILE *diag = open_memstream(&log, &len);
+    vrg_graph_desc d = {.path = path, .diag = diag};
+    vrg_graph *g = NULL;
+    if (vrg_graph_load(ctx, &d, &g) != 0) {
+        CHECK(0, "cannot load the plugin reload graph");
+        fclose(diag);
+        free(log);
+        unsetenv("VOXRG_PLUGIN_PATH");
+        return;
+    }
+    CHECK(vrg_graph_watch(g, 1) == 0, "watch failed");
+    vrg_image_data img;
+    for (int i = 0; i < 3; i++)
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    CHECK(vrg_graph_read(g, "color", &img) == 0 && px(&img, 1, 1, 0) == 1 && fabsf(px(&img, 1, 1, 2) - 0.03f) < 1e-3f,
+          "version 1 after 3 frames: %g %g %g", px(&img, 1, 1, 0), px(&img, 1, 1, 1), px(&img, 1, 1, 2));
+    free(img.pixels);
+
+    CHECK(build_reloadme(dir, 2, "VRG_ABI_VERSION") == 0, "rebuild failed");
+    CHECK(vrg_graph_frame(g) == 0, "frame failed"); /* notices the rebuild: frame 4 */
+    CHECK(vrg_graph_source_changed(g), "the rebuilt plugin was not noticed");
+    CHECK(vrg_graph_reload(&g) == 0, "reload failed:\n%s", vrg_graph_reload_error(g) ? vrg_graph_reload_error(g) : "");
+    CHECK(vrg_graph_frame(g) == 0 && vrg_graph_read(g, "color", &img) == 0, "frame failed");
+    CHECK(px(&img, 1, 1, 0) == 0 && px(&img, 1, 1, 1) == 1 && fabsf(px(&img, 1, 1, 2) - 0.05f) < 1e-3f,
+          "version 2, state carried over (5 frames): %g %g %g", px(&img, 1, 1, 0), px(&img, 1, 1, 1), px(&img, 1, 1, 2));
+    free(img.pixels);
+
+    CHECK(build_reloadme(dir, 1, "999") == 0, "rebuild failed");
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    CHECK(vrg_graph_reload(&g) != 0, "a plugin with ABI version 999 was accepted");
+    const char *err = vrg_graph_reload_error(g);
+    CHECK(err && strstr(err, "ABI version 999"), "no ABI error: %s", err ? err : "(none)");
+    CHECK(vrg_graph_frame(g) == 0 && vrg_graph_read(g, "color", &img) == 0, "frame failed");
+    CHECK(px(&img, 1, 1, 1) == 1 && fabsf(px(&img, 1, 1, 2) - 0.07f) < 1e-3f, "the running version stopped: %g %g %g", px(&img, 1, 1, 0),
+          px(&img, 1, 1, 1), px(&img, 1, 1, 2));
+    free(img.pixels);
+    vrg_graph_destroy(g);
+    fclose(diag);
+    free(log);
+    unsetenv("VOXRG_PLUGIN_PATH");
+    char so[1100], src[1100];
+    snprintf(so, sizeof so, "%s/reloadme.so", dir);
+    snprintf(src, sizeof src, "%s/reloadme.c", dir);
+    remove(so), remove(src), remove(shader), remove(path), rmdir(dir);
+}
+
 /* With a sun radius > 0 the penumbra widens with the occluder's distance:
  * the 12-high wall's is wider than the 4-high wall's. */
 static void test_light_penumbra(void)
@@ -1789,6 +1895,7 @@ int main(int argc, char **argv)
         {"svgf_edge", test_svgf_edge, 1}, {"accumulate_mean", test_accumulate_mean, 1},
         {"svgf_atrous_options", test_svgf_atrous_options, 1}, {"svgf_size_mismatch", test_svgf_size_mismatch, 1},
         {"hot_reload_shader", test_hot_reload_shader, 1}, {"hot_reload_graph", test_hot_reload_graph, 1},
+        {"hot_reload_plugin", test_hot_reload_plugin, 1},
         {"light_half_res", test_light_half_res, 1},
         {"light_penumbra", test_light_penumbra, 1},   {"light_corner", test_light_corner, 1},
         {"light_chain", test_light_chain, 1},

@@ -215,6 +215,8 @@ int vrg_graph_watch(vrg_graph *g, int on)
     if (g->loaded_from_file)
         vrg_watch_add(g->watch, g->path);
     for (int i = 0; i < g->pass_count; i++)
+        vrg_watch_add(g->watch, g->passes[i].plugin->source);
+    for (int i = 0; i < g->pass_count; i++)
         vrg_pipelines_deps(&g->passes[i], watch_path, g->watch);
     return 0;
 }
@@ -232,6 +234,18 @@ static void apply_reloads(vrg_graph *g)
     if (g->loaded_from_file && realpath(g->path, self))
         for (int i = 0; i < n; i++)
             g->source_changed |= strcmp(changed[i], self) == 0;
+    /* a rebuilt plugin: also the host's to reload (a new graph instance) */
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < g->pass_count; k++) {
+            if (strcmp(changed[i], g->passes[k].plugin->source) != 0)
+                continue;
+            int known = 0;
+            for (int j = 0; j < g->changed_plugin_count; j++)
+                known |= strcmp(g->changed_plugins[j], changed[i]) == 0;
+            if (!known && g->changed_plugin_count < 8)
+                snprintf(g->changed_plugins[g->changed_plugin_count++], VRG_PATH_MAX, "%s", changed[i]);
+            g->source_changed = 1;
+        }
     char *text = NULL;
     size_t len = 0;
     FILE *mem = open_memstream(&text, &len);

@@ -66,12 +66,15 @@ int vrg_find_memory_type(const vrg_context *ctx, uint32_t bits, VkMemoryProperty
 /* ---- plugin loading (plugin_loader.c) ---- */
 typedef struct vrg_plugin {
     char name[VRG_NAME_MAX];
-    char path[1024];
+    char path[1024];   /* the file loaded: the source, or a reload's private copy */
+    char source[1024]; /* the file the build writes (hot reload watches it) */
     void *handle;
     const vrg_plugin_desc *desc;
 } vrg_plugin;
 /* Finds and loads NAME; NULL after reporting at `line`. Cached per process. */
 const vrg_plugin *vrg_plugin_load(const char *name, const char *graph_path, vrg_diag *d, int line);
+/* A rebuilt plugin file becomes the newest version of its plugin (hot reload). */
+int vrg_plugin_reload(const char *source_path, vrg_diag *d);
 /* Every plugin on the search path (for `voxrg plugins`). */
 int vrg_plugin_list(const vrg_plugin **out, int max);
 
@@ -229,7 +232,9 @@ struct vrg_graph {
     char reload_error[4096];   /* the last failed reload's messages; "" after a good one */
     double reload_ms;          /* save-to-frame time of the last reload, -1 if none */
     double pending_since;      /* newest save (epoch seconds) reloaded in this frame, 0: none */
-    int source_changed;        /* the graph file was saved since load (reload.c) */
+    int source_changed;        /* the graph file or a plugin was saved since load (reload.c) */
+    char changed_plugins[8][VRG_PATH_MAX]; /* rebuilt plugin files waiting for vrg_graph_reload */
+    int changed_plugin_count;
     int params_changed;        /* the next frame is the first after a parameter-only reload */
     vrg_graph_desc desc;       /* as loaded (the host keeps its arrays): reload reuses it */
     int loaded_from_file;

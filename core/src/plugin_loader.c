@@ -117,7 +117,8 @@ static int check_desc(const vrg_plugin *p, vrg_diag *d, int line)
 
 const vrg_plugin *vrg_plugin_load(const char *name, const char *graph_path, vrg_diag *d, int line)
 {
-    for (int i = 0; i < loaded_count; i++)
+    /* newest first: a reloaded plugin supersedes its earlier versions */
+    for (int i = loaded_count - 1; i >= 0; i--)
         if (strcmp(loaded[i].name, name) == 0)
             return &loaded[i];
     if (!name[0] || strchr(name, '/') || strlen(name) >= VRG_NAME_MAX) {
@@ -138,6 +139,7 @@ const vrg_plugin *vrg_plugin_load(const char *name, const char *graph_path, vrg_
         if (access(path, F_OK) == 0) {
             char *real = realpath(path, NULL);
             snprintf(p.path, sizeof p.path, "%s", real ? real : path);
+            snprintf(p.source, sizeof p.source, "%s", p.path);
             free(real);
         }
     }
@@ -181,6 +183,75 @@ const vrg_plugin *vrg_plugin_load(const char *name, const char *graph_path, vrg_
     }
     loaded[loaded_count] = p;
     return &loaded[loaded_count++];
+}
+
+/* Hot reload of a rebuilt plugin: the file at `path` (the one a loaded
+ * plugin came from) is copied to a private file and loaded from there, so
+ * the build may overwrite it again and dlopen does not hand back the old
+ * image; its ABI and descriptor are checked like any plugin's. On success
+ * it becomes the newest version of its name (graphs loaded from now on use
+ * it); the old version stays loaded for the graphs still running it. */
+int vrg_plugin_reload(const char *path, vrg_diag *d)
+{
+    int old = -1;
+    for (int i = loaded_count - 1; i >= 0 && old < 0; i--)
+        if (strcmp(loaded[i].source, path) == 0)
+            old = i;
+    if (old < 0) {
+        vrg_error(d, "plugin %s: not a loaded plugin", path);
+        return -1;
+    }
+    if (loaded_count >= VRG_MAX_PLUGINS) {
+        vrg_error(d, "plugin %s: too many plugin versions loaded (at most %d)", path, VRG_MAX_PLUGINS);
+        return -1;
+    }
+    char dir[] = "/tmp/voxrg-plugin-XXXXXX";
+    if (!mkdtemp(dir)) {
+        vrg_error(d, "plugin %s: cannot make a private copy", path);
+        return -1;
+    }
+    vrg_plugin p = {0};
+    snprintf(p.name, sizeof p.name, "%s", loaded[old].name);
+    snprintf(p.source, sizeof p.source, "%s", path);
+    snprintf(p.path, sizeof p.path, "%s/%s.so", dir, p.name);
+    FILE *in = fopen(path, "rb"), *out = fopen(p.path, "wb");
+    int copied = in && out;
+    char buf[65536];
+    size_t n;
+    while (copied && (n = fread(buf, 1, sizeof buf, in)) > 0)
+        copied = fwrite(buf, 1, n, out) == n;
+    if (in)
+        fclose(in);
+    if (out && fclose(out) != 0)
+        copied = 0;
+    int rc = -1;
+    if (!copied)
+        vrg_error(d, "plugin %s: cannot copy it to %s", path, p.path);
+    else if (!(p.handle = dlopen(p.path, RTLD_NOW | RTLD_LOCAL)))
+        vrg_error(d, "plugin %s: cannot load the rebuilt file: %s", path, dlerror());
+    else {
+        vrg_plugin_entry_fn entry = (vrg_plugin_entry_fn)dlsym(p.handle, VRG_PLUGIN_ENTRY_SYMBOL);
+        p.desc = entry ? entry(VRG_ABI_VERSION) : NULL;
+        if (!p.desc)
+            vrg_error(d, "plugin %s: the rebuilt file has no %s or it returned NULL", path, VRG_PLUGIN_ENTRY_SYMBOL);
+        else if (p.desc->abi_version != VRG_ABI_VERSION)
+            vrg_error(d, "plugin %s: the rebuilt file has ABI version %u, this voxrg expects ABI version %u", path, p.desc->abi_version,
+                      VRG_ABI_VERSION);
+        else if (check_desc(&p, d, 0) == 0)
+            rc = 0;
+    }
+    /* the loaded image stays mapped: the private file can go, and messages
+     * name the file the user builds */
+    unlink(p.path);
+    rmdir(dir);
+    snprintf(p.path, sizeof p.path, "%s", path);
+    if (rc != 0) {
+        if (p.handle)
+            dlclose(p.handle);
+        return -1;
+    }
+    loaded[loaded_count++] = p;
+    return 0;
 }
 
 static int by_name(const void *a, const void *b)

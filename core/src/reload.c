@@ -29,7 +29,8 @@ static int same_structure(const vrg_graph *a, const vrg_graph *b)
             return 0;
     for (int i = 0; i < a->pass_count; i++) {
         const vrg_pass *p = &a->passes[i], *q = &b->passes[i];
-        if (strcmp(p->name, q->name) != 0 || strcmp(p->plugin->path, q->plugin->path) != 0 || p->culled != q->culled)
+        if (strcmp(p->name, q->name) != 0 || strcmp(p->plugin->name, q->plugin->name) != 0 ||
+            p->plugin->desc->slot_count != q->plugin->desc->slot_count || p->culled != q->culled)
             return 0;
         for (uint32_t s = 0; s < p->plugin->desc->slot_count; s++)
             if (p->slots[s].res != q->slots[s].res || p->slots[s].prev != q->slots[s].prev || p->slots[s].dummy != q->slots[s].dummy)
@@ -86,6 +87,26 @@ static int copy_history(vrg_graph *old, vrg_graph *g)
     return 0;
 }
 
+/* A pass whose plugin was rebuilt hands its state from the old instance to
+ * the new one, where both versions offer it. */
+static void carry_state(vrg_graph *old, vrg_graph *g)
+{
+    static unsigned char state[1 << 16];
+    for (int i = 0; i < g->pass_count; i++) {
+        vrg_pass *q = &g->passes[i];
+        for (int k = 0; k < old->pass_count; k++) {
+            vrg_pass *p = &old->passes[k];
+            if (strcmp(p->name, q->name) != 0 || strcmp(p->plugin->name, q->plugin->name) != 0 || !p->created || !q->created)
+                continue;
+            if (p->plugin->desc->save_state && q->plugin->desc->restore_state) {
+                size_t n = p->plugin->desc->save_state(p, state, sizeof state);
+                if (n <= sizeof state && q->plugin->desc->restore_state(q, state, n) != 0)
+                    vrg_pass_error(q, "restore_state() failed: the pass starts afresh");
+            }
+        }
+    }
+}
+
 int vrg_graph_reload(vrg_graph **pg)
 {
     vrg_graph *old = *pg;
@@ -93,6 +114,27 @@ int vrg_graph_reload(vrg_graph **pg)
         vrg_error(&old->diag, "reload: the graph was not loaded from a file with a device");
         return -1;
     }
+    /* rebuilt plugins first: the new graph picks up their newest versions */
+    for (int i = 0; i < old->changed_plugin_count; i++) {
+        char *text = NULL;
+        size_t len = 0;
+        FILE *mem = open_memstream(&text, &len);
+        vrg_diag pd = {.out = mem ? mem : old->desc.diag, .file = old->path};
+        int rc = vrg_plugin_reload(old->changed_plugins[i], &pd);
+        if (mem) {
+            fclose(mem);
+            fputs(text ? text : "", old->desc.diag ? old->desc.diag : stderr);
+        }
+        if (rc != 0) {
+            snprintf(old->reload_error, sizeof old->reload_error, "%s", text ? text : "plugin reload failed");
+            free(text);
+            old->changed_plugin_count = 0;
+            old->source_changed = 0;
+            return -1;
+        }
+        free(text);
+    }
+    old->changed_plugin_count = 0;
     vrg_graph_desc d = old->desc;
     d.text = NULL;
     d.path = old->path;
@@ -118,6 +160,7 @@ int vrg_graph_reload(vrg_graph **pg)
     free(text);
     g->desc.diag = old->desc.diag;
     g->diag.out = old->desc.diag;
+    carry_state(old, g);
     g->frame.frame_index = old->frame.frame_index; /* random sequences and history copies continue */
     g->camera = old->camera;
     g->last_camera = old->last_camera;
