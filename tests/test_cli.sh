@@ -159,6 +159,15 @@ for f in figs:
 assert any("streaming" in f["name"] and f["samples"] > 100 for f in figs), figs
 PY
 then ok; else bad "bench JSON"; fi
+expect_rc 0 "bench reload" "$voxrg" bench --suite reload --runs 1 --json "$out/bench_reload.json"
+if python3 - "$out/bench_reload.json" <<'PY'
+import json, sys
+figs = json.load(open(sys.argv[1]))["figures"]
+names = [f["name"] for f in figs]
+assert all(f["suite"] == "reload" and f["samples"] == 1 and f["median"] > 0 for f in figs), figs
+assert any("shader saved" in n for n in names) and any("parameter saved" in n for n in names), names
+PY
+then ok; else bad "bench reload JSON"; fi
 
 # plugins
 expect_rc 0 "plugins" "$voxrg" plugins

@@ -463,7 +463,7 @@ static int cmd_plugins(int argc, char **argv)
 }
 
 static const char *usage_bench =
-    "usage: voxrg bench [--suite all|terrain|rays] [--runs N] [--json FILE] [--device NAME|INDEX]\n"
+    "usage: voxrg bench [--suite all|terrain|rays|reload] [--runs N] [--json FILE] [--device NAME|INDEX]\n"
     "Measures each figure N times (default 5) after a warm-up run and prints the\n"
     "median, min, max and p99 with the device and thread counts (LP_NUM_THREADS\n"
     "sets lavapipe's). terrain: radius-13 world generation with 1 and 2 threads,\n"

@@ -161,6 +161,15 @@ int vrg_graph_reload(vrg_graph **pg)
     g->desc.diag = old->desc.diag;
     g->diag.out = old->desc.diag;
     carry_state(old, g);
+    /* pipelines depend on the shader, its defines and descriptor types only:
+     * a pass running the same plugin keeps its compiled ones (no new JIT) */
+    for (int i = 0; i < g->pass_count; i++)
+        for (int k = 0; k < old->pass_count; k++)
+            if (strcmp(old->passes[k].name, g->passes[i].name) == 0 && old->passes[k].plugin == g->passes[i].plugin &&
+                !g->passes[i].pipelines) {
+                g->passes[i].pipelines = old->passes[k].pipelines;
+                old->passes[k].pipelines = NULL;
+            }
     g->frame.frame_index = old->frame.frame_index; /* random sequences and history copies continue */
     g->camera = old->camera;
     g->last_camera = old->last_camera;
