@@ -9,6 +9,7 @@
 #include <time.h>
 #include <unistd.h>
 #include "bench.h"
+#include "run.h"
 #include "voxrg/voxrg.h"
 
 #define MAX_SETS 64
@@ -19,6 +20,7 @@ static const char *usage_main =
     "commands:\n"
     "  check GRAPH     validate a graph; print schedule, resources, barriers, memory\n"
     "  render GRAPH    render frames headless; write PNGs and timings\n"
+    "  run GRAPH       render in a window with a fly camera and hot reload\n"
     "  plugins [NAME]  list plugins, or one plugin's slots and parameters\n"
     "  bench           measure the figures in docs/benchmarks.md\n"
     "'voxrg COMMAND --help' describes each.\n";
@@ -51,7 +53,7 @@ static const char *usage_plugins =
     "<exe>/../lib/voxrg/plugins), or NAME's slots and parameters.\n";
 
 typedef struct options {
-    const char *graph, *dot, *out, *json, *device, *camera;
+    const char *graph, *dot, *out, *json, *device, *camera, *screenshot;
     const char *sets[MAX_SETS];
     int set_count;
     const char *dumps[MAX_DUMPS];
@@ -85,7 +87,7 @@ static int parse_size(const char *s, uint32_t *w, uint32_t *h)
 
 static int is_valued_option(const char *a)
 {
-    static const char *valued[] = {"--dot", "--out", "--json", "--device", "--set", "--size", "--frames", "--dump", "--camera"};
+    static const char *valued[] = {"--dot", "--out", "--json", "--device", "--set", "--size", "--frames", "--dump", "--camera", "--screenshot"};
     for (size_t i = 0; i < sizeof valued / sizeof valued[0]; i++)
         if (!strcmp(a, valued[i]))
             return 1;
@@ -124,6 +126,8 @@ static int parse_options(int argc, char **argv, options *o, const char *usage)
             o->device = next;
         else if (!strcmp(a, "--camera"))
             o->camera = next;
+        else if (!strcmp(a, "--screenshot"))
+            o->screenshot = next;
         else if (!strcmp(a, "--set")) {
             if (o->set_count == MAX_SETS)
                 return usage_error(usage, "too many --set options%s", "");
@@ -395,6 +399,36 @@ static int cmd_render(int argc, char **argv)
     return finish(ctx, g, rc);
 }
 
+static const char *usage_run =
+    "usage: voxrg run GRAPH [--size WxH] [--frames N] [--set PASS.PARAM=VALUE]... [--camera PATH]\n"
+    "                       [--screenshot FILE] [--validate] [--device NAME|INDEX]\n"
+    "Renders GRAPH in a window until it is closed (or for N frames), presenting its output.\n"
+    "W/A/S/D move, Space up, Shift down, hold the right mouse button to look around,\n"
+    "scroll or +/- change the speed, P or F12 saves screenshot-NNN.png, Esc quits.\n"
+    "Saved shaders, the graph file and rebuilt plugins reload while it runs; errors\n"
+    "are printed with FILE:LINE and the last good version keeps running. --camera\n"
+    "plays a camera path instead of the fly camera; --screenshot writes the last of\n"
+    "N frames to FILE. Without a display, use `voxrg render`.\n";
+
+static int cmd_run(int argc, char **argv)
+{
+    options o;
+    int rc = parse_options(argc, argv, &o, usage_run);
+    if (rc || o.help)
+        return rc ? rc : (fputs(usage_run, stdout), 0);
+    if (!o.graph)
+        return usage_error(usage_run, "no graph file given%s", "");
+    int frames_given = 0;
+    for (int i = 0; i < argc; i++)
+        frames_given |= !strcmp(argv[i], "--frames");
+    if (o.screenshot && !frames_given)
+        return usage_error(usage_run, "--screenshot needs --frames N (the frame it is taken after)%s", "");
+    vrg_run_options r = {.graph = o.graph, .device = o.device, .camera = o.camera, .screenshot = o.screenshot, .sets = o.sets,
+                         .set_count = (uint32_t)o.set_count, .width = o.width ? o.width : 960, .height = o.height ? o.height : 540,
+                         .frames = frames_given ? o.frames : 0, .validate = o.validate};
+    return vrg_cli_run(&r);
+}
+
 static const char *kind_name(vrg_resource_kind k) { return k == VRG_IMAGE ? "image" : k == VRG_BUFFER ? "buffer" : "accel"; }
 
 static int cmd_plugins(int argc, char **argv)
@@ -510,6 +544,8 @@ int main(int argc, char **argv)
         return cmd_check(argc - 2, argv + 2);
     if (!strcmp(argv[1], "render"))
         return cmd_render(argc - 2, argv + 2);
+    if (!strcmp(argv[1], "run"))
+        return cmd_run(argc - 2, argv + 2);
     if (!strcmp(argv[1], "plugins"))
         return cmd_plugins(argc - 2, argv + 2);
     if (!strcmp(argv[1], "bench"))

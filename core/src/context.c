@@ -51,7 +51,10 @@ static int has_device_ext(VkPhysicalDevice pd, const char *name)
 static int create_instance(vrg_context *ctx, const vrg_context_desc *desc)
 {
     const char *layers[1] = {"VK_LAYER_KHRONOS_validation"};
-    const char *exts[1] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME};
+    const char *exts[17] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME};
+    uint32_t next = 1;
+    for (uint32_t i = 0; i < desc->instance_extension_count && next < 17; i++)
+        exts[next++] = desc->instance_extensions[i];
     if (desc->validate && !has_layer(layers[0])) {
         fprintf(stderr, "error: --validate needs VK_LAYER_KHRONOS_validation (Debian package vulkan-validationlayers; run scripts/setup.sh)\n");
         return -1;
@@ -83,7 +86,7 @@ static int create_instance(vrg_context *ctx, const vrg_context_desc *desc)
         .pApplicationInfo = &app,
         .enabledLayerCount = desc->validate ? 1 : 0,
         .ppEnabledLayerNames = layers,
-        .enabledExtensionCount = 1,
+        .enabledExtensionCount = next,
         .ppEnabledExtensionNames = exts,
     };
     VkResult res = vkCreateInstance(&info, NULL, &ctx->dev.instance);
@@ -248,6 +251,13 @@ static int create_device(vrg_context *ctx)
     const char *exts[12];
     uint32_t next = 0;
     exts[next++] = VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME;
+    if (ctx->want_swapchain) {
+        if (!has_device_ext(pd, VK_KHR_SWAPCHAIN_EXTENSION_NAME)) {
+            fprintf(stderr, "error: device '%s' cannot present to a window (no VK_KHR_swapchain): use `voxrg render`\n", ctx->device_name);
+            return -1;
+        }
+        exts[next++] = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
+    }
     if (has_as) {
         en13.pNext = &en_as;
         en_as.accelerationStructure = VK_TRUE;
@@ -333,6 +343,7 @@ int vrg_context_create(const vrg_context_desc *desc, vrg_context **out)
         desc = &defaults;
     vrg_context *ctx = calloc(1, sizeof *ctx);
     ctx->validate = desc->validate;
+    ctx->want_swapchain = desc->swapchain;
     *out = NULL;
     if (create_instance(ctx, desc) != 0 || pick_device(ctx, desc) != 0 || create_device(ctx) != 0) {
         vrg_context_destroy(ctx);

@@ -363,6 +363,23 @@ static float half_to_float(uint16_t h)
 
 static float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f); }
 
+int vrg_graph_image(vrg_graph *g, const char *name, VkImage *image, VkExtent2D *extent, VkFormat *format)
+{
+    int i = find_readable(g, name);
+    if (i < 0)
+        return -1;
+    vrg_resource *r = &g->res[i];
+    if (r->kind != VRG_IMAGE) {
+        vrg_error(&g->diag, "resource '%s' is not an image", name);
+        return -1;
+    }
+    /* the frame counter moved on: last frame's copy is now the "previous" one */
+    *image = r->image[vrg_copy_of(g, i, r->history)];
+    *extent = (VkExtent2D){r->width, r->height};
+    *format = r->format;
+    return 0;
+}
+
 int vrg_graph_read(vrg_graph *g, const char *name, vrg_image_data *out)
 {
     memset(out, 0, sizeof *out);

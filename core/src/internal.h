@@ -52,6 +52,7 @@ struct vrg_context {
     VkSampler sampler_mips;   /* nearest texels, linear between levels: voxel textures */
     uint32_t group_size[2];   /* VRG_GROUP_X/Y for shaders: see shader.c */
     uint32_t pixel_rows;      /* VRG_PIXEL_ROWS: rows per invocation of a pixel loop */
+    int want_swapchain;       /* vrg_context_desc.swapchain */
     struct {
         PFN_vkCreateAccelerationStructureKHR create;
         PFN_vkDestroyAccelerationStructureKHR destroy;

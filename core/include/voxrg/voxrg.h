@@ -16,6 +16,12 @@ typedef struct vrg_context_desc {
     int validate;       /* VK_LAYER_KHRONOS_validation + synchronization validation; messages count as errors */
     const char *device; /* index or part of the name; NULL: prefer a real GPU, else lavapipe */
     int quiet;          /* no "using device" line */
+    /* For presenting to a window: the instance extensions the window system
+     * needs (glfwGetRequiredInstanceExtensions) and VK_KHR_swapchain on the
+     * device. The device's queue must then be able to present. */
+    const char *const *instance_extensions;
+    uint32_t instance_extension_count;
+    int swapchain;
 } vrg_context_desc;
 
 /* Returns 0 and a context, or -1 after printing why to stderr. */
@@ -63,6 +69,11 @@ typedef struct vrg_image_data {
     float *pixels;     /* width * height * 4 */
 } vrg_image_data;
 int vrg_graph_read(vrg_graph *g, const char *resource, vrg_image_data *out);
+/* For presenting: the image of a read-back image resource (the output, or
+ * one named in vrg_graph_desc.readback) after the last frame, in
+ * VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL and idle. A host may copy or blit
+ * from it on the graph's queue before the next vrg_graph_frame. */
+int vrg_graph_image(vrg_graph *g, const char *resource, VkImage *image, VkExtent2D *extent, VkFormat *format);
 /* Bytes of a buffer resource written in the last frame. Caller frees *data. */
 /* A figure a pass recorded with vrg_pass_stat in the last frame: 0, or -1. */
 int vrg_graph_stat(const vrg_graph *g, const char *pass, const char *name, double *value);

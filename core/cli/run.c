@@ -1,0 +1,382 @@
+/* voxrg run: a GLFW window presenting a graph's output, with a fly camera
+ * and hot reload. The graph renders as under `voxrg render`; each frame its
+ * output (idle in TRANSFER_SRC after the frame's readback) is blitted to a
+ * swapchain image and presented. */
+#define _POSIX_C_SOURCE 200809L
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include "run.h"
+#include "voxrg/camera.h"
+#include "voxrg/voxrg.h"
+
+typedef struct swapchain {
+    VkSwapchainKHR handle;
+    VkFormat format;
+    VkExtent2D extent;
+    uint32_t count;
+    VkImage images[8];
+} swapchain;
+
+typedef struct window_state {
+    vrg_context *ctx;
+    const vrg_device *dev;
+    GLFWwindow *window;
+    VkSurfaceKHR surface;
+    swapchain sc;
+    VkCommandPool pool;
+    VkCommandBuffer cmd;
+    VkSemaphore acquired, rendered;
+    VkFence done;
+    float speed;
+    int looking;
+    double mouse_x, mouse_y;
+    int screenshot_requested;
+} window_state;
+
+static double now_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static int create_swapchain(window_state *w, VkSwapchainKHR old)
+{
+    VkPhysicalDevice pd = w->dev->physical_device;
+    VkSurfaceCapabilitiesKHR caps;
+    vkGetPhysicalDeviceSurfaceCapabilitiesKHR(pd, w->surface, &caps);
+    uint32_t nf = 0;
+    vkGetPhysicalDeviceSurfaceFormatsKHR(pd, w->surface, &nf, NULL);
+    VkSurfaceFormatKHR formats[64];
+    nf = nf > 64 ? 64 : nf;
+    vkGetPhysicalDeviceSurfaceFormatsKHR(pd, w->surface, &nf, formats);
+    /* UNORM: the graph's output is already display-encoded (tonemap writes sRGB values) */
+    VkSurfaceFormatKHR fmt = formats[0];
+    for (uint32_t i = 0; i < nf; i++)
+        if (formats[i].format == VK_FORMAT_B8G8R8A8_UNORM || formats[i].format == VK_FORMAT_R8G8B8A8_UNORM) {
+            fmt = formats[i];
+            break;
+        }
+    int fw, fh;
+    glfwGetFramebufferSize(w->window, &fw, &fh);
+    VkExtent2D ext = caps.currentExtent.width != UINT32_MAX ? caps.currentExtent : (VkExtent2D){(uint32_t)fw, (uint32_t)fh};
+    if (!ext.width || !ext.height)
+        return 1; /* minimised: try again later */
+    uint32_t count = caps.minImageCount + 1;
+    if (caps.maxImageCount && count > caps.maxImageCount)
+        count = caps.maxImageCount;
+    VkSwapchainCreateInfoKHR ci = {
+        .sType = VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR,
+        .surface = w->surface,
+        .minImageCount = count,
+        .imageFormat = fmt.format,
+        .imageColorSpace = fmt.colorSpace,
+        .imageExtent = ext,
+        .imageArrayLayers = 1,
+        .imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+        .imageSharingMode = VK_SHARING_MODE_EXCLUSIVE,
+        .preTransform = caps.currentTransform,
+        .compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR,
+        .presentMode = VK_PRESENT_MODE_FIFO_KHR,
+        .clipped = VK_TRUE,
+        .oldSwapchain = old,
+    };
+    VkSwapchainKHR sc;
+    if (vkCreateSwapchainKHR(w->dev->device, &ci, NULL, &sc) != VK_SUCCESS) {
+        fprintf(stderr, "error: cannot create the window's swapchain\n");
+        return -1;
+    }
+    if (old)
+        vkDestroySwapchainKHR(w->dev->device, old, NULL);
+    w->sc.handle = sc;
+    w->sc.format = fmt.format;
+    w->sc.extent = ext;
+    w->sc.count = 8;
+    vkGetSwapchainImagesKHR(w->dev->device, sc, &w->sc.count, w->sc.images);
+    return 0;
+}
+
+/* W/A/S/D move, Space up, Shift down, right mouse button held: look,
+ * scroll or +/-: speed. */
+static void fly(window_state *w, vrg_camera *cam, float dt)
+{
+    GLFWwindow *win = w->window;
+    float fwd[3], right[3];
+    vrg_camera_forward(cam, fwd);
+    float yaw = cam->yaw * 3.14159265f / 180.0f;
+    right[0] = cosf(yaw), right[1] = 0, right[2] = -sinf(yaw);
+    /* yaw 0 looks down -z and + turns left: right is +x at yaw 0 */
+    float move[3] = {0, 0, 0};
+    float f = (float)(glfwGetKey(win, GLFW_KEY_W) == GLFW_PRESS) - (float)(glfwGetKey(win, GLFW_KEY_S) == GLFW_PRESS);
+    float r = (float)(glfwGetKey(win, GLFW_KEY_D) == GLFW_PRESS) - (float)(glfwGetKey(win, GLFW_KEY_A) == GLFW_PRESS);
+    float u = (float)(glfwGetKey(win, GLFW_KEY_SPACE) == GLFW_PRESS) - (float)(glfwGetKey(win, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS);
+    for (int i = 0; i < 3; i++)
+        move[i] = f * fwd[i] + r * right[i];
+    move[1] += u;
+    for (int i = 0; i < 3; i++)
+        cam->position[i] += move[i] * w->speed * dt;
+    int look = glfwGetMouseButton(win, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+    double mx, my;
+    glfwGetCursorPos(win, &mx, &my);
+    if (look && w->looking) {
+        cam->yaw -= (float)(mx - w->mouse_x) * 0.15f;
+        cam->pitch -= (float)(my - w->mouse_y) * 0.15f;
+        cam->pitch = cam->pitch > 89 ? 89 : cam->pitch < -89 ? -89 : cam->pitch;
+    }
+    if (look != w->looking)
+        glfwSetInputMode(win, GLFW_CURSOR, look ? GLFW_CURSOR_DISABLED : GLFW_CURSOR_NORMAL);
+    w->looking = look;
+    w->mouse_x = mx, w->mouse_y = my;
+}
+
+static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
+{
+    (void)scancode, (void)mods;
+    window_state *w = glfwGetWindowUserPointer(win);
+    if (action != GLFW_PRESS)
+        return;
+    if (key == GLFW_KEY_ESCAPE)
+        glfwSetWindowShouldClose(win, 1);
+    else if (key == GLFW_KEY_F12 || key == GLFW_KEY_P)
+        w->screenshot_requested = 1;
+    else if (key == GLFW_KEY_EQUAL || key == GLFW_KEY_KP_ADD)
+        w->speed *= 1.5f;
+    else if (key == GLFW_KEY_MINUS || key == GLFW_KEY_KP_SUBTRACT)
+        w->speed /= 1.5f;
+}
+
+static void on_scroll(GLFWwindow *win, double dx, double dy)
+{
+    (void)dx;
+    window_state *w = glfwGetWindowUserPointer(win);
+    w->speed *= dy > 0 ? 1.25f : 0.8f;
+}
+
+/* One presentation: the graph's output blitted onto the next swapchain image. */
+static int present(window_state *w, VkImage src, VkExtent2D src_ext)
+{
+    VkDevice dev = w->dev->device;
+    uint32_t index;
+    VkResult res = vkAcquireNextImageKHR(dev, w->sc.handle, UINT64_MAX, w->acquired, VK_NULL_HANDLE, &index);
+    if (res == VK_ERROR_OUT_OF_DATE_KHR)
+        return 1;
+    if (res != VK_SUCCESS && res != VK_SUBOPTIMAL_KHR)
+        return -1;
+    VkImage dst = w->sc.images[index];
+    vkResetCommandBuffer(w->cmd, 0);
+    VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
+    vkBeginCommandBuffer(w->cmd, &bi);
+    VkImageSubresourceRange range = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    VkImageMemoryBarrier2 to_dst = {
+        .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
+        .srcStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+        .srcAccessMask = 0,
+        .dstStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+        .dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
+        .oldLayout = VK_IMAGE_LAYOUT_UNDEFINED,
+        .newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+        .image = dst,
+        .subresourceRange = range,
+    };
+    VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .imageMemoryBarrierCount = 1, .pImageMemoryBarriers = &to_dst};
+    vkCmdPipelineBarrier2(w->cmd, &dep);
+    VkImageBlit blit = {
+        .srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+        .srcOffsets = {{0, 0, 0}, {(int32_t)src_ext.width, (int32_t)src_ext.height, 1}},
+        .dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+        .dstOffsets = {{0, 0, 0}, {(int32_t)w->sc.extent.width, (int32_t)w->sc.extent.height, 1}},
+    };
+    vkCmdBlitImage(w->cmd, src, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+    VkImageMemoryBarrier2 to_present = to_dst;
+    to_present.srcStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+    to_present.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    to_present.dstStageMask = VK_PIPELINE_STAGE_2_NONE;
+    to_present.dstAccessMask = 0;
+    to_present.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    to_present.newLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+    dep.pImageMemoryBarriers = &to_present;
+    vkCmdPipelineBarrier2(w->cmd, &dep);
+    vkEndCommandBuffer(w->cmd);
+    VkSemaphoreSubmitInfo wait = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO, .semaphore = w->acquired,
+                                  .stageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT};
+    VkSemaphoreSubmitInfo signal = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO, .semaphore = w->rendered,
+                                    .stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT};
+    VkCommandBufferSubmitInfo cbi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = w->cmd};
+    VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .waitSemaphoreInfoCount = 1, .pWaitSemaphoreInfos = &wait,
+                        .commandBufferInfoCount = 1, .pCommandBufferInfos = &cbi, .signalSemaphoreInfoCount = 1, .pSignalSemaphoreInfos = &signal};
+    vkResetFences(dev, 1, &w->done);
+    if (vkQueueSubmit2(w->dev->queue, 1, &si, w->done) != VK_SUCCESS)
+        return -1;
+    VkPresentInfoKHR pi = {.sType = VK_STRUCTURE_TYPE_PRESENT_INFO_KHR, .waitSemaphoreCount = 1, .pWaitSemaphores = &w->rendered,
+                           .swapchainCount = 1, .pSwapchains = &w->sc.handle, .pImageIndices = &index};
+    res = vkQueuePresentKHR(w->dev->queue, &pi);
+    /* the blit reads the graph's output: done before the graph writes it again */
+    vkWaitForFences(dev, 1, &w->done, VK_TRUE, UINT64_MAX);
+    return res == VK_ERROR_OUT_OF_DATE_KHR || res == VK_SUBOPTIMAL_KHR ? 1 : res == VK_SUCCESS ? 0 : -1;
+}
+
+int vrg_cli_run(const vrg_run_options *o)
+{
+    if (!glfwInit()) {
+        fprintf(stderr, "error: no display to open a window on (is $DISPLAY set?): use `voxrg render %s` to render headless\n", o->graph);
+        return 1;
+    }
+    if (!glfwVulkanSupported()) {
+        fprintf(stderr, "error: GLFW finds no Vulkan loader for windows: use `voxrg render %s`\n", o->graph);
+        glfwTerminate();
+        return 1;
+    }
+    window_state w = {.speed = 8.0f};
+    uint32_t next = 0;
+    const char **exts = glfwGetRequiredInstanceExtensions(&next);
+    vrg_context_desc cd = {.validate = o->validate, .device = o->device, .instance_extensions = exts, .instance_extension_count = next,
+                           .swapchain = 1};
+    int rc = 1;
+    vrg_graph *g = NULL;
+    if (vrg_context_create(&cd, &w.ctx) != 0)
+        goto out;
+    w.dev = vrg_context_device(w.ctx);
+    glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+    w.window = glfwCreateWindow((int)o->width, (int)o->height, "voxrg", NULL, NULL);
+    if (!w.window) {
+        fprintf(stderr, "error: cannot open a window: use `voxrg render %s`\n", o->graph);
+        goto out;
+    }
+    glfwSetWindowUserPointer(w.window, &w);
+    glfwSetKeyCallback(w.window, on_key);
+    glfwSetScrollCallback(w.window, on_scroll);
+    if (glfwCreateWindowSurface(w.dev->instance, w.window, NULL, &w.surface) != VK_SUCCESS) {
+        fprintf(stderr, "error: cannot make a Vulkan surface for the window\n");
+        goto out;
+    }
+    VkBool32 can_present = VK_FALSE;
+    vkGetPhysicalDeviceSurfaceSupportKHR(w.dev->physical_device, w.dev->queue_family, w.surface, &can_present);
+    if (!can_present) {
+        fprintf(stderr, "error: device '%s' cannot present to this window: use `voxrg render %s`\n", w.dev->name, o->graph);
+        goto out;
+    }
+    if (create_swapchain(&w, VK_NULL_HANDLE) != 0)
+        goto out;
+    VkCommandPoolCreateInfo pci = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
+                                   .queueFamilyIndex = w.dev->queue_family};
+    vkCreateCommandPool(w.dev->device, &pci, NULL, &w.pool);
+    VkCommandBufferAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, .commandPool = w.pool,
+                                      .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY, .commandBufferCount = 1};
+    vkAllocateCommandBuffers(w.dev->device, &ai, &w.cmd);
+    VkSemaphoreCreateInfo sci = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+    vkCreateSemaphore(w.dev->device, &sci, NULL, &w.acquired);
+    vkCreateSemaphore(w.dev->device, &sci, NULL, &w.rendered);
+    VkFenceCreateInfo fci = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    vkCreateFence(w.dev->device, &fci, NULL, &w.done);
+
+    vrg_graph_desc d = {.path = o->graph, .overrides = o->sets, .override_count = o->set_count, .width = o->width, .height = o->height};
+    if (vrg_graph_load(w.ctx, &d, &g) != 0)
+        goto out;
+    vrg_graph_watch(g, 1); /* hot reload is what the window is for */
+    vrg_camera_path path = {0};
+    if (o->camera && vrg_camera_path_load(o->camera, &path, stderr) != 0)
+        goto out;
+    vrg_camera cam = *vrg_graph_camera(g);
+    double last = now_s(), title_at = 0, reloaded = -1;
+    int frames = 0, shots = 0;
+    rc = 0;
+    while (!glfwWindowShouldClose(w.window) && (!o->frames || (uint32_t)frames < o->frames)) {
+        glfwPollEvents();
+        double t = now_s();
+        float dt = (float)(t - last);
+        last = t;
+        if (path.count)
+            vrg_camera_path_eval(&path, (float)(frames * vrg_graph_frame_seconds(g)), &cam);
+        else
+            fly(&w, &cam, dt);
+        vrg_graph_set_camera(g, &cam);
+        if (vrg_graph_frame(g) != 0) {
+            rc = 1;
+            break;
+        }
+        if (vrg_graph_source_changed(g))
+            (void)vrg_graph_reload(&g); /* a broken graph or plugin is reported; the running one stays */
+        if (vrg_graph_reload_ms(g) != reloaded) {
+            reloaded = vrg_graph_reload_ms(g);
+            fprintf(stderr, "reloaded: %.0f ms from save to frame\n", reloaded);
+        }
+        frames++;
+        int last_frame = o->frames && (uint32_t)frames == o->frames;
+        if (w.screenshot_requested || (last_frame && o->screenshot)) {
+            char file[1100];
+            if (o->screenshot && last_frame)
+                snprintf(file, sizeof file, "%s", o->screenshot);
+            else
+                snprintf(file, sizeof file, "screenshot-%03d.png", shots++);
+            vrg_image_data img;
+            if (vrg_graph_read(g, vrg_graph_output(g), &img) == 0) {
+                if (vrg_write_png(file, &img) == 0)
+                    fprintf(stderr, "wrote %s\n", file);
+                else
+                    rc = 1;
+                free(img.pixels);
+            }
+            w.screenshot_requested = 0;
+        }
+        VkImage src;
+        VkExtent2D ext;
+        VkFormat fmt;
+        if (vrg_graph_image(g, vrg_graph_output(g), &src, &ext, &fmt) != 0) {
+            rc = 1;
+            break;
+        }
+        int pr = present(&w, src, ext);
+        if (pr < 0) {
+            fprintf(stderr, "error: presenting to the window failed\n");
+            rc = 1;
+            break;
+        }
+        int fw, fh;
+        glfwGetFramebufferSize(w.window, &fw, &fh);
+        if (pr > 0 || (fw > 0 && fh > 0 && ((uint32_t)fw != w.sc.extent.width || (uint32_t)fh != w.sc.extent.height))) {
+            vkDeviceWaitIdle(w.dev->device);
+            if (create_swapchain(&w, w.sc.handle) < 0 || vrg_graph_resize(g, w.sc.extent.width, w.sc.extent.height) != 0) {
+                rc = 1;
+                break;
+            }
+        }
+        if (t - title_at > 0.5) { /* until the overlay exists: the figures in the title */
+            double gpu = 0;
+            for (uint32_t i = 0; i < vrg_graph_pass_count(g); i++)
+                gpu += vrg_graph_pass_ms(g, i) > 0 ? vrg_graph_pass_ms(g, i) : 0;
+            char title[512];
+            snprintf(title, sizeof title, "voxrg - %s - %.1f fps, %.1f ms GPU%s", o->graph, dt > 0 ? 1.0 / dt : 0.0, gpu,
+                     vrg_graph_reload_error(g) ? " - reload error (see terminal)" : "");
+            glfwSetWindowTitle(w.window, title);
+            title_at = t;
+        }
+    }
+    vrg_camera_path_free(&path);
+out:
+    if (w.dev) {
+        vkDeviceWaitIdle(w.dev->device);
+        vrg_graph_destroy(g);
+        vkDestroyFence(w.dev->device, w.done, NULL);
+        vkDestroySemaphore(w.dev->device, w.acquired, NULL);
+        vkDestroySemaphore(w.dev->device, w.rendered, NULL);
+        vkDestroyCommandPool(w.dev->device, w.pool, NULL);
+        if (w.sc.handle)
+            vkDestroySwapchainKHR(w.dev->device, w.sc.handle, NULL);
+        if (w.surface)
+            vkDestroySurfaceKHR(w.dev->instance, w.surface, NULL);
+    }
+    if (w.window)
+        glfwDestroyWindow(w.window);
+    if (w.ctx) {
+        if (vrg_context_validation_errors(w.ctx))
+            rc = 1;
+        vrg_context_destroy(w.ctx);
+    }
+    glfwTerminate();
+    return rc;
+}

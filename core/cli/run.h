@@ -1,0 +1,14 @@
+#ifndef VOXRG_CLI_RUN_H
+#define VOXRG_CLI_RUN_H
+#include <stdint.h>
+typedef struct vrg_run_options {
+    const char *graph, *device, *camera, *screenshot;
+    const char *const *sets;
+    uint32_t set_count;
+    uint32_t width, height; /* window size */
+    uint32_t frames;        /* 0: until the window closes */
+    int validate;
+} vrg_run_options;
+/* `voxrg run`: returns the exit status. */
+int vrg_cli_run(const vrg_run_options *o);
+#endif
