@@ -1796,7 +1796,8 @@ static double resident_mib(void)
 /* Soak: the default (thesis) graph at a tiny size for thousands of frames
  * along walk.path, which streams chunks in and out (radius 3): every frame
  * succeeds under validation (a message fails the run), and resident memory
- * after warm-up stays flat. Leaks are LSan's (the sanitizer build). */
+ * after warm-up stays flat (release build). Leaks are LSan's (the sanitizer
+ * build, where the quarantine makes resident memory grow by design). */
 static void test_soak(void)
 {
     char path[1024], camera_path[1024];
@@ -1831,7 +1832,16 @@ static void test_soak(void)
     CHECK(!failed, "a frame failed during the soak");
     CHECK(loaded_max > 0, "the soak streamed nothing");
     printf("soak: %d frames, resident %.1f MiB after 500, %.1f MiB at the end\n", frames, warm, last);
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define VRG_TEST_ASAN 1
+#endif
+#endif
+#ifndef VRG_TEST_ASAN
+    /* ASan keeps freed memory in quarantine, so resident memory climbs there
+     * by design; leaks are LSan's business in that build */
     CHECK(last - warm < 16.0, "resident memory grew by %.1f MiB over %d frames", last - warm, frames - 500);
+#endif
     vrg_camera_path_free(&cp);
     vrg_graph_destroy(g);
 }
