@@ -193,6 +193,9 @@ assert (w, h) == (192, 128), (w, h)
 assert len(set(raw)) > 40, len(set(raw))
 PY
     then ok; else bad "window screenshot has content"; fi
+    expect_rc 0 "run --ab and --record under Xvfb" xvfb-run -a "$voxrg" run "$tests/graphs/blocks_wall.ini" --ab "$tests/graphs/blocks_wall.ini" \
+        --validate --size 96x64 --frames 3 --record "$out/flight.path"
+    expect_rc 0 "a recorded flight plays back" "$voxrg" render "$tests/graphs/blocks_wall.ini" --camera "$out/flight.path" --frames 3 --out "$out/flight"
 else
     echo "skip: xvfb-run not installed (scripts/setup.sh installs it)"
 fi

@@ -1846,6 +1846,32 @@ static void test_soak(void)
     vrg_graph_destroy(g);
 }
 
+/* Parameters set while the graph runs: the next frame uses them and
+ * accumulations restart; bad names, ranges and kinds are refused. */
+static void test_set_param(void)
+{
+    static const char *reads[] = {"mean.color"};
+    vrg_graph *g = load_with("progressive.ini", NULL, 0, reads, 1);
+    if (!g)
+        return;
+    vrg_image_data img;
+    for (int i = 0; i < 3; i++)
+        CHECK(vrg_graph_frame(g) == 0, "frame failed"); /* counts 1 2 3 */
+    CHECK(vrg_graph_set_param(g, "counter.step", 10) == 0, "set counter.step failed");
+    CHECK(vrg_graph_frame(g) == 0 && vrg_graph_read(g, "mean.color", &img) == 0, "frame failed");
+    CHECK(px(&img, 0, 0, 0) == 13 && px(&img, 0, 0, 3) == 1, "after step = 10: %g over %g frames, want 13 over 1", px(&img, 0, 0, 0),
+          px(&img, 0, 0, 3));
+    free(img.pixels);
+    CHECK(vrg_graph_frame(g) == 0 && vrg_graph_read(g, "mean.color", &img) == 0, "frame failed");
+    CHECK(px(&img, 0, 0, 0) == 18 && px(&img, 0, 0, 3) == 2, "next frame: %g over %g, want 18 over 2", px(&img, 0, 0, 0), px(&img, 0, 0, 3));
+    free(img.pixels);
+    CHECK(vrg_graph_set_param(g, "counter.step", 5000) != 0, "out of range accepted");
+    CHECK(vrg_graph_set_param(g, "counter.nope", 1) != 0, "unknown parameter accepted");
+    CHECK(vrg_graph_set_param(g, "nobody.step", 1) != 0, "unknown pass accepted");
+    CHECK(vrg_graph_set_param(g, "mean.max_frames", 2.5) != 0, "a fraction for an integer accepted");
+    vrg_graph_destroy(g);
+}
+
 /* With a sun radius > 0 the penumbra widens with the occluder's distance:
  * the 12-high wall's is wider than the 4-high wall's. */
 static void test_light_penumbra(void)
@@ -1961,7 +1987,7 @@ int main(int argc, char **argv)
         {"svgf_edge", test_svgf_edge, 1}, {"accumulate_mean", test_accumulate_mean, 1},
         {"svgf_atrous_options", test_svgf_atrous_options, 1}, {"svgf_size_mismatch", test_svgf_size_mismatch, 1},
         {"hot_reload_shader", test_hot_reload_shader, 1}, {"hot_reload_graph", test_hot_reload_graph, 1},
-        {"hot_reload_plugin", test_hot_reload_plugin, 1}, {"soak", test_soak, 1},
+        {"hot_reload_plugin", test_hot_reload_plugin, 1}, {"soak", test_soak, 1}, {"set_param", test_set_param, 1},
         {"light_half_res", test_light_half_res, 1},
         {"light_penumbra", test_light_penumbra, 1},   {"light_corner", test_light_corner, 1},
         {"light_chain", test_light_chain, 1},

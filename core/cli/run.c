@@ -36,6 +36,9 @@ typedef struct window_state {
     int looking;
     double mouse_x, mouse_y;
     int screenshot_requested;
+    int day_toggle;      /* T: start or stop the day cycle */
+    float time_step;     /* [ and ]: hours to step the time of day */
+    float divider;       /* --ab: where A ends, 0..1 of the width */
 } window_state;
 
 static double now_s(void)
@@ -148,6 +151,12 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
         w->speed *= 1.5f;
     else if (key == GLFW_KEY_MINUS || key == GLFW_KEY_KP_SUBTRACT)
         w->speed /= 1.5f;
+    else if (key == GLFW_KEY_T)
+        w->day_toggle = 1;
+    else if (key == GLFW_KEY_LEFT_BRACKET)
+        w->time_step -= 0.5f;
+    else if (key == GLFW_KEY_RIGHT_BRACKET)
+        w->time_step += 0.5f;
 }
 
 static void on_scroll(GLFWwindow *win, double dx, double dy)
@@ -157,8 +166,11 @@ static void on_scroll(GLFWwindow *win, double dx, double dy)
     w->speed *= dy > 0 ? 1.25f : 0.8f;
 }
 
-/* One presentation: the graph's output blitted onto the next swapchain image. */
-static int present(window_state *w, VkImage src, VkExtent2D src_ext)
+static vrg_graph *both_graphs(vrg_graph *a, vrg_graph *b, int k) { return k ? b : a; }
+
+/* One presentation: the graph's output blitted onto the next swapchain
+ * image; with a second source (--ab), A left of the divider and B right. */
+static int present(window_state *w, VkImage src, VkExtent2D src_ext, VkImage src_b, VkExtent2D ext_b)
 {
     VkDevice dev = w->dev->device;
     uint32_t index;
@@ -185,13 +197,29 @@ static int present(window_state *w, VkImage src, VkExtent2D src_ext)
     };
     VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .imageMemoryBarrierCount = 1, .pImageMemoryBarriers = &to_dst};
     vkCmdPipelineBarrier2(w->cmd, &dep);
-    VkImageBlit blit = {
-        .srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-        .srcOffsets = {{0, 0, 0}, {(int32_t)src_ext.width, (int32_t)src_ext.height, 1}},
-        .dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-        .dstOffsets = {{0, 0, 0}, {(int32_t)w->sc.extent.width, (int32_t)w->sc.extent.height, 1}},
-    };
-    vkCmdBlitImage(w->cmd, src, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+    float split = src_b ? w->divider : 1.0f;
+    int32_t dw = (int32_t)w->sc.extent.width, dh = (int32_t)w->sc.extent.height, dsplit = (int32_t)(split * (float)dw);
+    if (dsplit > 0) {
+        VkImageBlit blit = {
+            .srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+            .srcOffsets = {{0, 0, 0}, {(int32_t)(split * (float)src_ext.width), (int32_t)src_ext.height, 1}},
+            .dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+            .dstOffsets = {{0, 0, 0}, {dsplit, dh, 1}},
+        };
+        if (blit.srcOffsets[1].x > 0)
+            vkCmdBlitImage(w->cmd, src, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+    }
+    if (src_b && dsplit < dw) {
+        VkImageBlit blit = {
+            .srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+            .srcOffsets = {{(int32_t)(split * (float)ext_b.width), 0, 0}, {(int32_t)ext_b.width, (int32_t)ext_b.height, 1}},
+            .dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+            .dstOffsets = {{dsplit, 0, 0}, {dw, dh, 1}},
+        };
+        if (blit.srcOffsets[0].x < blit.srcOffsets[1].x)
+            vkCmdBlitImage(w->cmd, src_b, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit,
+                           VK_FILTER_LINEAR);
+    }
     VkImageMemoryBarrier2 to_present = to_dst;
     to_present.srcStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
     to_present.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
@@ -231,13 +259,14 @@ int vrg_cli_run(const vrg_run_options *o)
         glfwTerminate();
         return 1;
     }
-    window_state w = {.speed = 8.0f};
+    window_state w = {.speed = 8.0f, .divider = 0.5f};
     uint32_t next = 0;
     const char **exts = glfwGetRequiredInstanceExtensions(&next);
     vrg_context_desc cd = {.validate = o->validate, .device = o->device, .instance_extensions = exts, .instance_extension_count = next,
                            .swapchain = 1};
     int rc = 1;
-    vrg_graph *g = NULL;
+    vrg_graph *g = NULL, *gb = NULL;
+    FILE *record = NULL;
     if (vrg_context_create(&cd, &w.ctx) != 0)
         goto out;
     w.dev = vrg_context_device(w.ctx);
@@ -278,6 +307,18 @@ int vrg_cli_run(const vrg_run_options *o)
     if (vrg_graph_load(w.ctx, &d, &g) != 0)
         goto out;
     vrg_graph_watch(g, 1); /* hot reload is what the window is for */
+    if (o->ab) { /* B: its own graph file, the same size and camera */
+        vrg_graph_desc db = {.path = o->ab, .width = o->width, .height = o->height};
+        if (vrg_graph_load(w.ctx, &db, &gb) != 0)
+            goto out;
+        vrg_graph_watch(gb, 1);
+    }
+    if (o->record && !(record = fopen(o->record, "w"))) {
+        fprintf(stderr, "error: cannot write the camera path %s\n", o->record);
+        goto out;
+    }
+    if (record)
+        fprintf(record, "# recorded by voxrg run %s\n# time  x y z  yaw pitch\n", o->graph);
     vrg_camera_path path = {0};
     if (o->camera && vrg_camera_path_load(o->camera, &path, stderr) != 0)
         goto out;
@@ -294,13 +335,36 @@ int vrg_cli_run(const vrg_run_options *o)
             vrg_camera_path_eval(&path, (float)(frames * vrg_graph_frame_seconds(g)), &cam);
         else
             fly(&w, &cam, dt);
-        vrg_graph_set_camera(g, &cam);
-        if (vrg_graph_frame(g) != 0) {
-            rc = 1;
-            break;
+        if (record)
+            fprintf(record, "%.4f  %.3f %.3f %.3f  %.2f %.2f\n", frames * vrg_graph_frame_seconds(g), cam.position[0], cam.position[1],
+                    cam.position[2], cam.yaw, cam.pitch);
+        if (gb && glfwGetMouseButton(w.window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) { /* drag the divider */
+            int ww, wh;
+            double mx, my;
+            glfwGetWindowSize(w.window, &ww, &wh);
+            glfwGetCursorPos(w.window, &mx, &my);
+            w.divider = ww > 0 ? (float)(mx / ww) : 0.5f;
+            w.divider = w.divider < 0 ? 0 : w.divider > 1 ? 1 : w.divider;
         }
+        vrg_graph *both[2] = {g, gb};
+        for (int k = 0; k < 2 && both[k]; k++) {
+            double v;
+            if (w.day_toggle && vrg_graph_get_param(both[k], "scene.day_length", &v) == 0)
+                vrg_graph_set_param(both[k], "scene.day_length", v > 0 ? 0 : 120); /* a day in two minutes */
+            if (w.time_step != 0 && vrg_graph_get_param(both[k], "scene.time_of_day", &v) == 0)
+                vrg_graph_set_param(both[k], "scene.time_of_day", fmod(v + w.time_step + 24.0, 24.0));
+            vrg_graph_set_camera(both[k], &cam);
+            if (vrg_graph_frame(both[k]) != 0)
+                rc = 1;
+        }
+        w.day_toggle = 0;
+        w.time_step = 0;
+        if (rc)
+            break;
         if (vrg_graph_source_changed(g))
             (void)vrg_graph_reload(&g); /* a broken graph or plugin is reported; the running one stays */
+        if (gb && vrg_graph_source_changed(gb))
+            (void)vrg_graph_reload(&gb);
         if (vrg_graph_reload_ms(g) != reloaded) {
             reloaded = vrg_graph_reload_ms(g);
             fprintf(stderr, "reloaded: %.0f ms from save to frame\n", reloaded);
@@ -323,14 +387,15 @@ int vrg_cli_run(const vrg_run_options *o)
             }
             w.screenshot_requested = 0;
         }
-        VkImage src;
-        VkExtent2D ext;
+        VkImage src, src_b = VK_NULL_HANDLE;
+        VkExtent2D ext, ext_b = {0, 0};
         VkFormat fmt;
-        if (vrg_graph_image(g, vrg_graph_output(g), &src, &ext, &fmt) != 0) {
+        if (vrg_graph_image(g, vrg_graph_output(g), &src, &ext, &fmt) != 0 ||
+            (gb && vrg_graph_image(gb, vrg_graph_output(gb), &src_b, &ext_b, &fmt) != 0)) {
             rc = 1;
             break;
         }
-        int pr = present(&w, src, ext);
+        int pr = present(&w, src, ext, src_b, ext_b);
         if (pr < 0) {
             fprintf(stderr, "error: presenting to the window failed\n");
             rc = 1;
@@ -340,18 +405,25 @@ int vrg_cli_run(const vrg_run_options *o)
         glfwGetFramebufferSize(w.window, &fw, &fh);
         if (pr > 0 || (fw > 0 && fh > 0 && ((uint32_t)fw != w.sc.extent.width || (uint32_t)fh != w.sc.extent.height))) {
             vkDeviceWaitIdle(w.dev->device);
-            if (create_swapchain(&w, w.sc.handle) < 0 || vrg_graph_resize(g, w.sc.extent.width, w.sc.extent.height) != 0) {
+            if (create_swapchain(&w, w.sc.handle) < 0 || vrg_graph_resize(g, w.sc.extent.width, w.sc.extent.height) != 0 ||
+                (gb && vrg_graph_resize(gb, w.sc.extent.width, w.sc.extent.height) != 0)) {
                 rc = 1;
                 break;
             }
         }
         if (t - title_at > 0.5) { /* until the overlay exists: the figures in the title */
-            double gpu = 0;
-            for (uint32_t i = 0; i < vrg_graph_pass_count(g); i++)
-                gpu += vrg_graph_pass_ms(g, i) > 0 ? vrg_graph_pass_ms(g, i) : 0;
-            char title[512];
-            snprintf(title, sizeof title, "voxrg - %s - %.1f fps, %.1f ms GPU%s", o->graph, dt > 0 ? 1.0 / dt : 0.0, gpu,
-                     vrg_graph_reload_error(g) ? " - reload error (see terminal)" : "");
+            double gpu[2] = {0, 0};
+            for (int k = 0; k < 2 && both_graphs(g, gb, k); k++)
+                for (uint32_t i = 0; i < vrg_graph_pass_count(both_graphs(g, gb, k)); i++) {
+                    double ms = vrg_graph_pass_ms(both_graphs(g, gb, k), i);
+                    gpu[k] += ms > 0 ? ms : 0;
+                }
+            char title[768];
+            int n = snprintf(title, sizeof title, "voxrg - %s - %.1f fps, %.1f ms GPU", o->graph, dt > 0 ? 1.0 / dt : 0.0, gpu[0]);
+            if (gb)
+                n += snprintf(title + n, sizeof title - (size_t)n, " | B: %s - %.1f ms GPU", o->ab, gpu[1]);
+            snprintf(title + n, sizeof title - (size_t)n, "%s",
+                     vrg_graph_reload_error(g) || (gb && vrg_graph_reload_error(gb)) ? " - reload error (see terminal)" : "");
             glfwSetWindowTitle(w.window, title);
             title_at = t;
         }
@@ -361,6 +433,7 @@ out:
     if (w.dev) {
         vkDeviceWaitIdle(w.dev->device);
         vrg_graph_destroy(g);
+        vrg_graph_destroy(gb);
         vkDestroyFence(w.dev->device, w.done, NULL);
         vkDestroySemaphore(w.dev->device, w.acquired, NULL);
         vkDestroySemaphore(w.dev->device, w.rendered, NULL);
@@ -370,6 +443,8 @@ out:
         if (w.surface)
             vkDestroySurfaceKHR(w.dev->instance, w.surface, NULL);
     }
+    if (record && fclose(record) == 0)
+        fprintf(stderr, "wrote %s\n", o->record);
     if (w.window)
         glfwDestroyWindow(w.window);
     if (w.ctx) {

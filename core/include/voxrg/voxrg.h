@@ -108,6 +108,14 @@ const char *vrg_graph_reload_error(const vrg_graph *g);
 /* Milliseconds from the save (the file's mtime) to the end of the first
  * frame that used it, for the last reload; -1 if none. */
 double vrg_graph_reload_ms(const vrg_graph *g);
+/* Sets a numeric parameter while the graph runs ("pass.param", the --set
+ * syntax), checked against its type and range; passes see it from the next
+ * frame on, with frame params_changed set once (history stays valid,
+ * accumulations restart). Passes that read a parameter only in create()
+ * (e.g. the terrain's radius) need a reload instead: edit the file. */
+int vrg_graph_set_param(vrg_graph *g, const char *pass_param, double value);
+/* The value in effect (numeric parameters; strings read as 0). */
+int vrg_graph_get_param(vrg_graph *g, const char *pass_param, double *value);
 /* While watching: the graph file was saved since it was loaded. */
 int vrg_graph_source_changed(const vrg_graph *g);
 /* Loads the graph's file again. On any error the running graph stays (*g is
