@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include "overlay.h"
 #include "run.h"
 #include "voxrg/camera.h"
 #include "voxrg/voxrg.h"
@@ -39,7 +40,52 @@ typedef struct window_state {
     int day_toggle;      /* T: start or stop the day cycle */
     float time_step;     /* [ and ]: hours to step the time of day */
     float divider;       /* --ab: where A ends, 0..1 of the width */
+    int hide_overlay;    /* H */
+    int srgb;            /* the output holds linear values: let the swapchain encode them */
+    /* host-visible staging: the overlay panel, and screenshots of what is shown */
+    VkBuffer staging;
+    VkDeviceMemory staging_memory;
+    uint8_t *staging_map;
+    VkDeviceSize staging_size;
+    vrg_overlay overlay;
 } window_state;
+
+#define OVERLAY_MAX_W 1024u
+#define OVERLAY_MAX_H 512u
+
+/* The staging buffer holds the overlay panel first, then a screenshot. */
+static int ensure_staging(window_state *w, VkDeviceSize size)
+{
+    if (w->staging_size >= size)
+        return 0;
+    VkDevice dev = w->dev->device;
+    if (w->staging) {
+        vkUnmapMemory(dev, w->staging_memory);
+        vkDestroyBuffer(dev, w->staging, NULL);
+        vkFreeMemory(dev, w->staging_memory, NULL);
+    }
+    VkBufferCreateInfo bi = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = size,
+                             .usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT};
+    vkCreateBuffer(dev, &bi, NULL, &w->staging);
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(dev, w->staging, &req);
+    VkPhysicalDeviceMemoryProperties mp;
+    vkGetPhysicalDeviceMemoryProperties(w->dev->physical_device, &mp);
+    uint32_t type = UINT32_MAX;
+    VkMemoryPropertyFlags want = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    for (uint32_t i = 0; i < mp.memoryTypeCount && type == UINT32_MAX; i++)
+        if ((req.memoryTypeBits & (1u << i)) && (mp.memoryTypes[i].propertyFlags & want) == want)
+            type = i;
+    VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size, .memoryTypeIndex = type};
+    if (type == UINT32_MAX || vkAllocateMemory(dev, &ai, NULL, &w->staging_memory) != VK_SUCCESS) {
+        fprintf(stderr, "error: no host-visible memory for the window's staging buffer\n");
+        return -1;
+    }
+    vkBindBufferMemory(dev, w->staging, w->staging_memory, 0);
+    vkMapMemory(dev, w->staging_memory, 0, VK_WHOLE_SIZE, 0, (void **)&w->staging_map);
+    w->staging_size = size;
+    return 0;
+}
 
 static double now_s(void)
 {
@@ -58,10 +104,13 @@ static int create_swapchain(window_state *w, VkSwapchainKHR old)
     VkSurfaceFormatKHR formats[64];
     nf = nf > 64 ? 64 : nf;
     vkGetPhysicalDeviceSurfaceFormatsKHR(pd, w->surface, &nf, formats);
-    /* UNORM: the graph's output is already display-encoded (tonemap writes sRGB values) */
+    /* 8-bit UNORM outputs are display-encoded already (tonemap writes sRGB
+     * values): a UNORM swapchain. Float outputs hold linear values: an SRGB
+     * swapchain encodes them in the blit, as the PNG writer does. */
     VkSurfaceFormatKHR fmt = formats[0];
     for (uint32_t i = 0; i < nf; i++)
-        if (formats[i].format == VK_FORMAT_B8G8R8A8_UNORM || formats[i].format == VK_FORMAT_R8G8B8A8_UNORM) {
+        if (w->srgb ? formats[i].format == VK_FORMAT_B8G8R8A8_SRGB || formats[i].format == VK_FORMAT_R8G8B8A8_SRGB
+                    : formats[i].format == VK_FORMAT_B8G8R8A8_UNORM || formats[i].format == VK_FORMAT_R8G8B8A8_UNORM) {
             fmt = formats[i];
             break;
         }
@@ -81,7 +130,7 @@ static int create_swapchain(window_state *w, VkSwapchainKHR old)
         .imageColorSpace = fmt.colorSpace,
         .imageExtent = ext,
         .imageArrayLayers = 1,
-        .imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+        .imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, /* blits in, screenshots out */
         .imageSharingMode = VK_SHARING_MODE_EXCLUSIVE,
         .preTransform = caps.currentTransform,
         .compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR,
@@ -153,6 +202,8 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
         w->speed /= 1.5f;
     else if (key == GLFW_KEY_T)
         w->day_toggle = 1;
+    else if (key == GLFW_KEY_H)
+        w->hide_overlay = !w->hide_overlay;
     else if (key == GLFW_KEY_LEFT_BRACKET)
         w->time_step -= 0.5f;
     else if (key == GLFW_KEY_RIGHT_BRACKET)
@@ -170,7 +221,7 @@ static vrg_graph *both_graphs(vrg_graph *a, vrg_graph *b, int k) { return k ? b 
 
 /* One presentation: the graph's output blitted onto the next swapchain
  * image; with a second source (--ab), A left of the divider and B right. */
-static int present(window_state *w, VkImage src, VkExtent2D src_ext, VkImage src_b, VkExtent2D ext_b)
+static int present(window_state *w, VkImage src, VkExtent2D src_ext, VkImage src_b, VkExtent2D ext_b, const char *screenshot)
 {
     VkDevice dev = w->dev->device;
     uint32_t index;
@@ -220,12 +271,42 @@ static int present(window_state *w, VkImage src, VkExtent2D src_ext, VkImage src
             vkCmdBlitImage(w->cmd, src_b, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit,
                            VK_FILTER_LINEAR);
     }
+    /* the overlay panel over the top-left corner (after the blits: a write
+     * after a write) */
+    uint32_t pw = 0, ph = 0;
+    if (!w->hide_overlay && w->overlay.lines) {
+        uint32_t max_w = w->sc.extent.width < OVERLAY_MAX_W ? w->sc.extent.width : OVERLAY_MAX_W;
+        uint32_t max_h = w->sc.extent.height < OVERLAY_MAX_H ? w->sc.extent.height : OVERLAY_MAX_H;
+        vrg_overlay_draw(&w->overlay, w->staging_map, max_w, max_h, &pw, &ph);
+        VkImageMemoryBarrier2 waw = to_dst;
+        waw.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        waw.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+        dep.pImageMemoryBarriers = &waw;
+        vkCmdPipelineBarrier2(w->cmd, &dep);
+        VkBufferImageCopy region = {.bufferRowLength = pw, .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {pw, ph, 1}};
+        vkCmdCopyBufferToImage(w->cmd, w->staging, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    }
+    VkImageLayout layout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    VkDeviceSize shot_at = (VkDeviceSize)OVERLAY_MAX_W * OVERLAY_MAX_H * 4;
+    if (screenshot) { /* what the window shows: both halves and the overlay */
+        VkImageMemoryBarrier2 to_src = to_dst;
+        to_src.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        to_src.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
+        to_src.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+        to_src.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+        dep.pImageMemoryBarriers = &to_src;
+        vkCmdPipelineBarrier2(w->cmd, &dep);
+        VkBufferImageCopy region = {.bufferOffset = shot_at, .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                                    .imageExtent = {w->sc.extent.width, w->sc.extent.height, 1}};
+        vkCmdCopyImageToBuffer(w->cmd, dst, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, w->staging, 1, &region);
+        layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    }
     VkImageMemoryBarrier2 to_present = to_dst;
     to_present.srcStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
-    to_present.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    to_present.srcAccessMask = screenshot ? 0 : VK_ACCESS_2_TRANSFER_WRITE_BIT;
     to_present.dstStageMask = VK_PIPELINE_STAGE_2_NONE;
     to_present.dstAccessMask = 0;
-    to_present.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    to_present.oldLayout = layout;
     to_present.newLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
     dep.pImageMemoryBarriers = &to_present;
     vkCmdPipelineBarrier2(w->cmd, &dep);
@@ -245,7 +326,65 @@ static int present(window_state *w, VkImage src, VkExtent2D src_ext, VkImage src
     res = vkQueuePresentKHR(w->dev->queue, &pi);
     /* the blit reads the graph's output: done before the graph writes it again */
     vkWaitForFences(dev, 1, &w->done, VK_TRUE, UINT64_MAX);
+    if (screenshot) {
+        uint32_t sw = w->sc.extent.width, sh = w->sc.extent.height;
+        int bgr = w->sc.format == VK_FORMAT_B8G8R8A8_UNORM || w->sc.format == VK_FORMAT_B8G8R8A8_SRGB;
+        vrg_image_data img = {.width = sw, .height = sh, .channels = 4, .format = VK_FORMAT_R8G8B8A8_UNORM,
+                              .pixels = malloc(sizeof(float) * 4 * sw * sh)};
+        const uint8_t *px = w->staging_map + shot_at;
+        for (size_t i = 0; img.pixels && i < (size_t)sw * sh; i++)
+            for (int c = 0; c < 4; c++)
+                img.pixels[4 * i + c] = (float)px[4 * i + (bgr && c < 3 ? 2 - c : c)] / 255.0f;
+        if (img.pixels && vrg_write_png(screenshot, &img) == 0)
+            fprintf(stderr, "wrote %s\n", screenshot);
+        else
+            fprintf(stderr, "error: cannot write %s\n", screenshot);
+        free(img.pixels);
+    }
     return res == VK_ERROR_OUT_OF_DATE_KHR || res == VK_SUBOPTIMAL_KHR ? 1 : res == VK_SUCCESS ? 0 : -1;
+}
+
+/* The overlay's lines: rates, per-pass GPU ms, what is shown, reloads. */
+static void fill_overlay(window_state *w, const vrg_run_options *o, vrg_graph *g, vrg_graph *gb, float dt)
+{
+    static double smooth_ms = 0;
+    smooth_ms = smooth_ms > 0 ? 0.9 * smooth_ms + 0.1 * dt * 1e3 : dt * 1e3;
+    vrg_overlay *ov = &w->overlay;
+    char line[160];
+    vrg_overlay_clear(ov);
+    snprintf(line, sizeof line, "%s   %.1f fps   frame %.1f ms", o->graph, smooth_ms > 0 ? 1e3 / smooth_ms : 0.0, smooth_ms);
+    vrg_overlay_line(ov, line);
+    for (int k = 0; k < 2; k++) {
+        vrg_graph *x = k ? gb : g;
+        if (!x)
+            continue;
+        double sum = 0;
+        for (uint32_t i = 0; i < vrg_graph_pass_count(x); i++)
+            sum += vrg_graph_pass_ms(x, i) > 0 ? vrg_graph_pass_ms(x, i) : 0;
+        snprintf(line, sizeof line, "%s%s: gpu %.1f ms, shown: %s", k ? "B " : gb ? "A " : "", k ? o->ab : "graph", sum, vrg_graph_output(x));
+        vrg_overlay_line(ov, line);
+        for (uint32_t i = 0; i < vrg_graph_pass_count(x) && ov->lines < VRG_OVERLAY_LINES - 6; i++)
+            if (vrg_graph_pass_ms(x, i) >= 0) {
+                snprintf(line, sizeof line, "  %-18s %7.2f ms", vrg_graph_pass_name(x, i), vrg_graph_pass_ms(x, i));
+                vrg_overlay_line(ov, line);
+            }
+    }
+    if (vrg_graph_reload_ms(g) >= 0) {
+        snprintf(line, sizeof line, "reloaded: %.0f ms from save to frame", vrg_graph_reload_ms(g));
+        vrg_overlay_line(ov, line);
+    }
+    const char *err = vrg_graph_reload_error(g) ? vrg_graph_reload_error(g) : gb ? vrg_graph_reload_error(gb) : NULL;
+    if (err) { /* its first lines: FILE:LINE: error: ... */
+        vrg_overlay_line(ov, "reload error (the last good version runs):");
+        for (int n = 0; *err && n < 3; n++) {
+            const char *end = strchr(err, '\n');
+            size_t len = end ? (size_t)(end - err) : strlen(err);
+            snprintf(line, sizeof line, "  %.*s", (int)(len < 150 ? len : 150), err);
+            vrg_overlay_line(ov, line);
+            err += len + (end ? 1 : 0);
+        }
+    }
+    vrg_overlay_line(ov, "wasd space shift, right mouse: look, t [ ]: day, p: shot, h: hide, esc");
 }
 
 int vrg_cli_run(const vrg_run_options *o)
@@ -289,8 +428,6 @@ int vrg_cli_run(const vrg_run_options *o)
         fprintf(stderr, "error: device '%s' cannot present to this window: use `voxrg render %s`\n", w.dev->name, o->graph);
         goto out;
     }
-    if (create_swapchain(&w, VK_NULL_HANDLE) != 0)
-        goto out;
     VkCommandPoolCreateInfo pci = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
                                    .queueFamilyIndex = w.dev->queue_family};
     vkCreateCommandPool(w.dev->device, &pci, NULL, &w.pool);
@@ -319,6 +456,18 @@ int vrg_cli_run(const vrg_run_options *o)
     }
     if (record)
         fprintf(record, "# recorded by voxrg run %s\n# time  x y z  yaw pitch\n", o->graph);
+    {
+        VkImage img;
+        VkExtent2D e;
+        VkFormat f = VK_FORMAT_UNDEFINED;
+        /* the output's format decides the swapchain's: known after a frame */
+        if (vrg_graph_frame(g) != 0 || vrg_graph_image(g, vrg_graph_output(g), &img, &e, &f) != 0)
+            goto out;
+        w.srgb = !(f == VK_FORMAT_R8G8B8A8_UNORM || f == VK_FORMAT_B8G8R8A8_UNORM || f == VK_FORMAT_R8G8B8A8_SRGB ||
+                   f == VK_FORMAT_B8G8R8A8_SRGB);
+    }
+    if (create_swapchain(&w, VK_NULL_HANDLE) != 0)
+        goto out;
     vrg_camera_path path = {0};
     if (o->camera && vrg_camera_path_load(o->camera, &path, stderr) != 0)
         goto out;
@@ -371,22 +520,13 @@ int vrg_cli_run(const vrg_run_options *o)
         }
         frames++;
         int last_frame = o->frames && (uint32_t)frames == o->frames;
-        if (w.screenshot_requested || (last_frame && o->screenshot)) {
-            char file[1100];
-            if (o->screenshot && last_frame)
-                snprintf(file, sizeof file, "%s", o->screenshot);
-            else
-                snprintf(file, sizeof file, "screenshot-%03d.png", shots++);
-            vrg_image_data img;
-            if (vrg_graph_read(g, vrg_graph_output(g), &img) == 0) {
-                if (vrg_write_png(file, &img) == 0)
-                    fprintf(stderr, "wrote %s\n", file);
-                else
-                    rc = 1;
-                free(img.pixels);
-            }
-            w.screenshot_requested = 0;
-        }
+        char file[1100] = "";
+        if (o->screenshot && last_frame)
+            snprintf(file, sizeof file, "%s", o->screenshot);
+        else if (w.screenshot_requested)
+            snprintf(file, sizeof file, "screenshot-%03d.png", shots++);
+        w.screenshot_requested = 0;
+        fill_overlay(&w, o, g, gb, dt);
         VkImage src, src_b = VK_NULL_HANDLE;
         VkExtent2D ext, ext_b = {0, 0};
         VkFormat fmt;
@@ -395,7 +535,11 @@ int vrg_cli_run(const vrg_run_options *o)
             rc = 1;
             break;
         }
-        int pr = present(&w, src, ext, src_b, ext_b);
+        if (ensure_staging(&w, (VkDeviceSize)OVERLAY_MAX_W * OVERLAY_MAX_H * 4 + (VkDeviceSize)w.sc.extent.width * w.sc.extent.height * 4) != 0) {
+            rc = 1;
+            break;
+        }
+        int pr = present(&w, src, ext, src_b, ext_b, file[0] ? file : NULL);
         if (pr < 0) {
             fprintf(stderr, "error: presenting to the window failed\n");
             rc = 1;
@@ -411,7 +555,7 @@ int vrg_cli_run(const vrg_run_options *o)
                 break;
             }
         }
-        if (t - title_at > 0.5) { /* until the overlay exists: the figures in the title */
+        if (t - title_at > 0.5) { /* the figures in the title too */
             double gpu[2] = {0, 0};
             for (int k = 0; k < 2 && both_graphs(g, gb, k); k++)
                 for (uint32_t i = 0; i < vrg_graph_pass_count(both_graphs(g, gb, k)); i++) {
@@ -440,6 +584,11 @@ out:
         vkDestroyCommandPool(w.dev->device, w.pool, NULL);
         if (w.sc.handle)
             vkDestroySwapchainKHR(w.dev->device, w.sc.handle, NULL);
+        if (w.staging) {
+            vkUnmapMemory(w.dev->device, w.staging_memory);
+            vkDestroyBuffer(w.dev->device, w.staging, NULL);
+            vkFreeMemory(w.dev->device, w.staging_memory, NULL);
+        }
         if (w.surface)
             vkDestroySurfaceKHR(w.dev->instance, w.surface, NULL);
     }
