@@ -209,6 +209,36 @@ panel = sum(px(x, y) == (24, 24, 24) for y in range(0, 30) for x in range(w))
 assert white > 100 and panel > 1000, (white, panel)
 PY
     then ok; else bad "window screenshot shows the scene and the overlay"; fi
+    # another image than the output, through the display stage: normals as colours
+    expect_rc 0 "run --show gbuffer.normal" xvfb-run -a "$voxrg" run "$tests/graphs/gbuffer_blocks.ini" --show gbuffer.normal --validate \
+        --size 192x128 --frames 3 --screenshot "$out/normals.png"
+    if python3 - "$out/normals.png" <<'PY'
+import struct, sys, zlib
+data = open(sys.argv[1], "rb").read()
+w, h, depth, ctype = struct.unpack(">IIBB", data[16:26])
+idat, i = b"", 8
+while i < len(data):
+    n = struct.unpack(">I", data[i:i + 4])[0]
+    if data[i + 4:i + 8] == b"IDAT":
+        idat += data[i + 8:i + 8 + n]
+    i += 12 + n
+raw, bpp = zlib.decompress(idat), 3 if ctype == 2 else 4
+rows, prev = [], bytearray(w * bpp)
+for y in range(h):
+    f, line = raw[y * (w * bpp + 1)], bytearray(raw[y * (w * bpp + 1) + 1:(y + 1) * (w * bpp + 1)])
+    for x in range(w * bpp):
+        a = line[x - bpp] if x >= bpp else 0
+        b, c = prev[x], prev[x - bpp] if x >= bpp else 0
+        p = a + b - c
+        pred = [0, a, b, (a + b) // 2, a if abs(p - a) <= abs(p - b) and abs(p - a) <= abs(p - c) else b if abs(p - b) <= abs(p - c) else c][f]
+        line[x] = (line[x] + pred) & 255
+    rows.append(line)
+    prev = line
+floor = tuple(rows[110][96 * bpp:96 * bpp + 3])  # the floor: normal (0, 1, 0) -> (0.5, 1, 0.5)
+assert all(abs(a - b) <= 3 for a, b in zip(floor, (128, 255, 128))), floor
+PY
+    then ok; else bad "--show gbuffer.normal shows the floor's normal"; fi
+    expect_rc 1 "run --show of an unknown image" xvfb-run -a "$voxrg" run "$tests/graphs/gbuffer_blocks.ini" --show nonesuch --frames 1
     expect_rc 0 "run --ab and --record under Xvfb" xvfb-run -a "$voxrg" run "$tests/graphs/blocks_wall.ini" --ab "$tests/graphs/blocks_wall.ini" \
         --validate --size 96x64 --frames 3 --record "$out/flight.path"
     expect_rc 0 "a recorded flight plays back" "$voxrg" render "$tests/graphs/blocks_wall.ini" --camera "$out/flight.path" --frames 3 --out "$out/flight"

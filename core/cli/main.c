@@ -53,7 +53,7 @@ static const char *usage_plugins =
     "<exe>/../lib/voxrg/plugins), or NAME's slots and parameters.\n";
 
 typedef struct options {
-    const char *graph, *dot, *out, *json, *device, *camera, *screenshot, *ab, *record;
+    const char *graph, *dot, *out, *json, *device, *camera, *screenshot, *ab, *record, *show;
     const char *sets[MAX_SETS];
     int set_count;
     const char *dumps[MAX_DUMPS];
@@ -87,7 +87,7 @@ static int parse_size(const char *s, uint32_t *w, uint32_t *h)
 
 static int is_valued_option(const char *a)
 {
-    static const char *valued[] = {"--dot", "--out", "--json", "--device", "--set", "--size", "--frames", "--dump", "--camera", "--screenshot", "--ab", "--record"};
+    static const char *valued[] = {"--dot", "--out", "--json", "--device", "--set", "--size", "--frames", "--dump", "--camera", "--screenshot", "--ab", "--record", "--show"};
     for (size_t i = 0; i < sizeof valued / sizeof valued[0]; i++)
         if (!strcmp(a, valued[i]))
             return 1;
@@ -132,6 +132,8 @@ static int parse_options(int argc, char **argv, options *o, const char *usage)
             o->ab = next;
         else if (!strcmp(a, "--record"))
             o->record = next;
+        else if (!strcmp(a, "--show"))
+            o->show = next;
         else if (!strcmp(a, "--set")) {
             if (o->set_count == MAX_SETS)
                 return usage_error(usage, "too many --set options%s", "");
@@ -405,14 +407,18 @@ static int cmd_render(int argc, char **argv)
 
 static const char *usage_run =
     "usage: voxrg run GRAPH [--ab GRAPH_B] [--size WxH] [--frames N] [--set PASS.PARAM=VALUE]...\n"
-    "                       [--camera PATH] [--record PATH] [--screenshot FILE] [--validate] [--device NAME|INDEX]\n"
+    "                       [--camera PATH] [--record PATH] [--show RESOURCE] [--screenshot FILE] [--validate]\n"
+    "                       [--device NAME|INDEX]\n"
     "Renders GRAPH in a window until it is closed (or for N frames), presenting its output.\n"
     "W/A/S/D move, Space up, Shift down, hold the right mouse button to look around,\n"
     "scroll or +/- change the speed, T starts or stops the day cycle, [ and ] step the\n"
     "time of day, P or F12 saves screenshot-NNN.png, Esc quits. --ab renders GRAPH_B\n"
     "every frame with the same camera and shows it right of a divider (drag it with the\n"
     "left mouse button); give both the same [scene]. --record writes the flight as a\n"
-    "camera path (graphs/paths/*.path format).\n"
+    "camera path (graphs/paths/*.path format). Tab / Shift+Tab or 1-9 show the graph's\n"
+    "other images (0: the output) the way they read best: normals as colours, depth\n"
+    "near-bright, motion as hue, history length and variance as grey; --show NAME\n"
+    "starts with one.\n"
     "Saved shaders, the graph file and rebuilt plugins reload while it runs; errors\n"
     "are printed with FILE:LINE and the last good version keeps running. --camera\n"
     "plays a camera path instead of the fly camera; --screenshot writes the last of\n"
@@ -432,6 +438,7 @@ static int cmd_run(int argc, char **argv)
     if (o.screenshot && !frames_given)
         return usage_error(usage_run, "--screenshot needs --frames N (the frame it is taken after)%s", "");
     vrg_run_options r = {.graph = o.graph, .device = o.device, .camera = o.camera, .screenshot = o.screenshot, .ab = o.ab, .record = o.record,
+                         .show = o.show,
                          .sets = o.sets,
                          .set_count = (uint32_t)o.set_count, .width = o.width ? o.width : 960, .height = o.height ? o.height : 540,
                          .frames = frames_given ? o.frames : 0, .validate = o.validate};

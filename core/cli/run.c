@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include "bench.h" /* vrg_source_dir */
 #include "overlay.h"
 #include "run.h"
 #include "voxrg/camera.h"
@@ -48,6 +49,24 @@ typedef struct window_state {
     uint8_t *staging_map;
     VkDeviceSize staging_size;
     vrg_overlay overlay;
+    /* showing a resource other than the output: Tab / Shift+Tab / 0-9 */
+    int shown;                /* index into vrg_graph_image_name, -1: the output */
+    int shown_step;           /* pending key */
+    char shown_name[160];
+    struct {
+        VkExtent2D extent;
+        VkImage tmp, out;     /* the resource as rgba32f (blit), the visualisation */
+        VkDeviceMemory tmp_mem, out_mem;
+        VkImageView tmp_view, out_view;
+        VkSampler sampler;
+        VkDescriptorSetLayout set_layout;
+        VkPipelineLayout layout;
+        VkPipeline pipeline;
+        VkDescriptorPool pool;
+        VkDescriptorSet set;
+        int mode, channel;
+        float scale;
+    } disp;
 } window_state;
 
 #define OVERLAY_MAX_W 1024u
@@ -188,7 +207,7 @@ static void fly(window_state *w, vrg_camera *cam, float dt)
 
 static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
 {
-    (void)scancode, (void)mods;
+    (void)scancode;
     window_state *w = glfwGetWindowUserPointer(win);
     if (action != GLFW_PRESS)
         return;
@@ -204,6 +223,10 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
         w->day_toggle = 1;
     else if (key == GLFW_KEY_H)
         w->hide_overlay = !w->hide_overlay;
+    else if (key == GLFW_KEY_TAB)
+        w->shown_step = mods & GLFW_MOD_SHIFT ? -1 : 1;
+    else if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9)
+        w->shown = key - GLFW_KEY_0 - 1, w->shown_step = 0; /* 0: the output, 1..9: the list */
     else if (key == GLFW_KEY_LEFT_BRACKET)
         w->time_step -= 0.5f;
     else if (key == GLFW_KEY_RIGHT_BRACKET)
@@ -219,9 +242,168 @@ static void on_scroll(GLFWwindow *win, double dx, double dy)
 
 static vrg_graph *both_graphs(vrg_graph *a, vrg_graph *b, int k) { return k ? b : a; }
 
+static int image_memory(window_state *w, VkImage image, VkDeviceMemory *mem)
+{
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(w->dev->device, image, &req);
+    VkPhysicalDeviceMemoryProperties mp;
+    vkGetPhysicalDeviceMemoryProperties(w->dev->physical_device, &mp);
+    for (uint32_t i = 0; i < mp.memoryTypeCount; i++)
+        if ((req.memoryTypeBits & (1u << i)) && (mp.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) {
+            VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size, .memoryTypeIndex = i};
+            if (vkAllocateMemory(w->dev->device, &ai, NULL, mem) != VK_SUCCESS)
+                return -1;
+            return vkBindImageMemory(w->dev->device, image, *mem, 0) == VK_SUCCESS ? 0 : -1;
+        }
+    return -1;
+}
+
+static void display_free_images(window_state *w)
+{
+    VkDevice dev = w->dev->device;
+    vkDestroyImageView(dev, w->disp.tmp_view, NULL);
+    vkDestroyImageView(dev, w->disp.out_view, NULL);
+    vkDestroyImage(dev, w->disp.tmp, NULL);
+    vkDestroyImage(dev, w->disp.out, NULL);
+    vkFreeMemory(dev, w->disp.tmp_mem, NULL);
+    vkFreeMemory(dev, w->disp.out_mem, NULL);
+    w->disp.tmp = w->disp.out = VK_NULL_HANDLE;
+    w->disp.tmp_view = w->disp.out_view = VK_NULL_HANDLE;
+    w->disp.tmp_mem = w->disp.out_mem = VK_NULL_HANDLE;
+    w->disp.extent = (VkExtent2D){0, 0};
+}
+
+/* The display stage's pipeline (shaders/display.comp) and, for this size,
+ * its two images. */
+static int display_prepare(window_state *w, VkExtent2D ext, const char *source_dir)
+{
+    VkDevice dev = w->dev->device;
+    if (!w->disp.pipeline) {
+        char path[1100];
+        snprintf(path, sizeof path, "%s/shaders/display.comp", source_dir);
+        VkShaderModule sm = vrg_compile_compute_shader(w->ctx, path, NULL);
+        if (!sm)
+            return -1;
+        VkDescriptorSetLayoutBinding b[2] = {
+            {.binding = 0, .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, .descriptorCount = 1, .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT},
+            {.binding = 1, .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, .descriptorCount = 1, .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT},
+        };
+        VkDescriptorSetLayoutCreateInfo sli = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO, .bindingCount = 2, .pBindings = b};
+        vkCreateDescriptorSetLayout(dev, &sli, NULL, &w->disp.set_layout);
+        VkPushConstantRange range = {VK_SHADER_STAGE_COMPUTE_BIT, 0, 16};
+        VkPipelineLayoutCreateInfo pli = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, .setLayoutCount = 1,
+                                          .pSetLayouts = &w->disp.set_layout, .pushConstantRangeCount = 1, .pPushConstantRanges = &range};
+        vkCreatePipelineLayout(dev, &pli, NULL, &w->disp.layout);
+        VkComputePipelineCreateInfo ci = {
+            .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+            .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_COMPUTE_BIT, .module = sm, .pName = "main"},
+            .layout = w->disp.layout,
+        };
+        VkResult res = vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &ci, NULL, &w->disp.pipeline);
+        vkDestroyShaderModule(dev, sm, NULL);
+        if (res != VK_SUCCESS)
+            return -1;
+        VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}};
+        VkDescriptorPoolCreateInfo dpi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, .maxSets = 1, .poolSizeCount = 2, .pPoolSizes = sizes};
+        vkCreateDescriptorPool(dev, &dpi, NULL, &w->disp.pool);
+        VkDescriptorSetAllocateInfo dai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO, .descriptorPool = w->disp.pool,
+                                           .descriptorSetCount = 1, .pSetLayouts = &w->disp.set_layout};
+        vkAllocateDescriptorSets(dev, &dai, &w->disp.set);
+        VkSamplerCreateInfo si = {.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO, .magFilter = VK_FILTER_NEAREST, .minFilter = VK_FILTER_NEAREST,
+                                  .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                                  .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE};
+        vkCreateSampler(dev, &si, NULL, &w->disp.sampler);
+    }
+    if (w->disp.extent.width == ext.width && w->disp.extent.height == ext.height)
+        return 0;
+    display_free_images(w);
+    VkImageCreateInfo ii = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, .imageType = VK_IMAGE_TYPE_2D, .format = VK_FORMAT_R32G32B32A32_SFLOAT,
+                            .extent = {ext.width, ext.height, 1}, .mipLevels = 1, .arrayLayers = 1, .samples = VK_SAMPLE_COUNT_1_BIT,
+                            .tiling = VK_IMAGE_TILING_OPTIMAL, .usage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT};
+    if (vkCreateImage(dev, &ii, NULL, &w->disp.tmp) != VK_SUCCESS || image_memory(w, w->disp.tmp, &w->disp.tmp_mem) != 0)
+        return -1;
+    ii.format = VK_FORMAT_R8G8B8A8_UNORM;
+    ii.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    if (vkCreateImage(dev, &ii, NULL, &w->disp.out) != VK_SUCCESS || image_memory(w, w->disp.out, &w->disp.out_mem) != 0)
+        return -1;
+    VkImageViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, .image = w->disp.tmp, .viewType = VK_IMAGE_VIEW_TYPE_2D,
+                                .format = VK_FORMAT_R32G32B32A32_SFLOAT, .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
+    vkCreateImageView(dev, &vi, NULL, &w->disp.tmp_view);
+    vi.image = w->disp.out;
+    vi.format = VK_FORMAT_R8G8B8A8_UNORM;
+    vkCreateImageView(dev, &vi, NULL, &w->disp.out_view);
+    VkDescriptorImageInfo src = {.sampler = w->disp.sampler, .imageView = w->disp.tmp_view, .imageLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkDescriptorImageInfo dst = {.imageView = w->disp.out_view, .imageLayout = VK_IMAGE_LAYOUT_GENERAL};
+    VkWriteDescriptorSet wr[2] = {
+        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = w->disp.set, .dstBinding = 0, .descriptorCount = 1,
+         .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, .pImageInfo = &src},
+        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = w->disp.set, .dstBinding = 1, .descriptorCount = 1,
+         .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, .pImageInfo = &dst},
+    };
+    vkUpdateDescriptorSets(dev, 2, wr, 0, NULL);
+    w->disp.extent = ext;
+    return 0;
+}
+
+static void image_barrier(VkCommandBuffer cmd, VkImage image, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage,
+                          VkAccessFlags2 dst_access, VkImageLayout from, VkImageLayout to)
+{
+    VkImageMemoryBarrier2 b = {.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2, .srcStageMask = src_stage, .srcAccessMask = src_access,
+                               .dstStageMask = dst_stage, .dstAccessMask = dst_access, .oldLayout = from, .newLayout = to, .image = image,
+                               .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
+    VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .imageMemoryBarrierCount = 1, .pImageMemoryBarriers = &b};
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+/* Records the display of src (in TRANSFER_SRC, left so): blit to rgba32f,
+ * visualise into disp.out, which ends in TRANSFER_SRC for the swapchain blit. */
+static void display_record(window_state *w, VkImage src, VkExtent2D ext)
+{
+    VkCommandBuffer cmd = w->cmd;
+    const VkPipelineStageFlags2 xfer = VK_PIPELINE_STAGE_2_TRANSFER_BIT, cs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    image_barrier(cmd, w->disp.tmp, cs, 0, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    VkImageBlit blit = {.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                        .srcOffsets = {{0, 0, 0}, {(int32_t)ext.width, (int32_t)ext.height, 1}},
+                        .dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                        .dstOffsets = {{0, 0, 0}, {(int32_t)ext.width, (int32_t)ext.height, 1}}};
+    vkCmdBlitImage(cmd, src, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, w->disp.tmp, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
+    image_barrier(cmd, w->disp.tmp, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, cs, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    image_barrier(cmd, w->disp.out, xfer, 0, cs, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, w->disp.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, w->disp.layout, 0, 1, &w->disp.set, 0, NULL);
+    struct {
+        int32_t mode, channel;
+        float scale;
+        int32_t linear_out;
+    } pc = {w->disp.mode, w->disp.channel, w->disp.scale, w->srgb};
+    vkCmdPushConstants(cmd, w->disp.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pc, &pc);
+    vkCmdDispatch(cmd, (ext.width + 7) / 8, (ext.height + 7) / 8, 1);
+    image_barrier(cmd, w->disp.out, cs, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, xfer, VK_ACCESS_2_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+}
+
+/* How a resource is best seen, from its name (docs: voxrg run --help). */
+static void display_mode(window_state *w, const char *name)
+{
+    w->disp.mode = 0, w->disp.channel = 0, w->disp.scale = 1;
+    if (strstr(name, "normal"))
+        w->disp.mode = 1;
+    else if (strstr(name, "depth"))
+        w->disp.mode = 2, w->disp.scale = 300;
+    else if (strstr(name, "motion"))
+        w->disp.mode = 3, w->disp.scale = 0.1f;
+    else if (strstr(name, "length"))
+        w->disp.mode = 4, w->disp.scale = 1.0f / 32;
+    else if (strstr(name, "variance"))
+        w->disp.mode = 4, w->disp.channel = 3, w->disp.scale = 20;
+    else if (strstr(name, "position"))
+        w->disp.mode = 5;
+}
+
 /* One presentation: the graph's output blitted onto the next swapchain
  * image; with a second source (--ab), A left of the divider and B right. */
-static int present(window_state *w, VkImage src, VkExtent2D src_ext, VkImage src_b, VkExtent2D ext_b, const char *screenshot)
+static int present(window_state *w, VkImage src, VkExtent2D src_ext, VkImage src_b, VkExtent2D ext_b, const char *screenshot, int via_display)
 {
     VkDevice dev = w->dev->device;
     uint32_t index;
@@ -234,6 +416,10 @@ static int present(window_state *w, VkImage src, VkExtent2D src_ext, VkImage src
     vkResetCommandBuffer(w->cmd, 0);
     VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
     vkBeginCommandBuffer(w->cmd, &bi);
+    if (via_display) { /* a resource other than the output: visualised first */
+        display_record(w, src, src_ext);
+        src = w->disp.out;
+    }
     VkImageSubresourceRange range = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     VkImageMemoryBarrier2 to_dst = {
         .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
@@ -361,7 +547,8 @@ static void fill_overlay(window_state *w, const vrg_run_options *o, vrg_graph *g
         double sum = 0;
         for (uint32_t i = 0; i < vrg_graph_pass_count(x); i++)
             sum += vrg_graph_pass_ms(x, i) > 0 ? vrg_graph_pass_ms(x, i) : 0;
-        snprintf(line, sizeof line, "%s%s: gpu %.1f ms, shown: %s", k ? "B " : gb ? "A " : "", k ? o->ab : "graph", sum, vrg_graph_output(x));
+        snprintf(line, sizeof line, "%s%s: gpu %.1f ms, shown: %s", k ? "B " : gb ? "A " : "", k ? o->ab : "graph", sum,
+                 k ? vrg_graph_output(x) : w->shown_name);
         vrg_overlay_line(ov, line);
         for (uint32_t i = 0; i < vrg_graph_pass_count(x) && ov->lines < VRG_OVERLAY_LINES - 6; i++)
             if (vrg_graph_pass_ms(x, i) >= 0) {
@@ -384,7 +571,7 @@ static void fill_overlay(window_state *w, const vrg_run_options *o, vrg_graph *g
             err += len + (end ? 1 : 0);
         }
     }
-    vrg_overlay_line(ov, "wasd space shift, right mouse: look, t [ ]: day, p: shot, h: hide, esc");
+    vrg_overlay_line(ov, "wasd space shift, right mouse: look, tab 0-9: show, t [ ]: day, p: shot, h: hide, esc");
 }
 
 int vrg_cli_run(const vrg_run_options *o)
@@ -398,7 +585,7 @@ int vrg_cli_run(const vrg_run_options *o)
         glfwTerminate();
         return 1;
     }
-    window_state w = {.speed = 8.0f, .divider = 0.5f};
+    window_state w = {.speed = 8.0f, .divider = 0.5f, .shown = -1};
     uint32_t next = 0;
     const char **exts = glfwGetRequiredInstanceExtensions(&next);
     vrg_context_desc cd = {.validate = o->validate, .device = o->device, .instance_extensions = exts, .instance_extension_count = next,
@@ -440,10 +627,18 @@ int vrg_cli_run(const vrg_run_options *o)
     VkFenceCreateInfo fci = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     vkCreateFence(w.dev->device, &fci, NULL, &w.done);
 
-    vrg_graph_desc d = {.path = o->graph, .overrides = o->sets, .override_count = o->set_count, .width = o->width, .height = o->height};
+    vrg_graph_desc d = {.path = o->graph, .overrides = o->sets, .override_count = o->set_count, .width = o->width, .height = o->height,
+                        .keep_images = 1};
     if (vrg_graph_load(w.ctx, &d, &g) != 0)
         goto out;
     vrg_graph_watch(g, 1); /* hot reload is what the window is for */
+    for (uint32_t i = 0; o->show && i < vrg_graph_image_count(g); i++)
+        if (strcmp(vrg_graph_image_name(g, i), o->show) == 0)
+            w.shown = (int)i;
+    if (o->show && w.shown < 0 && strcmp(o->show, vrg_graph_output(g)) != 0) {
+        fprintf(stderr, "error: --show %s: the graph has no image of that name\n", o->show);
+        goto out;
+    }
     if (o->ab) { /* B: its own graph file, the same size and camera */
         vrg_graph_desc db = {.path = o->ab, .width = o->width, .height = o->height};
         if (vrg_graph_load(w.ctx, &db, &gb) != 0)
@@ -495,6 +690,18 @@ int vrg_cli_run(const vrg_run_options *o)
             w.divider = ww > 0 ? (float)(mx / ww) : 0.5f;
             w.divider = w.divider < 0 ? 0 : w.divider > 1 ? 1 : w.divider;
         }
+        /* which resource A shows: the output, or one of its images */
+        int count = (int)vrg_graph_image_count(g);
+        if (w.shown_step)
+            w.shown = (w.shown + 1 + w.shown_step + count + 1) % (count + 1) - 1;
+        w.shown_step = 0;
+        if (w.shown >= count)
+            w.shown = -1;
+        const char *show = w.shown >= 0 ? vrg_graph_image_name(g, (uint32_t)w.shown) : NULL;
+        if (show && strcmp(show, vrg_graph_output(g)) == 0)
+            show = NULL;
+        vrg_graph_show(g, show);
+        snprintf(w.shown_name, sizeof w.shown_name, "%s", show ? show : vrg_graph_output(g));
         vrg_graph *both[2] = {g, gb};
         for (int k = 0; k < 2 && both[k]; k++) {
             double v;
@@ -530,7 +737,19 @@ int vrg_cli_run(const vrg_run_options *o)
         VkImage src, src_b = VK_NULL_HANDLE;
         VkExtent2D ext, ext_b = {0, 0};
         VkFormat fmt;
-        if (vrg_graph_image(g, vrg_graph_output(g), &src, &ext, &fmt) != 0 ||
+        int via_display = 0;
+        if (show && vrg_graph_image(g, show, &src, &ext, &fmt) == 0) {
+            /* integer images (ids) cannot be blitted: say so, show the output */
+            int integer = fmt == VK_FORMAT_R32_UINT || fmt == VK_FORMAT_R32G32_UINT || fmt == VK_FORMAT_R32G32B32A32_UINT ||
+                          fmt == VK_FORMAT_R16_UINT || fmt == VK_FORMAT_R8_UINT || fmt == VK_FORMAT_R32_SINT;
+            if (integer)
+                snprintf(w.shown_name, sizeof w.shown_name, "%s (an integer image: showing %s)", show, vrg_graph_output(g));
+            else if (display_prepare(&w, ext, vrg_source_dir()) == 0) {
+                display_mode(&w, show);
+                via_display = 1;
+            }
+        }
+        if ((!via_display && vrg_graph_image(g, vrg_graph_output(g), &src, &ext, &fmt) != 0) ||
             (gb && vrg_graph_image(gb, vrg_graph_output(gb), &src_b, &ext_b, &fmt) != 0)) {
             rc = 1;
             break;
@@ -539,7 +758,7 @@ int vrg_cli_run(const vrg_run_options *o)
             rc = 1;
             break;
         }
-        int pr = present(&w, src, ext, src_b, ext_b, file[0] ? file : NULL);
+        int pr = present(&w, src, ext, src_b, ext_b, file[0] ? file : NULL, via_display);
         if (pr < 0) {
             fprintf(stderr, "error: presenting to the window failed\n");
             rc = 1;
@@ -584,6 +803,12 @@ out:
         vkDestroyCommandPool(w.dev->device, w.pool, NULL);
         if (w.sc.handle)
             vkDestroySwapchainKHR(w.dev->device, w.sc.handle, NULL);
+        display_free_images(&w);
+        vkDestroyPipeline(w.dev->device, w.disp.pipeline, NULL);
+        vkDestroyPipelineLayout(w.dev->device, w.disp.layout, NULL);
+        vkDestroyDescriptorSetLayout(w.dev->device, w.disp.set_layout, NULL);
+        vkDestroyDescriptorPool(w.dev->device, w.disp.pool, NULL);
+        vkDestroySampler(w.dev->device, w.disp.sampler, NULL);
         if (w.staging) {
             vkUnmapMemory(w.dev->device, w.staging_memory);
             vkDestroyBuffer(w.dev->device, w.staging, NULL);

@@ -5,6 +5,7 @@ typedef struct vrg_run_options {
     const char *graph, *device, *camera, *screenshot;
     const char *ab;     /* a second graph shown right of a draggable divider */
     const char *record; /* write the flight as a camera path here */
+    const char *show;   /* a resource to show instead of the output */
     const char *const *sets;
     uint32_t set_count;
     uint32_t width, height; /* window size */

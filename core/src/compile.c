@@ -193,8 +193,9 @@ static void lifetimes(vrg_graph *g)
         vrg_resource *r = &g->res[i];
         if (r->first_use < 0)
             continue;
-        /* read back after the last pass; kept resources live all frame */
-        if (r->is_output || r->readback)
+        /* read back after the last pass; kept resources live all frame; a
+         * viewer's graph keeps every image to the end */
+        if (r->is_output || r->readback || (g->desc.keep_images && r->kind == VRG_IMAGE))
             r->last_use = g->schedule_count;
         if (kept(r)) {
             r->first_use = 0;

@@ -116,6 +116,7 @@ int vrg_graph_load(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph **out
     g->ctx = ctx;
     snprintf(g->path, sizeof g->path, "%s", desc->path ? desc->path : "<graph>");
     g->desc = *desc;
+    g->shown = -1;
     g->loaded_from_file = desc->path && !desc->text;
     g->diag = (vrg_diag){.out = desc->diag, .file = g->path, .collect = 1};
     for (int i = 0; i < VRG_MAX_PASSES; i++)
@@ -379,7 +380,7 @@ static int find_readable(vrg_graph *g, const char *name)
 {
     for (int i = 0; i < g->res_count; i++)
         if (strcmp(g->res[i].name, name) == 0) {
-            if (!(g->res[i].is_output || g->res[i].readback) || g->res[i].first_use < 0) {
+            if (!(g->res[i].is_output || g->res[i].readback || i == g->shown) || g->res[i].first_use < 0) {
                 vrg_error(&g->diag, "resource '%s' is not read back (ask for it in vrg_graph_desc.readback / --dump)", name);
                 return -1;
             }
@@ -417,6 +418,48 @@ static float half_to_float(uint16_t h)
 }
 
 static float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f); }
+
+static int showable(const vrg_graph *g, int i)
+{
+    const vrg_resource *r = &g->res[i];
+    return r->kind == VRG_IMAGE && r->first_use >= 0 && r->writer >= 0 && r->internal_owner < 0 && !r->dummy;
+}
+
+uint32_t vrg_graph_image_count(const vrg_graph *g)
+{
+    uint32_t n = 0;
+    for (int i = 0; g->desc.keep_images && i < g->res_count; i++)
+        n += showable(g, i);
+    return n;
+}
+
+const char *vrg_graph_image_name(const vrg_graph *g, uint32_t k)
+{
+    for (int i = 0; g->desc.keep_images && i < g->res_count; i++)
+        if (showable(g, i) && k-- == 0)
+            return g->res[i].name;
+    return NULL;
+}
+
+int vrg_graph_show(vrg_graph *g, const char *name)
+{
+    g->shown = -1;
+    if (!name)
+        return 0;
+    for (int i = 0; i < g->res_count; i++)
+        if (strcmp(g->res[i].name, name) == 0 && g->desc.keep_images && showable(g, i)) {
+            g->shown = i;
+            return 0;
+        }
+    vrg_error(&g->diag, "show %s: not an image this graph keeps for viewing (load it with keep_images)", name);
+    return -1;
+}
+
+VkImageView vrg_graph_image_view(vrg_graph *g, const char *name)
+{
+    int i = find_readable(g, name);
+    return i < 0 || g->res[i].kind != VRG_IMAGE ? VK_NULL_HANDLE : g->res[i].view[vrg_copy_of(g, i, g->res[i].history)];
+}
 
 int vrg_graph_image(vrg_graph *g, const char *name, VkImage *image, VkExtent2D *extent, VkFormat *format)
 {

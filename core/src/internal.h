@@ -238,6 +238,7 @@ struct vrg_graph {
     int changed_plugin_count;
     int params_changed;        /* the next frame is the first after a parameter-only reload */
     vrg_graph_desc desc;       /* as loaded (the host keeps its arrays): reload reuses it */
+    int shown;                 /* vrg_graph_show: a resource left in TRANSFER_SRC after frames, -1 none */
     int loaded_from_file;
     uint32_t subframes; /* graph frames per output frame (vrg_pass_set_subframes), 0 or 1: one */
     vrg_diag diag;

@@ -45,6 +45,9 @@ static void copy_readbacks(vrg_graph *g, VkCommandBuffer cmd)
         if (vrg_resource_barrier(g, i, vrg_copy_of(g, i, 0), VRG_ACCESS_TRANSFER_SRC, &b[n]))
             n++;
     }
+    /* the viewer's choice: left in TRANSFER_SRC like the output, not copied */
+    if (g->shown >= 0 && vrg_resource_barrier(g, g->shown, vrg_copy_of(g, g->shown, 0), VRG_ACCESS_TRANSFER_SRC, &b[n]))
+        n++;
     vrg_emit_barriers(g, cmd, b, n);
     for (int k = 0; k < nw; k++) {
         vrg_resource *r = &g->res[want[k]];

@@ -28,6 +28,10 @@ typedef struct vrg_context_desc {
 int vrg_context_create(const vrg_context_desc *desc, vrg_context **out);
 void vrg_context_destroy(vrg_context *ctx);
 const vrg_device *vrg_context_device(const vrg_context *ctx);
+/* A compute shader module compiled from GLSL the way passes' shaders are
+ * (#include, the device defines); errors go to stderr. For host-side
+ * stages such as a viewer's display. VK_NULL_HANDLE on failure. */
+VkShaderModule vrg_compile_compute_shader(vrg_context *ctx, const char *path, const char *defines);
 /* Validation messages seen so far (each also printed to stderr). */
 uint32_t vrg_context_validation_errors(const vrg_context *ctx);
 
@@ -40,6 +44,10 @@ typedef struct vrg_graph_desc {
     const char *const *readback;  /* resources to keep readable after a frame (output is always) */
     uint32_t readback_count;
     FILE *diag;                   /* where errors go; NULL: stderr */
+    /* Keep every image resource alive to the end of the frame (they then do
+     * not share memory), so that a viewer can show any of them
+     * (vrg_graph_show). */
+    int keep_images;
 } vrg_graph_desc;
 
 /* Parse, validate, compile. With ctx, also create the passes and allocate:
@@ -74,6 +82,14 @@ int vrg_graph_read(vrg_graph *g, const char *resource, vrg_image_data *out);
  * VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL and idle. A host may copy or blit
  * from it on the graph's queue before the next vrg_graph_frame. */
 int vrg_graph_image(vrg_graph *g, const char *resource, VkImage *image, VkExtent2D *extent, VkFormat *format);
+/* With keep_images: the image resources a viewer may show (written, not
+ * internal), and the one to leave in TRANSFER_SRC after each frame for
+ * vrg_graph_image / vrg_graph_image_view (NULL: none besides the output). */
+uint32_t vrg_graph_image_count(const vrg_graph *g);
+const char *vrg_graph_image_name(const vrg_graph *g, uint32_t i);
+int vrg_graph_show(vrg_graph *g, const char *resource);
+/* A view of that image (for sampling after moving it to GENERAL and back). */
+VkImageView vrg_graph_image_view(vrg_graph *g, const char *resource);
 /* Bytes of a buffer resource written in the last frame. Caller frees *data. */
 /* A figure a pass recorded with vrg_pass_stat in the last frame: 0, or -1. */
 int vrg_graph_stat(const vrg_graph *g, const char *pass, const char *name, double *value);
