@@ -42,6 +42,7 @@ typedef struct window_state {
     float time_step;     /* [ and ]: hours to step the time of day */
     float divider;       /* --ab: where A ends, 0..1 of the width */
     int hide_overlay;    /* H */
+    int paused;          /* Pause or F: no new frames, the last one stays shown */
     int srgb;            /* the output holds linear values: let the swapchain encode them */
     /* host-visible staging: the overlay panel, and screenshots of what is shown */
     VkBuffer staging;
@@ -223,6 +224,8 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
         w->day_toggle = 1;
     else if (key == GLFW_KEY_H)
         w->hide_overlay = !w->hide_overlay;
+    else if (key == GLFW_KEY_PAUSE || key == GLFW_KEY_F)
+        w->paused = !w->paused;
     else if (key == GLFW_KEY_TAB)
         w->shown_step = mods & GLFW_MOD_SHIFT ? -1 : 1;
     else if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9)
@@ -571,7 +574,9 @@ static void fill_overlay(window_state *w, const vrg_run_options *o, vrg_graph *g
             err += len + (end ? 1 : 0);
         }
     }
-    vrg_overlay_line(ov, "wasd space shift, right mouse: look, tab 0-9: show, t [ ]: day, p: shot, h: hide, esc");
+    if (w->paused)
+        vrg_overlay_line(ov, "paused (f or pause to go on)");
+    vrg_overlay_line(ov, "wasd space shift, right mouse: look, tab 0-9: show, t [ ]: day, f: pause, p: shot, h: hide, esc");
 }
 
 int vrg_cli_run(const vrg_run_options *o)
@@ -710,7 +715,7 @@ int vrg_cli_run(const vrg_run_options *o)
             if (w.time_step != 0 && vrg_graph_get_param(both[k], "scene.time_of_day", &v) == 0)
                 vrg_graph_set_param(both[k], "scene.time_of_day", fmod(v + w.time_step + 24.0, 24.0));
             vrg_graph_set_camera(both[k], &cam);
-            if (vrg_graph_frame(both[k]) != 0)
+            if (!w.paused && vrg_graph_frame(both[k]) != 0)
                 rc = 1;
         }
         w.day_toggle = 0;
