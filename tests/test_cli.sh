@@ -176,30 +176,12 @@ has "$out/stderr" "no display.*voxrg render" "run without a display points to re
 if command -v xvfb-run >/dev/null; then
     expect_rc 0 "run under Xvfb" xvfb-run -a "$voxrg" run "$tests/graphs/blocks_wall.ini" --validate --size 192x128 --frames 4 \
         --screenshot "$out/window.png"
-    if python3 - "$out/window.png" <<'PY'
-import struct, sys, zlib
-data = open(sys.argv[1], "rb").read()
-assert data[:8] == b"\x89PNG\r\n\x1a\n"
-w, h, depth, ctype = struct.unpack(">IIBB", data[16:26])
-idat, i = b"", 8
-while i < len(data):
-    n = struct.unpack(">I", data[i:i + 4])[0]
-    if data[i + 4:i + 8] == b"IDAT":
-        idat += data[i + 8:i + 8 + n]
-    i += 12 + n
-raw, bpp = zlib.decompress(idat), 3 if ctype == 2 else 4
-rows, prev = [], bytearray(w * bpp)
-for y in range(h):
-    f, line = raw[y * (w * bpp + 1)], bytearray(raw[y * (w * bpp + 1) + 1:(y + 1) * (w * bpp + 1)])
-    for x in range(w * bpp):
-        a = line[x - bpp] if x >= bpp else 0
-        b, c = prev[x], prev[x - bpp] if x >= bpp else 0
-        p = a + b - c
-        pred = [0, a, b, (a + b) // 2, a if abs(p - a) <= abs(p - b) and abs(p - a) <= abs(p - c) else b if abs(p - b) <= abs(p - c) else c][f]
-        line[x] = (line[x] + pred) & 255
-    rows.append(line)
-    prev = line
-px = lambda x, y: tuple(rows[y][x * bpp:x * bpp + 3])
+    if python3 - "$out/window.png" "$tests" <<'PY'
+import sys
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
+sys.path.insert(0, sys.argv[2])
+from png_pixels import load
+w, h, px = load(sys.argv[1])
 assert (w, h) == (192, 128), (w, h)
 # what the window showed: the scene below, the overlay panel (dark, white text) on top
 colours = {px(x, y) for y in range(40, h) for x in range(w)}
@@ -212,29 +194,13 @@ PY
     # another image than the output, through the display stage: normals as colours
     expect_rc 0 "run --show gbuffer.normal" xvfb-run -a "$voxrg" run "$tests/graphs/gbuffer_blocks.ini" --show gbuffer.normal --validate \
         --size 192x128 --frames 3 --screenshot "$out/normals.png"
-    if python3 - "$out/normals.png" <<'PY'
-import struct, sys, zlib
-data = open(sys.argv[1], "rb").read()
-w, h, depth, ctype = struct.unpack(">IIBB", data[16:26])
-idat, i = b"", 8
-while i < len(data):
-    n = struct.unpack(">I", data[i:i + 4])[0]
-    if data[i + 4:i + 8] == b"IDAT":
-        idat += data[i + 8:i + 8 + n]
-    i += 12 + n
-raw, bpp = zlib.decompress(idat), 3 if ctype == 2 else 4
-rows, prev = [], bytearray(w * bpp)
-for y in range(h):
-    f, line = raw[y * (w * bpp + 1)], bytearray(raw[y * (w * bpp + 1) + 1:(y + 1) * (w * bpp + 1)])
-    for x in range(w * bpp):
-        a = line[x - bpp] if x >= bpp else 0
-        b, c = prev[x], prev[x - bpp] if x >= bpp else 0
-        p = a + b - c
-        pred = [0, a, b, (a + b) // 2, a if abs(p - a) <= abs(p - b) and abs(p - a) <= abs(p - c) else b if abs(p - b) <= abs(p - c) else c][f]
-        line[x] = (line[x] + pred) & 255
-    rows.append(line)
-    prev = line
-floor = tuple(rows[110][96 * bpp:96 * bpp + 3])  # the floor: normal (0, 1, 0) -> (0.5, 1, 0.5)
+    if python3 - "$out/normals.png" "$tests" <<'PY'
+import sys
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
+sys.path.insert(0, sys.argv[2])
+from png_pixels import load
+w, h, px = load(sys.argv[1])
+floor = px(96, 110)  # the floor: normal (0, 1, 0) -> (0.5, 1, 0.5)
 assert all(abs(a - b) <= 3 for a, b in zip(floor, (128, 255, 128))), floor
 PY
     then ok; else bad "--show gbuffer.normal shows the floor's normal"; fi
