@@ -1598,22 +1598,26 @@ static void test_hot_reload_shader(void)
     remove(user), remove(tint), rmdir(dir);
 }
 
-static const char *reload_graph_text(float step, int structural, int broken)
+/* variant 0: as loaded; 1: an unrelated pass added (structural, every
+ * history resource keeps its name); 2: the counter's resource renamed */
+static const char *reload_graph_text(float step, int variant, int broken)
 {
     static char text[1024];
+    const char *count = variant == 2 ? "total" : "count";
     snprintf(text, sizeof text,
              "[graph]\noutput = mean.color\nwidth = 8\nheight = 8\n"
              "[pass counter]\nplugin = counter\nin.prev = %s@prev\nout.count = %s\nstep = %g\n"
-             "[pass mean]\nplugin = accumulate\nin.src = %s\nin.history = mean.color@prev\n%s",
-             structural ? "total" : "count", structural ? "total" : "count", step, structural ? "total" : "count",
+             "[pass mean]\nplugin = accumulate\nin.src = %s\nin.history = mean.color@prev\n%s%s",
+             count, count, step, count, variant == 1 ? "[pass other]\nplugin = counter\nout.count = other\n" : "",
              broken ? "this line is not ini\n" : "");
     return text;
 }
 
 /* Hot reload of the graph file: a parameter-only change keeps history (the
- * counter continues) and restarts accumulations; a structural change starts
- * history anew; a broken file leaves the running graph as it was, with the
- * error kept at FILE:LINE. */
+ * counter continues) and restarts accumulations; a structural change keeps
+ * the history resources whose name, format and size are unchanged and
+ * starts the others anew; a broken file leaves the running graph as it was,
+ * with the error kept at FILE:LINE. */
 static void test_hot_reload_graph(void)
 {
     char dir[] = "/tmp/voxrg-graph-XXXXXX";
@@ -1642,17 +1646,19 @@ static void test_hot_reload_graph(void)
      * save (still the old graph), the reload, and one frame read back */
     struct {
         float step;
-        int structural, broken;
+        int variant, broken;
         float mean, frames;
     } steps[] = {
-        {1, 0, 0, 2, 3}, /* frames 1..3 as loaded: counts 1 2 3 */
-        {2, 0, 0, 6, 1}, /* parameters only: 4 (noticing), then 4 + 2 = 6 kept going; the mean restarts */
-        {2, 1, 0, 2, 1}, /* another resource name: history starts anew, count 2 */
-        {5, 1, 1, 4, 3}, /* broken: the running graph goes on: 4, 6, mean of 2 4 6 */
+        {1, 0, 0, 2, 3},  /* frames 1..3 as loaded: counts 1 2 3 */
+        {2, 0, 0, 6, 1},  /* parameters only: 4 (noticing), then 4 + 2 = 6 kept going; the mean restarts */
+        {2, 1, 0, 10, 1}, /* a pass added: 8 (noticing), the count kept: 10; the mean restarts */
+        {2, 2, 0, 2, 1},  /* the count renamed: its history starts anew: 2 */
+        {5, 2, 1, 4, 3},  /* broken: the running graph goes on: 4, 6, mean of 2 4 6 */
     };
-    for (int s = 0; s < 4; s++) {
+    int step_count = (int)(sizeof steps / sizeof steps[0]);
+    for (int s = 0; s < step_count; s++) {
         if (s > 0) {
-            save_file(path, reload_graph_text(steps[s].step, steps[s].structural, steps[s].broken));
+            save_file(path, reload_graph_text(steps[s].step, steps[s].variant, steps[s].broken));
             CHECK(vrg_graph_frame(g) == 0, "frame failed"); /* notices the save */
             CHECK(vrg_graph_source_changed(g), "step %d: the save was not noticed", s);
             int rc = vrg_graph_reload(&g);

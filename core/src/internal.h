@@ -130,6 +130,8 @@ typedef struct vrg_resource {
     int writer_line;
     int writer_unknown;      /* written by a pass whose plugin failed to load */
     int history;             /* read through @prev somewhere: two copies, kept */
+    int history_kept;        /* a reload copied it over: survives the next history reset */
+    int history_cleared;     /* cleared at the start of this frame: @prev holds no past */
     int persistent;          /* written by a VRG_SLOT_PERSISTENT slot: kept, not aliased */
     int is_output, readback;
     int internal_owner;      /* pass index for internal resources, -1 otherwise */
@@ -237,6 +239,7 @@ struct vrg_graph {
     char changed_plugins[8][VRG_PATH_MAX]; /* rebuilt plugin files waiting for vrg_graph_reload */
     int changed_plugin_count;
     int params_changed;        /* the next frame is the first after a parameter-only reload */
+    int history_carried;       /* a structural reload copied matching history resources over */
     vrg_graph_desc desc;       /* as loaded (the host keeps its arrays): reload reuses it */
     int shown;                 /* vrg_graph_show: a resource left in TRANSFER_SRC after frames, -1 none */
     int loaded_from_file;

@@ -372,6 +372,14 @@ vrg_res vrg_pass_res(const vrg_pass *p, const char *name)
 
 int vrg_res_connected(vrg_res res) { return res.id >= 0; }
 
+int vrg_res_history_valid(const vrg_pass *p, vrg_res h)
+{
+    if (h.id < 0 || (h.id >> 1) >= p->graph->res_count)
+        return 0;
+    const vrg_resource *r = &p->graph->res[h.id >> 1];
+    return r->history ? !r->history_cleared : p->graph->frame.history_valid;
+}
+
 static const vrg_resource *res_of(const vrg_pass *p, vrg_res h, int *copy)
 {
     if (h.id < 0 || (h.id >> 1) >= p->graph->res_count)

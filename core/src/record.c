@@ -5,14 +5,19 @@
 #include <string.h>
 #include "internal.h"
 
-static void clear_kept(vrg_graph *g, VkCommandBuffer cmd)
+/* @prev copies on every history reset (but those a reload carried over);
+ * persistent resources only when new. Returns how many history resources
+ * were cleared: history is valid this frame when none was. */
+static int clear_kept(vrg_graph *g, VkCommandBuffer cmd)
 {
-    /* @prev copies on every history reset; persistent resources only when new. */
     vrg_barrier_rec b[VRG_MAX_RESOURCES] = {0};
-    int n = 0;
+    int n = 0, cleared = 0;
     for (int i = 0; i < g->res_count && n < VRG_MAX_RESOURCES - 1; i++) {
         vrg_resource *r = &g->res[i];
-        if (r->first_use < 0 || r->kind == VRG_ACCEL || !((r->history && g->history_reset) || (r->persistent && g->fresh)))
+        r->history_cleared = r->history && g->history_reset && !r->history_kept;
+        r->history_kept = 0;
+        cleared += r->history_cleared && r->first_use >= 0;
+        if (r->first_use < 0 || r->kind == VRG_ACCEL || !(r->history_cleared || (r->persistent && g->fresh)))
             continue;
         for (int c = 0; c < (r->history ? 2 : 1); c++) {
             /* old contents are garbage: start from UNDEFINED */
@@ -31,6 +36,7 @@ static void clear_kept(vrg_graph *g, VkCommandBuffer cmd)
         } else
             vkCmdFillBuffer(cmd, r->buffer[b[k].copy], 0, VK_WHOLE_SIZE, 0);
     }
+    return cleared;
 }
 
 static void copy_readbacks(vrg_graph *g, VkCommandBuffer cmd)
@@ -103,20 +109,24 @@ int vrg_record_frame(vrg_graph *g)
     vkBeginCommandBuffer(cmd, &bi);
     if (g->queries)
         vkCmdResetQueryPool(cmd, g->queries, 0, (uint32_t)(2 * g->schedule_count));
-    g->frame.history_valid = !g->history_reset;
     g->frame.width = g->width;
     g->frame.height = g->height;
     g->frame.seed = g->seed;
     g->frame.time_s = (double)g->frame.frame_index / g->fps;
     g->frame.camera = g->camera;
-    g->frame.prev_camera = g->frame.history_valid ? g->last_camera : g->camera;
+    /* after a reset history is invalid, unless a reload carried every
+     * history resource over (vrg_res_history_valid tells them apart) */
+    int lost = clear_kept(g, cmd);
+    g->frame.history_valid = !g->history_reset || (g->history_carried && !lost);
+    /* carried resources continue last frame, so motion is from its camera */
+    g->frame.prev_camera = g->frame.history_valid || g->history_carried ? g->last_camera : g->camera;
+    g->history_carried = 0;
     g->last_camera = g->camera;
     for (int i = 0; i < g->res_count; i++)
         g->res[i].touched[0] = g->res[i].touched[1] = 0;
     g->frame.resources_new = g->fresh;
     g->frame.params_changed = g->params_changed;
     g->params_changed = 0;
-    clear_kept(g, cmd);
     g->history_reset = 0;
     g->fresh = 0;
     int failed = 0;

@@ -3,8 +3,11 @@
  * the same structure (passes, plugins, connections, resources: a change of
  * parameter values only), its history resources are copied over from the
  * old graph and history stays valid, so temporal passes carry on; passes
- * see frame->params_changed once. A structural change starts history anew.
- * The frame counter and the camera carry over either way. */
+ * see frame->params_changed once (after any reload). After a structural change the history
+ * resources whose name, format and size are unchanged are copied over too;
+ * the rest start cleared, frame->history_valid is 0 if any did, and
+ * vrg_res_history_valid tells a pass which of its inputs still hold the
+ * past. The frame counter and the camera carry over either way. */
 #define _GNU_SOURCE
 #include <stdlib.h>
 #include <string.h>
@@ -39,8 +42,25 @@ static int same_structure(const vrg_graph *a, const vrg_graph *b)
     return 1;
 }
 
-/* Both copies of every history resource, old graph to new, on the new
- * graph's command buffer; the trackers of both graphs learn the transfer. */
+/* The old graph's resource that new resource i continues: same name,
+ * kind, format, size and history, or -1. */
+static int matching(const vrg_graph *old, const vrg_graph *g, int i)
+{
+    const vrg_resource *to = &g->res[i];
+    for (int j = 0; j < old->res_count; j++) {
+        const vrg_resource *from = &old->res[j];
+        if (strcmp(from->name, to->name) == 0)
+            return from->kind == to->kind && from->format == to->format && from->width == to->width && from->height == to->height &&
+                           from->size == to->size && from->mips == to->mips && from->history == to->history && from->first_use >= 0
+                       ? j
+                       : -1;
+    }
+    return -1;
+}
+
+/* Both copies of every history resource the old graph has a match for,
+ * old graph to new, on the new graph's command buffer; the trackers of both
+ * graphs learn the transfer. The copied ones are marked history_kept. */
 static int copy_history(vrg_graph *old, vrg_graph *g)
 {
     VkDevice dev = g->ctx->dev.device;
@@ -48,13 +68,16 @@ static int copy_history(vrg_graph *old, vrg_graph *g)
     VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
     vkBeginCommandBuffer(cmd, &bi);
     for (int i = 0; i < g->res_count; i++) {
-        vrg_resource *to = &g->res[i], *from = &old->res[i];
-        if (!to->history || to->first_use < 0 || to->kind == VRG_ACCEL)
+        vrg_resource *to = &g->res[i];
+        int j = to->history && to->first_use >= 0 && to->kind != VRG_ACCEL ? matching(old, g, i) : -1;
+        if (j < 0)
             continue;
+        vrg_resource *from = &old->res[j];
+        to->history_kept = 1;
         for (int c = 0; c < 2; c++) {
             vrg_barrier_rec src, dst;
             if (vrg_sync_use(&from->sync[c], vrg_access_info_of(VRG_ACCESS_TRANSFER_SRC, from->kind), 0, &src)) {
-                src.res = i, src.copy = c;
+                src.res = j, src.copy = c;
                 vrg_emit_barriers(old, cmd, &src, 1);
             }
             if (vrg_sync_use(&to->sync[c], vrg_access_info_of(VRG_ACCESS_TRANSFER_DST, to->kind), 1, &dst)) {
@@ -173,14 +196,15 @@ int vrg_graph_reload(vrg_graph **pg)
     g->frame.frame_index = old->frame.frame_index; /* random sequences and history copies continue */
     g->camera = old->camera;
     g->last_camera = old->last_camera;
-    if (same_structure(old, g)) {
-        if (copy_history(old, g) != 0) {
-            vrg_graph_destroy(g);
-            return -1;
-        }
-        g->history_reset = 0;
-        g->params_changed = 1;
+    if (copy_history(old, g) != 0) {
+        vrg_graph_destroy(g);
+        return -1;
     }
+    if (same_structure(old, g)) /* every history resource carried over */
+        g->history_reset = 0;
+    else
+        g->history_carried = 1; /* a reset, but the matching ones survive it */
+    g->params_changed = 1;      /* the graph changed under accumulations either way */
     struct stat st;
     if (stat(old->path, &st) == 0)
         g->pending_since = (double)st.st_mtim.tv_sec + 1e-9 * (double)st.st_mtim.tv_nsec;

@@ -40,7 +40,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     const vrg_frame_info *f = vrg_pass_frame(pass);
     struct {
         int32_t reset, max_frames;
-    } pc = {!f->history_valid || f->params_changed || camera_moved(&f->camera, &f->prev_camera), vrg_param_int(pass, "max_frames")};
+    } pc = {!vrg_res_history_valid(pass, vrg_pass_res(pass, "history")) || f->params_changed || camera_moved(&f->camera, &f->prev_camera), vrg_param_int(pass, "max_frames")};
     vrg_pass_stat(pass, "reset", pc.reset);
     (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "accumulate.comp", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1});
 }

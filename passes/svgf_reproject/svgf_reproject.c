@@ -59,6 +59,11 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
                                  "prev_position", "prev_normal", "prev_ids"};
     if (vrg_pass_require_same_size(pass, "color", same, sizeof same / sizeof same[0]) != 0)
         return;
+    /* every input from last frame must hold it: after a reload some may not */
+    static const char *past[] = {"history", "prev_moments", "prev_length", "prev_position", "prev_normal", "prev_ids"};
+    int valid = 1;
+    for (unsigned i = 0; i < sizeof past / sizeof past[0]; i++)
+        valid &= vrg_res_history_valid(pass, vrg_pass_res(pass, past[i]));
     struct {
         float alpha, moments_alpha, normal_threshold, plane_distance;
         int32_t length_alpha, max_length, history_valid;
@@ -69,7 +74,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         (float)vrg_param(pass, "plane_distance"),
         vrg_param_int(pass, "length_alpha"),
         vrg_param_int(pass, "max_length"),
-        vrg_pass_frame(pass)->history_valid,
+        valid,
     };
     (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "svgf_reproject.comp", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1});
 }

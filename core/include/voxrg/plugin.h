@@ -184,14 +184,16 @@ typedef struct vrg_frame_info {
     uint64_t frame_index;   /* frames since the graph was built */
     uint32_t width, height; /* graph size */
     uint32_t seed;          /* [graph] seed */
-    int history_valid;      /* 0 on the first frame, after resize, reload or a camera cut */
+    int history_valid;      /* 0 on the first frame, after resize, a reset, or a reload that
+                             * lost some history (vrg_res_history_valid: per input) */
     double time_s;          /* simulated time: frame_index / [graph] fps */
     vrg_camera camera;      /* this frame's camera ([camera] section, --camera path, or the host) */
     vrg_camera prev_camera; /* last frame's; equal to camera when history is not valid */
     int resources_new;      /* every resource was just (re)allocated: persistent ones are
                              * cleared, so upload their contents again */
-    int params_changed;     /* first frame after a reload that changed parameter values
-                             * only: history stays valid, but accumulations restart */
+    int params_changed;     /* first frame after a reload of the graph (new parameter
+                             * values or structure) or vrg_graph_set_param: history
+                             * carried over stays valid, but accumulations restart */
 } vrg_frame_info;
 
 /* A resource a pass can name: one of its slots or an internal resource. */
@@ -279,6 +281,12 @@ VkImage vrg_res_image(const vrg_pass *pass, vrg_res res);
 VkImageView vrg_res_view(const vrg_pass *pass, vrg_res res);
 VkBuffer vrg_res_buffer(const vrg_pass *pass, vrg_res res);
 VkExtent2D vrg_res_extent(const vrg_pass *pass, vrg_res res);
+/* For an @prev input: 1 when it holds last frame's value, 0 when it was
+ * cleared this frame (first frame, resize, reset, or a structural reload
+ * that could not carry this resource over). Finer than the frame's
+ * history_valid, which is 0 when any history was lost. Other resources:
+ * the frame's history_valid. */
+int vrg_res_history_valid(const vrg_pass *pass, vrg_res res);
 /* 0 when every named slot has the extent of slot `ref`; else reports the
  * first that differs ("input 'X' is WxH, 'ref' WxH: ...") and returns -1. */
 int vrg_pass_require_same_size(vrg_pass *pass, const char *ref, const char *const *names, int count);

@@ -138,8 +138,10 @@ int vrg_graph_source_changed(const vrg_graph *g);
  * unchanged; the messages are printed and kept for vrg_graph_reload_error).
  * On success *g is the new graph and the old one is destroyed: with the same
  * structure (only parameter values changed) history resources are copied
- * over and stay valid (frame params_changed tells passes once); otherwise
- * history starts anew. Frame counter, camera and size carry over. The
+ * over and stay valid; otherwise those whose name, format and size are
+ * unchanged are copied and the rest start cleared (vrg_res_history_valid).
+ * Frame params_changed tells passes once either way. Frame counter, camera
+ * and size carry over. The
  * host's arrays in the original vrg_graph_desc must still be alive. */
 int vrg_graph_reload(vrg_graph **g);
 void vrg_graph_size(const vrg_graph *g, uint32_t *width, uint32_t *height);

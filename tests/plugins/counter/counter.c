@@ -23,7 +23,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     struct {
         float step;
         int32_t use_prev;
-    } pc = {(float)vrg_param(pass, "step"), connected && (vrg_pass_frame(pass)->history_valid || vrg_param_int(pass, "always_read"))};
+    } pc = {(float)vrg_param(pass, "step"), connected && (vrg_res_history_valid(pass, vrg_pass_res(pass, "prev")) || vrg_param_int(pass, "always_read"))};
     (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "counter.comp", .push = &pc, .push_size = sizeof pc});
 }
 

@@ -24,7 +24,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     struct {
         float alpha;
         int32_t use_history;
-    } pc = {(float)vrg_param(pass, "alpha"), connected && vrg_pass_frame(pass)->history_valid};
+    } pc = {(float)vrg_param(pass, "alpha"), connected && vrg_res_history_valid(pass, vrg_pass_res(pass, "history"))};
     (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "ema.comp", .push = &pc, .push_size = sizeof pc});
 }
 
