@@ -27,6 +27,12 @@ endforeach()
 add_test(NAME cli COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test_cli.sh $<TARGET_FILE:voxrg_cli> ${CMAKE_CURRENT_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}/cli_out)
 set_tests_properties(cli PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}" TIMEOUT 600)
 
+# Hot reload driven from a script: `render --watch --sequence` while the test
+# edits a shader, the graph and a plugin (rebuilt with cc).
+add_test(NAME cli_watch COMMAND python3 ${CMAKE_CURRENT_SOURCE_DIR}/test_watch.py $<TARGET_FILE:voxrg_cli> ${CMAKE_CURRENT_SOURCE_DIR}
+         ${PROJECT_SOURCE_DIR}/core/include ${CMAKE_CURRENT_BINARY_DIR}/watch_out)
+set_tests_properties(cli_watch PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}" TIMEOUT 600)
+
 # The complete pass of docs/plugin-abi.md builds and renders as the page says.
 add_test(NAME docs_example COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test_docs_example.sh $<TARGET_FILE:voxrg_cli> ${PROJECT_SOURCE_DIR}
          $<TARGET_FILE_DIR:voxrg> ${VOXRG_PLUGIN_OUTPUT_DIR} ${CMAKE_CURRENT_BINARY_DIR}/docs_example)

@@ -27,6 +27,9 @@ expect_rc 2 "no command" "$voxrg"
 expect_rc 2 "unknown command" "$voxrg" frobnicate
 expect_rc 2 "unknown option" "$voxrg" check "$tests/graphs/alias.ini" --bogus
 expect_rc 2 "bad --size" "$voxrg" render "$tests/graphs/alias.ini" --size 12by4
+expect_rc 2 "bad --interval" "$voxrg" render "$tests/graphs/alias.ini" --interval soon
+has "$out/stderr" "--interval .soon.: expected milliseconds" "--interval message"
+expect_rc 2 "negative --frames" "$voxrg" render "$tests/graphs/alias.ini" --frames -1
 expect_rc 1 "missing graph file" "$voxrg" check "$tests/graphs/does-not-exist.ini" --no-device
 has "$out/stderr" "cannot open graph file" "missing graph message"
 expect_rc 1 "unknown --set parameter" "$voxrg" check "$tests/graphs/alias.ini" --no-device --set gen.nope=1

@@ -3,6 +3,9 @@
  * --validate), 2 a usage error. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -35,7 +38,8 @@ static const char *usage_check =
 
 static const char *usage_render =
     "usage: voxrg render GRAPH [--frames N] [--size WxH] [--out DIR] [--set PASS.PARAM=VALUE]...\n"
-    "                          [--camera PATH] [--dump RES[,RES...]] [--json FILE] [--validate] [--watch] [--device NAME|INDEX]\n"
+    "                          [--camera PATH] [--dump RES[,RES...]] [--json FILE] [--validate] [--watch]\n"
+    "                          [--sequence] [--interval MS] [--device NAME|INDEX]\n"
     "Renders N frames (default 1) headless and writes DIR/OUTPUT.png (default DIR: out),\n"
     "plus DIR/RES.png for each dumped image (DIR/RES.bin for buffers). --json writes\n"
     "per-pass GPU timings. --camera plays a camera path (graphs/paths/*.path) at the\n"
@@ -43,9 +47,13 @@ static const char *usage_render =
     "synchronization validation; any message fails the run. A graph that accumulates\n"
     "(the accumulate pass's samples_per_frame) gets that many graph frames per output\n"
     "frame, the camera held still: a converged reference per camera-path frame.\n"
-    "--watch reloads saved shaders (and the files they #include) and the graph file\n"
-    "between frames; a shader or graph with errors is reported with FILE:LINE and the\n"
-    "last good one keeps running.\n";
+    "--watch reloads saved shaders (and the files they #include), the graph file and\n"
+    "rebuilt plugins between frames; a shader or graph with errors is reported with\n"
+    "FILE:LINE, a refused plugin with its path, and the last good one keeps running.\n"
+    "--sequence writes every frame as DIR/NAME-NNNNN.png (output and dumps, each file\n"
+    "complete when it appears), --interval paces frames to at least MS apart, and\n"
+    "--frames 0 renders until interrupted: with --watch, a script's edit loop.\n"
+    "SIGINT or SIGTERM ends the run after the current frame, writing the files.\n";
 
 static const char *usage_plugins =
     "usage: voxrg plugins [NAME]\n"
@@ -59,8 +67,9 @@ typedef struct options {
     const char *dumps[MAX_DUMPS];
     int dump_count;
     char dump_buf[4096];
-    uint32_t width, height, frames;
-    int validate, no_device, help, watch;
+    uint32_t width, height, frames; /* frames 0: until interrupted */
+    double interval_ms;
+    int validate, no_device, help, watch, sequence;
 } options;
 
 static int usage_error(const char *usage, const char *fmt, const char *arg)
@@ -87,7 +96,7 @@ static int parse_size(const char *s, uint32_t *w, uint32_t *h)
 
 static int is_valued_option(const char *a)
 {
-    static const char *valued[] = {"--dot", "--out", "--json", "--device", "--set", "--size", "--frames", "--dump", "--camera", "--screenshot", "--ab", "--record", "--show"};
+    static const char *valued[] = {"--dot", "--out", "--json", "--device", "--set", "--size", "--frames", "--dump", "--camera", "--screenshot", "--ab", "--record", "--show", "--interval"};
     for (size_t i = 0; i < sizeof valued / sizeof valued[0]; i++)
         if (!strcmp(a, valued[i]))
             return 1;
@@ -110,6 +119,8 @@ static int parse_options(int argc, char **argv, options *o, const char *usage)
             o->validate = 1, takes = 0;
         else if (!strcmp(a, "--watch"))
             o->watch = 1, takes = 0;
+        else if (!strcmp(a, "--sequence"))
+            o->sequence = 1, takes = 0;
         else if (!strcmp(a, "--no-device"))
             o->no_device = 1, takes = 0;
         else if (a[0] == '-' && !is_valued_option(a))
@@ -144,9 +155,15 @@ static int parse_options(int argc, char **argv, options *o, const char *usage)
         } else if (!strcmp(a, "--frames")) {
             char *end;
             long n = strtol(next, &end, 10);
-            if (*end || n <= 0 || n > 10000000)
-                return usage_error(usage, "--frames '%s': expected a positive integer", next);
+            if (*end || n < 0 || n > 10000000)
+                return usage_error(usage, "--frames '%s': expected a positive integer (0: until interrupted)", next);
             o->frames = (uint32_t)n;
+        } else if (!strcmp(a, "--interval")) {
+            char *end;
+            double ms = strtod(next, &end);
+            if (*end || !(ms >= 0 && ms <= 60000))
+                return usage_error(usage, "--interval '%s': expected milliseconds in 0..60000", next);
+            o->interval_ms = ms;
         } else if (!strcmp(a, "--dump")) {
             size_t used = strlen(o->dump_buf);
             snprintf(o->dump_buf + used, sizeof o->dump_buf - used, "%s%s", used ? "," : "", next);
@@ -240,20 +257,37 @@ static int mkdir_p(const char *dir)
     return 0;
 }
 
-static int write_resource(vrg_graph *g, const char *dir, const char *name)
+/* DIR/NAME.png (or .bin for a buffer); with frame >= 0 DIR/NAME-NNNNN.png,
+ * written under a temporary name and renamed, so that a script polling for
+ * it never reads half a file, and not announced. */
+static int write_resource(vrg_graph *g, const char *dir, const char *name, long frame)
 {
     char path[1200];
     vrg_image_data img;
     if (vrg_graph_resource_kind(g, name) == VRG_IMAGE) {
         if (vrg_graph_read(g, name, &img) != 0)
             return -1;
-        snprintf(path, sizeof path, "%s/%s.png", dir, name);
-        int rc = vrg_write_png(path, &img);
+        if (frame < 0) {
+            snprintf(path, sizeof path, "%s/%s.png", dir, name);
+            int rc = vrg_write_png(path, &img);
+            free(img.pixels);
+            if (rc == 0)
+                fprintf(stderr, "wrote %s\n", path);
+            return rc;
+        }
+        char tmp[1300];
+        snprintf(path, sizeof path, "%s/%s-%05ld.png", dir, name, frame);
+        snprintf(tmp, sizeof tmp, "%s.part", path);
+        int rc = vrg_write_png(tmp, &img);
         free(img.pixels);
-        if (rc == 0)
-            fprintf(stderr, "wrote %s\n", path);
+        if (rc == 0 && rename(tmp, path) != 0) {
+            fprintf(stderr, "error: cannot rename %s to %s: %s\n", tmp, path, strerror(errno));
+            rc = -1;
+        }
         return rc;
     }
+    if (frame >= 0)
+        return 0; /* buffers: only at the end */
     void *data;
     uint64_t size;
     if (vrg_graph_read_buffer(g, name, &data, &size) != 0)
@@ -338,6 +372,23 @@ static int write_json(const char *path, vrg_context *ctx, vrg_graph *g, const op
     return 0;
 }
 
+static volatile sig_atomic_t interrupted;
+static void on_interrupt(int sig)
+{
+    (void)sig;
+    interrupted = 1;
+}
+
+/* Sleeps until `start_ms` + `interval_ms` (frame pacing for --interval). */
+static void pace(double start_ms, double interval_ms)
+{
+    double left = start_ms + interval_ms - now_ms();
+    if (left > 0) {
+        struct timespec ts = {(time_t)(left / 1e3), (long)(fmod(left, 1e3) * 1e6)};
+        nanosleep(&ts, NULL);
+    }
+}
+
 static int cmd_render(int argc, char **argv)
 {
     options o;
@@ -353,16 +404,30 @@ static int cmd_render(int argc, char **argv)
     vrg_camera_path path = {0};
     if (o.camera && vrg_camera_path_load(o.camera, &path, stderr) != 0)
         return finish(ctx, g, 1);
+    if (o.sequence && mkdir_p(o.out) != 0)
+        return finish(ctx, g, 1);
     vrg_camera camera = *vrg_graph_camera(g);
-    uint32_t np = vrg_graph_pass_count(g);
-    double *ms = calloc((size_t)o.frames * np, sizeof *ms);
+    uint32_t np = vrg_graph_pass_count(g), cap = o.frames ? o.frames : 256;
+    double *ms = calloc((size_t)cap * np, sizeof *ms);
     double start = now_ms();
     int isatty_err = isatty(2);
     if (o.watch && vrg_graph_watch(g, 1) != 0)
         return finish(ctx, g, 1);
-    uint32_t sub = vrg_graph_subframes(g);
+    /* Ctrl-C or a script's kill: finish the frame, write the files */
+    interrupted = 0;
+    struct sigaction sa = {.sa_handler = on_interrupt}, old_int, old_term;
+    sigaction(SIGINT, &sa, &old_int);
+    sigaction(SIGTERM, &sa, &old_term);
+    uint32_t sub = vrg_graph_subframes(g), done = 0;
     double reloaded = -1;
-    for (uint32_t k = 0; k < o.frames && rc == 0; k++) {
+    for (uint32_t k = 0; (o.frames == 0 || k < o.frames) && rc == 0 && !interrupted; k++) {
+        double frame_start = now_ms();
+        if (k == cap) {
+            double *grown = realloc(ms, (size_t)cap * 2 * np * sizeof *ms);
+            if (!grown)
+                break;
+            ms = grown, cap *= 2;
+        }
         if (path.count) {
             vrg_camera_path_eval(&path, (float)(k * vrg_graph_frame_seconds(g)), &camera);
             vrg_graph_set_camera(g, &camera);
@@ -374,33 +439,55 @@ static int cmd_render(int argc, char **argv)
                 fprintf(stderr, "error: frame %u failed\n", k);
                 rc = 1;
             }
+        if (rc)
+            break;
+        done = k + 1;
+        if (o.sequence) {
+            rc |= write_resource(g, o.out, vrg_graph_output(g), k) != 0;
+            for (int i = 0; rc == 0 && i < o.dump_count; i++)
+                rc |= write_resource(g, o.out, o.dumps[i], k) != 0;
+        }
         if (o.watch && vrg_graph_reload_ms(g) != reloaded) {
             reloaded = vrg_graph_reload_ms(g);
             fprintf(stderr, "\nframe %u: reloaded, %.0f ms from save to frame\n", k, reloaded);
         }
-        /* a saved graph file: load it beside the running graph, swap on success */
+        double total = 0;
+        for (uint32_t i = 0; i < np; i++) {
+            ms[(size_t)k * np + i] = i < vrg_graph_pass_count(g) ? vrg_graph_pass_ms(g, i) : -1;
+            if (ms[(size_t)k * np + i] > 0)
+                total += ms[(size_t)k * np + i];
+        }
+        /* a saved graph file or rebuilt plugin: load it beside the running
+         * graph, swap on success (the pass timings above are the old graph's) */
         if (o.watch && vrg_graph_source_changed(g))
             (void)vrg_graph_reload(&g); /* errors are printed; the running graph stays */
-        double total = 0;
-        for (uint32_t i = 0; i < np && i < vrg_graph_pass_count(g); i++) {
-            ms[k * np + i] = vrg_graph_pass_ms(g, i);
-            if (ms[k * np + i] > 0)
-                total += ms[k * np + i];
-        }
-        if (isatty_err || k + 1 == o.frames)
-            fprintf(stderr, "\rframe %u/%u  gpu %.2f ms  wall %.1f ms/frame%s", k + 1, o.frames, total, (now_ms() - start) / (k + 1),
+        if (isatty_err || k + 1 == o.frames) {
+            char of[16] = "";
+            if (o.frames)
+                snprintf(of, sizeof of, "/%u", o.frames);
+            fprintf(stderr, "\rframe %u%s  gpu %.2f ms  wall %.1f ms/frame%s", k + 1, of, total, (now_ms() - start) / (k + 1),
                     k + 1 == o.frames ? "\n" : "");
+        }
+        pace(frame_start, o.interval_ms);
     }
+    sigaction(SIGINT, &old_int, NULL);
+    sigaction(SIGTERM, &old_term, NULL);
+    if (interrupted)
+        fprintf(stderr, "\ninterrupted after %u frames\n", done);
     double wall = now_ms() - start;
     vrg_camera_path_free(&path);
+    if (rc == 0 && done == 0) {
+        fprintf(stderr, "error: no frame was rendered\n");
+        rc = 1;
+    }
     if (rc == 0 && mkdir_p(o.out) != 0)
         rc = 1;
     if (rc == 0)
-        rc |= write_resource(g, o.out, vrg_graph_output(g)) != 0;
+        rc |= write_resource(g, o.out, vrg_graph_output(g), -1) != 0;
     for (int i = 0; rc == 0 && i < o.dump_count; i++)
-        rc |= write_resource(g, o.out, o.dumps[i]) != 0;
+        rc |= write_resource(g, o.out, o.dumps[i], -1) != 0;
     if (rc == 0 && o.json)
-        rc |= write_json(o.json, ctx, g, &o, ms, np, o.frames, wall) != 0;
+        rc |= write_json(o.json, ctx, g, &o, ms, np, done, wall) != 0;
     free(ms);
     return finish(ctx, g, rc);
 }
