@@ -211,6 +211,53 @@ PY
     expect_rc 0 "run --ab and --record under Xvfb" xvfb-run -a "$voxrg" run "$tests/graphs/blocks_wall.ini" --ab "$tests/graphs/blocks_wall.ini" \
         --validate --size 96x64 --frames 3 --record "$out/flight.path"
     expect_rc 0 "a recorded flight plays back" "$voxrg" render "$tests/graphs/blocks_wall.ini" --camera "$out/flight.path" --frames 3 --out "$out/flight"
+    # driven like a user (xdotool): the window resized (the graph follows),
+    # W held (the camera flies forward), a right-button drag (it turns), P
+    # (a screenshot of the new size), Esc (quits)
+    if command -v xdotool >/dev/null; then
+        cat >"$out/drive.sh" <<'SH'
+#!/usr/bin/env bash
+set -u
+voxrg=$1 graph=$2 out=$3
+cd "$out" && rm -f screenshot-000.png
+"$voxrg" run "$graph" --validate --size 192x128 --record drive.path >drive.stdout 2>drive.stderr &
+pid=$!
+wid=$(timeout 120 xdotool search --sync --name '^voxrg' | head -1)
+[ -n "$wid" ] || { kill $pid; exit 3; }
+wait_for() { for _ in $(seq 600); do grep -q "$1" drive.stderr && return 0; sleep 0.1; done; return 1; }
+# frames are being presented once the title shows the rates
+for _ in $(seq 600); do xdotool getwindowname "$wid" | grep -q fps && break; sleep 0.1; done
+xdotool windowsize "$wid" 160 100 && wait_for "window resized: graph now 160x100" || { kill $pid; exit 4; }
+xdotool windowfocus --sync "$wid"
+xdotool keydown w && sleep 1 && xdotool keyup w
+xdotool mousemove --window "$wid" 80 50 mousedown 3 && sleep 0.3
+for _ in $(seq 10); do xdotool mousemove_relative -- 8 0; sleep 0.05; done
+xdotool mouseup 3
+xdotool key p && wait_for "wrote screenshot-000.png" || { kill $pid; exit 5; }
+xdotool key Escape
+wait $pid
+SH
+        expect_rc 0 "the window driven by xdotool" timeout 300 xvfb-run -a bash "$out/drive.sh" "$voxrg" "$tests/graphs/blocks_wall.ini" "$out"
+        if python3 - "$out" "$tests" <<'PY'
+import math, sys
+sys.dont_write_bytecode = True
+sys.path.insert(0, sys.argv[2])
+from png_pixels import load
+w, h, px = load(sys.argv[1] + "/screenshot-000.png")
+assert (w, h) == (160, 100), (w, h)
+# below the overlay: the scene (by now the lit white floor fills it), not a black or uncleared window
+bottom = [px(x, y) for y in range(h - 20, h) for x in range(w)]
+assert sum(map(sum, bottom)) / (3 * len(bottom)) > 120 and (24, 24, 24) not in bottom, bottom[:4]
+rows = [list(map(float, l.split())) for l in open(sys.argv[1] + "/drive.path") if l.strip() and not l.startswith("#")]
+t0, x0, y0, z0, yaw0, pitch0 = rows[0]
+t1, x1, y1, z1, yaw1, pitch1 = rows[-1]
+assert math.dist((x0, y0, z0), (x1, y1, z1)) > 0.5, (rows[0], rows[-1])   # W flew forward
+assert abs(yaw1 - yaw0) > 1, (yaw0, yaw1)                               # the drag turned the view
+PY
+        then ok; else bad "the driven window: resized screenshot, flight and turn in the recorded path"; fi
+    else
+        echo "skip: xdotool not installed (scripts/setup.sh installs it)"
+    fi
 else
     echo "skip: xvfb-run not installed (scripts/setup.sh installs it)"
 fi

@@ -773,11 +773,16 @@ int vrg_cli_run(const vrg_run_options *o)
         glfwGetFramebufferSize(w.window, &fw, &fh);
         if (pr > 0 || (fw > 0 && fh > 0 && ((uint32_t)fw != w.sc.extent.width || (uint32_t)fh != w.sc.extent.height))) {
             vkDeviceWaitIdle(w.dev->device);
+            uint32_t was_w, was_h, now_w, now_h;
+            vrg_graph_size(g, &was_w, &was_h);
             if (create_swapchain(&w, w.sc.handle) < 0 || vrg_graph_resize(g, w.sc.extent.width, w.sc.extent.height) != 0 ||
                 (gb && vrg_graph_resize(gb, w.sc.extent.width, w.sc.extent.height) != 0)) {
                 rc = 1;
                 break;
             }
+            vrg_graph_size(g, &now_w, &now_h);
+            if (now_w != was_w || now_h != was_h)
+                fprintf(stderr, "window resized: graph%s now %ux%u, history reset\n", gb ? "s" : "", now_w, now_h);
         }
         if (t - title_at > 0.5) { /* the figures in the title too */
             double gpu[2] = {0, 0};
