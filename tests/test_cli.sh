@@ -210,6 +210,12 @@ PY
     expect_rc 1 "run --show of an unknown image" xvfb-run -a "$voxrg" run "$tests/graphs/gbuffer_blocks.ini" --show nonesuch --frames 1
     expect_rc 0 "run --ab and --record under Xvfb" xvfb-run -a "$voxrg" run "$tests/graphs/blocks_wall.ini" --ab "$tests/graphs/blocks_wall.ini" \
         --validate --size 96x64 --frames 3 --record "$out/flight.path"
+    sed 's/^box = 8 1 8 23 6 8 red/box = 8 1 8 23 3 8 red/' "$tests/graphs/blocks_wall.ini" >"$out/lower_wall.ini"
+    expect_rc 1 "run --ab of another world" xvfb-run -a "$voxrg" run "$tests/graphs/blocks_wall.ini" --ab "$out/lower_wall.ini" --frames 1
+    has "$out/stderr" "--ab: scenes differ: .*blocks_wall.ini:[0-9]+ and .*lower_wall.ini:[0-9]+ set different text parameters" "--ab scene check"
+    sed 's/^time_of_day = 10/time_of_day = 16/' "$tests/graphs/blocks_wall.ini" >"$out/late.ini"
+    expect_rc 1 "run --ab at another time of day" xvfb-run -a "$voxrg" run "$tests/graphs/blocks_wall.ini" --ab "$out/late.ini" --frames 1
+    has "$out/stderr" "--ab: scenes differ: .*has time_of_day = 10, .*late.ini:[0-9]+ 16" "--ab scene parameter check"
     expect_rc 0 "a recorded flight plays back" "$voxrg" render "$tests/graphs/blocks_wall.ini" --camera "$out/flight.path" --frames 3 --out "$out/flight"
     # driven like a user (xdotool): the window resized (the graph follows),
     # W held (the camera flies forward), a right-button drag (it turns), P

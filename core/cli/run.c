@@ -644,10 +644,17 @@ int vrg_cli_run(const vrg_run_options *o)
         fprintf(stderr, "error: --show %s: the graph has no image of that name\n", o->show);
         goto out;
     }
-    if (o->ab) { /* B: its own graph file, the same size and camera */
-        vrg_graph_desc db = {.path = o->ab, .width = o->width, .height = o->height};
+    if (o->ab) { /* B: its own graph file at A's size, the same world, camera and seed */
+        uint32_t aw, ah;
+        vrg_graph_size(g, &aw, &ah);
+        vrg_graph_desc db = {.path = o->ab, .width = aw, .height = ah};
         if (vrg_graph_load(w.ctx, &db, &gb) != 0)
             goto out;
+        char why[1024];
+        if (vrg_graph_same_world(g, gb, why, sizeof why) != 0) {
+            fprintf(stderr, "error: --ab: %s: the two sides would not show the same frames\n", why);
+            goto out;
+        }
         vrg_graph_watch(gb, 1);
     }
     if (o->record && !(record = fopen(o->record, "w"))) {
@@ -722,10 +729,14 @@ int vrg_cli_run(const vrg_run_options *o)
         w.time_step = 0;
         if (rc)
             break;
+        int changed = vrg_graph_source_changed(g) || (gb && vrg_graph_source_changed(gb));
         if (vrg_graph_source_changed(g))
             (void)vrg_graph_reload(&g); /* a broken graph or plugin is reported; the running one stays */
         if (gb && vrg_graph_source_changed(gb))
             (void)vrg_graph_reload(&gb);
+        char why[1024];
+        if (changed && gb && vrg_graph_same_world(g, gb, why, sizeof why) != 0) /* an edit may part them: say so, keep going */
+            fprintf(stderr, "warning: --ab: %s: the sides no longer show the same frames\n", why);
         if (vrg_graph_reload_ms(g) != reloaded) {
             reloaded = vrg_graph_reload_ms(g);
             fprintf(stderr, "reloaded: %.0f ms from save to frame\n", reloaded);

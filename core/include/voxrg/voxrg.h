@@ -145,6 +145,10 @@ int vrg_graph_source_changed(const vrg_graph *g);
  * host's arrays in the original vrg_graph_desc must still be alive. */
 int vrg_graph_reload(vrg_graph **g);
 void vrg_graph_size(const vrg_graph *g, uint32_t *width, uint32_t *height);
+/* 0 when a and b render the same world the same way: equal size, [graph]
+ * seed and fps, and the same scene plugin with the same parameters (A/B
+ * comparisons need it); else -1 with the first difference in `why`. */
+int vrg_graph_same_world(const vrg_graph *a, const vrg_graph *b, char *why, size_t cap);
 
 typedef struct vrg_memory_stats {
     uint64_t naive_bytes;    /* every transient resource in its own memory */
