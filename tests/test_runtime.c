@@ -1715,6 +1715,30 @@ static int build_reloadme(const char *dir, int version, const char *abi)
     return system(cmd);
 }
 
+/* How many distinct files named like `name` are mapped into this process:
+ * the versions of a plugin still loaded. */
+static int mapped_versions(const char *name)
+{
+    char seen[16][512];
+    int n = 0;
+    char line[1024];
+    FILE *f = fopen("/proc/self/maps", "r");
+    while (f && fgets(line, sizeof line, f)) {
+        char *path = strchr(line, '/');
+        if (!path || !strstr(path, name))
+            continue;
+        path[strcspn(path, "\n")] = '\0';
+        int known = 0;
+        for (int i = 0; i < n; i++)
+            known |= strcmp(seen[i], path) == 0;
+        if (!known && n < 16)
+            snprintf(seen[n++], sizeof seen[0], "%s", path);
+    }
+    if (f)
+        fclose(f);
+    return n;
+}
+
 /* Hot reload of a rebuilt plugin: the new build runs from the next graph
  * instance on, with the old instance's state handed over (save_state ->
  * restore_state: its frame count goes on); a rebuild with another ABI
@@ -1767,6 +1791,8 @@ static void test_hot_reload_plugin(void)
     CHECK(px(&img, 1, 1, 0) == 0 && px(&img, 1, 1, 1) == 1 && fabsf(px(&img, 1, 1, 2) - 0.05f) < 1e-3f,
           "version 2, state carried over (5 frames): %g %g %g", px(&img, 1, 1, 0), px(&img, 1, 1, 1), px(&img, 1, 1, 2));
     free(img.pixels);
+    /* the old graph is gone, so is version 1: an edit loop does not pile up versions */
+    CHECK(mapped_versions("reloadme.so") == 1, "%d versions of the plugin loaded after a reload, want 1", mapped_versions("reloadme.so"));
 
     CHECK(build_reloadme(dir, 1, "999") == 0, "rebuild failed");
     CHECK(vrg_graph_frame(g) == 0, "frame failed");
@@ -1777,6 +1803,18 @@ static void test_hot_reload_plugin(void)
     CHECK(px(&img, 1, 1, 1) == 1 && fabsf(px(&img, 1, 1, 2) - 0.07f) < 1e-3f, "the running version stopped: %g %g %g", px(&img, 1, 1, 0),
           px(&img, 1, 1, 1), px(&img, 1, 1, 2));
     free(img.pixels);
+    CHECK(mapped_versions("reloadme.so") == 1, "%d versions of the plugin loaded after a refused rebuild, want 1", mapped_versions("reloadme.so"));
+    /* more rebuilds: still one version, the state still carried (frames 8..) */
+    for (int v = 0; v < 3; v++) {
+        CHECK(build_reloadme(dir, 2 - v % 2, "VRG_ABI_VERSION") == 0, "rebuild failed");
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+        CHECK(vrg_graph_source_changed(g) && vrg_graph_reload(&g) == 0, "rebuild %d was not reloaded", v);
+    }
+    CHECK(vrg_graph_frame(g) == 0 && vrg_graph_read(g, "color", &img) == 0, "frame failed");
+    CHECK(px(&img, 1, 1, 1) == 1 && fabsf(px(&img, 1, 1, 2) - 0.11f) < 1e-3f, "after three more rebuilds: %g %g %g", px(&img, 1, 1, 0),
+          px(&img, 1, 1, 1), px(&img, 1, 1, 2));
+    free(img.pixels);
+    CHECK(mapped_versions("reloadme.so") == 1, "%d versions of the plugin loaded after 5 rebuilds, want 1", mapped_versions("reloadme.so"));
     vrg_graph_destroy(g);
     fclose(diag);
     free(log);

@@ -176,8 +176,11 @@ void vrg_graph_destroy(vrg_graph *g)
         vkDestroyFence(dev, g->fence, NULL);
         vkDestroyQueryPool(dev, g->queries, NULL);
     }
-    for (int i = 0; i < g->pass_count; i++)
+    for (int i = 0; i < g->pass_count; i++) {
         vrg_pass_free_params(&g->passes[i]);
+        if (g->passes[i].plugin)
+            vrg_plugin_release(g->passes[i].plugin); /* last: nothing of the plugin's is used after */
+    }
     free(g);
 }
 

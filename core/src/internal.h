@@ -71,9 +71,15 @@ typedef struct vrg_plugin {
     char source[1024]; /* the file the build writes (hot reload watches it) */
     void *handle;
     const vrg_plugin_desc *desc;
+    unsigned generation; /* load order: the highest of a name is its current version */
+    int users;           /* passes of live graphs running it (vrg_plugin_acquire) */
 } vrg_plugin;
 /* Finds and loads NAME; NULL after reporting at `line`. Cached per process. */
 const vrg_plugin *vrg_plugin_load(const char *name, const char *graph_path, vrg_diag *d, int line);
+/* A pass runs the plugin / no longer does. A superseded version (a hot
+ * reload loaded a newer one) is unloaded when its last user goes. */
+void vrg_plugin_acquire(const vrg_plugin *p);
+void vrg_plugin_release(const vrg_plugin *p);
 /* A rebuilt plugin file becomes the newest version of its plugin (hot reload). */
 int vrg_plugin_reload(const char *source_path, vrg_diag *d);
 /* Every plugin on the search path (for `voxrg plugins`). */

@@ -11,8 +11,52 @@
 #include <unistd.h>
 #include "internal.h"
 
+/* Slots stay put (graphs hold pointers to them); an unloaded version's slot
+ * is emptied (name "") and reused. */
 static vrg_plugin loaded[VRG_MAX_PLUGINS];
 static int loaded_count;
+static unsigned last_generation;
+
+/* The current version of NAME (matched on `source` instead when by_source). */
+static vrg_plugin *newest(const char *key, int by_source)
+{
+    vrg_plugin *best = NULL;
+    for (int i = 0; i < loaded_count; i++)
+        if (loaded[i].name[0] && strcmp(by_source ? loaded[i].source : loaded[i].name, key) == 0 &&
+            (!best || loaded[i].generation > best->generation))
+            best = &loaded[i];
+    return best;
+}
+
+static vrg_plugin *free_slot(void)
+{
+    for (int i = 0; i < loaded_count; i++)
+        if (!loaded[i].name[0])
+            return &loaded[i];
+    return loaded_count < VRG_MAX_PLUGINS ? &loaded[loaded_count++] : NULL;
+}
+
+static const vrg_plugin *keep(const vrg_plugin *p)
+{
+    vrg_plugin *slot = free_slot();
+    if (slot) {
+        *slot = *p;
+        slot->generation = ++last_generation;
+        slot->users = 0;
+    }
+    return slot;
+}
+
+void vrg_plugin_acquire(const vrg_plugin *p) { ((vrg_plugin *)p)->users++; }
+
+void vrg_plugin_release(const vrg_plugin *cp)
+{
+    vrg_plugin *p = (vrg_plugin *)cp;
+    if (--p->users > 0 || newest(p->name, 0) == p)
+        return; /* in use, or the current version (kept loaded: a cache) */
+    dlclose(p->handle);
+    memset(p, 0, sizeof *p);
+}
 
 static int add_dir(char dirs[][1024], int n, int max, const char *dir)
 {
@@ -117,15 +161,15 @@ static int check_desc(const vrg_plugin *p, vrg_diag *d, int line)
 
 const vrg_plugin *vrg_plugin_load(const char *name, const char *graph_path, vrg_diag *d, int line)
 {
-    /* newest first: a reloaded plugin supersedes its earlier versions */
-    for (int i = loaded_count - 1; i >= 0; i--)
-        if (strcmp(loaded[i].name, name) == 0)
-            return &loaded[i];
+    /* the newest version: a reloaded plugin supersedes its earlier ones */
+    const vrg_plugin *current = name[0] ? newest(name, 0) : NULL;
+    if (current)
+        return current;
     if (!name[0] || strchr(name, '/') || strlen(name) >= VRG_NAME_MAX) {
         vrg_error_at(d, line, "a plugin is named by its file name without .so", "unknown plugin '%s'", name);
         return NULL;
     }
-    if (loaded_count >= VRG_MAX_PLUGINS) {
+    if (loaded_count >= VRG_MAX_PLUGINS && !free_slot()) {
         vrg_error_at(d, line, NULL, "too many plugins (at most %d)", VRG_MAX_PLUGINS);
         return NULL;
     }
@@ -181,8 +225,7 @@ const vrg_plugin *vrg_plugin_load(const char *name, const char *graph_path, vrg_
         dlclose(p.handle);
         return NULL;
     }
-    loaded[loaded_count] = p;
-    return &loaded[loaded_count++];
+    return keep(&p);
 }
 
 /* Hot reload of a rebuilt plugin: the file at `path` (the one a loaded
@@ -190,18 +233,16 @@ const vrg_plugin *vrg_plugin_load(const char *name, const char *graph_path, vrg_
  * the build may overwrite it again and dlopen does not hand back the old
  * image; its ABI and descriptor are checked like any plugin's. On success
  * it becomes the newest version of its name (graphs loaded from now on use
- * it); the old version stays loaded for the graphs still running it. */
+ * it); the old version stays loaded while graphs still run it, and is
+ * unloaded with its last user. */
 int vrg_plugin_reload(const char *path, vrg_diag *d)
 {
-    int old = -1;
-    for (int i = loaded_count - 1; i >= 0 && old < 0; i--)
-        if (strcmp(loaded[i].source, path) == 0)
-            old = i;
-    if (old < 0) {
+    vrg_plugin *old = newest(path, 1);
+    if (!old) {
         vrg_error(d, "plugin %s: not a loaded plugin", path);
         return -1;
     }
-    if (loaded_count >= VRG_MAX_PLUGINS) {
+    if (loaded_count >= VRG_MAX_PLUGINS && !free_slot()) {
         vrg_error(d, "plugin %s: too many plugin versions loaded (at most %d)", path, VRG_MAX_PLUGINS);
         return -1;
     }
@@ -211,7 +252,7 @@ int vrg_plugin_reload(const char *path, vrg_diag *d)
         return -1;
     }
     vrg_plugin p = {0};
-    snprintf(p.name, sizeof p.name, "%s", loaded[old].name);
+    snprintf(p.name, sizeof p.name, "%s", old->name);
     snprintf(p.source, sizeof p.source, "%s", path);
     snprintf(p.path, sizeof p.path, "%s/%s.so", dir, p.name);
     FILE *in = fopen(path, "rb"), *out = fopen(p.path, "wb");
@@ -250,7 +291,11 @@ int vrg_plugin_reload(const char *path, vrg_diag *d)
             dlclose(p.handle);
         return -1;
     }
-    loaded[loaded_count++] = p;
+    keep(&p);
+    if (old->users == 0) { /* superseded with no pass running it: unload now */
+        old->users = 1;
+        vrg_plugin_release(old);
+    }
     return 0;
 }
 
@@ -291,7 +336,8 @@ int vrg_plugin_list(const vrg_plugin **out, int max)
     }
     int n = 0;
     for (int i = 0; i < loaded_count && n < max; i++)
-        out[n++] = &loaded[i];
+        if (loaded[i].name[0] && newest(loaded[i].name, 0) == &loaded[i]) /* current versions only */
+            out[n++] = &loaded[i];
     qsort(out, (size_t)n, sizeof *out, by_name);
     return n;
 }

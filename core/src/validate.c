@@ -538,6 +538,7 @@ static void collect_sections(vrg_graph *g, const vrg_ast *a, const char *graph_p
             continue;
         }
         p->plugin = pl;
+        vrg_plugin_acquire(pl); /* released by vrg_graph_destroy */
         for (uint32_t i = 0; i < pl->desc->param_count; i++)
             p->params[i] = pl->desc->params[i].default_value;
     }
