@@ -11,7 +11,7 @@ export DEBIAN_FRONTEND=noninteractive
 PKGS="build-essential cmake pkg-config git ca-certificates
       libvulkan-dev vulkan-validationlayers vulkan-tools spirv-tools
       glslang-dev glslang-tools libglfw3-dev libinih-dev libspng-dev libjemalloc-dev
-      xvfb xauth xdotool clang llvm libclang-rt-14-dev python3"
+      xvfb xauth xdotool chromium clang llvm libclang-rt-14-dev python3"
 
 missing=""
 for p in $PKGS mesa-vulkan-drivers; do

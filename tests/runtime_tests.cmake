@@ -67,3 +67,20 @@ if(VOXRG_FUZZ)
                    sh -c "mkdir -p ${FUZZ_CORPUS} && cp ${CMAKE_CURRENT_SOURCE_DIR}/graphs/*.ini ${CMAKE_CURRENT_SOURCE_DIR}/bad/*.ini ${PROJECT_SOURCE_DIR}/graphs/*.ini ${FUZZ_CORPUS}/ && $<TARGET_FILE:fuzz_graph> -runs=20000 -max_len=4096 -timeout=10 ${FUZZ_CORPUS}")
   set_tests_properties(fuzz_graph PROPERTIES TIMEOUT 600)
 endif()
+
+# Image metrics of voxrg compare against hand-computed values (no device).
+add_executable(test_metrics test_metrics.c)
+target_link_libraries(test_metrics PRIVATE voxrg m)
+foreach(case psnr ssim flip temporal colors)
+  add_test(NAME metrics_${case} COMMAND test_metrics ${case})
+  set_tests_properties(metrics_${case} PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}" LABELS "metrics")
+endforeach()
+
+# voxrg compare end to end (metrics, cache, report, errors); then the report
+# opened in headless Chromium.
+add_test(NAME compare COMMAND python3 ${CMAKE_CURRENT_SOURCE_DIR}/test_compare.py $<TARGET_FILE:voxrg_cli> ${PROJECT_SOURCE_DIR}
+         ${CMAKE_CURRENT_BINARY_DIR}/compare_out)
+set_tests_properties(compare PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}" TIMEOUT 900 FIXTURES_SETUP compare_report)
+add_test(NAME compare_report_browser COMMAND python3 ${CMAKE_CURRENT_SOURCE_DIR}/test_report_browser.py
+         ${CMAKE_CURRENT_BINARY_DIR}/compare_out/e2e/report.html ${CMAKE_CURRENT_BINARY_DIR}/compare_browser)
+set_tests_properties(compare_report_browser PROPERTIES TIMEOUT 300 SKIP_RETURN_CODE 77 FIXTURES_REQUIRED compare_report)

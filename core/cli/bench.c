@@ -7,6 +7,7 @@
 #include <string.h>
 #include <unistd.h>
 #include "bench.h"
+#include "util.h"
 
 typedef struct figure {
     char name[96];
@@ -258,20 +259,6 @@ static const char *reload_shader =
     "    imageStore(dst, ivec2(gl_GlobalInvocationID.xy), vec4(c / 8.0, 1.0));\n"
     "}\n";
 
-static char *read_text(const char *path)
-{
-    FILE *f = fopen(path, "r");
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *t = malloc((size_t)n + 1);
-    size_t got = fread(t, 1, (size_t)n, f);
-    t[got] = '\0';
-    fclose(f);
-    return t;
-}
 
 /* A ray pass's shader saved: the thesis graph at 320x180 with a private
  * build of the ao pass whose shader folder is `dir` (the graph's folder
@@ -282,9 +269,9 @@ static int ray_shader_reload(vrg_context *ctx, const char *dir, int runs, double
 {
     char path[1100], cmd[4096], graph[1100], shader[1100];
     snprintf(path, sizeof path, "%s/passes/ao/ao.comp", vrg_source_dir());
-    char *src = read_text(path);
+    char *src = vrg_cli_read_text(path);
     snprintf(path, sizeof path, "%s/graphs/thesis.ini", vrg_source_dir());
-    char *thesis = read_text(path);
+    char *thesis = vrg_cli_read_text(path);
     char *salt = src ? strstr(src, "const uint SALT = 0x414f0002u;") : NULL;
     int rc = -1;
     vrg_graph *g = NULL;

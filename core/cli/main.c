@@ -12,7 +12,9 @@
 #include <time.h>
 #include <unistd.h>
 #include "bench.h"
+#include "compare.h"
 #include "run.h"
+#include "util.h"
 #include "voxrg/voxrg.h"
 
 #define MAX_SETS 64
@@ -25,6 +27,7 @@ static const char *usage_main =
     "  render GRAPH    render frames headless; write PNGs and timings\n"
     "  run GRAPH       render in a window with a fly camera and hot reload\n"
     "  plugins [NAME]  list plugins, or one plugin's slots and parameters\n"
+    "  compare A.ini.. measure graphs against a converged reference: metrics, HTML report\n"
     "  bench           measure the figures in docs/benchmarks.md\n"
     "'voxrg COMMAND --help' describes each.\n";
 
@@ -80,19 +83,6 @@ static int usage_error(const char *usage, const char *fmt, const char *arg)
     return 2;
 }
 
-static int parse_size(const char *s, uint32_t *w, uint32_t *h)
-{
-    char *end;
-    long a = strtol(s, &end, 10);
-    if (*end != 'x' || a <= 0 || a > 16384)
-        return -1;
-    long b = strtol(end + 1, &end, 10);
-    if (*end || b <= 0 || b > 16384)
-        return -1;
-    *w = (uint32_t)a;
-    *h = (uint32_t)b;
-    return 0;
-}
 
 static int is_valued_option(const char *a)
 {
@@ -150,7 +140,7 @@ static int parse_options(int argc, char **argv, options *o, const char *usage)
                 return usage_error(usage, "too many --set options%s", "");
             o->sets[o->set_count++] = next;
         } else if (!strcmp(a, "--size")) {
-            if (parse_size(next, &o->width, &o->height) != 0)
+            if (vrg_cli_parse_size(next, &o->width, &o->height) != 0)
                 return usage_error(usage, "--size '%s': expected WxH, e.g. 320x180", next);
         } else if (!strcmp(a, "--frames")) {
             char *end;
@@ -240,22 +230,6 @@ static int cmd_check(int argc, char **argv)
     return finish(ctx, g, 0);
 }
 
-static int mkdir_p(const char *dir)
-{
-    char buf[1024];
-    snprintf(buf, sizeof buf, "%s", dir);
-    for (char *p = buf + 1; *p; p++)
-        if (*p == '/') {
-            *p = '\0';
-            mkdir(buf, 0777);
-            *p = '/';
-        }
-    if (mkdir(buf, 0777) != 0 && errno != EEXIST) {
-        fprintf(stderr, "error: cannot create directory %s: %s\n", dir, strerror(errno));
-        return -1;
-    }
-    return 0;
-}
 
 /* DIR/NAME.png (or .bin for a buffer); with frame >= 0 DIR/NAME-NNNNN.png,
  * written under a temporary name and renamed, so that a script polling for
@@ -305,29 +279,7 @@ static int write_resource(vrg_graph *g, const char *dir, const char *name, long 
     return rc;
 }
 
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
 
-/* A JSON string body: quotes, backslashes and control characters escaped. */
-static const char *json_str(const char *s, char *buf, size_t cap)
-{
-    size_t n = 0;
-    for (; *s && n + 7 < cap; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            n += (size_t)snprintf(buf + n, cap - n, "\\%c", c);
-        else if (c < 0x20)
-            n += (size_t)snprintf(buf + n, cap - n, "\\u%04x", c);
-        else
-            buf[n++] = (char)c;
-    }
-    buf[n] = '\0';
-    return buf;
-}
 
 /* ms: per frame, `stride` passes (the pass count when rendering began; a
  * reload under --watch may change it) */
@@ -344,7 +296,7 @@ static int write_json(const char *path, vrg_context *ctx, vrg_graph *g, const op
     vrg_memory_stats m = vrg_graph_memory(g);
     char g_esc[2048], d_esc[1024], p_esc[256];
     fprintf(f, "{\n  \"graph\": \"%s\",\n  \"device\": \"%s\",\n  \"width\": %u,\n  \"height\": %u,\n  \"frames\": %u,\n",
-            json_str(o->graph, g_esc, sizeof g_esc), json_str(vrg_context_device(ctx)->name, d_esc, sizeof d_esc), w, h, frames);
+            vrg_cli_json_str(o->graph, g_esc, sizeof g_esc), vrg_cli_json_str(vrg_context_device(ctx)->name, d_esc, sizeof d_esc), w, h, frames);
     fprintf(f, "  \"wall_ms_per_frame\": %.4f,\n", wall_ms / frames);
     fprintf(f, "  \"memory\": {\"transient_naive_bytes\": %llu, \"transient_aliased_bytes\": %llu, \"history_bytes\": %llu},\n",
             (unsigned long long)m.naive_bytes, (unsigned long long)m.aliased_bytes, (unsigned long long)m.history_bytes);
@@ -354,7 +306,7 @@ static int write_json(const char *path, vrg_context *ctx, vrg_graph *g, const op
         if (vrg_graph_pass_ms(g, i) < 0 && ms[i] < 0)
             continue; /* culled or not timed */
         double sum = 0;
-        fprintf(f, "%s\n    {\"name\": \"%s\", \"gpu_ms\": [", first ? "" : ",", json_str(vrg_graph_pass_name(g, i), p_esc, sizeof p_esc));
+        fprintf(f, "%s\n    {\"name\": \"%s\", \"gpu_ms\": [", first ? "" : ",", vrg_cli_json_str(vrg_graph_pass_name(g, i), p_esc, sizeof p_esc));
         for (uint32_t k = 0; k < frames; k++) {
             fprintf(f, "%s%.4f", k ? ", " : "", ms[k * stride + i]);
             sum += ms[k * stride + i];
@@ -382,7 +334,7 @@ static void on_interrupt(int sig)
 /* Sleeps until `start_ms` + `interval_ms` (frame pacing for --interval). */
 static void pace(double start_ms, double interval_ms)
 {
-    double left = start_ms + interval_ms - now_ms();
+    double left = start_ms + interval_ms - vrg_cli_now_ms();
     if (left > 0) {
         struct timespec ts = {(time_t)(left / 1e3), (long)(fmod(left, 1e3) * 1e6)};
         nanosleep(&ts, NULL);
@@ -404,12 +356,12 @@ static int cmd_render(int argc, char **argv)
     vrg_camera_path path = {0};
     if (o.camera && vrg_camera_path_load(o.camera, &path, stderr) != 0)
         return finish(ctx, g, 1);
-    if (o.sequence && mkdir_p(o.out) != 0)
+    if (o.sequence && vrg_cli_mkdir_p(o.out) != 0)
         return finish(ctx, g, 1);
     vrg_camera camera = *vrg_graph_camera(g);
     uint32_t np = vrg_graph_pass_count(g), cap = o.frames ? o.frames : 256;
     double *ms = calloc((size_t)cap * np, sizeof *ms);
-    double start = now_ms();
+    double start = vrg_cli_now_ms();
     int isatty_err = isatty(2);
     if (o.watch && vrg_graph_watch(g, 1) != 0)
         return finish(ctx, g, 1);
@@ -421,7 +373,7 @@ static int cmd_render(int argc, char **argv)
     uint32_t sub = vrg_graph_subframes(g), done = 0;
     double reloaded = -1;
     for (uint32_t k = 0; (o.frames == 0 || k < o.frames) && rc == 0 && !interrupted; k++) {
-        double frame_start = now_ms();
+        double frame_start = vrg_cli_now_ms();
         if (k == cap) {
             double *grown = realloc(ms, (size_t)cap * 2 * np * sizeof *ms);
             if (!grown)
@@ -465,7 +417,7 @@ static int cmd_render(int argc, char **argv)
             char of[16] = "";
             if (o.frames)
                 snprintf(of, sizeof of, "/%u", o.frames);
-            fprintf(stderr, "\rframe %u%s  gpu %.2f ms  wall %.1f ms/frame%s", k + 1, of, total, (now_ms() - start) / (k + 1),
+            fprintf(stderr, "\rframe %u%s  gpu %.2f ms  wall %.1f ms/frame%s", k + 1, of, total, (vrg_cli_now_ms() - start) / (k + 1),
                     k + 1 == o.frames ? "\n" : "");
         }
         pace(frame_start, o.interval_ms);
@@ -474,13 +426,13 @@ static int cmd_render(int argc, char **argv)
     sigaction(SIGTERM, &old_term, NULL);
     if (interrupted)
         fprintf(stderr, "\ninterrupted after %u frames\n", done);
-    double wall = now_ms() - start;
+    double wall = vrg_cli_now_ms() - start;
     vrg_camera_path_free(&path);
     if (rc == 0 && done == 0) {
         fprintf(stderr, "error: no frame was rendered\n");
         rc = 1;
     }
-    if (rc == 0 && mkdir_p(o.out) != 0)
+    if (rc == 0 && vrg_cli_mkdir_p(o.out) != 0)
         rc = 1;
     if (rc == 0)
         rc |= write_resource(g, o.out, vrg_graph_output(g), -1) != 0;
@@ -655,6 +607,8 @@ int main(int argc, char **argv)
         return cmd_plugins(argc - 2, argv + 2);
     if (!strcmp(argv[1], "bench"))
         return cmd_bench(argc - 2, argv + 2);
+    if (!strcmp(argv[1], "compare"))
+        return vrg_cli_compare(argc - 2, argv + 2);
     fprintf(stderr, "error: unknown command '%s'\n%s", argv[1], usage_main);
     return 2;
 }

@@ -13,6 +13,7 @@
 #include "bench.h" /* vrg_source_dir */
 #include "overlay.h"
 #include "run.h"
+#include "util.h"
 #include "voxrg/camera.h"
 #include "voxrg/voxrg.h"
 
@@ -107,12 +108,7 @@ static int ensure_staging(window_state *w, VkDeviceSize size)
     return 0;
 }
 
-static double now_s(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
+static double now_s(void) { return vrg_cli_now_ms() * 1e-3; }
 
 static int create_swapchain(window_state *w, VkSwapchainKHR old)
 {

@@ -225,6 +225,19 @@ int vrg_graph_watch(vrg_graph *g, int on)
     return 0;
 }
 
+/* ---- the files a graph is built from ---- */
+
+void vrg_graph_sources(const vrg_graph *g, void (*fn)(void *user, const char *path), void *user)
+{
+    if (g->loaded_from_file)
+        fn(user, g->path);
+    for (int i = 0; i < g->pass_count; i++)
+        if (g->passes[i].plugin)
+            fn(user, g->passes[i].plugin->source);
+    for (int i = 0; i < g->pass_count; i++)
+        vrg_pipelines_deps((vrg_pass *)&g->passes[i], fn, user);
+}
+
 /* Saved shaders: recompile the pipelines that read them before this frame
  * records. Failures keep the old pipeline; their messages (FILE:LINE) go to
  * the diagnostics as usual and are kept for vrg_graph_reload_error. */
@@ -378,6 +391,12 @@ int vrg_graph_resize(vrg_graph *g, uint32_t width, uint32_t height)
 }
 
 void vrg_graph_reset_history(vrg_graph *g) { g->history_reset = 1; }
+
+void vrg_graph_set_frame_index(vrg_graph *g, uint64_t index)
+{
+    g->frame.frame_index = index;
+    g->history_reset = 1; /* the @prev copy is picked by the index's parity */
+}
 
 static int find_readable(vrg_graph *g, const char *name)
 {

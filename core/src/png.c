@@ -6,6 +6,7 @@
  *   its maximum; anything else is linear colour: clamped, sRGB-encoded. */
 #include <math.h>
 #include <spng.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include "internal.h"
 
@@ -25,7 +26,7 @@ static int is_uint(VkFormat f)
     return f == VK_FORMAT_R32_UINT || f == VK_FORMAT_R32G32_UINT || f == VK_FORMAT_R32G32B32A32_UINT;
 }
 
-int vrg_write_png(const char *path, const vrg_image_data *img)
+uint8_t *vrg_image_rgb8(const vrg_image_data *img)
 {
     size_t n = (size_t)img->width * img->height;
     uint32_t ch = img->channels < 3 ? img->channels : 3;
@@ -47,7 +48,9 @@ int vrg_write_png(const char *path, const vrg_image_data *img)
         mode = SIGNED;
     else if (ch == 1 && hi > 1)
         mode = BY_MAX;
-    uint8_t *rgb = malloc(n * 3);
+    uint8_t *rgb = malloc(n * 3 + 1);
+    if (!rgb)
+        return NULL;
     for (size_t p = 0; p < n; p++)
         for (int c = 0; c < 3; c++) {
             /* one channel: grey; two channels: red/green, blue 0 */
@@ -65,23 +68,86 @@ int vrg_write_png(const char *path, const vrg_image_data *img)
             v = v < 0 ? 0 : v > 1 ? 1 : v;
             rgb[p * 3 + c] = (uint8_t)lrintf(v * 255.0f);
         }
+    return rgb;
+}
+
+static spng_ctx *encoder(const uint8_t *rgb, uint32_t w, uint32_t h, FILE *f, int *err)
+{
+    spng_ctx *ctx = spng_ctx_new(SPNG_CTX_ENCODER);
+    if (!ctx) {
+        *err = SPNG_EMEM;
+        return NULL;
+    }
+    if (f)
+        spng_set_png_file(ctx, f);
+    else
+        spng_set_option(ctx, SPNG_ENCODE_TO_BUFFER, 1);
+    struct spng_ihdr ihdr = {.width = w, .height = h, .bit_depth = 8, .color_type = SPNG_COLOR_TYPE_TRUECOLOR};
+    spng_set_ihdr(ctx, &ihdr);
+    *err = spng_encode_image(ctx, rgb, (size_t)w * h * 3, SPNG_FMT_PNG, SPNG_ENCODE_FINALIZE);
+    return ctx;
+}
+
+int vrg_png_write_rgb8(const char *path, const uint8_t *rgb, uint32_t w, uint32_t h)
+{
     FILE *f = fopen(path, "wb");
     if (!f) {
-        free(rgb);
         fprintf(stderr, "error: cannot write %s\n", path);
         return -1;
     }
-    spng_ctx *ctx = spng_ctx_new(SPNG_CTX_ENCODER);
-    spng_set_png_file(ctx, f);
-    struct spng_ihdr ihdr = {.width = img->width, .height = img->height, .bit_depth = 8, .color_type = SPNG_COLOR_TYPE_TRUECOLOR};
-    spng_set_ihdr(ctx, &ihdr);
-    int err = spng_encode_image(ctx, rgb, n * 3, SPNG_FMT_PNG, SPNG_ENCODE_FINALIZE);
-    spng_ctx_free(ctx);
-    fclose(f);
-    free(rgb);
+    int err;
+    spng_ctx_free(encoder(rgb, w, h, f, &err));
+    if (fclose(f) != 0 && !err)
+        err = SPNG_IO_ERROR;
     if (err) {
         fprintf(stderr, "error: PNG encoding of %s failed: %s\n", path, spng_strerror(err));
         return -1;
     }
     return 0;
+}
+
+int vrg_png_encode_rgb8(const uint8_t *rgb, uint32_t w, uint32_t h, void **png, size_t *size)
+{
+    int err;
+    spng_ctx *ctx = encoder(rgb, w, h, NULL, &err);
+    *png = err ? NULL : spng_get_png_buffer(ctx, size, &err); /* ours to free */
+    spng_ctx_free(ctx);
+    return *png && !err ? 0 : -1;
+}
+
+int vrg_png_read_rgb8(const char *path, uint8_t **rgb, uint32_t *w, uint32_t *h)
+{
+    *rgb = NULL;
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return -1;
+    spng_ctx *ctx = spng_ctx_new(0);
+    spng_set_png_file(ctx, f);
+    struct spng_ihdr ihdr;
+    size_t len = 0;
+    int err = spng_get_ihdr(ctx, &ihdr);
+    if (!err)
+        err = spng_decoded_image_size(ctx, SPNG_FMT_RGB8, &len);
+    if (!err && !(*rgb = malloc(len)))
+        err = SPNG_EMEM;
+    if (!err)
+        err = spng_decode_image(ctx, *rgb, len, SPNG_FMT_RGB8, 0);
+    spng_ctx_free(ctx);
+    fclose(f);
+    if (err) {
+        free(*rgb);
+        *rgb = NULL;
+        return -1;
+    }
+    *w = ihdr.width;
+    *h = ihdr.height;
+    return 0;
+}
+
+int vrg_write_png(const char *path, const vrg_image_data *img)
+{
+    uint8_t *rgb = vrg_image_rgb8(img);
+    int rc = rgb ? vrg_png_write_rgb8(path, rgb, img->width, img->height) : -1;
+    free(rgb);
+    return rc;
 }

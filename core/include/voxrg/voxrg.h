@@ -62,6 +62,9 @@ int vrg_graph_frame(vrg_graph *g);
 int vrg_graph_resize(vrg_graph *g, uint32_t width, uint32_t height);
 /* Next frame sees history_valid = 0 and cleared @prev images (camera cut). */
 void vrg_graph_reset_history(vrg_graph *g);
+/* The next frame's index (random sequences, simulated time), so that a
+ * frame can be rendered alike however it is reached; history restarts. */
+void vrg_graph_set_frame_index(vrg_graph *g, uint64_t index);
 /* The camera for the next frame (the previous one becomes prev_camera). */
 void vrg_graph_set_camera(vrg_graph *g, const vrg_camera *camera);
 const vrg_camera *vrg_graph_camera(const vrg_graph *g);
@@ -132,6 +135,10 @@ double vrg_graph_reload_ms(const vrg_graph *g);
 int vrg_graph_set_param(vrg_graph *g, const char *pass_param, double value);
 /* The value in effect (numeric parameters; strings read as 0). */
 int vrg_graph_get_param(vrg_graph *g, const char *pass_param, double *value);
+/* Calls fn for each file the graph is built from: the graph file, its
+ * plugins, and the shaders (with their #includes) compiled so far, i.e.
+ * after a frame all those its passes use. Paths may repeat. */
+void vrg_graph_sources(const vrg_graph *g, void (*fn)(void *user, const char *path), void *user);
 /* While watching: the graph file was saved since it was loaded. */
 int vrg_graph_source_changed(const vrg_graph *g);
 /* Loads the graph's file again. On any error the running graph stays (*g is
@@ -171,6 +178,13 @@ const char *vrg_access_label(vrg_access a);
 
 /* PNG of float RGBA data; see docs/graph-format.md for how floats map. */
 int vrg_write_png(const char *path, const vrg_image_data *img);
+/* The 8-bit RGB bytes vrg_write_png would write (malloc'd, width*height*3). */
+uint8_t *vrg_image_rgb8(const vrg_image_data *img);
+int vrg_png_write_rgb8(const char *path, const uint8_t *rgb, uint32_t width, uint32_t height);
+/* A PNG file in memory (*png malloc'd, the caller frees it). */
+int vrg_png_encode_rgb8(const uint8_t *rgb, uint32_t width, uint32_t height, void **png, size_t *size);
+/* Any PNG, decoded to 8-bit RGB (*rgb malloc'd). -1 if unreadable. */
+int vrg_png_read_rgb8(const char *path, uint8_t **rgb, uint32_t *width, uint32_t *height);
 
 #ifdef __cplusplus
 }

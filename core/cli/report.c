@@ -1,0 +1,378 @@
+/* The HTML report of voxrg compare: one self-contained file (images as
+ * data: URIs, plots as inline SVG, no scripts). In order: the settings, the
+ * summary table (best per column marked), per-frame plots of each metric,
+ * GPU time as stacked bars per candidate, and for the shown frames the
+ * reference and each candidate side by side with FLIP maps and zoomed
+ * crops where the error is largest. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "compare.h"
+#include "voxrg/metrics.h"
+#include "voxrg/voxrg.h"
+
+/* candidates' colours (plots, legends); passes' colours (bars) */
+static const char *const series[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf"};
+static const char *const pass_colors[] = {"#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f", "#edc948",
+                                          "#b07aa1", "#ff9da7", "#9c755f", "#bab0ac", "#86bcb6", "#d37295"};
+
+static const char *cand_color(int i) { return series[i % (int)(sizeof series / sizeof series[0])]; }
+
+static const char *pass_color(const char *name)
+{
+    unsigned h = 5381;
+    for (const char *p = name; *p; p++)
+        h = h * 33 + (unsigned char)*p;
+    return pass_colors[h % (sizeof pass_colors / sizeof pass_colors[0])];
+}
+
+static void esc(FILE *f, const char *s)
+{
+    for (; *s; s++)
+        switch (*s) {
+        case '<': fputs("&lt;", f); break;
+        case '>': fputs("&gt;", f); break;
+        case '&': fputs("&amp;", f); break;
+        case '"': fputs("&quot;", f); break;
+        default: fputc(*s, f);
+        }
+}
+
+static void base64(FILE *f, const unsigned char *d, size_t n)
+{
+    static const char t[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    for (size_t i = 0; i < n; i += 3) {
+        unsigned v = (unsigned)d[i] << 16 | (i + 1 < n ? (unsigned)d[i + 1] << 8 : 0) | (i + 2 < n ? d[i + 2] : 0);
+        fputc(t[v >> 18 & 63], f);
+        fputc(t[v >> 12 & 63], f);
+        fputc(i + 1 < n ? t[v >> 6 & 63] : '=', f);
+        fputc(i + 2 < n ? t[v & 63] : '=', f);
+    }
+}
+
+/* <img> of 8-bit RGB, shown `scale` times its size */
+static int image(FILE *f, const uint8_t *rgb, uint32_t w, uint32_t h, int scale, const char *alt)
+{
+    void *png;
+    size_t size;
+    if (vrg_png_encode_rgb8(rgb, w, h, &png, &size) != 0)
+        return -1;
+    fprintf(f, "<img width=\"%u\" height=\"%u\" alt=\"", w * (uint32_t)scale, h * (uint32_t)scale);
+    esc(f, alt);
+    fputs("\" src=\"data:image/png;base64,", f);
+    base64(f, png, size);
+    fputs("\">", f);
+    free(png);
+    return 0;
+}
+
+static uint8_t *heat_map(const float *map, size_t n)
+{
+    uint8_t *rgb = malloc(n * 3);
+    for (size_t i = 0; rgb && i < n; i++)
+        vrg_error_color(map[i], rgb + 3 * i);
+    return rgb;
+}
+
+static uint8_t *crop(const uint8_t *rgb, uint32_t w, uint32_t x0, uint32_t y0, uint32_t cw, uint32_t ch)
+{
+    uint8_t *out = malloc((size_t)cw * ch * 3);
+    for (uint32_t y = 0; out && y < ch; y++)
+        memcpy(out + (size_t)y * cw * 3, rgb + ((size_t)(y0 + y) * w + x0) * 3, (size_t)cw * 3);
+    return out;
+}
+
+/* The crop window (side `side`) with the largest FLIP summed over the candidates. */
+static void worst_window(const vrg_cmp_result *r, int s, uint32_t side, uint32_t *bx, uint32_t *by)
+{
+    uint32_t w = r->width, h = r->height;
+    double *sum = calloc((size_t)(w + 1) * (h + 1), sizeof *sum); /* summed-area table */
+    for (uint32_t y = 0; y < h; y++)
+        for (uint32_t x = 0; x < w; x++) {
+            double v = 0;
+            for (int i = 0; i < r->count; i++)
+                v += r->cand[i].flip_map[s] ? r->cand[i].flip_map[s][(size_t)y * w + x] : 0;
+            sum[(size_t)(y + 1) * (w + 1) + x + 1] = v + sum[(size_t)y * (w + 1) + x + 1] + sum[(size_t)(y + 1) * (w + 1) + x] - sum[(size_t)y * (w + 1) + x];
+        }
+    double best = -1;
+    *bx = *by = 0;
+    for (uint32_t y = 0; y + side <= h; y += 2)
+        for (uint32_t x = 0; x + side <= w; x += 2) {
+            double v = sum[(size_t)(y + side) * (w + 1) + x + side] - sum[(size_t)y * (w + 1) + x + side] - sum[(size_t)(y + side) * (w + 1) + x] +
+                       sum[(size_t)y * (w + 1) + x];
+            if (v > best)
+                best = v, *bx = x, *by = y;
+        }
+    free(sum);
+}
+
+/* ---- plots ---- */
+
+enum { PLOT_W = 560, PLOT_H = 200, PAD_L = 56, PAD_R = 12, PAD_T = 10, PAD_B = 26 };
+
+static void plot(FILE *f, const vrg_cmp_result *r, int m)
+{
+    double lo = INFINITY, hi = -INFINITY;
+    for (int i = 0; i < r->count; i++)
+        for (uint32_t k = 0; k < r->frames; k++) {
+            double v = r->cand[i].per_frame[m][k];
+            if (!isnan(v))
+                lo = fmin(lo, v), hi = fmax(hi, v);
+        }
+    if (!(hi >= lo))
+        lo = 0, hi = 1;
+    if (hi - lo < 1e-9)
+        lo -= 0.5, hi += 0.5;
+    double pad = (hi - lo) * 0.06;
+    lo -= pad, hi += pad;
+    double xs = (double)(PLOT_W - PAD_L - PAD_R) / (r->frames > 1 ? r->frames - 1 : 1), ys = (PLOT_H - PAD_T - PAD_B) / (hi - lo);
+#define PX(k) (PAD_L + (k) * xs)
+#define PY(v) (PLOT_H - PAD_B - ((v) - lo) * ys)
+    fprintf(f, "<figure class=\"plot\"><svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" viewBox=\"0 0 %d %d\" role=\"img\">",
+            PLOT_W, PLOT_H, PLOT_W, PLOT_H);
+    if (r->warmup)
+        fprintf(f, "<rect class=\"warmup\" x=\"%.1f\" y=\"%d\" width=\"%.1f\" height=\"%d\"><title>warm-up frames, not in the summary</title></rect>",
+                PX(0.0), PAD_T, fmax(PX(r->warmup - 0.5) - PX(0.0), 1), PLOT_H - PAD_T - PAD_B);
+    fprintf(f, "<line class=\"axis\" x1=\"%d\" y1=\"%d\" x2=\"%d\" y2=\"%d\"/>", PAD_L, PLOT_H - PAD_B, PLOT_W - PAD_R, PLOT_H - PAD_B);
+    fprintf(f, "<line class=\"axis\" x1=\"%d\" y1=\"%d\" x2=\"%d\" y2=\"%d\"/>", PAD_L, PAD_T, PAD_L, PLOT_H - PAD_B);
+    for (int t = 0; t <= 4; t++) {
+        double v = lo + (hi - lo) * t / 4;
+        fprintf(f, "<line class=\"grid\" x1=\"%d\" y1=\"%.1f\" x2=\"%d\" y2=\"%.1f\"/><text class=\"tick\" x=\"%d\" y=\"%.1f\">%.4g</text>", PAD_L,
+                PY(v), PLOT_W - PAD_R, PY(v), PAD_L - 4, PY(v) + 4, v);
+    }
+    uint32_t step = r->frames > 10 ? (r->frames + 9) / 10 : 1;
+    for (uint32_t k = 0; k < r->frames; k += step)
+        fprintf(f, "<text class=\"xtick\" x=\"%.1f\" y=\"%d\">%u</text>", PX((double)k), PLOT_H - PAD_B + 16, k);
+    for (int i = 0; i < r->count; i++) {
+        fprintf(f, "<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"2\" points=\"", cand_color(i));
+        for (uint32_t k = 0; k < r->frames; k++)
+            if (!isnan(r->cand[i].per_frame[m][k]))
+                fprintf(f, "%.1f,%.1f ", PX((double)k), PY(r->cand[i].per_frame[m][k]));
+        fputs("\"><title>", f);
+        esc(f, r->cand[i].name);
+        fputs("</title></polyline>", f);
+    }
+#undef PX
+#undef PY
+    fprintf(f, "</svg><figcaption>%s per frame (%s is better)</figcaption></figure>\n", vrg_cmp_metric_labels[m],
+            vrg_cmp_metric_higher_better[m] ? "higher" : "lower");
+}
+
+static void bars(FILE *f, const vrg_cmp_result *r)
+{
+    double most = 0;
+    for (int i = 0; i < r->count; i++) {
+        double t = 0;
+        for (int p = 0; p < r->cand[i].pass_count; p++)
+            t += r->cand[i].passes[p].mean_ms;
+        most = fmax(most, t);
+    }
+    enum { LABEL = 150, BAR = 480, ROW = 26 };
+    int h = ROW * r->count + 8;
+    fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" viewBox=\"0 0 %d %d\" role=\"img\">", LABEL + BAR + 90, h,
+            LABEL + BAR + 90, h);
+    for (int i = 0; i < r->count; i++) {
+        const vrg_cmp_candidate *c = &r->cand[i];
+        double x = LABEL, y = 4 + ROW * i, t = 0;
+        fprintf(f, "<text class=\"label\" x=\"%d\" y=\"%.1f\">", LABEL - 6, y + 16);
+        esc(f, c->name);
+        fputs("</text>", f);
+        for (int p = 0; p < c->pass_count; p++) {
+            double wd = most > 0 ? c->passes[p].mean_ms / most * BAR : 0;
+            fprintf(f, "<rect class=\"pass\" x=\"%.2f\" y=\"%.1f\" width=\"%.2f\" height=\"20\" fill=\"%s\"><title>", x, y, wd,
+                    pass_color(c->passes[p].name));
+            esc(f, c->passes[p].name);
+            fprintf(f, ": %.3f ms (p95 %.3f)</title></rect>", c->passes[p].mean_ms, c->passes[p].p95_ms);
+            x += wd;
+            t += c->passes[p].mean_ms;
+        }
+        fprintf(f, "<text class=\"total\" x=\"%.1f\" y=\"%.1f\">%.2f ms</text>", x + 6, y + 16, t);
+    }
+    fputs("</svg>\n<p class=\"legend\">", f);
+    /* each pass name once */
+    for (int i = 0; i < r->count; i++)
+        for (int p = 0; p < r->cand[i].pass_count; p++) {
+            int seen = 0;
+            for (int j = 0; j <= i && !seen; j++)
+                for (int q = 0; q < (j == i ? p : r->cand[j].pass_count) && !seen; q++)
+                    seen = !strcmp(r->cand[j].passes[q].name, r->cand[i].passes[p].name);
+            if (seen)
+                continue;
+            fprintf(f, "<span><i style=\"background:%s\"></i>", pass_color(r->cand[i].passes[p].name));
+            esc(f, r->cand[i].passes[p].name);
+            fputs("</span> ", f);
+        }
+    fputs("</p>\n", f);
+}
+
+/* ---- the page ---- */
+
+static const char *style =
+    "body{font:14px/1.4 system-ui,sans-serif;margin:24px;color:#222;max-width:1400px}"
+    "h1{font-size:22px}h2{font-size:18px;margin-top:28px;border-bottom:1px solid #ccc}"
+    "table{border-collapse:collapse}th,td{padding:4px 10px;border-bottom:1px solid #e3e3e3;text-align:left}"
+    "td.num{text-align:right;font-variant-numeric:tabular-nums}td.best{font-weight:bold;background:#e6f4e6}"
+    ".plots{display:flex;flex-wrap:wrap;gap:12px}figure{margin:0 12px 12px 0}figcaption{font-size:12px;color:#555}"
+    ".axis{stroke:#444}.grid{stroke:#eee}.tick{font-size:10px;text-anchor:end}.xtick{font-size:10px;text-anchor:middle}"
+    ".warmup{fill:#f0f0f0}.label{font-size:12px;text-anchor:end}.total{font-size:12px}"
+    ".legend span{margin-right:14px;white-space:nowrap}.legend i{display:inline-block;width:12px;height:12px;margin-right:4px;vertical-align:-1px}"
+    ".frames{display:flex;flex-wrap:wrap;gap:8px;align-items:flex-start}.frames img{display:block;max-width:100%;image-rendering:pixelated}";
+
+static void settings(FILE *f, const vrg_cmp_result *r)
+{
+    fputs("<table class=\"settings\"><tbody><tr><th>reference</th><td>", f);
+    esc(f, r->reference);
+    if (r->reference_overrides[0]) {
+        fputs(" with ", f);
+        esc(f, r->reference_overrides);
+    }
+    fprintf(f, " (%u of %u frames from the cache)</td></tr><tr><th>camera</th><td>", r->reference_cached, r->frames);
+    esc(f, r->camera ? r->camera : "the first graph's [camera], held still");
+    fprintf(f, "</td></tr><tr><th>frames</th><td>%u at %ux%u from the path's frame %u; ", r->frames, r->width, r->height, r->start);
+    if (r->warmup)
+        fprintf(f, "frames 0 to %u are warm-up, left out of the summary</td></tr>", r->warmup - 1);
+    else
+        fputs("no warm-up</td></tr>", f);
+    fputs("<tr><th>device</th><td>", f);
+    esc(f, r->device);
+    fputs("</td></tr></tbody></table>\n", f);
+}
+
+static void summary(FILE *f, const vrg_cmp_result *r)
+{
+    fputs("<table class=\"summary\"><thead><tr><th>candidate</th><th>graph</th>", f);
+    for (int m = 0; m < VRG_CMP_METRICS; m++)
+        fprintf(f, "<th>%s %s</th>", vrg_cmp_metric_labels[m], vrg_cmp_metric_higher_better[m] ? "&#8593;" : "&#8595;");
+    fputs("<th>GPU ms &#8595;</th><th>GPU ms p95</th></tr></thead><tbody>\n", f);
+    int best[VRG_CMP_METRICS + 1];
+    for (int m = 0; m < VRG_CMP_METRICS; m++)
+        best[m] = vrg_cmp_best(r, m);
+    best[VRG_CMP_METRICS] = vrg_cmp_best(r, -1);
+    static const char *fmt[VRG_CMP_METRICS] = {"%.2f", "%.4f", "%.4f", "%.5f"};
+    for (int i = 0; i < r->count; i++) {
+        const vrg_cmp_candidate *c = &r->cand[i];
+        fprintf(f, "<tr data-candidate=\"");
+        esc(f, c->name);
+        fprintf(f, "\"><td><i style=\"display:inline-block;width:10px;height:10px;background:%s\"></i> ", cand_color(i));
+        esc(f, c->name);
+        fputs("</td><td>", f);
+        esc(f, c->graph);
+        if (c->overrides[0]) {
+            fputs(" with ", f);
+            esc(f, c->overrides);
+        }
+        fputs("</td>", f);
+        for (int m = 0; m < VRG_CMP_METRICS; m++) {
+            fprintf(f, "<td class=\"num%s\" data-metric=\"%s\" data-value=\"%.9g\">", best[m] == i ? " best" : "", vrg_cmp_metric_names[m],
+                    c->summary[m]);
+            fprintf(f, fmt[m], c->summary[m]);
+            fprintf(f, "%s</td>", best[m] == i ? " &#9733;" : "");
+        }
+        fprintf(f, "<td class=\"num%s\" data-metric=\"gpu_ms_mean\" data-value=\"%.9g\">%.2f%s</td>", best[VRG_CMP_METRICS] == i ? " best" : "",
+                c->gpu_mean_ms, c->gpu_mean_ms, best[VRG_CMP_METRICS] == i ? " &#9733;" : "");
+        fprintf(f, "<td class=\"num\" data-metric=\"gpu_ms_p95\" data-value=\"%.9g\">%.2f</td></tr>\n", c->gpu_p95_ms, c->gpu_p95_ms);
+    }
+    fprintf(f, "</tbody></table>\n<p>Means over frames %u to %u (temporal error from frame 1 on); &#9733; marks the best in each column. PSNR "
+               "of identical images is reported as %g dB, the cap.</p>\n",
+            r->warmup, r->frames - 1, VRG_PSNR_MAX_DB);
+}
+
+static int frames(FILE *f, const vrg_cmp_result *r)
+{
+    uint32_t w = r->width, h = r->height, side = w < h ? w / 4 : h / 4;
+    side = side > 64 ? 64 : side < 8 ? (w < 8 || h < 8 ? (w < h ? w : h) : 8) : side;
+    int scale = side ? (int)(192 / side) : 1;
+    scale = scale < 1 ? 1 : scale > 8 ? 8 : scale;
+    int fscale = w < 320 ? (int)(320 / w) : 1; /* small frames shown larger, pixels kept sharp */
+    int rc = 0;
+    for (int s = 0; s < r->shown_count && rc == 0; s++) {
+        uint32_t x0, y0;
+        worst_window(r, s, side, &x0, &y0);
+        fprintf(f, "<h3>frame %d</h3>\n<div class=\"frames\">", r->shown[s]);
+        fputs("<figure>", f);
+        rc |= image(f, r->reference_shown[s], w, h, fscale, "reference");
+        fputs("<figcaption>reference</figcaption></figure>", f);
+        for (int i = 0; i < r->count && rc == 0; i++) {
+            fputs("<figure>", f);
+            rc |= image(f, r->cand[i].shown[s], w, h, fscale, r->cand[i].name);
+            fputs("<figcaption>", f);
+            esc(f, r->cand[i].name);
+            fprintf(f, ": PSNR %.2f dB, FLIP %.4f</figcaption></figure>", r->cand[i].per_frame[VRG_CMP_PSNR][r->shown[s]],
+                    r->cand[i].per_frame[VRG_CMP_FLIP][r->shown[s]]);
+        }
+        fputs("</div>\n<div class=\"frames\">", f);
+        /* the ramp under the reference's column, the maps under the candidates' */
+        uint8_t ramp[256 * 12 * 3];
+        for (int x = 0; x < 256; x++)
+            for (int y = 0; y < 12; y++)
+                vrg_error_color(x / 255.0f, ramp + 3 * (y * 256 + x));
+        fputs("<figure>", f);
+        rc |= image(f, ramp, 256, 12, 1, "FLIP colour scale, 0 to 1");
+        fputs("<figcaption>FLIP error: 0 (left) to 1 (right)</figcaption></figure>", f);
+        for (int i = 0; i < r->count && rc == 0; i++) {
+            uint8_t *heat = heat_map(r->cand[i].flip_map[s], (size_t)w * h);
+            fputs("<figure>", f);
+            rc |= heat ? image(f, heat, w, h, fscale, "FLIP map") : -1;
+            fputs("<figcaption>FLIP map: ", f);
+            esc(f, r->cand[i].name);
+            fputs("</figcaption></figure>", f);
+            free(heat);
+        }
+        fprintf(f, "</div>\n<p>Zoomed: the %ux%u window at (%u, %u) with the largest FLIP error summed over the candidates.</p>\n"
+                   "<div class=\"frames crop\">",
+                side, side, x0, y0);
+        for (int i = -1; i < r->count && rc == 0; i++) {
+            uint8_t *c = crop(i < 0 ? r->reference_shown[s] : r->cand[i].shown[s], w, x0, y0, side, side);
+            fputs("<figure>", f);
+            rc |= c ? image(f, c, side, side, scale, i < 0 ? "reference, zoomed" : r->cand[i].name) : -1;
+            fputs("<figcaption>", f);
+            esc(f, i < 0 ? "reference" : r->cand[i].name);
+            fputs("</figcaption></figure>", f);
+            free(c);
+        }
+        fputs("</div>\n", f);
+    }
+    return rc;
+}
+
+int vrg_cmp_write_report(const char *path, const vrg_cmp_result *r)
+{
+    char tmp[1300];
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    FILE *f = fopen(tmp, "w");
+    if (!f) {
+        fprintf(stderr, "error: cannot write %s\n", tmp);
+        return -1;
+    }
+    fprintf(f, "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>voxrg compare: ");
+    for (int i = 0; i < r->count; i++) {
+        fputs(i ? ", " : "", f);
+        esc(f, r->cand[i].name);
+    }
+    fprintf(f, "</title>\n<style>%s</style>\n</head>\n<body>\n<h1>voxrg compare</h1>\n", style);
+    settings(f, r);
+    fputs("<h2>Summary</h2>\n", f);
+    summary(f, r);
+    fputs("<h2>Per frame</h2>\n<p class=\"legend\">", f);
+    for (int i = 0; i < r->count; i++) {
+        fprintf(f, "<span><i style=\"background:%s\"></i>", cand_color(i));
+        esc(f, r->cand[i].name);
+        fputs("</span> ", f);
+    }
+    fputs("(grey: warm-up)</p>\n<div class=\"plots\">\n", f);
+    for (int m = 0; m < VRG_CMP_METRICS; m++)
+        plot(f, r, m);
+    fputs("</div>\n<h2>GPU time per frame</h2>\n<p>Mean per-pass GPU ms from warm-up on, stacked (hover for each pass's mean and p95).</p>\n", f);
+    bars(f, r);
+    fputs("<h2>Frames</h2>\n", f);
+    int rc = frames(f, r);
+    fputs("</body>\n</html>\n", f);
+    if (fclose(f) != 0 || rc != 0 || rename(tmp, path) != 0) {
+        fprintf(stderr, "error: cannot write %s\n", path);
+        remove(tmp);
+        return -1;
+    }
+    return 0;
+}

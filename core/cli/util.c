@@ -1,0 +1,89 @@
+/* Helpers the CLI commands share (util.h). */
+#define _POSIX_C_SOURCE 200809L
+#include "util.h"
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+
+double vrg_cli_now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+int vrg_cli_parse_size(const char *s, uint32_t *w, uint32_t *h)
+{
+    char *end;
+    long a = strtol(s, &end, 10);
+    if (*end != 'x' || a <= 0 || a > 16384)
+        return -1;
+    long b = strtol(end + 1, &end, 10);
+    if (*end || b <= 0 || b > 16384)
+        return -1;
+    *w = (uint32_t)a;
+    *h = (uint32_t)b;
+    return 0;
+}
+
+int vrg_cli_mkdir_p(const char *dir)
+{
+    char buf[1024];
+    snprintf(buf, sizeof buf, "%s", dir);
+    for (char *p = buf + 1; *p; p++)
+        if (*p == '/') {
+            *p = '\0';
+            mkdir(buf, 0777);
+            *p = '/';
+        }
+    if (mkdir(buf, 0777) != 0 && errno != EEXIST) {
+        fprintf(stderr, "error: cannot create directory %s: %s\n", dir, strerror(errno));
+        return -1;
+    }
+    return 0;
+}
+
+const char *vrg_cli_json_str(const char *s, char *buf, size_t cap)
+{
+    size_t n = 0;
+    for (; *s && n + 7 < cap; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            n += (size_t)snprintf(buf + n, cap - n, "\\%c", c);
+        else if (c < 0x20)
+            n += (size_t)snprintf(buf + n, cap - n, "\\u%04x", c);
+        else
+            buf[n++] = (char)c;
+    }
+    buf[n] = '\0';
+    return buf;
+}
+
+char *vrg_cli_read_text(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    size_t cap = 4096, len = 0;
+    char *t = malloc(cap);
+    size_t got;
+    while (t && (got = fread(t + len, 1, cap - len - 1, f)) > 0) {
+        len += got;
+        if (len + 1 == cap) {
+            char *grown = realloc(t, cap * 2);
+            if (!grown) {
+                free(t);
+                t = NULL;
+                break;
+            }
+            t = grown, cap *= 2;
+        }
+    }
+    fclose(f);
+    if (t)
+        t[len] = '\0';
+    return t;
+}

@@ -1,0 +1,17 @@
+#ifndef VOXRG_CLI_UTIL_H
+#define VOXRG_CLI_UTIL_H
+/* Helpers the CLI commands share. */
+#include <stddef.h>
+#include <stdint.h>
+
+/* Monotonic milliseconds. */
+double vrg_cli_now_ms(void);
+/* "WxH" (each 1..16384) -> 0, else -1. */
+int vrg_cli_parse_size(const char *s, uint32_t *w, uint32_t *h);
+/* mkdir -p; prints the error and returns -1 on failure. */
+int vrg_cli_mkdir_p(const char *dir);
+/* A JSON string body in buf: quotes, backslashes and control characters escaped. */
+const char *vrg_cli_json_str(const char *s, char *buf, size_t cap);
+/* The whole file, NUL-terminated (malloc'd), or NULL. */
+char *vrg_cli_read_text(const char *path);
+#endif
