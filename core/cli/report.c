@@ -160,6 +160,17 @@ static void plot(FILE *f, const vrg_cmp_result *r, int m)
             vrg_cmp_metric_higher_better[m] ? "higher" : "lower");
 }
 
+/* 1 when candidate i's pass p is the first of its name in the result */
+static int first_of_name(const vrg_cmp_result *r, int i, int p)
+{
+    const char *name = r->cand[i].passes[p].name;
+    for (int j = 0; j <= i; j++)
+        for (int q = 0; q < (j == i ? p : r->cand[j].pass_count); q++)
+            if (!strcmp(r->cand[j].passes[q].name, name))
+                return 0;
+    return 1;
+}
+
 static void bars(FILE *f, const vrg_cmp_result *r)
 {
     double most = 0;
@@ -194,17 +205,44 @@ static void bars(FILE *f, const vrg_cmp_result *r)
     /* each pass name once */
     for (int i = 0; i < r->count; i++)
         for (int p = 0; p < r->cand[i].pass_count; p++) {
-            int seen = 0;
-            for (int j = 0; j <= i && !seen; j++)
-                for (int q = 0; q < (j == i ? p : r->cand[j].pass_count) && !seen; q++)
-                    seen = !strcmp(r->cand[j].passes[q].name, r->cand[i].passes[p].name);
-            if (seen)
+            if (!first_of_name(r, i, p))
                 continue;
             fprintf(f, "<span><i style=\"background:%s\"></i>", pass_color(r->cand[i].passes[p].name));
             esc(f, r->cand[i].passes[p].name);
             fputs("</span> ", f);
         }
     fputs("</p>\n", f);
+    /* the same as a table, with the p95s: a row per pass, a column per candidate */
+    fputs("<table class=\"passes\"><thead><tr><th>pass: mean / p95 ms</th>", f);
+    for (int i = 0; i < r->count; i++) {
+        fputs("<th>", f);
+        esc(f, r->cand[i].name);
+        fputs("</th>", f);
+    }
+    fputs("</tr></thead><tbody>\n", f);
+    for (int i = 0; i < r->count; i++)
+        for (int p = 0; p < r->cand[i].pass_count; p++) {
+            const char *name = r->cand[i].passes[p].name;
+            if (!first_of_name(r, i, p))
+                continue;
+            fputs("<tr><td>", f);
+            esc(f, name);
+            fputs("</td>", f);
+            for (int j = 0; j < r->count; j++) {
+                const vrg_cmp_pass *hit = NULL;
+                for (int q = 0; q < r->cand[j].pass_count && !hit; q++)
+                    hit = !strcmp(r->cand[j].passes[q].name, name) ? &r->cand[j].passes[q] : NULL;
+                if (hit)
+                    fprintf(f, "<td class=\"num\">%.3f / %.3f</td>", hit->mean_ms, hit->p95_ms);
+                else
+                    fputs("<td class=\"num\">-</td>", f);
+            }
+            fputs("</tr>\n", f);
+        }
+    fputs("<tr><td>whole frame</td>", f);
+    for (int j = 0; j < r->count; j++)
+        fprintf(f, "<td class=\"num\">%.3f / %.3f</td>", r->cand[j].gpu_mean_ms, r->cand[j].gpu_p95_ms);
+    fputs("</tr></tbody></table>\n", f);
 }
 
 /* ---- the page ---- */
