@@ -15,17 +15,35 @@
 
 /* candidates' colours (plots, legends); passes' colours (bars) */
 static const char *const series[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf"};
-static const char *const pass_colors[] = {"#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f", "#edc948",
-                                          "#b07aa1", "#ff9da7", "#9c755f", "#bab0ac", "#86bcb6", "#d37295"};
+static const char *const pass_colors[] = {"#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f", "#edc948", "#b07aa1",
+                                          "#ff9da7", "#9c755f", "#bab0ac", "#1b9e77", "#d95f02", "#7570b3", "#e7298a",
+                                          "#66a61e", "#e6ab02", "#a6761d", "#666666", "#a6cee3", "#fb9a99"};
 
 static const char *cand_color(int i) { return series[i % (int)(sizeof series / sizeof series[0])]; }
 
-static const char *pass_color(const char *name)
+/* 1 when candidate i's pass p is the first of its name in the result */
+static int first_of_name(const vrg_cmp_result *r, int i, int p)
 {
-    unsigned h = 5381;
-    for (const char *p = name; *p; p++)
-        h = h * 33 + (unsigned char)*p;
-    return pass_colors[h % (sizeof pass_colors / sizeof pass_colors[0])];
+    const char *name = r->cand[i].passes[p].name;
+    for (int j = 0; j <= i; j++)
+        for (int q = 0; q < (j == i ? p : r->cand[j].pass_count); q++)
+            if (!strcmp(r->cand[j].passes[q].name, name))
+                return 0;
+    return 1;
+}
+
+/* a pass's colour: by the order its name first appears, so neighbours differ */
+static const char *pass_color(const vrg_cmp_result *r, const char *name)
+{
+    int k = 0;
+    for (int i = 0; i < r->count; i++)
+        for (int p = 0; p < r->cand[i].pass_count; p++)
+            if (first_of_name(r, i, p)) {
+                if (!strcmp(r->cand[i].passes[p].name, name))
+                    return pass_colors[k % (int)(sizeof pass_colors / sizeof pass_colors[0])];
+                k++;
+            }
+    return pass_colors[0];
 }
 
 static void esc(FILE *f, const char *s)
@@ -160,17 +178,6 @@ static void plot(FILE *f, const vrg_cmp_result *r, int m)
             vrg_cmp_metric_higher_better[m] ? "higher" : "lower");
 }
 
-/* 1 when candidate i's pass p is the first of its name in the result */
-static int first_of_name(const vrg_cmp_result *r, int i, int p)
-{
-    const char *name = r->cand[i].passes[p].name;
-    for (int j = 0; j <= i; j++)
-        for (int q = 0; q < (j == i ? p : r->cand[j].pass_count); q++)
-            if (!strcmp(r->cand[j].passes[q].name, name))
-                return 0;
-    return 1;
-}
-
 static void bars(FILE *f, const vrg_cmp_result *r)
 {
     double most = 0;
@@ -193,7 +200,7 @@ static void bars(FILE *f, const vrg_cmp_result *r)
         for (int p = 0; p < c->pass_count; p++) {
             double wd = most > 0 ? c->passes[p].mean_ms / most * BAR : 0;
             fprintf(f, "<rect class=\"pass\" x=\"%.2f\" y=\"%.1f\" width=\"%.2f\" height=\"20\" fill=\"%s\"><title>", x, y, wd,
-                    pass_color(c->passes[p].name));
+                    pass_color(r, c->passes[p].name));
             esc(f, c->passes[p].name);
             fprintf(f, ": %.3f ms (p95 %.3f)</title></rect>", c->passes[p].mean_ms, c->passes[p].p95_ms);
             x += wd;
@@ -207,7 +214,7 @@ static void bars(FILE *f, const vrg_cmp_result *r)
         for (int p = 0; p < r->cand[i].pass_count; p++) {
             if (!first_of_name(r, i, p))
                 continue;
-            fprintf(f, "<span><i style=\"background:%s\"></i>", pass_color(r->cand[i].passes[p].name));
+            fprintf(f, "<span><i style=\"background:%s\"></i>", pass_color(r, r->cand[i].passes[p].name));
             esc(f, r->cand[i].passes[p].name);
             fputs("</span> ", f);
         }
