@@ -150,27 +150,35 @@ has "$out/stdout" "plugin pattern .*$out/rel/plugins/pattern.so" "graph-relative
 # bench: a smoke run (no timing assertion), JSON complete and well-formed
 expect_rc 0 "bench --help" "$voxrg" bench --help
 expect_rc 2 "bench unknown suite" "$voxrg" bench --suite nonesuch
-expect_rc 0 "bench terrain" "$voxrg" bench --suite terrain --runs 1 --json "$out/bench.json"
-has "$out/stdout" "generate radius-13 world \(2187 chunks\)" "bench table"
-if python3 - "$out/bench.json" <<'PY'
-import json, sys
+expect_rc 2 "bench bad size" "$voxrg" bench --size huge
+expect_rc 0 "bench --smoke" "$voxrg" bench --smoke --json "$out/bench.json"
+has "$out/stdout" "smoke: tiny inputs" "bench smoke says so"
+if python3 - "$out/bench.json" "$tests/../graphs" <<'PY'
+import json, os, sys
 d = json.load(open(sys.argv[1]))
 figs = d["figures"]
-assert d["device"] and d["runs"] == 1 and len(figs) >= 10, d
+graphs = sorted(f for f in os.listdir(sys.argv[2]) if f.endswith(".ini"))
+assert d["device"] and d["smoke"] is True and d["size"] == [64, 36], d
+assert d["suites"] == ["rays", "graph", "memory", "terrain", "reload", "frame"], d["suites"]
 for f in figs:
-    assert f["suite"] == "terrain" and f["samples"] >= 1 and f["min"] <= f["median"] <= f["max"], f
-assert any("streaming" in f["name"] and f["samples"] > 100 for f in figs), figs
+    assert f["samples"] >= 1 and f["min"] <= f["median"] <= f["max"], f
+names = {s: [f["name"] for f in figs if f["suite"] == s] for s in d["suites"]}
+# rays: time and Mrays/s of four ray types per backend
+assert len(names["rays"]) in (8, 16) and all(any(k in n for n in names["rays"]) for k in ("primary", "sun shadow", "AO", "indirect")), names["rays"]
+# graph: compile, runtime, baseline, ratio, overhead
+assert len(names["graph"]) == 5 and any("baseline" in n for n in names["graph"]) and any("compile" in n for n in names["graph"]), names["graph"]
+# memory: naive, aliased, saved, history for every shipped graph at two sizes
+assert len(names["memory"]) == 8 * len(graphs) and all(any(g in n for n in names["memory"]) for g in graphs), names["memory"]
+# terrain: generation, chunks/s, integration, upload (1 and 2 threads), streaming
+assert len(names["terrain"]) == 10 and any("streaming" in n for n in names["terrain"]), names["terrain"]
+# reload: shader, ray pass shader, graph parameter, plugin
+assert len(names["reload"]) == 4 and any("ray pass shader" in n for n in names["reload"]), names["reload"]
+# frame: whole frame GPU and wall of every shipped graph, and its passes
+assert all(any(g + " whole frame GPU" in n for n in names["frame"]) for g in graphs), names["frame"]
+assert any("thesis.ini whole frame / its four ray passes" in n for n in names["frame"]), names["frame"]
+assert any("thesis.ini pass atrous GPU" in n for n in names["frame"]), names["frame"]
 PY
-then ok; else bad "bench JSON"; fi
-expect_rc 0 "bench reload" "$voxrg" bench --suite reload --runs 1 --json "$out/bench_reload.json"
-if python3 - "$out/bench_reload.json" <<'PY'
-import json, sys
-figs = json.load(open(sys.argv[1]))["figures"]
-names = [f["name"] for f in figs]
-assert all(f["suite"] == "reload" and f["samples"] == 1 and f["median"] > 0 for f in figs), figs
-assert any("shader saved" in n for n in names) and any("parameter saved" in n for n in names), names
-PY
-then ok; else bad "bench reload JSON"; fi
+then ok; else bad "bench --smoke JSON complete"; fi
 
 # run: the window under Xvfb, a screenshot through the program's own option
 env -u DISPLAY "$voxrg" run "$tests/graphs/blocks_wall.ini" --frames 2 >"$out/stdout" 2>"$out/stderr"

@@ -1,8 +1,42 @@
 #ifndef VOXRG_CLI_BENCH_H
 #define VOXRG_CLI_BENCH_H
+/* voxrg bench: the driver (bench.c) and one file per suite. */
+#include <stdint.h>
 #include "voxrg/voxrg.h"
+
+typedef struct vrg_bench_figure {
+    char name[160];
+    char unit[16];
+    double median, min, max, p99;
+    int samples;
+} vrg_bench_figure;
+
+typedef struct vrg_bench_opts {
+    const char *suite, *json, *device;
+    int runs;              /* samples per figure, after warm-up */
+    uint32_t width, height; /* --size: the rays and frame suites' size (default 640x360) */
+    int smoke;             /* --smoke: every figure, measured once on tiny inputs (CI) */
+} vrg_bench_opts;
+
+/* median, min, max, p99 of v[0..n) (v is sorted) */
+vrg_bench_figure vrg_bench_summarise(const char *name, const char *unit, double *v, int n);
+
+/* Each suite appends its figures to out[*count...] (room for VRG_BENCH_MAX). */
+#define VRG_BENCH_MAX 640
+int vrg_bench_terrain(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure *out, int *count);
+int vrg_bench_rays(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure *out, int *count);
+int vrg_bench_reload(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure *out, int *count);
+int vrg_bench_graph(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure *out, int *count);
+int vrg_bench_memory(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure *out, int *count);
+int vrg_bench_frame(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure *out, int *count);
+
+/* Shared by the suites: the names of graphs/ *.ini (malloc'd, sorted), and one of
+ * them loaded at w x h (smoke: terrain radius 2). */
+int vrg_bench_shipped_graphs(char **names, int max);
+vrg_graph *vrg_bench_load_shipped(vrg_context *ctx, const char *name, uint32_t w, uint32_t h, int smoke);
+
 /* `voxrg bench`; returns the exit status. */
-int vrg_cli_bench(const char *suite, const char *json, int runs, const char *device);
+int vrg_cli_bench(const vrg_bench_opts *o);
 /* The source tree (graphs/paths), compiled in. */
 const char *vrg_source_dir(void);
 #endif

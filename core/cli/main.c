@@ -554,41 +554,60 @@ static int cmd_plugins(int argc, char **argv)
 }
 
 static const char *usage_bench =
-    "usage: voxrg bench [--suite all|terrain|rays|reload] [--runs N] [--json FILE] [--device NAME|INDEX]\n"
-    "Measures each figure N times (default 5) after a warm-up run and prints the\n"
-    "median, min, max and p99 with the device and thread counts (LP_NUM_THREADS\n"
-    "sets lavapipe's). terrain: radius-13 world generation with 1 and 2 threads,\n"
-    "chunks/s per thread, and main-thread streaming time per frame along\n"
-    "graphs/paths/walk.path. rays: GPU ms and Mrays/s of primary, sun-shadow, AO\n"
-    "and indirect rays at 640x360 on the default terrain, for each traversal backend.\n";
+    "usage: voxrg bench [--suite all|rays|graph|memory|terrain|reload|frame] [--runs N] [--size WxH]\n"
+    "                   [--json FILE] [--smoke] [--device NAME|INDEX]\n"
+    "Measures each figure N times (default 5) after warm-up and prints the median,\n"
+    "min, max and p99 with the device and thread counts (LP_NUM_THREADS sets\n"
+    "lavapipe's). rays: GPU ms and Mrays/s of primary, sun-shadow, AO and indirect rays\n"
+    "on the default terrain, each traversal backend, at --size (default 640x360).\n"
+    "graph: the runtime's CPU time per frame of thesis.ini (recording, barriers,\n"
+    "submission) against the same barriers and dispatches recorded directly with\n"
+    "Vulkan, and graph compile time. memory: transient memory without and with\n"
+    "aliasing and history memory of every shipped graph at 640x360 and 1920x1080.\n"
+    "terrain: radius-13 world generation with 1 and 2 threads, chunks/s per thread,\n"
+    "streaming time per frame along graphs/paths/walk.path. reload: save-to-frame\n"
+    "latency of a shader, a ray pass's shader, a graph parameter, a plugin rebuild.\n"
+    "frame: whole-frame GPU and wall ms of every shipped graph along walk.path at\n"
+    "--size, with each pass's GPU ms. --smoke runs every figure once on tiny inputs\n"
+    "(for CI: checks the suites run, not figures to quote). docs/benchmarks.md.\n";
 
 const char *vrg_source_dir(void) { return VRG_SOURCE_DIR; }
 
 static int cmd_bench(int argc, char **argv)
 {
-    const char *suite = "all", *json = NULL, *device = NULL;
-    int runs = 5;
+    vrg_bench_opts o = {.suite = "all", .runs = 5, .width = 640, .height = 360};
     for (int i = 0; i < argc; i++) {
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             fputs(usage_bench, stdout);
             return 0;
         }
+        if (!strcmp(argv[i], "--smoke")) {
+            o.smoke = 1;
+            continue;
+        }
         if (i + 1 >= argc)
             return usage_error(usage_bench, "unknown option or missing value '%s'", argv[i]);
         if (!strcmp(argv[i], "--suite"))
-            suite = argv[++i];
+            o.suite = argv[++i];
         else if (!strcmp(argv[i], "--json"))
-            json = argv[++i];
+            o.json = argv[++i];
         else if (!strcmp(argv[i], "--device"))
-            device = argv[++i];
-        else if (!strcmp(argv[i], "--runs")) {
-            runs = atoi(argv[++i]);
-            if (runs < 1 || runs > 64)
+            o.device = argv[++i];
+        else if (!strcmp(argv[i], "--size")) {
+            if (vrg_cli_parse_size(argv[++i], &o.width, &o.height) != 0)
+                return usage_error(usage_bench, "--size '%s': expected WxH, e.g. 640x360", argv[i]);
+        } else if (!strcmp(argv[i], "--runs")) {
+            o.runs = atoi(argv[++i]);
+            if (o.runs < 1 || o.runs > 64)
                 return usage_error(usage_bench, "--runs '%s': 1 to 64", argv[i]);
         } else
             return usage_error(usage_bench, "unknown option '%s'", argv[i]);
     }
-    return vrg_cli_bench(suite, json, runs, device);
+    if (o.smoke) {
+        o.runs = 1;
+        o.width = 64, o.height = 36;
+    }
+    return vrg_cli_bench(&o);
 }
 
 int main(int argc, char **argv)

@@ -185,5 +185,7 @@ void vrg_emit_barriers(vrg_graph *g, VkCommandBuffer cmd, const vrg_barrier_rec 
         .imageMemoryBarrierCount = ni,
         .pImageMemoryBarriers = img,
     };
+    if (g->capture)
+        vrg_capture_barrier(g->capture, &dep);
     vkCmdPipelineBarrier2(cmd, &dep);
 }

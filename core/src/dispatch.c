@@ -318,6 +318,8 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
             gy = (gy + g->ctx->pixel_rows - 1) / g->ctx->pixel_rows;
         gz = 1;
     }
+    if (g->capture)
+        vrg_capture_dispatch(g->capture, pl->pipeline, pl->layout, (uint32_t)n, w, d->push, d->push_size, (const uint32_t[3]){gx, gy, gz});
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pl->pipeline);
     if (n)
         g->ctx->push_descriptor(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pl->layout, 0, (uint32_t)n, w);

@@ -76,6 +76,10 @@ typedef struct vrg_plugin {
 } vrg_plugin;
 /* Finds and loads NAME; NULL after reporting at `line`. Cached per process. */
 const vrg_plugin *vrg_plugin_load(const char *name, const char *graph_path, vrg_diag *d, int line);
+/* capture.c: called where the runtime records, while g->capture is set */
+void vrg_capture_barrier(struct vrg_capture *c, const VkDependencyInfo *dep);
+void vrg_capture_dispatch(struct vrg_capture *c, VkPipeline pipeline, VkPipelineLayout layout, uint32_t write_count,
+                          const VkWriteDescriptorSet *writes, const void *push, uint32_t push_size, const uint32_t groups[3]);
 /* A pass runs the plugin / no longer does. A superseded version (a hot
  * reload loaded a newer one) is unloaded when its last user goes. */
 void vrg_plugin_acquire(const vrg_plugin *p);
@@ -246,6 +250,8 @@ struct vrg_graph {
     int changed_plugin_count;
     int params_changed;        /* the next frame is the first after a parameter-only reload */
     int history_carried;       /* a structural reload copied matching history resources over */
+    struct vrg_capture *capture; /* vrg_graph_capture_frame: this frame's commands are kept */
+    double cpu_ms;             /* the last frame's recording and submission, CPU ms */
     vrg_graph_desc desc;       /* as loaded (the host keeps its arrays): reload reuses it */
     int shown;                 /* vrg_graph_show: a resource left in TRANSFER_SRC after frames, -1 none */
     int loaded_from_file;

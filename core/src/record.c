@@ -2,7 +2,9 @@
  * barriers its slots need, then the plugin's execute, bracketed by GPU
  * timestamps; history images are cleared when history is reset; the output
  * and dumped resources are copied to a host buffer at the end. */
+#define _POSIX_C_SOURCE 200809L
 #include <string.h>
+#include <time.h>
 #include "internal.h"
 
 /* @prev copies on every history reset (but those a reload carried over);
@@ -100,8 +102,16 @@ static void read_timestamps(vrg_graph *g)
         g->pass_ms[g->schedule[k]] = (double)(ts[2 * k + 1] - ts[2 * k]) * ns * 1e-6;
 }
 
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
 int vrg_record_frame(vrg_graph *g)
 {
+    double start = now_ms(); /* the runtime's CPU time: up to the submit, not the GPU's */
     VkDevice dev = g->ctx->dev.device;
     VkCommandBuffer cmd = g->cmd;
     vkResetCommandBuffer(cmd, 0);
@@ -152,6 +162,7 @@ int vrg_record_frame(vrg_graph *g)
     VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cbi};
     vkResetFences(dev, 1, &g->fence);
     VkResult res = vkQueueSubmit2(g->ctx->dev.queue, 1, &si, g->fence);
+    g->cpu_ms = now_ms() - start;
     if (res == VK_SUCCESS)
         res = vkWaitForFences(dev, 1, &g->fence, VK_TRUE, UINT64_MAX);
     if (res != VK_SUCCESS) {

@@ -58,6 +58,19 @@ void vrg_graph_destroy(vrg_graph *g);
 
 /* Record, submit and wait for one frame. Returns 0, or -1 on error. */
 int vrg_graph_frame(vrg_graph *g);
+/* CPU time of the last frame's recording and submission (barriers, the
+ * passes' execute callbacks, the submit), without the wait for the GPU. */
+double vrg_graph_cpu_ms(const vrg_graph *g);
+/* For benchmarks: renders one frame keeping its barriers and dispatches
+ * (pipeline, pushed descriptors, push constants, group counts) as data;
+ * vrg_capture_record records exactly those commands with direct Vulkan
+ * calls, valid when the resources are in the state the captured frame
+ * found them in (a frame of the same parity just ran). */
+typedef struct vrg_capture vrg_capture;
+vrg_capture *vrg_graph_capture_frame(vrg_graph *g);
+void vrg_capture_record(const vrg_capture *c, VkCommandBuffer cmd);
+void vrg_capture_counts(const vrg_capture *c, uint32_t *dispatches, uint32_t *barrier_batches);
+void vrg_capture_free(vrg_capture *c);
 /* New graph size: re-allocates every resource and resets history. */
 int vrg_graph_resize(vrg_graph *g, uint32_t width, uint32_t height);
 /* Next frame sees history_valid = 0 and cleared @prev images (camera cut). */

@@ -1,0 +1,89 @@
+/* voxrg bench --suite memory: transient memory without and with aliasing,
+ * and the history kept across frames, for every shipped graph at 640x360
+ * and 1920x1080 (allocated on the device: exact sizes). */
+#define _POSIX_C_SOURCE 200809L
+#include <dirent.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "bench.h"
+
+static int by_name(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
+
+/* the graphs/ *.ini files of the source tree, sorted; returns the count (names malloc'd) */
+int vrg_bench_shipped_graphs(char **names, int max)
+{
+    char dir[1100];
+    snprintf(dir, sizeof dir, "%s/graphs", vrg_source_dir());
+    DIR *d = opendir(dir);
+    int n = 0;
+    struct dirent *e;
+    while (d && (e = readdir(d)) && n < max) {
+        size_t len = strlen(e->d_name);
+        if (len > 4 && !strcmp(e->d_name + len - 4, ".ini"))
+            names[n++] = strdup(e->d_name);
+    }
+    if (d)
+        closedir(d);
+    qsort(names, (size_t)n, sizeof *names, by_name);
+    return n;
+}
+
+/* Loads graphs/NAME with the device at w x h; in a smoke run the terrain
+ * is shrunk to radius 2 so that loading takes no time. */
+vrg_graph *vrg_bench_load_shipped(vrg_context *ctx, const char *name, uint32_t w, uint32_t h, int smoke)
+{
+    char path[1200];
+    snprintf(path, sizeof path, "%s/graphs/%s", vrg_source_dir(), name);
+    int shrink = 0;
+    if (smoke) { /* only graphs whose scene has a radius */
+        FILE *quiet = fopen("/dev/null", "w"); /* a graph without a scene is no error here */
+        vrg_graph_desc cd = {.path = path, .diag = quiet};
+        vrg_graph *check = NULL;
+        double r;
+        if (vrg_graph_load(NULL, &cd, &check) == 0)
+            shrink = vrg_graph_get_param(check, "scene.radius", &r) == 0;
+        vrg_graph_destroy(check);
+        if (quiet)
+            fclose(quiet);
+    }
+    static const char *radius[] = {"scene.radius=2"};
+    vrg_graph_desc d = {.path = path, .width = w, .height = h, .overrides = shrink ? radius : NULL, .override_count = shrink ? 1u : 0u};
+    vrg_graph *g = NULL;
+    if (vrg_graph_load(ctx, &d, &g) != 0) {
+        vrg_graph_destroy(g);
+        return NULL;
+    }
+    return g;
+}
+
+int vrg_bench_memory(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure *out, int *count)
+{
+    char *names[64];
+    int ng = vrg_bench_shipped_graphs(names, 64), n = *count, rc = 0;
+    const uint32_t sizes[2][2] = {{640, 360}, {1920, 1080}}, smoke_sizes[2][2] = {{64, 36}, {96, 54}};
+    for (int i = 0; i < ng && rc == 0; i++)
+        for (int s = 0; s < 2 && rc == 0; s++) {
+            uint32_t w = o->smoke ? smoke_sizes[s][0] : sizes[s][0], h = o->smoke ? smoke_sizes[s][1] : sizes[s][1];
+            vrg_graph *g = vrg_bench_load_shipped(ctx, names[i], w, h, o->smoke);
+            if (!g) {
+                rc = -1;
+                break;
+            }
+            vrg_memory_stats m = vrg_graph_memory(g);
+            double mib = 1024.0 * 1024.0, v[4] = {m.naive_bytes / mib, m.aliased_bytes / mib,
+                                                    m.naive_bytes ? 100.0 * (1.0 - (double)m.aliased_bytes / m.naive_bytes) : 0,
+                                                    m.history_bytes / mib};
+            static const char *what[4] = {"transient, naive", "transient, aliased", "saved by aliasing", "history kept across frames"};
+            for (int k = 0; k < 4; k++) {
+                char name[160];
+                snprintf(name, sizeof name, "memory: %s %ux%u %s", names[i], w, h, what[k]);
+                out[n++] = vrg_bench_summarise(name, k == 2 ? "%" : "MiB", &v[k], 1);
+            }
+            vrg_graph_destroy(g);
+        }
+    for (int i = 0; i < ng; i++)
+        free(names[i]);
+    *count = n;
+    return rc;
+}
