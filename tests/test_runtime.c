@@ -154,6 +154,59 @@ static void test_history(void)
     vrg_graph_destroy(g);
 }
 
+/* A captured frame replayed with direct Vulkan calls (what bench --suite
+ * graph times) is valid (validation with synchronization validation is on)
+ * and does the frame's work: two counter frames captured (5, 6), replayed
+ * four times alternating (7..10), and the runtime's next frame counts 11. */
+static void test_capture_replay(void)
+{
+    vrg_graph *g = load("history.ini");
+    if (!g)
+        return;
+    for (int i = 0; i < 4; i++)
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_capture *cap[2] = {vrg_graph_capture_frame(g), vrg_graph_capture_frame(g)};
+    CHECK(cap[0] && cap[1], "capture failed");
+    uint32_t dispatches = 0, batches = 0;
+    if (cap[0])
+        vrg_capture_counts(cap[0], &dispatches, &batches);
+    CHECK(dispatches == 1 && batches >= 1, "captured %u dispatches, %u barrier batches", dispatches, batches);
+    const vrg_device *dev = vrg_context_device(ctx);
+    VkCommandPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
+                                  .queueFamilyIndex = dev->queue_family};
+    VkCommandPool pool;
+    VkCommandBuffer cmd;
+    VkFence fence;
+    vkCreateCommandPool(dev->device, &pi, NULL, &pool);
+    VkCommandBufferAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, .commandPool = pool,
+                                      .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY, .commandBufferCount = 1};
+    vkAllocateCommandBuffers(dev->device, &ai, &cmd);
+    VkFenceCreateInfo fi = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    vkCreateFence(dev->device, &fi, NULL, &fence);
+    for (int r = 0; r < 4 && cap[0] && cap[1]; r++) {
+        VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        vkResetCommandBuffer(cmd, 0);
+        vkBeginCommandBuffer(cmd, &bi);
+        vrg_capture_record(cap[r % 2], cmd);
+        vkEndCommandBuffer(cmd);
+        VkCommandBufferSubmitInfo cbi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = cmd};
+        VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cbi};
+        vkResetFences(dev->device, 1, &fence);
+        CHECK(vkQueueSubmit2(dev->queue, 1, &si, fence) == VK_SUCCESS, "replay submit failed");
+        vkWaitForFences(dev->device, 1, &fence, VK_TRUE, UINT64_MAX);
+    }
+    vkDestroyFence(dev->device, fence, NULL);
+    vkDestroyCommandPool(dev->device, pool, NULL);
+    vrg_capture_free(cap[0]);
+    vrg_capture_free(cap[1]);
+    vrg_image_data img;
+    CHECK(vrg_graph_frame(g) == 0 && vrg_graph_read(g, vrg_graph_output(g), &img) == 0, "frame failed");
+    CHECK(px(&img, 3, 5, 0) == 11.0f, "after 6 frames and 4 replays the counter is %g, not 11", px(&img, 3, 5, 0));
+    free(img.pixels);
+    CHECK(vrg_graph_cpu_ms(g) > 0, "no CPU time for the frame");
+    vrg_graph_destroy(g);
+}
+
 /* History images are cleared: a counter that reads @prev even when history
  * is invalid restarts at 1 on the first frame, after a reset and a resize. */
 static void test_history_cleared(void)
@@ -2031,7 +2084,7 @@ int main(int argc, char **argv)
         {"svgf_edge", test_svgf_edge, 1}, {"accumulate_mean", test_accumulate_mean, 1},
         {"svgf_atrous_options", test_svgf_atrous_options, 1}, {"svgf_size_mismatch", test_svgf_size_mismatch, 1},
         {"hot_reload_shader", test_hot_reload_shader, 1}, {"hot_reload_graph", test_hot_reload_graph, 1},
-        {"hot_reload_plugin", test_hot_reload_plugin, 1}, {"soak", test_soak, 1}, {"set_param", test_set_param, 1},
+        {"hot_reload_plugin", test_hot_reload_plugin, 1}, {"capture_replay", test_capture_replay, 1}, {"soak", test_soak, 1}, {"set_param", test_set_param, 1},
         {"light_half_res", test_light_half_res, 1},
         {"light_penumbra", test_light_penumbra, 1},   {"light_corner", test_light_corner, 1},
         {"light_chain", test_light_chain, 1},
