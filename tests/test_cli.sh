@@ -165,8 +165,8 @@ for f in figs:
 names = {s: [f["name"] for f in figs if f["suite"] == s] for s in d["suites"]}
 # rays: time and Mrays/s of four ray types per backend
 assert len(names["rays"]) in (8, 16) and all(any(k in n for n in names["rays"]) for k in ("primary", "sun shadow", "AO", "indirect")), names["rays"]
-# graph: compile, runtime, baseline, ratio, overhead
-assert len(names["graph"]) == 5 and any("baseline" in n for n in names["graph"]) and any("compile" in n for n in names["graph"]), names["graph"]
+# graph: compile, runtime, baseline, the scene's share, without it, ratio, overheads
+assert len(names["graph"]) == 8 and any("baseline" in n for n in names["graph"]) and any("compile" in n for n in names["graph"]), names["graph"]
 # memory: naive, aliased, saved, history for every shipped graph at two sizes
 assert len(names["memory"]) == 8 * len(graphs) and all(any(g in n for n in names["memory"]) for g in graphs), names["memory"]
 # terrain: generation, chunks/s, integration, upload (1 and 2 threads), streaming
@@ -236,20 +236,22 @@ voxrg=$1 graph=$2 out=$3
 cd "$out" && rm -f screenshot-000.png
 "$voxrg" run "$graph" --validate --size 192x128 --record drive.path >drive.stdout 2>drive.stderr &
 pid=$!
+# a failing step shows what the window said (expect_rc prints stderr)
+fail() { kill $pid; echo "drive step $1 failed; voxrg's stderr:" >&2; tail -20 drive.stderr >&2; exit "$1"; }
 wid=$(timeout 120 xdotool search --sync --name '^voxrg' | head -1)
-[ -n "$wid" ] || { kill $pid; exit 3; }
+[ -n "$wid" ] || fail 3
 wait_for() { for _ in $(seq 600); do grep -q "$1" drive.stderr && return 0; sleep 0.1; done; return 1; }
 # frames are being presented once the title shows the rates
 for _ in $(seq 600); do xdotool getwindowname "$wid" | grep -q fps && break; sleep 0.1; done
-xdotool windowsize "$wid" 160 100 && wait_for "window resized: graph now 160x100" || { kill $pid; exit 4; }
+xdotool windowsize "$wid" 160 100 && wait_for "window resized: graph now 160x100" || fail 4
 xdotool windowfocus --sync "$wid"
 xdotool keydown w && sleep 1 && xdotool keyup w
 xdotool mousemove --window "$wid" 80 50 mousedown 3 && sleep 0.3
 for _ in $(seq 10); do xdotool mousemove_relative -- 8 0; sleep 0.05; done
 xdotool mouseup 3
-xdotool key p && wait_for "wrote screenshot-000.png" || { kill $pid; exit 5; }
+xdotool key p && wait_for "wrote screenshot-000.png" || fail 5
 xdotool key Escape
-wait $pid
+wait $pid || { rc=$?; tail -20 drive.stderr >&2; exit $rc; }
 SH
         expect_rc 0 "the window driven by xdotool" timeout 300 xvfb-run -a bash "$out/drive.sh" "$voxrg" "$tests/graphs/blocks_wall.ini" "$out"
         if python3 - "$out" "$tests" <<'PY'

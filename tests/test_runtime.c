@@ -2,6 +2,7 @@
 /* Runtime tests driven through the host API, on lavapipe, with validation and
  * synchronization validation on: any validation message fails the test.
  * Usage: test_runtime CASE (ctest registers one test per case). */
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
@@ -649,6 +650,20 @@ static void test_terrain_trace(void)
         CHECK(disagree >= 0 && disagree <= pixels / 200, "camera %d: %d of %d pixels disagree on hit/miss", move, disagree, pixels);
         CHECK(hits > pixels / 4 && misses > pixels / 10, "camera %d: %d hits, %d misses", move, hits, misses);
         CHECK(worst < 2e-3, "camera %d: distance differs by %.4f%%", move, worst * 100);
+        /* the box rays clip to (kept between uploads) spans the loaded chunks */
+        const vrg_world *w = vrg_graph_world(g);
+        int lo[3], hi[3], want_lo[3] = {INT_MAX, INT_MAX, INT_MAX}, want_hi[3] = {INT_MIN, INT_MIN, INT_MIN};
+        vrg_world_gpu_box(w, lo, hi);
+        for (int cy = -4; cy < 16; cy++)
+            for (int cz = -40; cz <= 40; cz++)
+                for (int cx = -40; cx <= 40; cx++)
+                    if (vrg_world_has_chunk(w, cx, cy, cz)) {
+                        const int c[3] = {cx, cy, cz};
+                        for (int a = 0; a < 3; a++)
+                            want_lo[a] = c[a] < want_lo[a] ? c[a] : want_lo[a], want_hi[a] = c[a] > want_hi[a] ? c[a] : want_hi[a];
+                    }
+        CHECK(!memcmp(lo, want_lo, sizeof lo) && !memcmp(hi, want_hi, sizeof hi), "camera %d: GPU box x %d..%d, loaded chunks x %d..%d", move,
+              lo[0], hi[0], want_lo[0], want_hi[0]);
     }
     vrg_graph_destroy(g);
 }

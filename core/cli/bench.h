@@ -16,6 +16,8 @@ typedef struct vrg_bench_opts {
     int runs;              /* samples per figure, after warm-up */
     uint32_t width, height; /* --size: the rays and frame suites' size (default 640x360) */
     int smoke;             /* --smoke: every figure, measured once on tiny inputs (CI) */
+    int radius;            /* --radius: the terrain radius of the rays and terrain suites (default 13) */
+    const char *graphs;    /* --graphs a.ini,b.ini: the shipped graphs the memory and frame suites use (default all) */
 } vrg_bench_opts;
 
 /* median, min, max, p99 of v[0..n) (v is sorted) */
@@ -32,7 +34,7 @@ int vrg_bench_frame(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure 
 
 /* Shared by the suites: the names of graphs/ *.ini (malloc'd, sorted), and one of
  * them loaded at w x h (smoke: terrain radius 2). */
-int vrg_bench_shipped_graphs(char **names, int max);
+int vrg_bench_shipped_graphs(const vrg_bench_opts *o, char **names, int max);
 vrg_graph *vrg_bench_load_shipped(vrg_context *ctx, const char *name, uint32_t w, uint32_t h, int smoke);
 
 /* `voxrg bench`; returns the exit status. */

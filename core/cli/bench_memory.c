@@ -11,7 +11,7 @@
 static int by_name(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
 /* the graphs/ *.ini files of the source tree, sorted; returns the count (names malloc'd) */
-int vrg_bench_shipped_graphs(char **names, int max)
+int vrg_bench_shipped_graphs(const vrg_bench_opts *o, char **names, int max)
 {
     char dir[1100];
     snprintf(dir, sizeof dir, "%s/graphs", vrg_source_dir());
@@ -20,7 +20,15 @@ int vrg_bench_shipped_graphs(char **names, int max)
     struct dirent *e;
     while (d && (e = readdir(d)) && n < max) {
         size_t len = strlen(e->d_name);
-        if (len > 4 && !strcmp(e->d_name + len - 4, ".ini"))
+        if (len <= 4 || strcmp(e->d_name + len - 4, ".ini"))
+            continue;
+        int wanted = !o->graphs;
+        for (const char *p = o->graphs; p && *p && !wanted;) { /* a name in the comma-separated list */
+            size_t k = strcspn(p, ",");
+            wanted = k == len && !strncmp(p, e->d_name, k);
+            p += k + (p[k] == ',');
+        }
+        if (wanted)
             names[n++] = strdup(e->d_name);
     }
     if (d)
@@ -60,7 +68,7 @@ vrg_graph *vrg_bench_load_shipped(vrg_context *ctx, const char *name, uint32_t w
 int vrg_bench_memory(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure *out, int *count)
 {
     char *names[64];
-    int ng = vrg_bench_shipped_graphs(names, 64), n = *count, rc = 0;
+    int ng = vrg_bench_shipped_graphs(o, names, 64), n = *count, rc = 0;
     const uint32_t sizes[2][2] = {{640, 360}, {1920, 1080}}, smoke_sizes[2][2] = {{64, 36}, {96, 54}};
     for (int i = 0; i < ng && rc == 0; i++)
         for (int s = 0; s < 2 && rc == 0; s++) {
@@ -85,5 +93,7 @@ int vrg_bench_memory(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure
     for (int i = 0; i < ng; i++)
         free(names[i]);
     *count = n;
-    return rc;
+    if (ng == 0)
+        fprintf(stderr, "error: --graphs %s: no such graph in graphs/\n", o->graphs);
+    return ng ? rc : -1;
 }

@@ -28,7 +28,7 @@ int vrg_bench_rays(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure *
         snprintf(text, sizeof text,
                  "[graph]\nname = bench-rays\noutput = gbuffer.albedo\nwidth = %u\nheight = %u\n"
                  "[camera]\nposition = -120 90 120\nyaw = -40\npitch = -25\n"
-                 "[scene]\nplugin = terrain\nseed = 1337\nradius = 13\ntime_of_day = 15\ntraversal = %s\n"
+                 "[scene]\nplugin = terrain\nseed = 1337\nradius = %d\ntime_of_day = 15\ntraversal = %s\n"
                  "[pass gbuffer]\nplugin = gbuffer\nin.world = world\nin.frame = frame\nin.atlas = atlas\n%s"
                  "[pass shadow]\nplugin = sun_shadow\nin.world = world\nin.frame = frame\nin.position = gbuffer.position\n"
                  "in.normal = gbuffer.normal\nrays = 1\nsun_radius = 0\n%s"
@@ -36,7 +36,7 @@ int vrg_bench_rays(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure *
                  "rays = 1\nradius = 4\n%s"
                  "[pass indirect]\nplugin = indirect\nin.world = world\nin.frame = frame\nin.position = gbuffer.position\n"
                  "in.normal = gbuffer.normal\nrays = 1\nshadow = 0\n%s",
-                 width, height, backends[b], tlas, tlas, tlas, tlas);
+                 width, height, o->radius, backends[b], tlas, tlas, tlas, tlas);
         static const char *reads[] = {"gbuffer.normal", "shadow.visibility", "ao.ao", "indirect.irradiance"};
         vrg_graph_desc d = {.path = "<bench rays>", .text = text, .readback = reads, .readback_count = 4};
         vrg_graph *g = NULL;
@@ -78,7 +78,7 @@ int vrg_bench_rays(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure *
             for (int r = 0; r < runs; r++)
                 mr[r] = ms[k][r] > 0 ? rays[k] / (ms[k][r] * 1e3) : 0;
             char name[128];
-            snprintf(name, sizeof name, "rays: %s pass GPU time, %s, %ux%u", kinds[k], backends[b], width, height);
+            snprintf(name, sizeof name, "rays: %s pass GPU time, %s, %ux%u, radius %d", kinds[k], backends[b], width, height, o->radius);
             out[n++] = vrg_bench_summarise(name, "ms", ms[k], runs);
             snprintf(name, sizeof name, "rays: %s Mrays/s, %s (%.0f rays)", kinds[k], backends[b], rays[k]);
             out[n++] = vrg_bench_summarise(name, "Mrays/s", mr, runs);

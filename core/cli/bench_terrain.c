@@ -33,9 +33,9 @@ static double scene_stat(vrg_graph *g, const char *name)
 
 int vrg_bench_terrain(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure *out, int *count)
 {
-    int runs = o->runs, radius = o->smoke ? 2 : 13; /* smoke: a small world, a short walk */
+    int runs = o->runs, radius = o->smoke ? 2 : o->radius; /* smoke: a small world, a short walk */
     int n = *count;
-    /* whole-world generation, radius 13 (27 x 27 x 3 chunks), 1 and 2 threads */
+    /* whole-world generation (radius 13: 27 x 27 x 3 chunks), 1 and 2 threads */
     for (int threads = 1; threads <= 2; threads++) {
         double wait[64], per_thread[64], integ[64], upload[64];
         int chunks = 0;

@@ -555,7 +555,7 @@ static int cmd_plugins(int argc, char **argv)
 
 static const char *usage_bench =
     "usage: voxrg bench [--suite all|rays|graph|memory|terrain|reload|frame] [--runs N] [--size WxH]\n"
-    "                   [--json FILE] [--smoke] [--device NAME|INDEX]\n"
+    "                   [--radius N] [--graphs A.ini,B.ini] [--json FILE] [--smoke] [--device NAME|INDEX]\n"
     "Measures each figure N times (default 5) after warm-up and prints the median,\n"
     "min, max and p99 with the device and thread counts (LP_NUM_THREADS sets\n"
     "lavapipe's). rays: GPU ms and Mrays/s of primary, sun-shadow, AO and indirect rays\n"
@@ -569,13 +569,15 @@ static const char *usage_bench =
     "latency of a shader, a ray pass's shader, a graph parameter, a plugin rebuild.\n"
     "frame: whole-frame GPU and wall ms of every shipped graph along walk.path at\n"
     "--size, with each pass's GPU ms. --smoke runs every figure once on tiny inputs\n"
-    "(for CI: checks the suites run, not figures to quote). docs/benchmarks.md.\n";
+    "(for CI: checks the suites run, not figures to quote). --radius sets the terrain\n"
+    "radius of rays and terrain (default 13); --graphs limits memory and frame to some\n"
+    "shipped graphs. docs/benchmarks.md.\n";
 
 const char *vrg_source_dir(void) { return VRG_SOURCE_DIR; }
 
 static int cmd_bench(int argc, char **argv)
 {
-    vrg_bench_opts o = {.suite = "all", .runs = 5, .width = 640, .height = 360};
+    vrg_bench_opts o = {.suite = "all", .runs = 5, .width = 640, .height = 360, .radius = 13};
     for (int i = 0; i < argc; i++) {
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             fputs(usage_bench, stdout);
@@ -593,7 +595,13 @@ static int cmd_bench(int argc, char **argv)
             o.json = argv[++i];
         else if (!strcmp(argv[i], "--device"))
             o.device = argv[++i];
-        else if (!strcmp(argv[i], "--size")) {
+        else if (!strcmp(argv[i], "--graphs"))
+            o.graphs = argv[++i];
+        else if (!strcmp(argv[i], "--radius")) {
+            o.radius = atoi(argv[++i]);
+            if (o.radius < 1 || o.radius > 32)
+                return usage_error(usage_bench, "--radius '%s': 1 to 32", argv[i]);
+        } else if (!strcmp(argv[i], "--size")) {
             if (vrg_cli_parse_size(argv[++i], &o.width, &o.height) != 0)
                 return usage_error(usage_bench, "--size '%s': expected WxH, e.g. 640x360", argv[i]);
         } else if (!strcmp(argv[i], "--runs")) {

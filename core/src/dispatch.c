@@ -99,14 +99,21 @@ static vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *d
 {
     if (!defines)
         defines = "";
+    if (strlen(shader) >= sizeof((vrg_pipeline *)0)->shader || strlen(defines) >= sizeof((vrg_pipeline *)0)->defines) {
+        vrg_pass_error(p, "shader name '%.40s...' or its defines are too long (at most 255 characters each)", shader);
+        return NULL;
+    }
+    /* looked up by the name the pass gave: a shader is resolved to a file
+     * once, when its pipeline is built, not with file-system calls on every
+     * dispatch of every frame */
+    for (vrg_pipeline *pl = p->pipelines; pl; pl = pl->next)
+        if (strcmp(pl->shader, shader) == 0 && strcmp(pl->defines, defines) == 0 && pl->count == count && memcmp(pl->types, types, count * sizeof *types) == 0)
+            return pl;
     char path[1024];
     if (vrg_shader_resolve(p, shader, path, sizeof path) != 0) {
         vrg_pass_error(p, "shader '%s' not found (searched the plugin's folder, $VOXRG_SHADER_PATH, shaders/)", shader);
         return NULL;
     }
-    for (vrg_pipeline *pl = p->pipelines; pl; pl = pl->next)
-        if (strcmp(pl->path, path) == 0 && strcmp(pl->defines, defines) == 0 && pl->count == count && memcmp(pl->types, types, count * sizeof *types) == 0)
-            return pl;
     vrg_pipeline *pl = calloc(1, sizeof *pl);
     snprintf(pl->path, sizeof pl->path, "%s", path);
     snprintf(pl->shader, sizeof pl->shader, "%s", shader);

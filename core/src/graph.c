@@ -587,6 +587,7 @@ int vrg_graph_read_buffer(vrg_graph *g, const char *name, void **data, uint64_t 
 
 uint32_t vrg_graph_pass_count(const vrg_graph *g) { return (uint32_t)g->pass_count; }
 double vrg_graph_cpu_ms(const vrg_graph *g) { return g->cpu_ms; }
+double vrg_graph_pass_cpu_ms(const vrg_graph *g, uint32_t i) { return i < (uint32_t)g->pass_count ? g->pass_cpu_ms[i] : -1; }
 const char *vrg_graph_pass_name(const vrg_graph *g, uint32_t i) { return i < (uint32_t)g->pass_count ? g->passes[i].name : NULL; }
 double vrg_graph_pass_ms(const vrg_graph *g, uint32_t i) { return i < (uint32_t)g->pass_count ? g->pass_ms[i] : -1; }
 const char *vrg_graph_output(const vrg_graph *g) { return g->output_name; }

@@ -283,6 +283,7 @@ struct vrg_graph {
     VkFence fence;
     VkQueryPool queries;
     double pass_ms[VRG_MAX_PASSES];
+    double pass_cpu_ms[VRG_MAX_PASSES]; /* the last frame's execute callback, CPU ms */
     VkBuffer readback_buffer;
     VkDeviceMemory readback_memory;
     VkDeviceSize readback_size;

@@ -150,7 +150,9 @@ int vrg_record_frame(vrg_graph *g)
         p->failed = 0;
         p->stat_count = 0; /* figures are this frame's */
         p->cmd = cmd;
+        double t0 = now_ms();
         p->plugin->desc->execute(p, cmd);
+        g->pass_cpu_ms[g->schedule[k]] = now_ms() - t0;
         p->cmd = VK_NULL_HANDLE;
         failed |= p->failed;
         if (g->queries)

@@ -49,6 +49,10 @@ struct vrg_world {
     int mesh_count;
     int header_dirty;
     int loaded;
+    /* vrg_world_gpu_box's answer, kept: it is asked every frame, and a scan
+     * touches one cache line of every (8 KiB) slot */
+    int box_lo[3], box_hi[3];
+    int box_stale;
 };
 
 static const vrg_material materials[VRG_BLOCK_COUNT] = {
@@ -92,6 +96,8 @@ vrg_world *vrg_world_create(int radius_chunks, int height_chunks)
     if (radius_chunks < 0 || height_chunks <= 0)
         return NULL;
     vrg_world *w = calloc(1, sizeof *w);
+    if (!w)
+        return NULL;
     w->gx = w->gz = 2 * radius_chunks + 1;
     w->gy = height_chunks;
     size_t n = (size_t)w->gx * w->gy * w->gz;
@@ -103,6 +109,7 @@ vrg_world *vrg_world_create(int radius_chunks, int height_chunks)
         return NULL;
     }
     w->header_dirty = 1;
+    w->box_stale = 1;
     return w;
 }
 
@@ -218,6 +225,7 @@ void vrg_world_invalidate_gpu(vrg_world *w)
     w->header_dirty = 1;
     for (int s = 0; s < w->gx * w->gy * w->gz; s++) {
         w->slots[s].gpu_valid = 0; /* the new buffer holds nothing yet */
+    w->box_stale = 1;
         mark_dirty(w, s); /* empty slots too: the buffer starts zeroed, but stay simple and exact */
     }
 }
@@ -275,19 +283,25 @@ static uint32_t float_bits(float f)
 
 void vrg_world_gpu_box(const vrg_world *w, int lo[3], int hi[3])
 {
-    int any = 0;
-    for (int a = 0; a < 3; a++)
-        lo[a] = 1, hi[a] = -1; /* none: hi < lo */
-    for (int s = 0; s < w->gx * w->gy * w->gz; s++) {
-        const slot *sl = &w->slots[s];
-        if (!sl->gpu_valid)
-            continue;
-        for (int a = 0; a < 3; a++) {
-            lo[a] = !any || sl->gpu_c[a] < lo[a] ? sl->gpu_c[a] : lo[a];
-            hi[a] = !any || sl->gpu_c[a] > hi[a] ? sl->gpu_c[a] : hi[a];
+    vrg_world *cache = (vrg_world *)w; /* the cached box is not the world's state */
+    if (cache->box_stale) {
+        int any = 0;
+        for (int a = 0; a < 3; a++)
+            cache->box_lo[a] = 1, cache->box_hi[a] = -1; /* none: hi < lo */
+        for (int s = 0; s < w->gx * w->gy * w->gz; s++) {
+            const slot *sl = &w->slots[s];
+            if (!sl->gpu_valid)
+                continue;
+            for (int a = 0; a < 3; a++) {
+                cache->box_lo[a] = !any || sl->gpu_c[a] < cache->box_lo[a] ? sl->gpu_c[a] : cache->box_lo[a];
+                cache->box_hi[a] = !any || sl->gpu_c[a] > cache->box_hi[a] ? sl->gpu_c[a] : cache->box_hi[a];
+            }
+            any = 1;
         }
-        any = 1;
+        cache->box_stale = 0;
     }
+    memcpy(lo, w->box_lo, sizeof w->box_lo);
+    memcpy(hi, w->box_hi, sizeof w->box_hi);
 }
 
 static void pack_header(const vrg_world *w, uint32_t *out)
@@ -359,6 +373,7 @@ int vrg_world_upload(vrg_world *w, VkCommandBuffer cmd, VkBuffer dst, void *stag
         int s = w->dirty_list[done++];
         slot *sl = &w->slots[s];
         sl->gpu_valid = sl->valid; /* what vrg_world_gpu_box reports */
+        w->box_stale = 1;
         sl->gpu_c[0] = sl->cx, sl->gpu_c[1] = sl->cy, sl->gpu_c[2] = sl->cz;
         pack_slot(w, sl, (uint32_t *)((char *)staging + used));
         regions[nr++] = (VkBufferCopy){.srcOffset = used, .dstOffset = 4 * (SLOTS_OFFSET + (uint64_t)s * SLOT_UINTS), .size = SLOT_UINTS * 4};

@@ -61,6 +61,8 @@ int vrg_graph_frame(vrg_graph *g);
 /* CPU time of the last frame's recording and submission (barriers, the
  * passes' execute callbacks, the submit), without the wait for the GPU. */
 double vrg_graph_cpu_ms(const vrg_graph *g);
+/* CPU time of pass i's execute callback in the last frame (0 if culled). */
+double vrg_graph_pass_cpu_ms(const vrg_graph *g, uint32_t i);
 /* For benchmarks: renders one frame keeping its barriers and dispatches
  * (pipeline, pushed descriptors, push constants, group counts) as data;
  * vrg_capture_record records exactly those commands with direct Vulkan
