@@ -1557,6 +1557,29 @@ static void test_svgf_atrous_options(void)
         free(in.pixels), free(out.pixels), free(fb.pixels);
         vrg_graph_destroy(g);
     }
+    /* feedback from an intermediate iteration (packed texels, the thesis's
+     * and the paper's setting) equals the output of a filter that stops there */
+    const char *three[] = {"atrous.feedback=1", "atrous.iterations=3", "atrous.kernel=5"};
+    const char *one[] = {"atrous.feedback=1", "atrous.iterations=1", "atrous.kernel=5"};
+    vrg_graph *g3 = load_with("svgf_blocks.ini", three, 3, reads, 3), *g1 = load_with("svgf_blocks.ini", one, 3, reads, 3);
+    if (g3 && g1) {
+        vrg_image_data fb3 = {0}, out1 = {0};
+        CHECK(vrg_graph_frame(g3) == 0 && vrg_graph_frame(g1) == 0, "frame failed");
+        CHECK(vrg_graph_read(g3, "atrous.feedback", &fb3) == 0 && vrg_graph_read(g1, "atrous.color", &out1) == 0, "readback failed");
+        int differ = 0, filtered = 0;
+        for (uint32_t i = 0; fb3.pixels && out1.pixels && i < 4 * fb3.width * fb3.height; i++)
+            /* packHalf2x16 and a rgba16f store may round a half ulp apart */
+            differ += fabsf(fb3.pixels[i] - out1.pixels[i]) > fabsf(out1.pixels[i]) * (1.0f / 1024) + 1e-6f;
+        vrg_image_data in = {0};
+        if (vrg_graph_read(g1, "variance.color", &in) == 0)
+            for (uint32_t i = 0; i < 4 * in.width * in.height; i++)
+                filtered += in.pixels[i] != out1.pixels[i];
+        CHECK(differ == 0, "feedback after iteration 1 of 3 differs from a 1-iteration output in %d values (beyond a half ulp)", differ);
+        CHECK(filtered > (int)(in.width * in.height), "one iteration changed only %d values", filtered);
+        free(fb3.pixels), free(out1.pixels), free(in.pixels);
+    }
+    vrg_graph_destroy(g3);
+    vrg_graph_destroy(g1);
 }
 
 /* An SVGF input at another size than the output is an error naming it,

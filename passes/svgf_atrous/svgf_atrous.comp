@@ -7,42 +7,73 @@
 // The device's workgroup shape and rows per invocation: pixel.glsl.
 layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
 
-#if defined(SURFACE)
-layout(binding = 0) uniform sampler2D in_position;
-layout(binding = 1) uniform sampler2D in_normal;
-layout(binding = 2, rg32f) uniform writeonly image2D out_surface;
+// Iterations read and write a packed texel (rgba32ui): a tap is one fetch.
+//   x = half2(r, g), y = half2(b, variance), z = bits of N . X,
+//   w = normal axis 0..5 (+x -x +y -y +z -z), SKY on sky
+const uint SKY = 7u;
 
-// (normal axis 0..5 = +x -x +y -y +z -z, or -1 on sky; N . X)
+vec4 packed_color(uvec4 t) { return vec4(unpackHalf2x16(t.x), unpackHalf2x16(t.y)); }
+uvec4 pack_texel(vec4 c, float plane, uint axis) { return uvec4(packHalf2x16(c.rg), packHalf2x16(c.ba), floatBitsToUint(plane), axis); }
+
+#if defined(PACK)
+// the input with each pixel's surface: the first iteration's source
+layout(binding = 0) uniform sampler2D in_src;
+layout(binding = 1) uniform sampler2D in_position;
+layout(binding = 2) uniform sampler2D in_normal;
+layout(binding = 3, rgba32ui) uniform writeonly uimage2D out_dst;
+
 void shade(ivec2 p)
 {
-    if (any(greaterThanEqual(p, imageSize(out_surface))))
+    if (any(greaterThanEqual(p, imageSize(out_dst))))
         return;
     vec4 x = texelFetch(in_position, p, 0);
     vec3 n = texelFetch(in_normal, p, 0).xyz;
     vec3 a = abs(n);
-    float axis = a.x > 0.5 ? (n.x > 0.0 ? 0.0 : 1.0) : a.y > 0.5 ? (n.y > 0.0 ? 2.0 : 3.0) : (n.z > 0.0 ? 4.0 : 5.0);
-    imageStore(out_surface, p, vec4(x.w == 0.0 ? -1.0 : axis, dot(n, x.xyz), 0.0, 0.0));
+    uint axis = a.x > 0.5 ? (n.x > 0.0 ? 0u : 1u) : a.y > 0.5 ? (n.y > 0.0 ? 2u : 3u) : (n.z > 0.0 ? 4u : 5u);
+    imageStore(out_dst, p, pack_texel(texelFetch(in_src, p, 0), dot(n, x.xyz), x.w == 0.0 ? SKY : axis));
 }
 #elif defined(COPY)
+// feedback: the input, or an iteration's packed output
+#if defined(FROM_PACKED)
+layout(binding = 0, rgba32ui) uniform readonly uimage2D in_src;
+#else
 layout(binding = 0) uniform sampler2D in_src;
+#endif
 layout(binding = 1, rgba16f) uniform writeonly image2D out_dst;
 
 void shade(ivec2 p)
 {
-    if (all(lessThan(p, imageSize(out_dst))))
-        imageStore(out_dst, p, texelFetch(in_src, p, 0));
+    if (any(greaterThanEqual(p, imageSize(out_dst))))
+        return;
+#if defined(FROM_PACKED)
+    imageStore(out_dst, p, packed_color(imageLoad(in_src, p)));
+#else
+    imageStore(out_dst, p, texelFetch(in_src, p, 0));
+#endif
 }
 #else
-#define FRAME_BINDING 3
+#define FRAME_BINDING 2
 #include "frame.glsl"
-layout(binding = 0) uniform sampler2D in_src;
+layout(binding = 0, rgba32ui) uniform readonly uimage2D in_src;
 layout(binding = 1) uniform sampler2D in_position;
-layout(binding = 2) uniform sampler2D in_surface;  // (normal axis, N . X): the SURFACE dispatch
-layout(binding = 4, rgba16f) uniform writeonly image2D out_dst;
+#if defined(TO_PACKED)
+layout(binding = 3, rgba32ui) uniform writeonly uimage2D out_dst;
+#else
+layout(binding = 3, rgba16f) uniform writeonly image2D out_dst;
+#endif
 layout(push_constant) uniform Params {
     float sigma_z, sigma_n, sigma_l, skip_variance;
     int step, kernel;
 } params;
+
+void store(ivec2 p, vec4 c, uvec4 own)
+{
+#if defined(TO_PACKED)
+    imageStore(out_dst, p, pack_texel(c, uintBitsToFloat(own.z), own.w));
+#else
+    imageStore(out_dst, p, c);
+#endif
+}
 
 // 3x3 Gaussian (1/4 1/2 1/4) of the variance around p: steadier than the
 // pixel's own for the luminance test
@@ -53,7 +84,7 @@ float variance_3x3(ivec2 p, ivec2 size)
         for (int dx = -1; dx <= 1; dx++) {
             ivec2 q = clamp(p + ivec2(dx, dy), ivec2(0), size - 1);
             float k = (dx == 0 ? 0.5 : 0.25) * (dy == 0 ? 0.5 : 0.25);
-            s += k * texelFetch(in_src, q, 0).a;
+            s += k * unpackHalf2x16(imageLoad(in_src, q).y).y;
             w += k;
         }
     return s / w;
@@ -64,12 +95,13 @@ void shade(ivec2 p)
     ivec2 size = imageSize(out_dst);
     if (any(greaterThanEqual(p, size)))
         return;
-    vec4 c = texelFetch(in_src, p, 0);
-    vec2 sp = texelFetch(in_surface, p, 0).xy;
-    if (sp.x < 0.0 || c.a < params.skip_variance) { // sky, or quiet enough already
-        imageStore(out_dst, p, c);
+    uvec4 own = imageLoad(in_src, p);
+    vec4 c = packed_color(own);
+    if (own.w == SKY || c.a < params.skip_variance) { // sky, or quiet enough already
+        store(p, c, own);
         return;
     }
+    float dp = uintBitsToFloat(own.z);
     vec3 x = texelFetch(in_position, p, 0).xyz;
     float lp = luminance(c.rgb);
     float sigma_l = params.sigma_l * sqrt(max(variance_3x3(p, size), 0.0)) + 1e-6;
@@ -77,7 +109,10 @@ void shade(ivec2 p)
     float footprint = distance(x, frame.camera_pos.xyz) * 2.0 * tan(0.5 * frame.camera_pos.w) / float(size.y);
     const float B3[3] = float[3](3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
     const float G3[2] = float[2](1.0 / 2.0, 1.0 / 4.0);
-    int r = params.kernel == 5 ? 2 : 1;
+    // the kernel's radius is a define (KERNEL_RADIUS), so the loops unroll
+    // with h and the tap distances constant
+    const int r = KERNEL_RADIUS;
+    float z_step = params.sigma_z * float(params.step) * footprint, inv_l = 1.0 / sigma_l;
     vec3 sum = vec3(0.0);
     float var = 0.0, wsum = 0.0;
     for (int dy = -r; dy <= r; dy++)
@@ -85,21 +120,19 @@ void shade(ivec2 p)
             ivec2 q = p + ivec2(dx, dy) * params.step;
             if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size)))
                 continue;
-            vec2 sq = texelFetch(in_surface, q, 0).xy;
-            if (sq.x != sp.x) // sky, or another normal: w_n = 0
+            uvec4 t = imageLoad(in_src, q);
+            if (t.w != own.w) // sky, or another normal: w_n = 0
                 continue;
             float h = r == 2 ? B3[abs(dx)] * B3[abs(dy)] : G3[abs(dx)] * G3[abs(dy)];
-            vec4 cq = texelFetch(in_src, q, 0);
-            float dist = length(vec2(dx, dy)) * float(params.step);
-            float wz = exp(-abs(sq.y - sp.y) / (params.sigma_z * dist * footprint + 1e-6));
-            float wl = exp(-abs(lp - luminance(cq.rgb)) / sigma_l);
-            float w = h * wz * wl;
+            vec4 cq = packed_color(t);
+            // w_z * w_l in one exp
+            float w = h * exp(-abs(uintBitsToFloat(t.z) - dp) / (z_step * length(vec2(dx, dy)) + 1e-6) - abs(lp - luminance(cq.rgb)) * inv_l);
             sum += w * cq.rgb;
             var += w * w * cq.a;
             wsum += w;
         }
     // the centre tap has w = h > 0, so wsum > 0
-    imageStore(out_dst, p, vec4(sum / wsum, var / (wsum * wsum)));
+    store(p, vec4(sum / wsum, var / (wsum * wsum)), own);
 }
 #endif
 
