@@ -50,7 +50,7 @@ struct vrg_world {
     int header_dirty;
     int loaded;
     /* vrg_world_gpu_box's answer, kept: it is asked every frame, and a scan
-     * touches one cache line of every (8 KiB) slot */
+     * touches one cache line of every (4 KiB) slot */
     int box_lo[3], box_hi[3];
     int box_stale;
 };
@@ -223,9 +223,9 @@ int vrg_world_chunk_count(const vrg_world *w) { return w->loaded; }
 void vrg_world_invalidate_gpu(vrg_world *w)
 {
     w->header_dirty = 1;
+    w->box_stale = 1;
     for (int s = 0; s < w->gx * w->gy * w->gz; s++) {
         w->slots[s].gpu_valid = 0; /* the new buffer holds nothing yet */
-    w->box_stale = 1;
         mark_dirty(w, s); /* empty slots too: the buffer starts zeroed, but stay simple and exact */
     }
 }

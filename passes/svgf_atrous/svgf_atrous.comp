@@ -1,6 +1,6 @@
 #version 460
-// One à-trous iteration of SVGF (or, with COPY, a copy): svgf_atrous.c has
-// the weights.
+// One à-trous iteration of SVGF; with PACK the packing of the input before
+// the first, with COPY the feedback copy. svgf_atrous.c has the weights.
 #include "pixel.glsl"
 #include "color.glsl"
 
