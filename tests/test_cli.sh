@@ -151,6 +151,8 @@ has "$out/stdout" "plugin pattern .*$out/rel/plugins/pattern.so" "graph-relative
 expect_rc 0 "bench --help" "$voxrg" bench --help
 expect_rc 2 "bench unknown suite" "$voxrg" bench --suite nonesuch
 expect_rc 2 "bench bad size" "$voxrg" bench --size huge
+expect_rc 1 "bench --graphs naming a missing graph" "$voxrg" bench --suite frame --smoke --graphs raw.ini,nonesuch.ini
+has "$out/stderr" "--graphs: 'nonesuch.ini' is not a graph in .*graphs" "bench --graphs names the missing graph"
 expect_rc 0 "bench --smoke" "$voxrg" bench --smoke --json "$out/bench.json"
 has "$out/stdout" "smoke: tiny inputs" "bench smoke says so"
 if python3 - "$out/bench.json" "$tests/../graphs" <<'PY'

@@ -32,8 +32,9 @@ int vrg_bench_graph(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure 
 int vrg_bench_memory(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure *out, int *count);
 int vrg_bench_frame(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure *out, int *count);
 
-/* Shared by the suites: the names of graphs/ *.ini (malloc'd, sorted), and one of
- * them loaded at w x h (smoke: terrain radius 2). */
+/* Shared by the suites: the names of graphs/ *.ini that --graphs names
+ * (malloc'd, sorted; -1 after an error on a name that is not there), and
+ * one of them loaded at w x h (smoke: terrain radius 2). */
 int vrg_bench_shipped_graphs(const vrg_bench_opts *o, char **names, int max);
 vrg_graph *vrg_bench_load_shipped(vrg_context *ctx, const char *name, uint32_t w, uint32_t h, int smoke);
 

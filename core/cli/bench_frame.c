@@ -81,7 +81,7 @@ int vrg_bench_frame(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure 
     vrg_camera_path path;
     if (vrg_camera_path_load(file, &path, stderr) != 0)
         return -1;
-    int ng = vrg_bench_shipped_graphs(o, names, 64), rc = ng ? 0 : -1;
+    int ng = vrg_bench_shipped_graphs(o, names, 64), rc = ng > 0 ? 0 : -1;
     for (int i = 0; i < ng && rc == 0; i++)
         rc = measure(ctx, o, names[i], &path, out, count);
     for (int i = 0; i < ng; i++)

@@ -84,15 +84,17 @@ int vrg_bench_graph(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure 
         rc = vrg_graph_frame(g);
     if (rc == 0 && (!(cap[0] = vrg_graph_capture_frame(g)) || !(cap[1] = vrg_graph_capture_frame(g))))
         rc = -1;
+    int scene_pass = -1;
+    for (uint32_t i = 0; i < vrg_graph_pass_count(g); i++)
+        if (!strcmp(vrg_graph_pass_name(g, i), "scene"))
+            scene_pass = (int)i;
     /* an even number of runtime frames: the last has cap[1]'s parity */
     for (int r = 0; r < runs + runs % 2 && rc == 0; r++) {
         rc = vrg_graph_frame(g);
         if (r >= runs)
             continue;
         runtime[r] = vrg_graph_cpu_ms(g);
-        for (uint32_t i = 0; i < vrg_graph_pass_count(g); i++)
-            if (!strcmp(vrg_graph_pass_name(g, i), "scene"))
-                scene[r] = vrg_graph_pass_cpu_ms(g, i);
+        scene[r] = scene_pass >= 0 ? vrg_graph_pass_cpu_ms(g, (uint32_t)scene_pass) : 0;
         rest[r] = runtime[r] - scene[r];
     }
     if (rc == 0)

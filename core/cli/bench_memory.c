@@ -10,7 +10,22 @@
 
 static int by_name(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
-/* the graphs/ *.ini files of the source tree, sorted; returns the count (names malloc'd) */
+/* in the comma-separated list (NULL: every name is) */
+static int listed(const char *list, const char *name)
+{
+    size_t len = strlen(name);
+    for (const char *p = list; p && *p;) {
+        size_t k = strcspn(p, ",");
+        if (k == len && !strncmp(p, name, k))
+            return 1;
+        p += k + (p[k] == ',');
+    }
+    return !list;
+}
+
+/* the graphs/ *.ini files of the source tree (those --graphs names), sorted;
+ * returns the count (names malloc'd), or -1 after an error when --graphs
+ * names a file that is not there */
 int vrg_bench_shipped_graphs(const vrg_bench_opts *o, char **names, int max)
 {
     char dir[1100];
@@ -20,20 +35,25 @@ int vrg_bench_shipped_graphs(const vrg_bench_opts *o, char **names, int max)
     struct dirent *e;
     while (d && (e = readdir(d)) && n < max) {
         size_t len = strlen(e->d_name);
-        if (len <= 4 || strcmp(e->d_name + len - 4, ".ini"))
-            continue;
-        int wanted = !o->graphs;
-        for (const char *p = o->graphs; p && *p && !wanted;) { /* a name in the comma-separated list */
-            size_t k = strcspn(p, ",");
-            wanted = k == len && !strncmp(p, e->d_name, k);
-            p += k + (p[k] == ',');
-        }
-        if (wanted)
+        if (len > 4 && !strcmp(e->d_name + len - 4, ".ini") && listed(o->graphs, e->d_name))
             names[n++] = strdup(e->d_name);
     }
     if (d)
         closedir(d);
     qsort(names, (size_t)n, sizeof *names, by_name);
+    for (const char *p = o->graphs; p && *p;) { /* each one asked for is there */
+        size_t k = strcspn(p, ",");
+        int found = 0;
+        for (int i = 0; i < n && !found; i++)
+            found = strlen(names[i]) == k && !strncmp(names[i], p, k);
+        if (!found) {
+            fprintf(stderr, "error: --graphs: '%.*s' is not a graph in %s\n", (int)k, p, dir);
+            for (int i = 0; i < n; i++)
+                free(names[i]);
+            return -1;
+        }
+        p += k + (p[k] == ',');
+    }
     return n;
 }
 
@@ -93,7 +113,5 @@ int vrg_bench_memory(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure
     for (int i = 0; i < ng; i++)
         free(names[i]);
     *count = n;
-    if (ng == 0)
-        fprintf(stderr, "error: --graphs %s: no such graph in graphs/\n", o->graphs);
-    return ng ? rc : -1;
+    return ng > 0 ? rc : -1;
 }

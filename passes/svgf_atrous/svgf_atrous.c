@@ -84,9 +84,10 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     int n = vrg_param_int(pass, "iterations"), fb = vrg_param_int(pass, "feedback");
     struct {
         float sigma_z, sigma_n, sigma_l, skip_variance;
-        int32_t step, kernel;
+        int32_t step;
     } pc = {(float)vrg_param(pass, "sigma_z"), (float)vrg_param(pass, "sigma_n"), (float)vrg_param(pass, "sigma_l"),
-            (float)vrg_param(pass, "skip_variance"), 1, vrg_param_int(pass, "kernel")};
+            (float)vrg_param(pass, "skip_variance"), 1};
+    int radius = vrg_param_int(pass, "kernel") / 2; /* a define: the taps unroll */
     if (fb == 0 && copy(pass, cmd, "illumination", 0) != 0)
         return;
     vrg_dispatch_desc pack = {.shader = "svgf_atrous.comp", .defines = "PACK", .pixel_loop = 1, .domain = "pong",
@@ -94,8 +95,8 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     if (vrg_dispatch(pass, cmd, &pack) != 0)
         return;
     char defines[2][64]; /* [last iteration] */
-    snprintf(defines[0], sizeof defines[0], "KERNEL_RADIUS=%d TO_PACKED", pc.kernel / 2);
-    snprintf(defines[1], sizeof defines[1], "KERNEL_RADIUS=%d", pc.kernel / 2);
+    snprintf(defines[0], sizeof defines[0], "KERNEL_RADIUS=%d TO_PACKED", radius);
+    snprintf(defines[1], sizeof defines[1], "KERNEL_RADIUS=%d", radius);
     /* pong -> ping -> pong ... -> color */
     const char *src = "pong", *spare[2] = {"ping", "pong"};
     for (int i = 0; i < n; i++) {

@@ -63,7 +63,7 @@ layout(binding = 3, rgba16f) uniform writeonly image2D out_dst;
 #endif
 layout(push_constant) uniform Params {
     float sigma_z, sigma_n, sigma_l, skip_variance;
-    int step, kernel;
+    int step;
 } params;
 
 void store(ivec2 p, vec4 c, uvec4 own)
