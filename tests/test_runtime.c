@@ -650,20 +650,24 @@ static void test_terrain_trace(void)
         CHECK(disagree >= 0 && disagree <= pixels / 200, "camera %d: %d of %d pixels disagree on hit/miss", move, disagree, pixels);
         CHECK(hits > pixels / 4 && misses > pixels / 10, "camera %d: %d hits, %d misses", move, hits, misses);
         CHECK(worst < 2e-3, "camera %d: distance differs by %.4f%%", move, worst * 100);
-        /* the box rays clip to (kept between uploads) spans the loaded chunks */
+        /* the box rays clip to (kept between uploads) is that of the
+         * non-air blocks of the loaded chunks */
         const vrg_world *w = vrg_graph_world(g);
         int lo[3], hi[3], want_lo[3] = {INT_MAX, INT_MAX, INT_MAX}, want_hi[3] = {INT_MIN, INT_MIN, INT_MIN};
         vrg_world_gpu_box(w, lo, hi);
         for (int cy = -4; cy < 16; cy++)
             for (int cz = -40; cz <= 40; cz++)
-                for (int cx = -40; cx <= 40; cx++)
-                    if (vrg_world_has_chunk(w, cx, cy, cz)) {
-                        const int c[3] = {cx, cy, cz};
-                        for (int a = 0; a < 3; a++)
-                            want_lo[a] = c[a] < want_lo[a] ? c[a] : want_lo[a], want_hi[a] = c[a] > want_hi[a] ? c[a] : want_hi[a];
-                    }
-        CHECK(!memcmp(lo, want_lo, sizeof lo) && !memcmp(hi, want_hi, sizeof hi), "camera %d: GPU box x %d..%d, loaded chunks x %d..%d", move,
-              lo[0], hi[0], want_lo[0], want_hi[0]);
+                for (int cx = -40; cx <= 40; cx++) {
+                    const vrg_block *blocks = vrg_world_chunk(w, cx, cy, cz);
+                    for (int i = 0; blocks && i < VRG_CHUNK_VOXELS; i++)
+                        if (blocks[i] != VRG_BLOCK_AIR) {
+                            const int b[3] = {cx * 16 + i % 16, cy * 16 + i / 256, cz * 16 + i / 16 % 16};
+                            for (int a = 0; a < 3; a++)
+                                want_lo[a] = b[a] < want_lo[a] ? b[a] : want_lo[a], want_hi[a] = b[a] + 1 > want_hi[a] ? b[a] + 1 : want_hi[a];
+                        }
+                }
+        CHECK(!memcmp(lo, want_lo, sizeof lo) && !memcmp(hi, want_hi, sizeof hi), "camera %d: GPU box %d %d %d..%d %d %d, non-air blocks %d %d %d..%d %d %d",
+              move, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2], want_lo[0], want_lo[1], want_lo[2], want_hi[0], want_hi[1], want_hi[2]);
     }
     vrg_graph_destroy(g);
 }
@@ -1624,6 +1628,72 @@ static const char *user_shader =
     "layout(binding = 0, rgba16f) uniform writeonly image2D dst;\n"
     "void main() { imageStore(dst, ivec2(gl_GlobalInvocationID.xy), vec4(TINT, 1.0)); }\n";
 
+/* How a dispatch is sized. A shader's local size is read from the SPIR-V
+ * whichever way glslang writes it (an 8x8 shader that does not use
+ * gl_WorkGroupSize gets LocalSizeId: it was once read as 1x1 and dispatched
+ * 64 times over). A pixel loop covers every pixel with the device's
+ * tiles, also where the size is no multiple of them; a pixel loop with
+ * another local size is refused with an error naming the shader. */
+static void test_dispatch_shape(void)
+{
+    char dir[] = "/tmp/voxrg-shape-XXXXXX";
+    if (!mkdtemp(dir)) {
+        CHECK(0, "mkdtemp failed");
+        return;
+    }
+    char user[1100];
+    snprintf(user, sizeof user, "%s/user.comp", dir);
+    setenv("VOXRG_SHADER_PATH", dir, 1);
+    static const char *shaders[] = {
+        "#version 450\nlayout(local_size_x = 8, local_size_y = 8) in;\nlayout(binding = 0, rgba16f) uniform writeonly image2D dst;\n"
+        "void main() { imageStore(dst, ivec2(gl_GlobalInvocationID.xy), vec4(gl_NumWorkGroups.xy, 0.0, 1.0)); }\n",
+        "#version 450\n#include \"pixel.glsl\"\nlayout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;\n"
+        "layout(binding = 0, rgba16f) uniform writeonly image2D dst;\n"
+        "void shade(ivec2 p) { if (all(lessThan(p, imageSize(dst)))) imageStore(dst, p, vec4(p, 1.0, 0.0)); }\n"
+        "void main() { for (uint k = 0u; k < VRG_PIXEL_ROWS; k++) shade(vrg_pixel(k)); }\n",
+        "#version 450\n#include \"pixel.glsl\"\nlayout(local_size_x = 8, local_size_y = 8) in;\n"
+        "layout(binding = 0, rgba16f) uniform writeonly image2D dst;\n"
+        "void shade(ivec2 p) { imageStore(dst, p, vec4(1.0)); }\nvoid main() { shade(vrg_pixel(0u)); }\n",
+    };
+    for (int c = 0; c < 3; c++) {
+        save_file(user, shaders[c]);
+        char text[512];
+        snprintf(text, sizeof text, "[graph]\noutput = color\nwidth = %d\nheight = %d\n[pass user]\nplugin = shader_file\nout.color = color\npixel_loop = %d\n",
+                 c ? 13 : 16, c ? 11 : 16, c > 0);
+        char *log = NULL;
+        size_t len = 0;
+        FILE *diag = open_memstream(&log, &len);
+        vrg_graph_desc d = {.path = "shape.ini", .text = text, .diag = diag};
+        vrg_graph *g = NULL;
+        int rc = vrg_graph_load(ctx, &d, &g);
+        CHECK(rc == 0, "case %d: load failed", c);
+        int frame_rc = rc == 0 ? vrg_graph_frame(g) : -1;
+        fclose(diag);
+        vrg_image_data img = {0};
+        if (c < 2 && frame_rc == 0 && vrg_graph_read(g, "color", &img) == 0) {
+            int bad = 0;
+            for (uint32_t y = 0; y < img.height; y++)
+                for (uint32_t x = 0; x < img.width; x++) {
+                    float want[3] = {c ? (float)x : 2.0f, c ? (float)y : 2.0f, c ? 1.0f : 0.0f};
+                    int wrong = 0;
+                    for (int k = 0; k < 3; k++)
+                        wrong |= px(&img, x, y, k) != want[k];
+                    if (wrong && !bad++) /* the first wrong pixel */
+                        CHECK(0, "case %d: pixel %u,%u is %g %g %g, want %g %g %g", c, x, y, px(&img, x, y, 0), px(&img, x, y, 1), px(&img, x, y, 2),
+                              want[0], want[1], want[2]);
+                }
+            free(img.pixels);
+        } else if (c < 2)
+            CHECK(0, "case %d: the frame failed:\n%s", c, log ? log : "");
+        else
+            CHECK(frame_rc != 0 && log && strstr(log, "pixel_loop dispatch of user.comp: local size 8x8x1"), "case 2: no error:\n%s", log ? log : "");
+        free(log);
+        vrg_graph_destroy(g);
+    }
+    unsetenv("VOXRG_SHADER_PATH");
+    remove(user), rmdir(dir);
+}
+
 /* Hot reload of shaders: a saved shader (or a file it #includes) is in use
  * on the next frame; a broken one is reported with FILE:LINE while the last
  * good pipeline keeps rendering; fixing it brings the new version. */
@@ -2121,7 +2191,7 @@ int main(int argc, char **argv)
         {"svgf_history_reset", test_svgf_history_reset, 1}, {"svgf_variance", test_svgf_variance, 1},
         {"svgf_edge", test_svgf_edge, 1}, {"accumulate_mean", test_accumulate_mean, 1},
         {"svgf_atrous_options", test_svgf_atrous_options, 1}, {"svgf_size_mismatch", test_svgf_size_mismatch, 1},
-        {"hot_reload_shader", test_hot_reload_shader, 1}, {"hot_reload_graph", test_hot_reload_graph, 1},
+        {"dispatch_shape", test_dispatch_shape, 1}, {"hot_reload_shader", test_hot_reload_shader, 1}, {"hot_reload_graph", test_hot_reload_graph, 1},
         {"hot_reload_plugin", test_hot_reload_plugin, 1}, {"capture_replay", test_capture_replay, 1}, {"soak", test_soak, 1}, {"set_param", test_set_param, 1},
         {"light_half_res", test_light_half_res, 1},
         {"light_penumbra", test_light_penumbra, 1},   {"light_corner", test_light_corner, 1},

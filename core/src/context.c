@@ -317,7 +317,13 @@ static int create_device(vrg_context *ctx)
     int cpu = ctx->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     ctx->group_size[0] = cpu && sg.subgroupSize >= 4 && sg.subgroupSize <= 64 ? sg.subgroupSize : 8;
     ctx->group_size[1] = cpu ? 1 : 8;
-    ctx->pixel_rows = cpu ? 8 : 1;
+    /* the pixels of a group: as square as its invocations allow (4x2 for 8) */
+    uint32_t lanes = ctx->group_size[0] * ctx->group_size[1], th = 1;
+    while ((th * 2) * (th * 2) <= lanes)
+        th *= 2;
+    ctx->pixel_tile[0] = lanes / th;
+    ctx->pixel_tile[1] = th;
+    ctx->pixel_rows = cpu ? 32 : 1; /* tile rows per invocation: shader.c */
     return 0;
 }
 

@@ -319,8 +319,16 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
             if (dom < 0)
                 return vrg_pass_error(p, "dispatch has no domain: no image output; set domain or groups_x");
         }
-        gx = (g->res[dom].width + pl->local[0] - 1) / pl->local[0];
-        gy = (g->res[dom].height + pl->local[1] - 1) / pl->local[1];
+        uint32_t tile[2] = {pl->local[0], pl->local[1]};
+        if (d->pixel_loop) {
+            /* pixel.glsl's vrg_pixel: a group shades a tile of the device's shape */
+            if (pl->local[0] != g->ctx->group_size[0] || pl->local[1] != g->ctx->group_size[1] || pl->local[2] != 1)
+                return vrg_pass_error(p, "pixel_loop dispatch of %s: local size %ux%ux%u, a pixel loop needs VRG_GROUP_X x VRG_GROUP_Y (%ux%u)",
+                                      d->shader, pl->local[0], pl->local[1], pl->local[2], g->ctx->group_size[0], g->ctx->group_size[1]);
+            tile[0] = g->ctx->pixel_tile[0], tile[1] = g->ctx->pixel_tile[1];
+        }
+        gx = (g->res[dom].width + tile[0] - 1) / tile[0];
+        gy = (g->res[dom].height + tile[1] - 1) / tile[1];
         if (d->pixel_loop)
             gy = (gy + g->ctx->pixel_rows - 1) / g->ctx->pixel_rows;
         gz = 1;

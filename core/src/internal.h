@@ -51,7 +51,8 @@ struct vrg_context {
     VkSampler sampler_linear;
     VkSampler sampler_mips;   /* nearest texels, linear between levels: voxel textures */
     uint32_t group_size[2];   /* VRG_GROUP_X/Y for shaders: see shader.c */
-    uint32_t pixel_rows;      /* VRG_PIXEL_ROWS: rows per invocation of a pixel loop */
+    uint32_t pixel_tile[2];   /* VRG_TILE_W/H: the pixels of a group of a pixel loop (pixel.glsl) */
+    uint32_t pixel_rows;      /* VRG_PIXEL_ROWS: tile rows per invocation of a pixel loop */
     int want_swapchain;       /* vrg_context_desc.swapchain */
     struct {
         PFN_vkCreateAccelerationStructureKHR create;

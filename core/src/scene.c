@@ -53,15 +53,15 @@ void vrg_frame_uniforms_fill(const vrg_frame_info *f, const vrg_sky *sky, vrg_fr
 
 void vrg_frame_uniforms_world(const vrg_world *world, vrg_frame_uniforms *u)
 {
-    int grid[3] = {0, 0, 0}, lo[3] = {1, 1, 1}, hi[3] = {-1, -1, -1};
+    int grid[3] = {0, 0, 0}, lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
     if (world) {
         vrg_world_grid(world, grid);
         vrg_world_gpu_box(world, lo, hi);
     }
     for (int a = 0; a < 3; a++) {
         u->world_grid[a] = grid[a];
-        u->world_lo[a] = (float)lo[a] * 16.0f;
-        u->world_hi[a] = (float)hi[a] * 16.0f + 16.0f;
+        u->world_lo[a] = (float)lo[a];
+        u->world_hi[a] = (float)hi[a];
     }
     u->world_grid[3] = 0;
     u->world_lo[3] = u->world_hi[3] = 0;

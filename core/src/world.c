@@ -2,8 +2,8 @@
  * ids. GPU side: the same grid in one storage buffer, in the layout
  * shaders/include/world.glsl reads:
  *   uint header[16]   = {GX, GY, GZ, SLOT_UINTS, SLOTS_OFFSET, BLOCK_COUNT, ...}
- * (the box of the chunks the GPU copy holds, which rays clip to, travels in
- * the frame uniforms: vrg_world_gpu_box)
+ * (the box of the non-air blocks the GPU copy holds, which rays clip to,
+ * travels in the frame uniforms: vrg_world_gpu_box)
  *   uint materials[32][8] = {albedo r,g,b (float bits), emissive, flags, tile top, side, bottom}
  *   slots[GX*GY*GZ][SLOT_UINTS]:
  *     [0..1] sub-brick masks: bit 8*b + s is set when 4^3 sub-brick
@@ -16,7 +16,12 @@
  *         slot holds the chunk it wants with this one load, not four)
  *     [4..131] occupancy: 8 bricks x 16 uints, 1 bit per voxel
  *     [132..1155] block ids, 4 per uint
- * A brick is 8^3 voxels: brick b = bx + 2*(bz + 2*by), bit = x + 8*(z + 8*y). */
+ * A brick is 8^3 voxels: brick b = bx + 2*(bz + 2*by) of local >> 3. Its 16
+ * occupancy words hold its 4^3 sub-bricks s = sx + 2*(sz + 2*sy) two words
+ * each: for v = local & 3 inside one, word 2*s + (v.y >> 1), bit
+ * v.x + 4*(v.z + 4*(v.y & 1)). So one word is a 4x2x4 block and a 2^3 cell
+ * a fixed pattern of 8 bits in it: the traversal skips empty 2^3 cells
+ * with the word it already has. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -35,8 +40,9 @@ typedef struct slot {
     int valid;
     int dirty;
     int mesh_dirty;  /* its exposed faces may have changed (ray-query BLAS) */
-    int gpu_valid;   /* what the GPU copy holds: valid and coords when last packed */
+    int gpu_valid;   /* what the GPU copy holds: valid and coords when last packed, */
     int gpu_c[3];
+    int gpu_lo[3], gpu_hi[3]; /* and the box of its non-air blocks (world blocks, hi exclusive; lo >= hi: none) */
     vrg_block blocks[VRG_CHUNK_VOXELS];
 } slot;
 
@@ -287,14 +293,14 @@ void vrg_world_gpu_box(const vrg_world *w, int lo[3], int hi[3])
     if (cache->box_stale) {
         int any = 0;
         for (int a = 0; a < 3; a++)
-            cache->box_lo[a] = 1, cache->box_hi[a] = -1; /* none: hi < lo */
+            cache->box_lo[a] = cache->box_hi[a] = 0; /* none: lo >= hi */
         for (int s = 0; s < w->gx * w->gy * w->gz; s++) {
             const slot *sl = &w->slots[s];
-            if (!sl->gpu_valid)
+            if (!sl->gpu_valid || sl->gpu_lo[0] >= sl->gpu_hi[0])
                 continue;
             for (int a = 0; a < 3; a++) {
-                cache->box_lo[a] = !any || sl->gpu_c[a] < cache->box_lo[a] ? sl->gpu_c[a] : cache->box_lo[a];
-                cache->box_hi[a] = !any || sl->gpu_c[a] > cache->box_hi[a] ? sl->gpu_c[a] : cache->box_hi[a];
+                cache->box_lo[a] = !any || sl->gpu_lo[a] < cache->box_lo[a] ? sl->gpu_lo[a] : cache->box_lo[a];
+                cache->box_hi[a] = !any || sl->gpu_hi[a] > cache->box_hi[a] ? sl->gpu_hi[a] : cache->box_hi[a];
             }
             any = 1;
         }
@@ -329,9 +335,13 @@ static void pack_header(const vrg_world *w, uint32_t *out)
 
 static int floor_div(int a, int n) { return a >= 0 ? a / n : -((-a + n - 1) / n); }
 
-static void pack_slot(const vrg_world *w, const slot *sl, uint32_t *out)
+/* Packs a slot for the GPU and notes the box of its non-air blocks. */
+static void pack_slot(const vrg_world *w, slot *sl, uint32_t *out)
 {
     memset(out, 0, SLOT_UINTS * 4);
+    int lo[3] = {16, 16, 16}, hi[3] = {0, 0, 0};
+    for (int a = 0; a < 3; a++)
+        sl->gpu_lo[a] = sl->gpu_hi[a] = 0;
     if (!sl->valid)
         return; /* valid bit 0: the shaders treat it as empty */
     uint32_t mask = 0;
@@ -344,15 +354,21 @@ static void pack_slot(const vrg_world *w, const slot *sl, uint32_t *out)
                 ids[i >> 2] |= (uint32_t)b << (8 * (i & 3));
                 if (b == VRG_BLOCK_AIR)
                     continue;
+                const int l[3] = {x, y, z};
+                for (int a = 0; a < 3; a++)
+                    lo[a] = l[a] < lo[a] ? l[a] : lo[a], hi[a] = l[a] + 1 > hi[a] ? l[a] + 1 : hi[a];
                 int brick = (x >> 3) + 2 * ((z >> 3) + 2 * (y >> 3));
-                int bit = (x & 7) + 8 * ((z & 7) + 8 * (y & 7));
-                occ[brick * 16 + (bit >> 5)] |= 1u << (bit & 31);
+                int sub = ((x >> 2) & 1) + 2 * (((z >> 2) & 1) + 2 * ((y >> 2) & 1));
+                int word = 2 * sub + ((y & 3) >> 1), bit = (x & 3) + 4 * ((z & 3) + 4 * (y & 1));
+                occ[brick * 16 + word] |= 1u << bit;
                 mask |= 1u << brick;
-                int sub = ((x & 7) >> 2) + 2 * (((z & 7) >> 2) + 2 * ((y & 7) >> 2));
                 out[brick >> 2] |= 1u << (8 * (brick & 3) + sub);
             }
     uint32_t lap_x = (uint32_t)floor_div(sl->cx, w->gx) & 0x7ffu, lap_z = (uint32_t)floor_div(sl->cz, w->gz) & 0x7ffu;
     out[3] = mask | lap_x << 8 | lap_z << 19 | 1u << 31;
+    const int c[3] = {sl->cx, sl->cy, sl->cz};
+    for (int a = 0; mask && a < 3; a++)
+        sl->gpu_lo[a] = c[a] * 16 + lo[a], sl->gpu_hi[a] = c[a] * 16 + hi[a];
 }
 
 int vrg_world_upload(vrg_world *w, VkCommandBuffer cmd, VkBuffer dst, void *staging, VkBuffer staging_buffer, uint64_t staging_bytes)

@@ -21,8 +21,8 @@ layout(std140, binding = FRAME_BINDING) uniform FrameUniforms {
     uvec4 frame_info;      // frame index, width, height, seed
     vec4 time_info;        // simulated seconds, hours of the day, 0, 0
     ivec4 world_grid;      // the world's slot grid, chunks (world.glsl: world_grid())
-    vec4 world_lo;         // the box around the chunks the world buffer holds, blocks;
-    vec4 world_hi;         //   empty when lo >= hi (trace.glsl clips rays to it)
+    vec4 world_lo;         // the box of the non-air blocks the world buffer holds,
+    vec4 world_hi;         //   blocks, hi exclusive; empty when lo >= hi (trace.glsl clips rays to it)
 } frame;
 
 // World-space direction of the primary ray through pixel centre p + 0.5

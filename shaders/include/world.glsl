@@ -24,12 +24,14 @@ const uint WORLD_IDS = 132u;       // slot-relative: block ids, 4 per uint
 ivec3 world_grid() { return ivec3(world_word(0u), world_word(1u), world_word(2u)); }
 
 // First uint of the slot holding chunk c of a world with grid g, or -1 when
-// c is not loaded (the toroidal slot is empty or holds another chunk). Slot
+// c is not loaded (the toroidal slot is empty or holds another chunk), and
+// the slot's word 3 (its brick mask in bits 0-7; 0 when not loaded). Slot
 // word 3 holds the valid bit and the chunk's lap (c div grid) in x and z, so
 // one load checks it; the division is in floats (exact here, fixed up by one
 // step) because integer division has no SIMD instruction on a CPU device.
-int world_chunk_in(ivec3 g, vec2 inv_gxz, ivec3 c)
+int world_chunk_in(ivec3 g, vec2 inv_gxz, ivec3 c, out uint word3)
 {
+    word3 = 0u;
     if (c.y < 0 || c.y >= g.y)
         return -1;
     ivec2 gxz = g.xz, cxz = c.xz;
@@ -40,7 +42,15 @@ int world_chunk_in(ivec3 g, vec2 inv_gxz, ivec3 c)
     uint base = WORLD_SLOTS + uint(m.x + g.x * (m.y + g.z * c.y)) * WORLD_SLOT_UINTS;
     uint w = world_word(base + 3u);
     uint want = 0x80000000u | (uint(lap.x) & 0x7ffu) << 8 | (uint(lap.y) & 0x7ffu) << 19;
-    return (w & 0xffffff00u) == want ? int(base) : -1;
+    if ((w & 0xffffff00u) != want)
+        return -1;
+    word3 = w;
+    return int(base);
+}
+int world_chunk_in(ivec3 g, vec2 inv_gxz, ivec3 c)
+{
+    uint word3;
+    return world_chunk_in(g, inv_gxz, c, word3);
 }
 // The same for one lookup (g = world_grid(): hot loops fetch it once).
 int world_chunk(ivec3 c)
@@ -54,13 +64,22 @@ bool world_brick_solid(int base, ivec3 brick) { return (world_word(uint(base + 3
 // The brick mask of a loaded chunk: bit b for brick b.
 uint world_brick_mask(int base) { return world_word(uint(base + 3)) & 0xffu; }
 
-// Occupancy bit of chunk-local voxel l.
+// Occupancy of chunk-local voxel l (world.c): the slot-relative word and
+// the bit in it. Brick b's 16 words hold its 4^3 sub-bricks s two words
+// each, a word a 4x2x4 block: a 2^3 cell is 8 bits of one word
+// (world_cell2_bits).
+uint world_occ_word(ivec3 l)
+{
+    ivec3 b = l >> 3, s = (l >> 2) & 1;
+    return WORLD_OCC + uint(b.x + 2 * (b.z + 2 * b.y)) * 16u + uint(s.x + 2 * (s.z + 2 * s.y)) * 2u + uint((l.y >> 1) & 1);
+}
+uint world_occ_bit(ivec3 l) { return uint((l.x & 3) + 4 * ((l.z & 3) + 4 * (l.y & 1))); }
+// The bits of the 2^3 cell holding l in its occupancy word.
+uint world_cell2_bits(ivec3 l) { return 0x00330033u << uint((l.x & 2) + 4 * (l.z & 2)); }
+
 bool world_voxel_solid(int base, ivec3 l)
 {
-    ivec3 b = l >> 3, v = l & 7;
-    uint bit = uint(v.x + 8 * (v.z + 8 * v.y));
-    uint word = world_word(uint(base) + WORLD_OCC + uint(b.x + 2 * (b.z + 2 * b.y)) * 16u + (bit >> 5));
-    return (word & (1u << (bit & 31u))) != 0u;
+    return (world_word(uint(base) + world_occ_word(l)) & (1u << world_occ_bit(l))) != 0u;
 }
 
 uint world_block_local(int base, ivec3 l)

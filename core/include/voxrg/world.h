@@ -91,8 +91,9 @@ int vrg_world_pick(const vrg_world *w, const float origin[3], const float dir[3]
  * staging is host-visible memory of staging_bytes (vrg_pass_host_buffer).
  * Returns the number of slots uploaded; the rest wait for the next frame. */
 int vrg_world_upload(vrg_world *w, VkCommandBuffer cmd, VkBuffer dst, void *staging, VkBuffer staging_buffer, uint64_t staging_bytes);
-/* The box of chunks (inclusive) valid in the GPU copy after the last upload;
- * lo > hi when it holds none. */
+/* The box of the non-air blocks the GPU copy holds after the last upload,
+ * in blocks (lo inclusive, hi exclusive); lo >= hi when it holds none. Rays
+ * clip to it: nothing outside can be hit. */
 void vrg_world_gpu_box(const vrg_world *w, int lo[3], int hi[3]);
 /* The GPU copy was lost (new buffer): upload everything again. */
 void vrg_world_invalidate_gpu(vrg_world *w);

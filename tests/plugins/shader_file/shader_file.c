@@ -7,9 +7,13 @@ static const vrg_slot_desc slots[] = {
      .format = VK_FORMAT_R16G16B16A16_SFLOAT, .help = "whatever user.comp writes"},
 };
 
+static const vrg_param_desc params[] = {
+    {"pixel_loop", VRG_PARAM_BOOL, 0, 0, 1, "dispatch user.comp as a pixel loop (pixel.glsl)"},
+};
+
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "user.comp"});
+    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "user.comp", .pixel_loop = vrg_param_int(pass, "pixel_loop")});
 }
 
 static const vrg_plugin_desc desc = {
@@ -19,6 +23,8 @@ static const vrg_plugin_desc desc = {
     .help = "test: runs user.comp from $VOXRG_SHADER_PATH over its output",
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
     .execute = execute,
 };
 
