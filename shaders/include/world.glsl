@@ -61,8 +61,6 @@ int world_chunk(ivec3 c)
 
 // Brick b = bx + 2*(bz + 2*by) of a loaded chunk holds a solid voxel.
 bool world_brick_solid(int base, ivec3 brick) { return (world_word(uint(base + 3)) & (1u << uint(brick.x + 2 * (brick.z + 2 * brick.y)))) != 0u; }
-// The brick mask of a loaded chunk: bit b for brick b.
-uint world_brick_mask(int base) { return world_word(uint(base + 3)) & 0xffu; }
 
 // Occupancy of chunk-local voxel l (world.c): the slot-relative word and
 // the bit in it. Brick b's 16 words hold its 4^3 sub-bricks s two words
