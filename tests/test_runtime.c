@@ -363,24 +363,34 @@ static void test_alias(void)
     vrg_graph_destroy(g);
 }
 
-/* buffers between passes: data[i] = i * mul; image(x,y) = data[(y*W+x) % 1024]. */
-static void test_buffer(void)
+/* fill_buffer's data[i] = i * 7 (1024 words) read into an image through
+ * `graph`'s reader, `words` per pixel: channel c of pixel (x, y) must be
+ * data[words * ((y*W+x) % (1024 / words)) + c]. */
+static void check_buffer_image(const char *graph, uint32_t words)
 {
     static const char *sets[] = {"fill.mul=7"};
-    vrg_graph *g = load_with("buffer.ini", sets, 1, NULL, 0);
+    vrg_graph *g = load_with(graph, sets, 1, NULL, 0);
     if (!g)
         return;
-    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    CHECK(vrg_graph_frame(g) == 0, "%s: frame failed", graph);
     vrg_image_data img;
-    CHECK(vrg_graph_read(g, vrg_graph_output(g), &img) == 0, "readback failed");
+    CHECK(vrg_graph_read(g, vrg_graph_output(g), &img) == 0, "%s: readback failed", graph);
     int bad = 0;
     for (uint32_t y = 0; y < img.height; y++)
         for (uint32_t x = 0; x < img.width; x++)
-            bad += px(&img, x, y, 0) != (float)(((y * img.width + x) % 1024) * 7);
-    CHECK(bad == 0, "%d pixels differ from data[(y*W+x)%%1024] = index*7", bad);
+            for (uint32_t c = 0; c < words; c++)
+                bad += px(&img, x, y, (int)c) != (float)((words * ((y * img.width + x) % (1024 / words)) + c) * 7);
+    CHECK(bad == 0, "%s: %d channels differ from data[i] = i*7 read %u words per pixel", graph, bad, words);
     free(img.pixels);
     vrg_graph_destroy(g);
 }
+
+/* buffers between passes: image(x,y) = data[(y*W+x) % 1024] (a storage buffer). */
+static void test_buffer(void) { check_buffer_image("buffer.ini", 1); }
+
+/* A buffer read through a view of its writer's texel format (fill_buffer
+ * names rgba32ui): image(x,y).c = data[4 * ((y*W+x) % 256) + c]. */
+static void test_buffer_texels(void) { check_buffer_image("buffer_texels.ini", 4); }
 
 /* A scene plugin writes a uniform buffer by transfer; a pass reads it. */
 static void test_scene(void)
@@ -2179,7 +2189,7 @@ int main(int argc, char **argv)
         int device;
     } cases[] = {
         {"chain", test_chain, 1},     {"history", test_history, 1}, {"accumulate", test_accumulate, 1}, {"pingpong", test_pingpong, 1},
-        {"alias", test_alias, 1},     {"buffer", test_buffer, 1},   {"scene", test_scene, 1},           {"loader", test_loader, 0},
+        {"alias", test_alias, 1},     {"buffer", test_buffer, 1},   {"buffer_texels", test_buffer_texels, 1}, {"scene", test_scene, 1},           {"loader", test_loader, 0},
         {"history_cleared", test_history_cleared, 1}, {"pingpong_alias", test_pingpong_alias, 1},
         {"accumulate_count", test_accumulate_count, 1}, {"validation_live", test_validation_live, 1},
         {"blocks_world", test_blocks_world, 1}, {"blocks_trace", test_blocks_trace, 1}, {"terrain_world", test_terrain_world, 1},

@@ -313,7 +313,7 @@ static int create_device(vrg_context *ctx)
     VkPhysicalDeviceProperties2 p2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &sg};
     vkGetPhysicalDeviceProperties2(pd, &p2);
     f->subgroup_size = sg.subgroupSize;
-    f->max_texel_buffer_words = ctx->props.limits.maxTexelBufferElements;
+    f->max_texel_buffer_texels = ctx->props.limits.maxTexelBufferElements;
     int cpu = ctx->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     ctx->group_size[0] = cpu && sg.subgroupSize >= 4 && sg.subgroupSize <= 64 ? sg.subgroupSize : 8;
     ctx->group_size[1] = cpu ? 1 : 8;

@@ -286,13 +286,15 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
             ii[i] = (VkDescriptorImageInfo){.sampler = sampler, .imageView = r->view[copy], .imageLayout = info.layout};
             w[i].pImageInfo = &ii[i];
         } else if (types[i] == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) {
-            uint64_t words = r->size / 4, max = g->ctx->dev.features.max_texel_buffer_words;
-            if (words > max)
-                return vrg_pass_error(p, "binding %d: buffer '%s' holds %llu words, more than this device's texel buffers can (%llu)", i, r->name,
-                                      (unsigned long long)words, (unsigned long long)max);
+            /* the writer's texel format (validate.c); internal buffers: words */
+            VkFormat texel = r->format ? r->format : VK_FORMAT_R32_UINT;
+            uint64_t texels = r->size / vrg_format_bytes(texel), max = g->ctx->dev.features.max_texel_buffer_texels;
+            if (texels > max)
+                return vrg_pass_error(p, "binding %d: buffer '%s' holds %llu %s texels, more than this device's texel buffers can (%llu)", i, r->name,
+                                      (unsigned long long)texels, vrg_format_name(texel), (unsigned long long)max);
             if (!r->texel_view[copy]) {
                 VkBufferViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO, .buffer = r->buffer[copy],
-                                             .format = VK_FORMAT_R32_UINT, .range = VK_WHOLE_SIZE};
+                                             .format = texel, .range = VK_WHOLE_SIZE};
                 if (vkCreateBufferView(g->ctx->dev.device, &vi, NULL, &r->texel_view[copy]) != VK_SUCCESS)
                     return vrg_pass_error(p, "binding %d: cannot create a texel view of buffer '%s'", i, r->name);
             }

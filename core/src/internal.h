@@ -128,7 +128,7 @@ typedef struct vrg_resource {
     char name[VRG_NAME_MAX + VRG_NAME_MAX + 2];
     int line;                /* [resource] section or first mention */
     vrg_resource_kind kind;
-    VkFormat format;
+    VkFormat format;         /* images; buffers: the texel format of TEXEL_READ views */
     float scale;
     uint32_t abs_width, abs_height;
     uint64_t size;           /* buffers */
@@ -156,7 +156,7 @@ typedef struct vrg_resource {
     VkImage image[2];
     VkImageView view[2];
     VkBuffer buffer[2];
-    VkBufferView texel_view[2];   /* R32_UINT views for VRG_ACCESS_TEXEL_READ, made on first use */
+    VkBufferView texel_view[2];   /* views of the texel format (format) for VRG_ACCESS_TEXEL_READ, made on first use */
     VkDeviceMemory own_memory[2]; /* kept resources have their own memory */
     VkAccelerationStructureKHR accel;
     VkMemoryRequirements req;

@@ -149,6 +149,18 @@ static int check_desc(const vrg_plugin *p, vrg_diag *d, int line)
                          vrg_access_name(s->access), s->kind == VRG_IMAGE ? "n image" : s->kind == VRG_BUFFER ? " buffer" : "n acceleration structure");
             return -1;
         }
+        /* a buffer's format is the texel format of its TEXEL_READ views */
+        int texel_format = s->format == VK_FORMAT_R32_UINT || s->format == VK_FORMAT_R32G32_UINT || s->format == VK_FORMAT_R32G32B32A32_UINT;
+        if (s->kind == VRG_BUFFER && s->format && !texel_format) {
+            vrg_error_at(d, line, NULL, "plugin '%s' (%s): slot '%s': a buffer's format is the texel format of its TEXEL_READ views: r32ui, rg32ui or rgba32ui, not %s",
+                         p->name, p->path, s->name, vrg_format_name(s->format));
+            return -1;
+        }
+        if (s->kind == VRG_BUFFER && s->format && s->dir == VRG_IN && s->access != VRG_ACCESS_TEXEL_READ) {
+            vrg_error_at(d, line, NULL, "plugin '%s' (%s): slot '%s': a %s input names a texel format; only texel-read inputs (VRG_ACCESS_TEXEL_READ) and outputs do",
+                         p->name, p->path, s->name, vrg_access_name(s->access));
+            return -1;
+        }
         for (uint32_t j = 0; j < i; j++)
             if (strcmp(desc->slots[j].name, s->name) == 0 && desc->slots[j].dir == s->dir) {
                 vrg_error_at(d, line, NULL, "plugin '%s' (%s): two %s slots named '%s'", p->name, p->path, s->dir == VRG_IN ? "input" : "output",

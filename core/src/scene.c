@@ -88,12 +88,13 @@ int vrg_scene_check(vrg_pass *pass, int grid_radius, int height_chunks)
     int rayquery = traversal == 1;
     uint64_t g = 2 * (uint64_t)grid_radius + 1;
     vrg_pass_set_buffer_size(pass, "tlas", rayquery ? g * g * (uint64_t)height_chunks : 0);
-    /* passes read the world as a texel buffer (VRG_ACCESS_TEXEL_READ) */
+    /* passes read the world as a texel buffer of 16-byte texels
+     * (VRG_ACCESS_TEXEL_READ, VRG_SCENE_SLOTS) */
     uint64_t bytes = vrg_world_gpu_bytes(grid_radius, height_chunks);
     const vrg_device *dev = vrg_pass_device(pass);
-    if (dev && bytes / 4 > dev->features.max_texel_buffer_words)
-        return vrg_pass_error(pass, "a world of radius %d and %d chunks height needs %llu words, more than this device's texel buffers hold (%u): lower radius",
-                              grid_radius, height_chunks, (unsigned long long)(bytes / 4), dev->features.max_texel_buffer_words);
+    if (dev && bytes / 16 > dev->features.max_texel_buffer_texels)
+        return vrg_pass_error(pass, "a world of radius %d and %d chunks height needs %llu texels, more than this device's texel buffers hold (%u): lower radius",
+                              grid_radius, height_chunks, (unsigned long long)(bytes / 16), dev->features.max_texel_buffer_texels);
     return vrg_pass_set_buffer_size(pass, "world", bytes);
 }
 

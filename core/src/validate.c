@@ -587,7 +587,9 @@ static void resolve_resources(vrg_graph *g)
             continue;
         const vrg_slot_desc *sd = vrg_slot(&g->passes[r->writer], r->writer_slot);
         r->kind = sd->kind;
-        if (!r->format_line)
+        if (sd->kind == VRG_BUFFER)
+            r->format = sd->format ? sd->format : VK_FORMAT_R32_UINT; /* the texel format of TEXEL_READ views */
+        else if (!r->format_line)
             r->format = sd->format ? sd->format : VK_FORMAT_R16G16B16A16_SFLOAT;
         if (!r->size_line) {
             r->scale = sd->scale > 0 ? sd->scale : 1.0f;
@@ -601,6 +603,12 @@ static void resolve_resources(vrg_graph *g)
                          "resource '%s' is an acceleration structure", r->name);
         if (sd->kind == VRG_BUFFER && r->size == 0)
             vrg_error_at(&g->diag, r->writer_line, "give the buffer a size in a [resource] section", "buffer '%s' has size 0", r->name);
+        else if (sd->kind == VRG_BUFFER && r->size % vrg_format_bytes(r->format)) {
+            char h[160];
+            snprintf(h, sizeof h, "pass '%s' declares %s texels for it (its slot '%s')", g->passes[r->writer].name, vrg_format_name(r->format), sd->name);
+            vrg_error_at(&g->diag, r->size_line ? r->size_line : r->writer_line, h, "buffer '%s' of %llu bytes is not a whole number of %llu-byte texels", r->name,
+                         (unsigned long long)r->size, (unsigned long long)vrg_format_bytes(r->format));
+        }
         /* A shader writes a storage image through a format qualifier: the
          * image must have that format. Sampled and transfer writers adapt. */
         int storage = sd->access == VRG_ACCESS_STORAGE_WRITE || sd->access == VRG_ACCESS_STORAGE_READ_WRITE;
@@ -640,7 +648,7 @@ static void resolve_resources(vrg_graph *g)
                 if (r >= 0) {
                     vrg_resource *res = &g->res[r];
                     res->kind = sd->kind;
-                    res->format = sd->format ? sd->format : VK_FORMAT_R16G16B16A16_SFLOAT;
+                    res->format = sd->format ? sd->format : sd->kind == VRG_BUFFER ? VK_FORMAT_R32_UINT : VK_FORMAT_R16G16B16A16_SFLOAT;
                     res->abs_width = res->abs_height = 1;
                     res->size = sd->size > 16 ? sd->size : 16;
                     res->persistent = res->dummy = 1;
@@ -676,6 +684,14 @@ static void resolve_resources(vrg_graph *g)
                 snprintf(h, sizeof h, "'%s' is written by pass '%s' (line %d)%s", r->name, g->passes[r->writer].name, r->writer_line,
                          r->format_line ? "; see its [resource] format" : "");
                 vrg_error_at(&g->diag, b->line, h, "format mismatch: resource '%s' is %s, slot '%s' of pass '%s' needs %s", r->name,
+                             vrg_format_name(r->format), sd->name, p->name, vrg_format_name(sd->format));
+            }
+            if (sd->kind == VRG_BUFFER && sd->format && sd->format != r->format) {
+                char h[256];
+                snprintf(h, sizeof h, "'%s' is written by pass '%s' (line %d), whose slot '%s' %s", r->name, g->passes[r->writer].name, r->writer_line,
+                         vrg_slot(&g->passes[r->writer], r->writer_slot)->name,
+                         vrg_slot(&g->passes[r->writer], r->writer_slot)->format ? "names that texel format" : "names no texel format (r32ui)");
+                vrg_error_at(&g->diag, b->line, h, "texel format mismatch: buffer '%s' has %s texels, slot '%s' of pass '%s' reads %s", r->name,
                              vrg_format_name(r->format), sd->name, p->name, vrg_format_name(sd->format));
             }
             if (sd->kind == VRG_IMAGE && (sd->scale > 0 || sd->width)) {

@@ -21,7 +21,10 @@
  * each: for v = local & 3 inside one, word 2*s + (v.y >> 1), bit
  * v.x + 4*(v.z + 4*(v.y & 1)). So one word is a 4x2x4 block and a 2^3 cell
  * a fixed pattern of 8 bits in it: the traversal skips empty 2^3 cells
- * with the word it already has. */
+ * with the word it already has.
+ * Shaders read the buffer as 16-byte texels (VRG_SCENE_SLOTS' world slot):
+ * every slot starts on a texel, so a slot's header words 0-3 (sub-brick
+ * masks and word 3) are one fetch, as are a material's albedo. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -34,6 +37,7 @@
 #define SLOT_HEADER 4
 #define SLOT_OCC_UINTS (8 * 16)
 #define SLOT_UINTS (SLOT_HEADER + SLOT_OCC_UINTS + VRG_CHUNK_VOXELS / 4)
+_Static_assert(SLOTS_OFFSET % 4 == 0 && SLOT_UINTS % 4 == 0 && MATERIAL_UINTS % 4 == 0, "slots and materials start on 16-byte texels");
 
 typedef struct slot {
     int cx, cy, cz;

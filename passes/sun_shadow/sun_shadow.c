@@ -19,7 +19,8 @@ static const vrg_param_desc params[] = {
 };
 
 static const vrg_slot_desc slots[] = {
-    {.name = "world", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_TEXEL_READ, .help = "the scene's world"},
+    {.name = "world", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_TEXEL_READ, .format = VK_FORMAT_R32G32B32A32_UINT,
+     .help = "the scene's world (world.glsl reads 16-byte texels)"},
     {.name = "frame", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_UNIFORM, .help = "the scene's per-frame uniforms"},
     {.name = "position", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_READ, .format = VK_FORMAT_R32G32B32A32_SFLOAT,
      .help = "gbuffer position: world hit point, w = 1 on a hit, 0 on sky"},

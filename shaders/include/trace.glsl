@@ -2,9 +2,9 @@
 //   Hit trace_closest(origin, unit direction, tmax)   closest hit
 //   bool trace_any(origin, unit direction, tmax)      occlusion
 // Backend 1 (default): a hierarchical DDA (Amanatides & Woo) over the
-// world's occupancy: empty chunks, 8^3 bricks, 4^3 sub-bricks and 2^3 cells
-// are each crossed in one step, voxels are stepped only where a 2^3 cell
-// holds something. Backend 2 (#define TRACE_RAYQUERY, TLAS_BINDING):
+// world's occupancy: empty chunks, 8^3 bricks, 4^3 sub-bricks, 2^3 cells
+// and 2x1x2 layers of cells are each crossed in one step, voxels are
+// stepped only where such a layer holds something. Backend 2 (#define TRACE_RAYQUERY, TLAS_BINDING):
 // VK_KHR_ray_query against the scene's per-chunk BLASes. Include world.glsl
 // and frame.glsl first.
 //
@@ -84,7 +84,8 @@ bool trace_any(vec3 o, vec3 d, float tmax)
 #else
 // The DDA, in one loop: each iteration leaves the largest empty cell
 // around the current voxel (an empty or unloaded chunk, an empty 8^3 brick,
-// 4^3 sub-brick or 2^3 cell) or tests one voxel and steps past it. On a
+// 4^3 sub-brick, 2^3 cell or 2x1x2 layer of one) or tests one voxel and
+// steps past it. On a
 // CPU device the lanes of a SIMD row then wait for each other only at the
 // end; nested loops (bricks, then voxels) made a lane that entered a brick
 // wait for the others' bricks (AO rays 10-15% slower, docs/benchmarks.md).
@@ -124,7 +125,7 @@ Hit trace_dda(vec3 o, vec3 d, float tmax, bool any_hit)
     ivec3 grid = frame.world_grid.xyz;
     vec2 inv_grid = 1.0 / vec2(grid.xz);
     ivec3 chunk_of_base = ivec3(-2147483647);
-    int base = -1;
+    int base = -1, hit_base = -1;
     uint chunk_mask = 0u;
     uvec2 chunk_sub = uvec2(0u);
     uint cached_word = 0xffffffffu, bits = 0u;
@@ -135,45 +136,49 @@ Hit trace_dda(vec3 o, vec3 d, float tmax, bool any_hit)
         if (chunk != chunk_of_base) {
             chunk_of_base = chunk;
             uint word3;
-            base = world_chunk_in(grid, inv_grid, chunk, word3);
+            base = world_chunk_in(grid, inv_grid, chunk, word3, chunk_sub);
             chunk_mask = word3 & 0xffu;
-            if (chunk_mask != 0u)
-                chunk_sub = uvec2(world_word(uint(base)), world_word(uint(base) + 1u));
         }
         ivec3 l = v & 15;
         ivec3 b = l >> 3, s = (l >> 2) & 1;
         uint bi = uint(b.x + 2 * (b.z + 2 * b.y));
         uint sub = chunk_mask == 0u ? 0u : ((bi < 4u ? chunk_sub.x : chunk_sub.y) >> (8u * (bi & 3u))) & 0xffu;
         int size = chunk_mask == 0u ? 16 : sub == 0u ? 8 : (sub & (1u << uint(s.x + 2 * (s.z + 2 * s.y)))) == 0u ? 4 : 2;
-        if (size == 2) {
-            uint word = uint(base) + world_occ_word(l);
-            if (word != cached_word) {
-                cached_word = word;
-                bits = world_word(word);
-            }
-            if ((bits & world_cell2_bits(l)) != 0u) {
-                if ((bits & (1u << world_occ_bit(l))) != 0u) {
-                    h.hit = true;
-                    h.t = t;
-                    h.voxel = v;
-                    h.normal = n;
-                    if (!any_hit)  // occlusion needs no block id: save the fetch
-                        h.block = world_block_local(base, l);
-                    h.chunk = int((uint(base) - WORLD_SLOTS) / WORLD_SLOT_UINTS);
-                    return h;
-                }
-                size = 1;
-            }
+        // Each `if` is a branch on "any lane" on a CPU device: one for the
+        // word's fetch, one for a hit, the rest selects (~5% faster than
+        // nested ifs with the hit's work inside the loop).
+        uint word = uint(base) + world_occ_word(l);
+        if (size == 2 && word != cached_word) {
+            cached_word = word;
+            bits = world_word(word);
         }
-        // leave the empty cell (or the voxel): its exit face, and the voxel
+        bool cell = size == 2 && (bits & world_cell2_bits(l)) != 0u;
+        if (cell && (bits & (1u << world_occ_bit(l))) != 0u) {
+            h.hit = true;
+            h.t = t;
+            h.voxel = v;
+            h.normal = n;
+            hit_base = base;
+            break;
+        }
+        // In a non-empty 2^3 cell the 2x1x2 layer of it holding v may still
+        // be empty: rays along a floor cross that air 2 voxels at a time
+        // (AO rays take 8% fewer iterations, ~3% less time).
+        ivec3 box = !cell ? ivec3(size) : (bits & world_layer2_bits(l)) == 0u ? ivec3(2, 1, 2) : ivec3(1);
+        // leave the empty box (or the voxel): its exit face, and the voxel
         // past it from the exit point (no error adds up over the steps)
-        ivec3 c = v & ~(size - 1);
-        vec3 tc = (vec3(c + fwd * size) - o) * inv;
+        ivec3 c = v & ~(box - 1);
+        vec3 tc = (vec3(c + fwd * box) - o) * inv;
         ivec3 m = trace_step_mask(tc);
-        t = dot(vec3(m), tc);
-        ivec3 pv = clamp(ifloor(o + d * t), c, c + (size - 1));
-        v = pv + m * (c + fwd * (size + 1) - 1 - pv);
+        t = min(tc.x, min(tc.y, tc.z));  // = tc[m], off m's dependency chain
+        ivec3 pv = clamp(ifloor(o + d * t), c, c + (box - 1));
+        v = pv + m * (c + fwd * (box + 1) - 1 - pv);
         n = -m * stp;
+    }
+    if (h.hit) {
+        if (!any_hit)  // occlusion needs no block id: save the fetch
+            h.block = world_block_local(hit_base, h.voxel & 15);
+        h.chunk = int((uint(hit_base) - WORLD_SLOTS) / WORLD_SLOT_UINTS);
     }
     return h;
 }

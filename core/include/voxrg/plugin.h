@@ -74,12 +74,14 @@ typedef enum vrg_access {
     VRG_ACCESS_TRANSFER_DST,
     VRG_ACCESS_AS_BUILD,     /* acceleration structure: built (or updated) by this pass */
     VRG_ACCESS_RAY_QUERY,    /* acceleration structure: traced with ray queries in compute */
-    /* buffer: read as a uniform texel buffer of 32-bit words (an R32_UINT
-     * view; GLSL `usamplerBuffer`, texelFetch). For data read at addresses
-     * that differ per invocation: lavapipe fetches texels with SIMD gathers
-     * but loads such storage-buffer words one lane at a time (the world is
-     * read this way: ~1.3x faster traversal). At most the device's
-     * maxTexelBufferElements words. */
+    /* buffer: read as a uniform texel buffer (GLSL `usamplerBuffer`,
+     * texelFetch) whose texels are the buffer's texel format: 32-bit words
+     * (R32_UINT) unless its writer's slot names R32G32_UINT or
+     * R32G32B32A32_UINT (see vrg_slot_desc.format). For data read at
+     * addresses that differ per invocation: lavapipe fetches texels with
+     * SIMD gathers but loads such storage-buffer words one lane at a time
+     * (the world is read this way: ~1.3x faster traversal). At most the
+     * device's maxTexelBufferElements texels. */
     VRG_ACCESS_TEXEL_READ,
 } vrg_access;
 
@@ -94,7 +96,14 @@ typedef struct vrg_slot_desc {
     vrg_resource_kind kind;
     vrg_access access;
     /* Images. Outputs: the default format ([resource X] format= overrides it).
-     * Inputs: the format required, or VK_FORMAT_UNDEFINED for any. */
+     * Inputs: the format required, or VK_FORMAT_UNDEFINED for any.
+     * Buffers: the texel format of VRG_ACCESS_TEXEL_READ views, one of
+     * VK_FORMAT_R32_UINT, R32G32_UINT, R32G32B32A32_UINT. Outputs: the
+     * format every reader's view has (UNDEFINED: R32_UINT), so the writer
+     * defines the layout; its size must be whole texels. TEXEL_READ inputs:
+     * the format required, or UNDEFINED for the writer's. (One fetch of a
+     * 16-byte texel costs about what one of a word does on lavapipe: the
+     * world's chunk header is one fetch.) */
     VkFormat format;
     /* Images. Outputs: size as a fraction of the graph size (0 means 1), or
      * absolute when width and height are set. Inputs: the size required in
@@ -167,7 +176,7 @@ typedef struct vrg_features {
     int timestamps;             /* per-pass GPU timestamps work */
     float timestamp_period_ns;
     uint32_t subgroup_size;
-    uint32_t max_texel_buffer_words; /* maxTexelBufferElements: VRG_ACCESS_TEXEL_READ's limit */
+    uint32_t max_texel_buffer_texels; /* maxTexelBufferElements: the most texels a VRG_ACCESS_TEXEL_READ view holds */
 } vrg_features;
 
 typedef struct vrg_device {
@@ -290,6 +299,7 @@ int vrg_res_history_valid(const vrg_pass *pass, vrg_res res);
 /* 0 when every named slot has the extent of slot `ref`; else reports the
  * first that differs ("input 'X' is WxH, 'ref' WxH: ...") and returns -1. */
 int vrg_pass_require_same_size(vrg_pass *pass, const char *ref, const char *const *names, int count);
+/* An image's format; a buffer's texel format (vrg_slot_desc.format). */
 VkFormat vrg_res_format(const vrg_pass *pass, vrg_res res);
 uint64_t vrg_res_size(const vrg_pass *pass, vrg_res res);
 uint32_t vrg_res_mips(const vrg_pass *pass, vrg_res res);

@@ -191,7 +191,8 @@ void vrg_scene_write_frame(vrg_pass *pass, VkCommandBuffer cmd, const char *slot
 
 #define VRG_SCENE_SLOTS                                                                                          \
     {.name = "world", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_TRANSFER_DST, .size = 16,          \
-     .flags = VRG_SLOT_PERSISTENT, .help = "voxel world (shaders/include/world.glsl)"},                           \
+     .format = VK_FORMAT_R32G32B32A32_UINT, .flags = VRG_SLOT_PERSISTENT,                                          \
+     .help = "voxel world, read as 16-byte texels (shaders/include/world.glsl)"},                                  \
     {.name = "frame", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_TRANSFER_DST,                      \
      .size = sizeof(vrg_frame_uniforms), .flags = VRG_SLOT_PERSISTENT, .help = "per-frame uniforms (shaders/include/frame.glsl)"}, \
     {.name = "atlas", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_TRANSFER_DST,                      \

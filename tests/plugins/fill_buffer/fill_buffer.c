@@ -1,6 +1,7 @@
 /* Test plugin for buffer resources: data[i] = i * mul for the 1024 uints of
  * a 4096-byte storage buffer. There is no image to size the dispatch, so the
- * group count is given: 1024 / 64 invocations per group. */
+ * group count is given: 1024 / 64 invocations per group. Its texel format
+ * is rgba32ui: TEXEL_READ readers (texel_quads) see 256 texels of 4 uints. */
 #include "voxrg/plugin.h"
 
 #define FILL_COUNT 1024u
@@ -12,7 +13,7 @@ static const vrg_param_desc params[] = {
 
 static const vrg_slot_desc slots[] = {
     {.name = "data", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_STORAGE_WRITE,
-     .size = FILL_COUNT * 4, .help = "1024 uints, data[i] = i * mul"},
+     .format = VK_FORMAT_R32G32B32A32_UINT, .size = FILL_COUNT * 4, .help = "1024 uints, data[i] = i * mul"},
 };
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
