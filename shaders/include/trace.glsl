@@ -4,9 +4,9 @@
 // Backend 1 (default): a hierarchical DDA (Amanatides & Woo) over the
 // world's occupancy: empty chunks, 8^3 bricks, 4^3 sub-bricks, 2^3 cells
 // and 2x1x2 layers of cells are each crossed in one step, voxels are
-// stepped only where such a layer holds something. Backend 2 (#define TRACE_RAYQUERY, TLAS_BINDING):
-// VK_KHR_ray_query against the scene's per-chunk BLASes. Include world.glsl
-// and frame.glsl first.
+// stepped only where such a layer holds something. Backend 2 (#define
+// TRACE_RAYQUERY, TLAS_BINDING): VK_KHR_ray_query against the scene's
+// per-chunk BLASes. Include world.glsl and frame.glsl first.
 //
 // What the DDA is shaped by (measured on lavapipe, docs/benchmarks.md): a
 // buffer load with a per-invocation address is a scalar loop over the SIMD
@@ -85,10 +85,10 @@ bool trace_any(vec3 o, vec3 d, float tmax)
 // The DDA, in one loop: each iteration leaves the largest empty cell
 // around the current voxel (an empty or unloaded chunk, an empty 8^3 brick,
 // 4^3 sub-brick, 2^3 cell or 2x1x2 layer of one) or tests one voxel and
-// steps past it. On a
-// CPU device the lanes of a SIMD row then wait for each other only at the
-// end; nested loops (bricks, then voxels) made a lane that entered a brick
-// wait for the others' bricks (AO rays 10-15% slower, docs/benchmarks.md).
+// steps past it. On a CPU device the lanes of a SIMD row then wait for
+// each other only at the end; nested loops (bricks, then voxels) made a
+// lane that entered a brick wait for the others' bricks (AO rays 10-15%
+// slower, docs/benchmarks.md).
 // any_hit skips what only the closest hit needs.
 Hit trace_dda(vec3 o, vec3 d, float tmax, bool any_hit)
 {
