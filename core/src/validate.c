@@ -687,10 +687,10 @@ static void resolve_resources(vrg_graph *g)
                              vrg_format_name(r->format), sd->name, p->name, vrg_format_name(sd->format));
             }
             if (sd->kind == VRG_BUFFER && sd->format && sd->format != r->format) {
+                const vrg_slot_desc *wd = vrg_slot(&g->passes[r->writer], r->writer_slot);
                 char h[256];
                 snprintf(h, sizeof h, "'%s' is written by pass '%s' (line %d), whose slot '%s' %s", r->name, g->passes[r->writer].name, r->writer_line,
-                         vrg_slot(&g->passes[r->writer], r->writer_slot)->name,
-                         vrg_slot(&g->passes[r->writer], r->writer_slot)->format ? "names that texel format" : "names no texel format (r32ui)");
+                         wd->name, wd->format ? "names that texel format" : "names no texel format (r32ui)");
                 vrg_error_at(&g->diag, b->line, h, "texel format mismatch: buffer '%s' has %s texels, slot '%s' of pass '%s' reads %s", r->name,
                              vrg_format_name(r->format), sd->name, p->name, vrg_format_name(sd->format));
             }
