@@ -33,6 +33,12 @@ add_test(NAME cli_watch COMMAND python3 ${CMAKE_CURRENT_SOURCE_DIR}/test_watch.p
          ${PROJECT_SOURCE_DIR}/core/include ${CMAKE_CURRENT_BINARY_DIR}/watch_out)
 set_tests_properties(cli_watch PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}" TIMEOUT 600)
 
+# Plugins as found in the wild: impostors beside a graph, truncated builds,
+# garbage, a FIFO, a crashing pass, hot-reload faults under render --watch.
+add_test(NAME plugin_faults COMMAND python3 ${CMAKE_CURRENT_SOURCE_DIR}/test_plugin_faults.py $<TARGET_FILE:voxrg_cli>
+         ${PROJECT_SOURCE_DIR}/core/include ${CMAKE_CURRENT_BINARY_DIR}/plugin_faults_out)
+set_tests_properties(plugin_faults PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}" TIMEOUT 600)
+
 # The complete pass of docs/plugin-abi.md builds and renders as the page says.
 add_test(NAME docs_example COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test_docs_example.sh $<TARGET_FILE:voxrg_cli> ${PROJECT_SOURCE_DIR}
          $<TARGET_FILE_DIR:voxrg> ${VOXRG_PLUGIN_OUTPUT_DIR} ${CMAKE_CURRENT_BINARY_DIR}/docs_example)
@@ -66,7 +72,22 @@ if(VOXRG_FUZZ)
            COMMAND ${CMAKE_COMMAND} -E env ${VRG_TEST_ENV}
                    sh -c "mkdir -p ${FUZZ_CORPUS} && cp ${CMAKE_CURRENT_SOURCE_DIR}/graphs/*.ini ${CMAKE_CURRENT_SOURCE_DIR}/bad/*.ini ${PROJECT_SOURCE_DIR}/graphs/*.ini ${FUZZ_CORPUS}/ && $<TARGET_FILE:fuzz_graph> -runs=20000 -max_len=4096 -timeout=10 ${FUZZ_CORPUS}")
   set_tests_properties(fuzz_graph PROPERTIES TIMEOUT 600)
+  # plugin descriptors: from nothing (no seed corpus: the input is a recipe)
+  add_executable(fuzz_plugin_desc fuzz_plugin_desc.c)
+  target_include_directories(fuzz_plugin_desc PRIVATE ${PROJECT_SOURCE_DIR}/core/src)
+  target_compile_options(fuzz_plugin_desc PRIVATE -fsanitize=fuzzer)
+  target_link_options(fuzz_plugin_desc PRIVATE -fsanitize=fuzzer)
+  target_link_libraries(fuzz_plugin_desc PRIVATE voxrg m)
+  add_test(NAME fuzz_plugin_desc COMMAND ${CMAKE_COMMAND} -E env ${VRG_TEST_ENV} $<TARGET_FILE:fuzz_plugin_desc> -runs=200000 -max_len=2048)
+  set_tests_properties(fuzz_plugin_desc PROPERTIES TIMEOUT 600)
 endif()
+
+# The loader's checks of plugin descriptors, case by case (no device).
+add_executable(test_plugin_desc test_plugin_desc.c)
+target_include_directories(test_plugin_desc PRIVATE ${PROJECT_SOURCE_DIR}/core/src)
+target_link_libraries(test_plugin_desc PRIVATE voxrg m)
+add_test(NAME plugin_desc COMMAND test_plugin_desc)
+set_tests_properties(plugin_desc PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}")
 
 # Image metrics of voxrg compare against hand-computed values (no device).
 add_executable(test_metrics test_metrics.c)

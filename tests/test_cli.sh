@@ -140,12 +140,15 @@ expect_rc 1 "--device unknown" "$voxrg" check "$tests/graphs/chain.ini" --device
 has "$out/stderr" "matches no device" "unknown device message"
 has "$out/stderr" "0: " "device list"
 
-# plugins next to the graph file are found before the build's
+# a plugin beside the graph never shadows a built-in one (issue 15's policy;
+# tests/test_plugin_faults.py has the rest): the build's pattern is used, and
+# a note says the graph's copy is not
 mkdir -p "$out/rel/plugins"
-cp "$tests/graphs/chain.ini" "$out/rel/"
+sed 's/^\[graph\]$/[graph]\nplugin_path = plugins/' "$tests/graphs/chain.ini" > "$out/rel/chain.ini"
 cp "$(dirname "$voxrg")/plugins/pattern.so" "$out/rel/plugins/"
 expect_rc 0 "graph-relative plugin" "$voxrg" check "$out/rel/chain.ini" --no-device
-has "$out/stdout" "plugin pattern .*$out/rel/plugins/pattern.so" "graph-relative plugin path"
+has "$out/stdout" "plugin pattern .*$(dirname "$voxrg")/plugins/pattern.so" "the built-in plugin is used"
+has "$out/stderr" "$out/rel/plugins/pattern.so .*is not used" "the graph's copy is said to be ignored"
 
 # bench: a smoke run (no timing assertion), JSON complete and well-formed
 expect_rc 0 "bench --help" "$voxrg" bench --help

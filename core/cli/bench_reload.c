@@ -178,7 +178,7 @@ int vrg_bench_reload(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure
                       "layout(binding = 0, rgba16f) uniform writeonly image2D dst;\nlayout(push_constant) uniform P { vec4 c; } pc;\n"
                       "void main() { imageStore(dst, ivec2(gl_GlobalInvocationID.xy), pc.c); }\n");
     snprintf(graph, sizeof graph, "%s/plugin.ini", dir);
-    save_text(graph, "[graph]\noutput = color\nwidth = 64\nheight = 64\n[pass fill]\nplugin = benchfill\nout.color = color\n");
+    save_text(graph, "[graph]\nplugin_path = .\noutput = color\nwidth = 64\nheight = 64\n[pass fill]\nplugin = benchfill\nout.color = color\n");
     g = NULL;
     for (int r = -1; ok && r < runs; r++) {
         snprintf(cmd, sizeof cmd,

@@ -60,8 +60,9 @@ static const char *usage_render =
 
 static const char *usage_plugins =
     "usage: voxrg plugins [NAME]\n"
-    "Lists the plugins on the search path ($VOXRG_PLUGIN_PATH, <exe>/plugins,\n"
-    "<exe>/../lib/voxrg/plugins), or NAME's slots and parameters.\n";
+    "Lists the plugins on the search path (<exe>/plugins, <exe>/../lib/voxrg/plugins,\n"
+    "then $VOXRG_PLUGIN_PATH; a graph adds its [graph] plugin_path after those),\n"
+    "or NAME's file, slots and parameters. Files that do not load are reported.\n";
 
 typedef struct options {
     const char *graph, *dot, *out, *json, *device, *camera, *screenshot, *ab, *record, *show;
@@ -494,10 +495,19 @@ static int cmd_plugins(int argc, char **argv)
         fputs(usage_plugins, stdout);
         return 0;
     }
+    const char *want = argc > 0 ? argv[0] : NULL;
     const vrg_plugin_desc *list[256];
     const char *paths[256];
-    int n = vrg_list_plugins(list, paths, 256);
-    const char *want = argc > 0 ? argv[0] : NULL;
+    int n;
+    if (want) {
+        /* one plugin: found as a graph finds it, and if it does not load, why */
+        if (vrg_find_plugin(want, stderr, &list[0], &paths[0]) != 0)
+            return 1;
+        n = 1;
+    } else if ((n = vrg_list_plugins(list, paths, 256, stderr)) > 256) {
+        fprintf(stderr, "error: %d plugins on the search path; this listing shows at most 256\n", n);
+        return 1;
+    }
     int found = 0;
     for (int i = 0; i < n; i++) {
         const vrg_plugin_desc *d = list[i];
@@ -546,11 +556,7 @@ static int cmd_plugins(int argc, char **argv)
             printf("  %-16s %-5s default %-8s %-16s %s\n", pd->name, t, def, range, pd->help ? pd->help : "");
         }
     }
-    if (want && !found) {
-        fprintf(stderr, "error: no plugin named '%s' on the search path\n", want);
-        return 1;
-    }
-    return 0;
+    return want && !found;
 }
 
 static const char *usage_bench =

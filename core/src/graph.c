@@ -13,7 +13,10 @@ static int create_passes(vrg_graph *g)
 {
     for (int k = 0; k < g->schedule_count; k++) {
         vrg_pass *p = &g->passes[g->schedule[k]];
-        if (p->plugin->desc->create && p->plugin->desc->create(p) != 0) {
+        vrg_running before = vrg_running_enter("create", p->name, p->plugin);
+        int rc = p->plugin->desc->create ? p->plugin->desc->create(p) : 0;
+        vrg_running_leave(before);
+        if (rc != 0) {
             if (!p->failed)
                 vrg_pass_error(p, "create() failed");
             return -1;
@@ -29,7 +32,10 @@ static int resize_passes(vrg_graph *g)
 {
     for (int k = 0; k < g->schedule_count; k++) {
         vrg_pass *p = &g->passes[g->schedule[k]];
-        if (p->plugin->desc->resize && p->plugin->desc->resize(p) != 0) {
+        vrg_running before = vrg_running_enter("resize", p->name, p->plugin);
+        int rc = p->plugin->desc->resize ? p->plugin->desc->resize(p) : 0;
+        vrg_running_leave(before);
+        if (rc != 0) {
             if (!p->failed)
                 vrg_pass_error(p, "resize() failed");
             return -1;
@@ -164,8 +170,11 @@ void vrg_graph_destroy(vrg_graph *g)
         vkDeviceWaitIdle(dev);
         for (int i = 0; i < g->pass_count; i++) {
             vrg_pass *p = &g->passes[i];
-            if (p->created && p->plugin->desc->destroy)
+            if (p->created && p->plugin->desc->destroy) {
+                vrg_running before = vrg_running_enter("destroy", p->name, p->plugin);
                 p->plugin->desc->destroy(p);
+                vrg_running_leave(before);
+            }
             vrg_pipelines_destroy(p);
             vrg_pass_free_host_buffers(p);
         }

@@ -75,8 +75,23 @@ typedef struct vrg_plugin {
     unsigned generation; /* load order: the highest of a name is its current version */
     int users;           /* passes of live graphs running it (vrg_plugin_acquire) */
 } vrg_plugin;
-/* Finds and loads NAME; NULL after reporting at `line`. Cached per process. */
-const vrg_plugin *vrg_plugin_load(const char *name, const char *graph_path, vrg_diag *d, int line);
+/* Finds NAME on the search path (plugin_loader.c's header comment) and loads
+ * a private copy of it; NULL after reporting at `line`. A file already loaded
+ * is not loaded again. `graph_path` is the graph file (for its plugin_path,
+ * ':'-separated folders relative to it, NULL if none). */
+const vrg_plugin *vrg_plugin_load(const char *name, const char *graph_path, const char *plugin_path, vrg_diag *d, int line);
+/* The checks a plugin's descriptor must pass (also run by the fuzzer). */
+int vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const char *path, vrg_diag *d, int line);
+
+/* ---- crash reports (crash.c) ---- */
+/* What plugin code this thread runs now: a fatal signal names it. */
+typedef struct vrg_running {
+    const char *what, *pass, *plugin, *file;
+} vrg_running;
+vrg_running vrg_running_enter(const char *what, const char *pass, const vrg_plugin *plugin);
+void vrg_running_leave(vrg_running before);
+/* A plugin copy being loaded, removed if loading dies (NULLs: none). */
+void vrg_crash_cleanup_set(const char *dir, const char *file);
 /* capture.c: called where the runtime records, while g->capture is set */
 void vrg_capture_barrier(struct vrg_capture *c, const VkDependencyInfo *dep);
 void vrg_capture_dispatch(struct vrg_capture *c, VkPipeline pipeline, VkPipelineLayout layout, uint32_t write_count,
@@ -87,8 +102,10 @@ void vrg_plugin_acquire(const vrg_plugin *p);
 void vrg_plugin_release(const vrg_plugin *p);
 /* A rebuilt plugin file becomes the newest version of its plugin (hot reload). */
 int vrg_plugin_reload(const char *source_path, vrg_diag *d);
-/* Every plugin on the search path (for `voxrg plugins`). */
-int vrg_plugin_list(const vrg_plugin **out, int max);
+/* Every plugin on the search path (for `voxrg plugins`), the current
+ * version of each file; returns how many there are (more than max: only max
+ * filled). Files that fail to load are reported to `problems` (NULL: not). */
+int vrg_plugin_list(const vrg_plugin **out, int max, FILE *problems);
 
 /* ---- parse (parse.c): the file as written, with line numbers ---- */
 typedef struct vrg_key {

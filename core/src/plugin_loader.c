@@ -1,15 +1,44 @@
-/* Plugins are found by name on a search path and loaded once per process:
- *   $VOXRG_PLUGIN_PATH (':'-separated), the graph file's folder and its
- *   plugins/ subfolder, <exe>/plugins (build tree), <exe>/../lib/voxrg/plugins
- *   (install tree). The first NAME.so found wins. */
+/* Plugins are found by name on one search path; the first NAME.so wins:
+ *   1. built-in: <exe>/plugins (the build tree; tests also the build's
+ *      plugin folder), 2. installed: <exe>/../lib/voxrg/plugins,
+ *   3. $VOXRG_PLUGIN_PATH (':'-separated): the user's own,
+ *   4. the graph's `[graph] plugin_path` (':'-separated, relative to the
+ *      graph file).
+ * Built-in and installed plugins come first and are never shadowed, and a
+ * graph's own folder is searched only when the graph names it: opening a
+ * downloaded graph cannot swap a shipped pass for code that came with it,
+ * and `voxrg check` prints the file every plugin came from.
+ *
+ * A plugin is never run from the user's file: it is read once, checked as
+ * an ELF shared object of this machine whose segments lie inside the file (a
+ * truncated build would otherwise die of SIGBUS inside dlopen), copied to a
+ * private file, loaded from there and the copy unlinked. A build that
+ * overwrites the .so in place cannot change code that runs, and every load
+ * of a rebuilt file is a new image (dlopen hands back the old one for a path
+ * it knows). */
 #define _GNU_SOURCE
 #include <dirent.h>
 #include <dlfcn.h>
+#include <elf.h>
+#include <errno.h>
+#include <fcntl.h>
 #include <limits.h>
+#include <math.h>
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include "internal.h"
+
+#if UINTPTR_MAX > 0xffffffffu
+typedef Elf64_Ehdr elf_ehdr;
+typedef Elf64_Phdr elf_phdr;
+#else
+typedef Elf32_Ehdr elf_ehdr;
+typedef Elf32_Phdr elf_phdr;
+#endif
+#define PLUGIN_MAX_BYTES (1u << 30) /* larger is no plugin: refuse before reading it */
 
 /* Slots stay put (graphs hold pointers to them); an unloaded version's slot
  * is emptied (name "") and reused. */
@@ -17,7 +46,8 @@ static vrg_plugin loaded[VRG_MAX_PLUGINS];
 static int loaded_count;
 static unsigned last_generation;
 
-/* The current version of NAME (matched on `source` instead when by_source). */
+/* The current version of the plugin built from `key` (a source file), or of
+ * the plugin named `key` when !by_source. */
 static vrg_plugin *newest(const char *key, int by_source)
 {
     vrg_plugin *best = NULL;
@@ -28,23 +58,14 @@ static vrg_plugin *newest(const char *key, int by_source)
     return best;
 }
 
-static vrg_plugin *free_slot(void)
+static vrg_plugin *free_slot(int claim)
 {
     for (int i = 0; i < loaded_count; i++)
         if (!loaded[i].name[0])
             return &loaded[i];
-    return loaded_count < VRG_MAX_PLUGINS ? &loaded[loaded_count++] : NULL;
-}
-
-static const vrg_plugin *keep(const vrg_plugin *p)
-{
-    vrg_plugin *slot = free_slot();
-    if (slot) {
-        *slot = *p;
-        slot->generation = ++last_generation;
-        slot->users = 0;
-    }
-    return slot;
+    if (loaded_count == VRG_MAX_PLUGINS)
+        return NULL;
+    return claim ? &loaded[loaded_count++] : &loaded[loaded_count];
 }
 
 void vrg_plugin_acquire(const vrg_plugin *p) { ((vrg_plugin *)p)->users++; }
@@ -52,201 +73,491 @@ void vrg_plugin_acquire(const vrg_plugin *p) { ((vrg_plugin *)p)->users++; }
 void vrg_plugin_release(const vrg_plugin *cp)
 {
     vrg_plugin *p = (vrg_plugin *)cp;
-    if (--p->users > 0 || newest(p->name, 0) == p)
+    if (--p->users > 0 || newest(p->source, 1) == p)
         return; /* in use, or the current version (kept loaded: a cache) */
     dlclose(p->handle);
     memset(p, 0, sizeof *p);
 }
 
-static int add_dir(char dirs[][1024], int n, int max, const char *dir)
+/* An error at a graph line, or without one (line 0: a reload, a listing). */
+static void fail(vrg_diag *d, int line, const char *hint, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
+static void fail(vrg_diag *d, int line, const char *hint, const char *fmt, ...)
 {
-    for (int i = 0; i < n; i++)
-        if (strcmp(dirs[i], dir) == 0)
-            return n;
-    if (n < max)
-        snprintf(dirs[n++], 1024, "%s", dir);
-    return n;
+    char msg[2048];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    if (line > 0)
+        vrg_error_at(d, line, hint, "%s", msg);
+    else if (hint)
+        vrg_error(d, "%s\n  hint: %s", msg, hint);
+    else
+        vrg_error(d, "%s", msg);
 }
 
-static int search_dirs(const char *graph_path, char dirs[][1024], int max)
+/* ---- the search path ---- */
+
+typedef enum { DIR_BUILTIN, DIR_INSTALLED, DIR_ENV, DIR_GRAPH } dir_origin;
+static const char *const origin_names[] = {"built-in", "installed", "VOXRG_PLUGIN_PATH", "the graph's plugin_path"};
+
+typedef struct search_path {
+    struct {
+        char path[VRG_PATH_MAX];
+        dir_origin origin;
+    } *dirs;
+    int count, cap;
+} search_path;
+
+static void add_dir(search_path *s, dir_origin origin, const char *dir, size_t len)
 {
-    int n = 0;
-    char dir[1100];
-    const char *env = getenv("VOXRG_PLUGIN_PATH");
-    if (env) {
-        const char *p = env;
-        while (*p && n < max) {
-            const char *c = strchr(p, ':');
-            size_t len = c ? (size_t)(c - p) : strlen(p);
-            if (len && len < 1024) {
-                snprintf(dir, sizeof dir, "%.*s", (int)len, p);
-                n = add_dir(dirs, n, max, dir);
-            }
-            p = c ? c + 1 : p + len;
-        }
+    if (!len || len >= VRG_PATH_MAX)
+        return; /* an empty entry of a ':'-list; longer ones cannot name a folder */
+    for (int i = 0; i < s->count; i++)
+        if (strlen(s->dirs[i].path) == len && strncmp(s->dirs[i].path, dir, len) == 0)
+            return;
+    if (s->count == s->cap) {
+        s->cap = s->cap ? 2 * s->cap : 8;
+        s->dirs = realloc(s->dirs, (size_t)s->cap * sizeof *s->dirs);
     }
-    if (graph_path) {
-        const char *slash = strrchr(graph_path, '/');
-        int len = slash ? (int)(slash - graph_path) : 1;
-        snprintf(dir, sizeof dir, "%.*s", len, slash ? graph_path : ".");
-        n = add_dir(dirs, n, max, dir);
-        snprintf(dir, sizeof dir, "%.*s/plugins", len, slash ? graph_path : ".");
-        n = add_dir(dirs, n, max, dir);
+    snprintf(s->dirs[s->count].path, VRG_PATH_MAX, "%.*s", (int)len, dir);
+    s->dirs[s->count++].origin = origin;
+}
+
+static void add_list(search_path *s, dir_origin origin, const char *base, const char *list)
+{
+    for (const char *p = list; p && *p;) {
+        const char *c = strchr(p, ':');
+        size_t len = c ? (size_t)(c - p) : strlen(p);
+        if (len && base && p[0] != '/') {
+            char dir[VRG_PATH_MAX];
+            int n = snprintf(dir, sizeof dir, "%s/%.*s", base, (int)len, p);
+            if (n > 0 && n < (int)sizeof dir)
+                add_dir(s, origin, dir, (size_t)n);
+        } else
+            add_dir(s, origin, p, len);
+        p = c ? c + 1 : p + len;
     }
-    char exe[1024];
+}
+
+/* The folder of a graph file ("." for a bare name) in `out`. */
+static void graph_folder(const char *graph_path, char *out, size_t cap)
+{
+    const char *slash = strrchr(graph_path, '/');
+    if (!slash)
+        snprintf(out, cap, ".");
+    else
+        snprintf(out, cap, "%.*s", slash == graph_path ? 1 : (int)(slash - graph_path), graph_path);
+}
+
+static void search_path_build(search_path *s, const char *graph_path, const char *plugin_path)
+{
+    memset(s, 0, sizeof *s);
+    char exe[VRG_PATH_MAX], dir[VRG_PATH_MAX + 32];
     ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
     if (len > 0) {
         exe[len] = '\0';
         char *slash = strrchr(exe, '/');
         if (slash)
             *slash = '\0';
-        snprintf(dir, sizeof dir, "%s/plugins", exe);
-        n = add_dir(dirs, n, max, dir);
-        snprintf(dir, sizeof dir, "%s/../lib/voxrg/plugins", exe);
-        n = add_dir(dirs, n, max, dir);
-    }
+        add_dir(s, DIR_BUILTIN, dir, (size_t)snprintf(dir, sizeof dir, "%s/plugins", exe));
 #ifdef VRG_BUILD_PLUGIN_DIR
-    /* tests and fuzzers run from other folders of the build */
-    n = add_dir(dirs, n, max, VRG_BUILD_PLUGIN_DIR);
+        /* tests and fuzzers run from other folders of the build */
+        add_dir(s, DIR_BUILTIN, VRG_BUILD_PLUGIN_DIR, strlen(VRG_BUILD_PLUGIN_DIR));
 #endif
-    return n;
+        add_dir(s, DIR_INSTALLED, dir, (size_t)snprintf(dir, sizeof dir, "%s/../lib/voxrg/plugins", exe));
+    }
+    add_list(s, DIR_ENV, NULL, getenv("VOXRG_PLUGIN_PATH"));
+    if (graph_path && plugin_path) {
+        char base[VRG_PATH_MAX];
+        graph_folder(graph_path, base, sizeof base);
+        add_list(s, DIR_GRAPH, base, plugin_path);
+    }
 }
 
-static int check_desc(const vrg_plugin *p, vrg_diag *d, int line)
+static int is_regular(const char *path)
 {
-    const vrg_plugin_desc *desc = p->desc;
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+/* Index of the first folder holding NAME.so, -1 if none; its path in `file`. */
+static int search_path_find(const search_path *s, const char *name, int from, char *file, size_t cap)
+{
+    for (int i = from; i < s->count; i++) {
+        int n = snprintf(file, cap, "%s/%s.so", s->dirs[i].path, name);
+        if (n > 0 && n < (int)cap && access(file, F_OK) == 0)
+            return i;
+    }
+    return -1;
+}
+
+static void search_path_hint(const search_path *s, char *hint, size_t cap)
+{
+    size_t n = (size_t)snprintf(hint, cap, "searched:");
+    for (int i = 0; i < s->count && n < cap; i++)
+        n += (size_t)snprintf(hint + n, cap - n, "%s %s (%s)", i ? "," : "", s->dirs[i].path, origin_names[s->dirs[i].origin]);
+    if (n < cap)
+        snprintf(hint + n, cap - n, "; the first match wins. Set VOXRG_PLUGIN_PATH or the graph's [graph] plugin_path; `voxrg plugins` lists what exists");
+}
+
+/* ---- reading, checking and loading one file ---- */
+
+static int read_whole(const char *path, unsigned char **data, size_t *size, char *why, size_t cap)
+{
+    /* O_NONBLOCK: a FIFO named like a plugin must not block the open */
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    struct stat st;
+    if (fd < 0 || fstat(fd, &st) != 0) {
+        snprintf(why, cap, "cannot read it: %s", strerror(errno));
+        if (fd >= 0)
+            close(fd);
+        return -1;
+    }
+    if (!S_ISREG(st.st_mode) || st.st_size > PLUGIN_MAX_BYTES) {
+        snprintf(why, cap, S_ISREG(st.st_mode) ? "it is larger than 1 GiB" : "it is not a regular file");
+        close(fd);
+        return -1;
+    }
+    *size = (size_t)st.st_size;
+    *data = malloc(*size ? *size : 1);
+    size_t got = 0;
+    while (*data && got < *size) {
+        ssize_t r = read(fd, *data + got, *size - got);
+        if (r <= 0)
+            break;
+        got += (size_t)r;
+    }
+    int err = errno;
+    close(fd);
+    if (!*data || got != *size) {
+        snprintf(why, cap, "cannot read it: %s", !*data ? "out of memory" : got < *size ? "it shrank while being read" : strerror(err));
+        free(*data);
+        *data = NULL;
+        return -1;
+    }
+    return 0;
+}
+
+/* This process's own ELF class, byte order and machine: a plugin must match. */
+static int host_elf(unsigned char ident[EI_NIDENT], uint16_t *machine)
+{
+    static elf_ehdr self;
+    static int known = -1;
+    if (known < 0) {
+        int fd = open("/proc/self/exe", O_RDONLY | O_CLOEXEC);
+        known = fd >= 0 && read(fd, &self, sizeof self) == (ssize_t)sizeof self && memcmp(self.e_ident, ELFMAG, SELFMAG) == 0;
+        if (fd >= 0)
+            close(fd);
+    }
+    if (known) {
+        memcpy(ident, self.e_ident, EI_NIDENT);
+        *machine = self.e_machine;
+    }
+    return known;
+}
+
+/* Why `b` (n bytes) is not a shared object dlopen can map safely, or NULL. */
+static const char *elf_problem(const unsigned char *b, size_t n, char *why, size_t cap)
+{
+    unsigned char ident[EI_NIDENT];
+    uint16_t machine = 0;
+    int host = host_elf(ident, &machine);
+    if (n < SELFMAG || memcmp(b, ELFMAG, SELFMAG) != 0)
+        return snprintf(why, cap, "not an ELF file (%zu bytes; no ELF magic)", n), why;
+    if (n < sizeof(elf_ehdr))
+        return snprintf(why, cap, "truncated: %zu bytes, shorter than an ELF header (%zu)", n, sizeof(elf_ehdr)), why;
+    elf_ehdr e;
+    memcpy(&e, b, sizeof e);
+    if (host && (e.e_ident[EI_CLASS] != ident[EI_CLASS] || e.e_ident[EI_DATA] != ident[EI_DATA]))
+        return snprintf(why, cap, "built for another kind of machine (ELF class %u, byte order %u; this voxrg is %u, %u)",
+                        e.e_ident[EI_CLASS], e.e_ident[EI_DATA], ident[EI_CLASS], ident[EI_DATA]), why;
+    if (e.e_type != ET_DYN)
+        return snprintf(why, cap, "not a shared object (ELF type %u; build it with -shared -fPIC)", e.e_type), why;
+    if (host && e.e_machine != machine)
+        return snprintf(why, cap, "built for another machine (ELF machine %u, this one is %u)", e.e_machine, machine), why;
+    if (e.e_phentsize != sizeof(elf_phdr) || e.e_phnum == 0 || e.e_phnum == 0xffff)
+        return snprintf(why, cap, "malformed ELF program header table (%u entries of %u bytes)", e.e_phnum, e.e_phentsize), why;
+    uint64_t ph_end = (uint64_t)e.e_phoff + (uint64_t)e.e_phnum * sizeof(elf_phdr);
+    if (ph_end > n)
+        return snprintf(why, cap, "truncated: %zu bytes, its program headers end at byte %llu", n, (unsigned long long)ph_end), why;
+    uint64_t sh_end = (uint64_t)e.e_shoff + (uint64_t)e.e_shnum * e.e_shentsize;
+    if (e.e_shoff && sh_end > n)
+        return snprintf(why, cap, "truncated: %zu bytes, its section headers end at byte %llu", n, (unsigned long long)sh_end), why;
+    for (unsigned i = 0; i < e.e_phnum; i++) {
+        elf_phdr ph;
+        memcpy(&ph, b + e.e_phoff + (size_t)i * sizeof ph, sizeof ph);
+        uint64_t end = (uint64_t)ph.p_offset + ph.p_filesz;
+        if (end < ph.p_offset || end > n)
+            return snprintf(why, cap, "truncated: %zu bytes, segment %u (type %u) ends at byte %llu", n, i, ph.p_type, (unsigned long long)end), why;
+    }
+    return NULL;
+}
+
+/* A private copy of `data`, dlopen'ed; the copy is unlinked right after
+ * (the mapping stays), and removed by the crash handler if dlopen or the
+ * plugin's constructors die. */
+static void *open_private(const vrg_plugin *p, const unsigned char *data, size_t size, char *why, size_t cap)
+{
+    const char *tmp = getenv("TMPDIR");
+    char dir[VRG_PATH_MAX], file[VRG_PATH_MAX + VRG_NAME_MAX + 8];
+    snprintf(dir, sizeof dir, "%s/voxrg-plugin-XXXXXX", tmp && tmp[0] ? tmp : "/tmp");
+    if (!mkdtemp(dir)) {
+        snprintf(why, cap, "cannot make a private folder for its copy (%s): %s", dir, strerror(errno));
+        return NULL;
+    }
+    snprintf(file, sizeof file, "%s/%s.so", dir, p->name);
+    vrg_crash_cleanup_set(dir, file);
+    int fd = open(file, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0500);
+    size_t put = 0;
+    while (fd >= 0 && put < size) {
+        ssize_t w = write(fd, data + put, size - put);
+        if (w <= 0)
+            break;
+        put += (size_t)w;
+    }
+    int err = errno;
+    void *handle = NULL;
+    if (fd < 0 || put != size || close(fd) != 0)
+        snprintf(why, cap, "cannot write its private copy %s: %s", file, strerror(fd < 0 || put != size ? err : errno));
+    else {
+        vrg_running before = vrg_running_enter("loading (dlopen and the plugin's constructors)", NULL, p);
+        handle = dlopen(file, RTLD_NOW | RTLD_LOCAL);
+        vrg_running_leave(before);
+        if (!handle)
+            snprintf(why, cap, "%s", dlerror());
+    }
+    unlink(file);
+    rmdir(dir);
+    vrg_crash_cleanup_set(NULL, NULL);
+    return handle;
+}
+
+/* Loads p->source into *p: read, ELF check, private copy, entry point, ABI
+ * and descriptor checks. Reports at `line` (0: none) and returns -1 on any
+ * failure, with nothing left loaded. */
+static int load_file(vrg_plugin *p, vrg_diag *d, int line)
+{
+    char why[1024];
+    unsigned char *data = NULL;
+    size_t size = 0;
+    const char *problem = NULL;
+    if (read_whole(p->source, &data, &size, why, sizeof why) != 0)
+        problem = why;
+    else
+        problem = elf_problem(data, size, why, sizeof why);
+    if (!problem && !(p->handle = open_private(p, data, size, why, sizeof why)))
+        problem = why;
+    free(data);
+    if (problem) {
+        fail(d, line, "is it a plugin built for this machine? a build still writing it is picked up when it finishes",
+                     "cannot load plugin '%s' from %s: %s", p->name, p->source, problem);
+        return -1;
+    }
+    vrg_plugin_entry_fn entry = (vrg_plugin_entry_fn)dlsym(p->handle, VRG_PLUGIN_ENTRY_SYMBOL);
+    if (!entry)
+        fail(d, line, "a plugin's source ends with VRG_PLUGIN(desc)", "plugin '%s' (%s) does not export %s", p->name, p->source,
+                     VRG_PLUGIN_ENTRY_SYMBOL);
+    else {
+        vrg_running before = vrg_running_enter(VRG_PLUGIN_ENTRY_SYMBOL, NULL, p);
+        p->desc = entry(VRG_ABI_VERSION);
+        vrg_running_leave(before);
+        if (!p->desc)
+            fail(d, line, NULL, "plugin '%s' (%s): %s returned NULL", p->name, p->source, VRG_PLUGIN_ENTRY_SYMBOL);
+        else if (p->desc->abi_version != VRG_ABI_VERSION)
+            fail(d, line, "rebuild the plugin against this voxrg's headers", "plugin '%s' (%s) has ABI version %u, this voxrg expects ABI version %u",
+                         p->name, p->source, p->desc->abi_version, VRG_ABI_VERSION);
+        else if (vrg_plugin_check_desc(p->desc, p->name, p->source, d, line) == 0)
+            return 0;
+    }
+    dlclose(p->handle);
+    p->handle = NULL;
+    p->desc = NULL;
+    return -1;
+}
+
+static const vrg_plugin *keep(const vrg_plugin *p)
+{
+    vrg_plugin *slot = free_slot(1);
+    *slot = *p;
+    slot->generation = ++last_generation;
+    slot->users = 0;
+    return slot;
+}
+
+/* ---- descriptors ---- */
+
+static const char *param_problem(const vrg_param_desc *pd, char *why, size_t cap)
+{
+    if (pd->type < VRG_PARAM_FLOAT || pd->type > VRG_PARAM_STRING)
+        return snprintf(why, cap, "type %d is none of VRG_PARAM_FLOAT, _INT, _BOOL, _STRING", (int)pd->type), why;
+    if ((pd->flags & VRG_PARAM_REPEATABLE) && pd->type != VRG_PARAM_STRING)
+        return "is repeatable but not a string";
+    if (pd->flags & ~(uint32_t)VRG_PARAM_REPEATABLE)
+        return snprintf(why, cap, "has unknown flags 0x%x", pd->flags & ~(uint32_t)VRG_PARAM_REPEATABLE), why;
+    if (pd->type == VRG_PARAM_STRING)
+        return NULL;
+    if (!isfinite(pd->default_value) || !isfinite(pd->min) || !isfinite(pd->max))
+        return "default, min and max must be finite numbers";
+    if (pd->min > pd->max)
+        return snprintf(why, cap, "min %g is greater than max %g", pd->min, pd->max), why;
+    if ((pd->min != 0 || pd->max != 0) && (pd->default_value < pd->min || pd->default_value > pd->max))
+        return snprintf(why, cap, "default %g lies outside [%g, %g]", pd->default_value, pd->min, pd->max), why;
+    if (pd->type != VRG_PARAM_FLOAT && (pd->default_value != floor(pd->default_value) || pd->min != floor(pd->min) || pd->max != floor(pd->max)))
+        return snprintf(why, cap, "an %s parameter needs whole-number default, min and max", pd->type == VRG_PARAM_INT ? "int" : "bool"), why;
+    if (pd->type == VRG_PARAM_BOOL && pd->default_value != 0 && pd->default_value != 1)
+        return snprintf(why, cap, "a bool's default is 0 or 1, not %g", pd->default_value), why;
+    return NULL;
+}
+
+/* A name a graph can write: the key's text after "PASS." (no '=', ';', '#',
+ * '[', ']', white space or control characters), below VRG_NAME_MAX. */
+static int valid_name(const char *s)
+{
+    size_t n = s ? strlen(s) : 0;
+    if (n == 0 || n >= VRG_NAME_MAX)
+        return 0;
+    for (; *s; s++)
+        if ((unsigned char)*s <= ' ' || strchr("=;#[]", *s))
+            return 0;
+    return 1;
+}
+
+int vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const char *path, vrg_diag *d, int line)
+{
     const char *why = NULL;
-    if (!desc->name || strcmp(desc->name, p->name) != 0)
+    char buf[512];
+    if (!desc->name || strcmp(desc->name, name) != 0)
         why = "its descriptor's name differs from its file name";
     else if (desc->kind != VRG_PLUGIN_PASS && desc->kind != VRG_PLUGIN_SCENE)
         why = "kind is neither VRG_PLUGIN_PASS nor VRG_PLUGIN_SCENE";
     else if (!desc->execute)
         why = "execute callback is NULL";
     else if (desc->slot_count > VRG_MAX_SLOTS || (desc->slot_count && !desc->slots))
-        why = "slot table is too large or missing";
+        why = desc->slot_count > VRG_MAX_SLOTS ? (snprintf(buf, sizeof buf, "%u slots, more than the %d a plugin may have", desc->slot_count, VRG_MAX_SLOTS), buf)
+                                               : "slot_count is set but slots is NULL";
     else if (desc->param_count > VRG_MAX_PARAMS || (desc->param_count && !desc->params))
-        why = "parameter table is too large or missing";
+        why = desc->param_count > VRG_MAX_PARAMS ? (snprintf(buf, sizeof buf, "%u parameters, more than the %d a plugin may have", desc->param_count, VRG_MAX_PARAMS), buf)
+                                                 : "param_count is set but params is NULL";
     if (why) {
-        vrg_error_at(d, line, NULL, "plugin '%s' (%s): %s", p->name, p->path, why);
+        fail(d, line, NULL, "plugin '%s' (%s): %s", name, path, why);
         return -1;
     }
-    for (uint32_t i = 0; i < desc->param_count; i++)
-        if ((desc->params[i].flags & VRG_PARAM_REPEATABLE) && desc->params[i].type != VRG_PARAM_STRING) {
-            vrg_error_at(d, line, NULL, "plugin '%s' (%s): parameter '%s' is repeatable but not a string", p->name, p->path, desc->params[i].name);
+    for (uint32_t i = 0; i < desc->param_count; i++) {
+        const vrg_param_desc *pd = &desc->params[i];
+        if (!valid_name(pd->name)) {
+            fail(d, line, "names are 1-63 characters without spaces, '=', ';', '#', '[' or ']'",
+                         "plugin '%s' (%s): parameter %u has %s name", name, path, i, pd->name ? "an invalid" : "a NULL");
             return -1;
         }
+        for (uint32_t j = 0; j < i; j++)
+            if (strcmp(desc->params[j].name, pd->name) == 0) {
+                fail(d, line, NULL, "plugin '%s' (%s): two parameters named '%s' (%u and %u)", name, path, pd->name, j, i);
+                return -1;
+            }
+        if ((why = param_problem(pd, buf, sizeof buf))) {
+            fail(d, line, NULL, "plugin '%s' (%s): parameter '%s' %s", name, path, pd->name, why);
+            return -1;
+        }
+    }
     for (uint32_t i = 0; i < desc->slot_count; i++) {
         const vrg_slot_desc *s = &desc->slots[i];
-        if (!s->name || (s->dir != VRG_IN && s->dir != VRG_OUT) || s->kind < VRG_IMAGE || s->kind > VRG_ACCEL ||
+        if (!valid_name(s->name) || (s->dir != VRG_IN && s->dir != VRG_OUT) || s->kind < VRG_IMAGE || s->kind > VRG_ACCEL ||
             s->access < VRG_ACCESS_SAMPLED || s->access > VRG_ACCESS_TEXEL_READ) {
-            vrg_error_at(d, line, NULL, "plugin '%s' (%s): slot %u is malformed (name, dir, kind, access)", p->name, p->path, i);
+            fail(d, line, NULL, "plugin '%s' (%s): slot %u is malformed (name, dir, kind, access)", name, path, i);
             return -1;
         }
         int as_access = s->access == VRG_ACCESS_AS_BUILD || s->access == VRG_ACCESS_RAY_QUERY;
         if ((s->access == VRG_ACCESS_SAMPLED && s->kind != VRG_IMAGE) || ((s->access == VRG_ACCESS_UNIFORM || s->access == VRG_ACCESS_TEXEL_READ) && s->kind != VRG_BUFFER) ||
             as_access != (s->kind == VRG_ACCEL)) {
-            vrg_error_at(d, line, NULL, "plugin '%s' (%s): slot '%s': %s access does not fit a%s", p->name, p->path, s->name,
-                         vrg_access_name(s->access), s->kind == VRG_IMAGE ? "n image" : s->kind == VRG_BUFFER ? " buffer" : "n acceleration structure");
+            fail(d, line, NULL, "plugin '%s' (%s): slot '%s': %s access does not fit a%s", name, path, s->name, vrg_access_name(s->access),
+                         s->kind == VRG_IMAGE ? "n image" : s->kind == VRG_BUFFER ? " buffer" : "n acceleration structure");
             return -1;
         }
         /* a buffer's format is the texel format of its TEXEL_READ views */
         int texel_format = s->format == VK_FORMAT_R32_UINT || s->format == VK_FORMAT_R32G32_UINT || s->format == VK_FORMAT_R32G32B32A32_UINT;
         if (s->kind == VRG_BUFFER && s->format && !texel_format) {
-            vrg_error_at(d, line, NULL, "plugin '%s' (%s): slot '%s': a buffer's format is the texel format of its TEXEL_READ views: r32ui, rg32ui or rgba32ui, not %s",
-                         p->name, p->path, s->name, vrg_format_name(s->format));
+            fail(d, line, NULL, "plugin '%s' (%s): slot '%s': a buffer's format is the texel format of its TEXEL_READ views: r32ui, rg32ui or rgba32ui, not %s",
+                         name, path, s->name, vrg_format_name(s->format));
             return -1;
         }
         if (s->kind == VRG_BUFFER && s->format && s->dir == VRG_IN && s->access != VRG_ACCESS_TEXEL_READ) {
-            vrg_error_at(d, line, NULL, "plugin '%s' (%s): slot '%s': a %s input names a texel format; only texel-read inputs (VRG_ACCESS_TEXEL_READ) and outputs do",
-                         p->name, p->path, s->name, vrg_access_name(s->access));
+            fail(d, line, NULL, "plugin '%s' (%s): slot '%s': a %s input names a texel format; only texel-read inputs (VRG_ACCESS_TEXEL_READ) and outputs do",
+                         name, path, s->name, vrg_access_name(s->access));
             return -1;
         }
         for (uint32_t j = 0; j < i; j++)
             if (strcmp(desc->slots[j].name, s->name) == 0 && desc->slots[j].dir == s->dir) {
-                vrg_error_at(d, line, NULL, "plugin '%s' (%s): two %s slots named '%s'", p->name, p->path, s->dir == VRG_IN ? "input" : "output",
-                             s->name);
+                fail(d, line, NULL, "plugin '%s' (%s): two %s slots named '%s'", name, path, s->dir == VRG_IN ? "input" : "output", s->name);
                 return -1;
             }
     }
     return 0;
 }
 
-const vrg_plugin *vrg_plugin_load(const char *name, const char *graph_path, vrg_diag *d, int line)
+/* ---- the entry points ---- */
+
+const vrg_plugin *vrg_plugin_load(const char *name, const char *graph_path, const char *plugin_path, vrg_diag *d, int line)
 {
-    /* the newest version: a reloaded plugin supersedes its earlier ones */
-    const vrg_plugin *current = name[0] ? newest(name, 0) : NULL;
-    if (current)
-        return current;
     if (!name[0] || strchr(name, '/') || strlen(name) >= VRG_NAME_MAX) {
-        vrg_error_at(d, line, "a plugin is named by its file name without .so", "unknown plugin '%s'", name);
+        fail(d, line, "a plugin is named by its file name without .so (at most 63 characters)", "unknown plugin '%s'", name);
         return NULL;
     }
-    if (loaded_count >= VRG_MAX_PLUGINS && !free_slot()) {
-        vrg_error_at(d, line, NULL, "too many plugins (at most %d)", VRG_MAX_PLUGINS);
-        return NULL;
+    search_path s;
+    search_path_build(&s, graph_path, plugin_path);
+    char file[VRG_PATH_MAX + VRG_NAME_MAX + 8], real[VRG_PATH_MAX];
+    int at = search_path_find(&s, name, 0, file, sizeof file);
+    const vrg_plugin *result = NULL;
+    if (at < 0) {
+        char hint[8192];
+        search_path_hint(&s, hint, sizeof hint);
+        if (graph_path) {
+            char base[VRG_PATH_MAX], beside[VRG_PATH_MAX + 2 * VRG_NAME_MAX];
+            graph_folder(graph_path, base, sizeof base);
+            for (int k = 0; k < 2 && !plugin_path; k++) {
+                snprintf(beside, sizeof beside, "%s/%s%s.so", base, k ? "plugins/" : "", name);
+                if (access(beside, F_OK) == 0)
+                    snprintf(hint, sizeof hint, "%s is beside the graph, but a graph's folder is searched only when the graph names it: add "
+                             "'plugin_path = %s' to [graph]", beside, k ? "plugins" : ".");
+            }
+        }
+        fail(d, line, hint, "unknown plugin '%s'", name);
+        goto done;
     }
-    char dirs[32][1024];
-    int nd = search_dirs(graph_path, dirs, 32);
+    if (!realpath(file, real))
+        snprintf(real, sizeof real, "%s", file);
+    /* never shadowed: say so when a later folder of the user's has the name */
+    char other[sizeof file];
+    for (int k = at + 1; s.dirs[at].origin <= DIR_INSTALLED && (k = search_path_find(&s, name, k, other, sizeof other)) >= 0; k++)
+        if (s.dirs[k].origin > DIR_INSTALLED)
+            vrg_note_at(d, line, "%s (%s) is not used: the %s plugin %s comes first; built-in and installed plugins are never shadowed, "
+                        "so give yours another name", other, origin_names[s.dirs[k].origin], origin_names[s.dirs[at].origin], real);
+    if ((result = newest(real, 1)))
+        goto done; /* this file is loaded already: the newest version of it */
+    if (!is_regular(real)) {
+        fail(d, line, NULL, "cannot load plugin '%s' from %s: it is not a regular file", name, real);
+        goto done;
+    }
+    if (!free_slot(0)) {
+        fail(d, line, "fewer plugins per process, or fewer rebuilds kept alive by running graphs",
+                     "cannot load plugin '%s': %d plugin versions are loaded, the most a process holds", name, VRG_MAX_PLUGINS);
+        goto done;
+    }
     vrg_plugin p = {0};
     snprintf(p.name, sizeof p.name, "%s", name);
-    for (int i = 0; i < nd && !p.path[0]; i++) {
-        char path[1200];
-        snprintf(path, sizeof path, "%s/%s.so", dirs[i], name);
-        if (access(path, F_OK) == 0) {
-            char *real = realpath(path, NULL);
-            snprintf(p.path, sizeof p.path, "%s", real ? real : path);
-            snprintf(p.source, sizeof p.source, "%s", p.path);
-            free(real);
-        }
-    }
-    if (!p.path[0]) {
-        char hint[2048] = "searched:";
-        for (int i = 0; i < nd; i++) {
-            strncat(hint, " ", sizeof hint - strlen(hint) - 1);
-            strncat(hint, dirs[i], sizeof hint - strlen(hint) - 1);
-        }
-        strncat(hint, " (set VOXRG_PLUGIN_PATH; `voxrg plugins` lists what exists)", sizeof hint - strlen(hint) - 1);
-        vrg_error_at(d, line, hint, "unknown plugin '%s'", name);
-        return NULL;
-    }
-    p.handle = dlopen(p.path, RTLD_NOW | RTLD_LOCAL);
-    if (!p.handle) {
-        vrg_error_at(d, line, "is it a shared object built for this machine?", "cannot load plugin '%s' from %s: %s", name, p.path, dlerror());
-        return NULL;
-    }
-    vrg_plugin_entry_fn entry = (vrg_plugin_entry_fn)dlsym(p.handle, VRG_PLUGIN_ENTRY_SYMBOL);
-    if (!entry) {
-        vrg_error_at(d, line, "a plugin's source ends with VRG_PLUGIN(desc)", "plugin '%s' (%s) does not export %s", name, p.path, VRG_PLUGIN_ENTRY_SYMBOL);
-        dlclose(p.handle);
-        return NULL;
-    }
-    p.desc = entry(VRG_ABI_VERSION);
-    if (!p.desc) {
-        vrg_error_at(d, line, NULL, "plugin '%s' (%s): %s returned NULL", name, p.path, VRG_PLUGIN_ENTRY_SYMBOL);
-        dlclose(p.handle);
-        return NULL;
-    }
-    if (p.desc->abi_version != VRG_ABI_VERSION) {
-        vrg_error_at(d, line, "rebuild the plugin against this voxrg's headers",
-                     "plugin '%s' (%s) has ABI version %u, this voxrg expects ABI version %u", name, p.path, p.desc->abi_version,
-                     VRG_ABI_VERSION);
-        dlclose(p.handle);
-        return NULL;
-    }
-    if (check_desc(&p, d, line) != 0) {
-        dlclose(p.handle);
-        return NULL;
-    }
-    return keep(&p);
+    snprintf(p.source, sizeof p.source, "%s", real);
+    snprintf(p.path, sizeof p.path, "%s", real);
+    if (load_file(&p, d, line) == 0)
+        result = keep(&p);
+done:
+    free(s.dirs);
+    return result;
 }
 
-/* Hot reload of a rebuilt plugin: the file at `path` (the one a loaded
- * plugin came from) is copied to a private file and loaded from there, so
- * the build may overwrite it again and dlopen does not hand back the old
- * image; its ABI and descriptor are checked like any plugin's. On success
- * it becomes the newest version of its name (graphs loaded from now on use
- * it); the old version stays loaded while graphs still run it, and is
- * unloaded with its last user. */
+/* Hot reload of a rebuilt plugin file (one a loaded plugin came from): it
+ * is loaded like any plugin, from a private copy, and becomes the newest
+ * version of that file (graphs loaded from now on use it); the old version
+ * stays loaded while graphs still run it, and is unloaded with its last user. */
 int vrg_plugin_reload(const char *path, vrg_diag *d)
 {
     vrg_plugin *old = newest(path, 1);
@@ -254,55 +565,16 @@ int vrg_plugin_reload(const char *path, vrg_diag *d)
         vrg_error(d, "plugin %s: not a loaded plugin", path);
         return -1;
     }
-    if (loaded_count >= VRG_MAX_PLUGINS && !free_slot()) {
-        vrg_error(d, "plugin %s: too many plugin versions loaded (at most %d)", path, VRG_MAX_PLUGINS);
-        return -1;
-    }
-    char dir[] = "/tmp/voxrg-plugin-XXXXXX";
-    if (!mkdtemp(dir)) {
-        vrg_error(d, "plugin %s: cannot make a private copy", path);
+    if (!free_slot(0)) {
+        vrg_error(d, "plugin %s: %d plugin versions are loaded, the most a process holds", path, VRG_MAX_PLUGINS);
         return -1;
     }
     vrg_plugin p = {0};
     snprintf(p.name, sizeof p.name, "%s", old->name);
     snprintf(p.source, sizeof p.source, "%s", path);
-    snprintf(p.path, sizeof p.path, "%s/%s.so", dir, p.name);
-    FILE *in = fopen(path, "rb"), *out = fopen(p.path, "wb");
-    int copied = in && out;
-    char buf[65536];
-    size_t n;
-    while (copied && (n = fread(buf, 1, sizeof buf, in)) > 0)
-        copied = fwrite(buf, 1, n, out) == n;
-    if (in)
-        fclose(in);
-    if (out && fclose(out) != 0)
-        copied = 0;
-    int rc = -1;
-    if (!copied)
-        vrg_error(d, "plugin %s: cannot copy it to %s", path, p.path);
-    else if (!(p.handle = dlopen(p.path, RTLD_NOW | RTLD_LOCAL)))
-        vrg_error(d, "plugin %s: cannot load the rebuilt file: %s", path, dlerror());
-    else {
-        vrg_plugin_entry_fn entry = (vrg_plugin_entry_fn)dlsym(p.handle, VRG_PLUGIN_ENTRY_SYMBOL);
-        p.desc = entry ? entry(VRG_ABI_VERSION) : NULL;
-        if (!p.desc)
-            vrg_error(d, "plugin %s: the rebuilt file has no %s or it returned NULL", path, VRG_PLUGIN_ENTRY_SYMBOL);
-        else if (p.desc->abi_version != VRG_ABI_VERSION)
-            vrg_error(d, "plugin %s: the rebuilt file has ABI version %u, this voxrg expects ABI version %u", path, p.desc->abi_version,
-                      VRG_ABI_VERSION);
-        else if (check_desc(&p, d, 0) == 0)
-            rc = 0;
-    }
-    /* the loaded image stays mapped: the private file can go, and messages
-     * name the file the user builds */
-    unlink(p.path);
-    rmdir(dir);
     snprintf(p.path, sizeof p.path, "%s", path);
-    if (rc != 0) {
-        if (p.handle)
-            dlclose(p.handle);
+    if (load_file(&p, d, 0) != 0)
         return -1;
-    }
     keep(&p);
     if (old->users == 0) { /* superseded with no pass running it: unload now */
         old->users = 1;
@@ -316,51 +588,67 @@ static int by_name(const void *a, const void *b)
     return strcmp((*(const vrg_plugin *const *)a)->name, (*(const vrg_plugin *const *)b)->name);
 }
 
-int vrg_plugin_list(const vrg_plugin **out, int max)
+int vrg_plugin_list(const vrg_plugin **out, int max, FILE *problems)
 {
-    char dirs[32][1024];
-    int nd = search_dirs(NULL, dirs, 32);
-    vrg_diag quiet = {.out = stderr, .file = "plugins"};
-    for (int i = 0; i < nd; i++) {
-        DIR *dir = opendir(dirs[i]);
-        if (!dir)
-            continue;
+    search_path s;
+    search_path_build(&s, NULL, NULL);
+    FILE *devnull = problems ? NULL : fopen("/dev/null", "w");
+    vrg_diag diag = {.out = problems ? problems : devnull ? devnull : stderr, .file = "plugins"};
+    for (int i = 0; i < s.count; i++) {
+        DIR *dir = opendir(s.dirs[i].path);
         struct dirent *e;
-        while ((e = readdir(dir))) {
+        while (dir && (e = readdir(dir))) {
             size_t len = strlen(e->d_name);
-            if (len < 4 || strcmp(e->d_name + len - 3, ".so") != 0 || len - 3 >= VRG_NAME_MAX)
+            if (len < 4 || strcmp(e->d_name + len - 3, ".so") != 0)
                 continue;
             char name[VRG_NAME_MAX];
-            snprintf(name, sizeof name, "%.*s", (int)(len - 3), e->d_name);
-            int known = 0;
-            for (int k = 0; k < loaded_count; k++)
-                known |= strcmp(loaded[k].name, name) == 0;
-            if (!known) {
-                /* A broken plugin on the path is reported, not fatal, here. */
-                FILE *devnull = fopen("/dev/null", "w");
-                quiet.out = devnull ? devnull : stderr;
-                vrg_plugin_load(name, NULL, &quiet, 0);
-                if (devnull)
-                    fclose(devnull);
+            if (len - 3 >= VRG_NAME_MAX) {
+                vrg_error(&diag, "%s/%s: the name is longer than %d characters, so no graph can name it", s.dirs[i].path, e->d_name, VRG_NAME_MAX - 1);
+                continue;
             }
+            snprintf(name, sizeof name, "%.*s", (int)(len - 3), e->d_name);
+            char file[VRG_PATH_MAX + VRG_NAME_MAX + 8];
+            /* only the file the search order picks for this name */
+            if (search_path_find(&s, name, 0, file, sizeof file) == i)
+                vrg_plugin_load(name, NULL, NULL, &diag, 0);
         }
-        closedir(dir);
+        if (dir)
+            closedir(dir);
     }
+    free(s.dirs);
+    if (devnull)
+        fclose(devnull);
     int n = 0;
-    for (int i = 0; i < loaded_count && n < max; i++)
-        if (loaded[i].name[0] && newest(loaded[i].name, 0) == &loaded[i]) /* current versions only */
-            out[n++] = &loaded[i];
-    qsort(out, (size_t)n, sizeof *out, by_name);
+    for (int i = 0; i < loaded_count; i++)
+        if (loaded[i].name[0] && newest(loaded[i].source, 1) == &loaded[i]) { /* current versions only */
+            if (n < max)
+                out[n] = &loaded[i];
+            n++;
+        }
+    qsort(out, (size_t)(n < max ? n : max), sizeof *out, by_name);
     return n;
 }
 
-int vrg_list_plugins(const vrg_plugin_desc **descs, const char **paths, int max)
+int vrg_list_plugins(const vrg_plugin_desc **descs, const char **paths, int max, FILE *problems)
 {
     const vrg_plugin *list[VRG_MAX_PLUGINS];
-    int n = vrg_plugin_list(list, max < VRG_MAX_PLUGINS ? max : VRG_MAX_PLUGINS);
-    for (int i = 0; i < n; i++) {
+    int n = vrg_plugin_list(list, VRG_MAX_PLUGINS, problems);
+    for (int i = 0; i < n && i < max && i < VRG_MAX_PLUGINS; i++) {
         descs[i] = list[i]->desc;
-        paths[i] = list[i]->path;
+        paths[i] = list[i]->source;
     }
     return n;
+}
+
+int vrg_find_plugin(const char *name, FILE *diag, const vrg_plugin_desc **desc, const char **path)
+{
+    vrg_diag d = {.out = diag ? diag : stderr, .file = "plugins"};
+    /* a graph's own plugin_path is that graph's: this answers for the
+     * search path every graph shares */
+    const vrg_plugin *p = vrg_plugin_load(name, NULL, NULL, &d, 0);
+    if (!p)
+        return -1;
+    *desc = p->desc;
+    *path = p->source;
+    return 0;
 }

@@ -151,7 +151,9 @@ int vrg_record_frame(vrg_graph *g)
         p->stat_count = 0; /* figures are this frame's */
         p->cmd = cmd;
         double t0 = now_ms();
+        vrg_running before = vrg_running_enter("execute", p->name, p->plugin);
         p->plugin->desc->execute(p, cmd);
+        vrg_running_leave(before);
         g->pass_cpu_ms[g->schedule[k]] = now_ms() - t0;
         p->cmd = VK_NULL_HANDLE;
         failed |= p->failed;

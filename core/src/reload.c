@@ -122,8 +122,14 @@ static void carry_state(vrg_graph *old, vrg_graph *g)
             if (strcmp(p->name, q->name) != 0 || strcmp(p->plugin->name, q->plugin->name) != 0 || !p->created || !q->created)
                 continue;
             if (p->plugin->desc->save_state && q->plugin->desc->restore_state) {
+                vrg_running before = vrg_running_enter("save_state", p->name, p->plugin);
                 size_t n = p->plugin->desc->save_state(p, state, sizeof state);
-                if (n <= sizeof state && q->plugin->desc->restore_state(q, state, n) != 0)
+                vrg_running_enter("restore_state", q->name, q->plugin);
+                int rc = n <= sizeof state ? q->plugin->desc->restore_state(q, state, n) : 0;
+                vrg_running_leave(before);
+                if (n > sizeof state)
+                    vrg_pass_error(q, "save_state() returned %zu bytes, more than the %zu it was given: the pass starts afresh", n, sizeof state);
+                else if (rc != 0)
                     vrg_pass_error(q, "restore_state() failed: the pass starts afresh");
             }
         }

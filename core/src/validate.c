@@ -2,6 +2,7 @@
 /* Phase 2, validate: give the parsed keys meaning. Loads plugins, resolves
  * slots to resources, and runs every check, collecting all errors (each with
  * file:line and a hint) instead of stopping at the first. */
+#include <sys/stat.h>
 #include <ctype.h>
 #include <math.h>
 #include <stdlib.h>
@@ -202,9 +203,31 @@ static sec_kind section_kind(const char *name, const char **arg)
     return SEC_UNKNOWN;
 }
 
-static void graph_section(vrg_graph *g, const vrg_ast *a, int si)
+/* Every folder of plugin_path must exist: a typo would otherwise show up
+ * only as "unknown plugin" for each pass. */
+static void check_plugin_path(vrg_graph *g, const vrg_key *k, const char *graph_path)
 {
-    static const char *known = "name, output, width, height, seed, fps";
+    const char *slash = graph_path ? strrchr(graph_path, '/') : NULL;
+    for (const char *p = k->value; *p;) {
+        const char *c = strchr(p, ':');
+        int len = c ? (int)(c - p) : (int)strlen(p);
+        char dir[VRG_PATH_MAX];
+        if (p[0] == '/' || !slash)
+            snprintf(dir, sizeof dir, "%.*s", len, p);
+        else
+            snprintf(dir, sizeof dir, "%.*s/%.*s", (int)(slash - graph_path), graph_path, len, p);
+        struct stat st;
+        if (len == 0)
+            vrg_error_at(&g->diag, k->line, "folders separated by ':', relative to the graph file", "'plugin_path' has an empty entry");
+        else if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode))
+            vrg_error_at(&g->diag, k->line, "folders separated by ':', relative to the graph file", "plugin_path: '%.*s' (%s) is not a folder", len, p, dir);
+        p = c ? c + 1 : p + len;
+    }
+}
+
+static void graph_section(vrg_graph *g, const vrg_ast *a, int si, const char *graph_path)
+{
+    static const char *known = "name, output, width, height, seed, fps, plugin_path";
     for (int i = 0; i < a->key_count; i++) {
         const vrg_key *k = &a->keys[i];
         if (k->section_index != si || repeated_key(g, a, i))
@@ -232,7 +255,9 @@ static void graph_section(vrg_graph *g, const vrg_ast *a, int si)
                 vrg_error_at(&g->diag, k->line, "frames per second of simulated time", "'fps = %s' must be > 0", k->value);
             else
                 g->fps = v;
-        } else
+        } else if (strcmp(k->name, "plugin_path") == 0)
+            check_plugin_path(g, k, graph_path);
+        else
             vrg_error_at(&g->diag, k->line, known, "unknown key '%s' in [graph]", k->name);
     }
 }
@@ -447,6 +472,15 @@ static int find_pass(const vrg_graph *g, const char *name)
     return -1;
 }
 
+/* [graph] plugin_path: needed before any plugin loads, so read here. */
+static const char *graph_plugin_path(const vrg_ast *a)
+{
+    for (int i = 0; i < a->key_count; i++)
+        if (strcmp(a->keys[i].name, "plugin_path") == 0 && strcmp(a->sections[a->keys[i].section_index].name, "graph") == 0)
+            return a->keys[i].value;
+    return NULL;
+}
+
 /* First pass: the sections themselves, plugins, and pass identities. */
 static void collect_sections(vrg_graph *g, const vrg_ast *a, const char *graph_path, int *graph_si, int *camera_si)
 {
@@ -526,7 +560,7 @@ static void collect_sections(vrg_graph *g, const vrg_ast *a, const char *graph_p
             vrg_error_at(&g->diag, sec->line, "add 'plugin = NAME' (`voxrg plugins` lists them)", "[%s] has no plugin", sec->name);
             continue;
         }
-        const vrg_plugin *pl = vrg_plugin_load(plugin_key->value, graph_path, &g->diag, plugin_key->line);
+        const vrg_plugin *pl = vrg_plugin_load(plugin_key->value, graph_path, graph_plugin_path(a), &g->diag, plugin_key->line);
         if (!pl)
             continue;
         if (kind == SEC_PASS && pl->desc->kind == VRG_PLUGIN_SCENE) {
@@ -834,7 +868,7 @@ int vrg_validate(vrg_graph *g, const vrg_ast *ast, const vrg_graph_desc *desc)
     if (camera_si >= 0)
         camera_section(g, ast, camera_si);
     if (graph_si >= 0)
-        graph_section(g, ast, graph_si);
+        graph_section(g, ast, graph_si, desc->path);
     else
         vrg_error_at(&g->diag, 1, "start the file with [graph] and 'output = RESOURCE'", "the graph has no [graph] section, so no output");
     for (int si = 0; si < ast->section_count; si++) {
@@ -850,7 +884,12 @@ int vrg_validate(vrg_graph *g, const vrg_ast *ast, const vrg_graph_desc *desc)
     apply_overrides(g, desc);
     for (int i = 0; i < g->pass_count; i++) {
         vrg_pass *p = &g->passes[i];
-        if (p->plugin && p->plugin->desc->check && p->plugin->desc->check(p) != 0 && !p->failed)
+        if (!p->plugin || !p->plugin->desc->check)
+            continue;
+        vrg_running before = vrg_running_enter("check", p->name, p->plugin);
+        int rc = p->plugin->desc->check(p);
+        vrg_running_leave(before);
+        if (rc != 0 && !p->failed)
             vrg_pass_error(p, "its check() failed");
     }
     default_outputs(g);

@@ -186,8 +186,15 @@ vrg_world *vrg_graph_world(const vrg_graph *g);
 /* 1 if the named pass was culled. -1 if no such pass. */
 int vrg_graph_pass_culled(const vrg_graph *g, const char *pass);
 
-/* Plugins on the search path, sorted by name, with their file paths. */
-int vrg_list_plugins(const vrg_plugin_desc **descs, const char **paths, int max);
+/* Plugins on the search path, sorted by name, with their file paths;
+ * returns how many there are (if more than max, the first max are filled).
+ * A file on the path that does not load is reported to `problems` (NULL:
+ * not reported). */
+int vrg_list_plugins(const vrg_plugin_desc **descs, const char **paths, int max, FILE *problems);
+/* The plugin NAME as a graph without plugin_path would load it: 0 with its
+ * descriptor and file, or -1 after writing why to `diag` (the folders
+ * searched, or why the file found did not load). */
+int vrg_find_plugin(const char *name, FILE *diag, const vrg_plugin_desc **desc, const char **path);
 const char *vrg_format_label(VkFormat f);
 const char *vrg_access_label(vrg_access a);
 
