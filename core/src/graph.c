@@ -668,7 +668,16 @@ int vrg_graph_placement(const vrg_graph *g, const char *name, int *block, uint64
 }
 
 vrg_world *vrg_graph_world(const vrg_graph *g) { return g->world; }
-void vrg_graph_set_camera(vrg_graph *g, const vrg_camera *c) { g->camera = *c; }
+int vrg_graph_set_camera(vrg_graph *g, const vrg_camera *c)
+{
+    if (!vrg_camera_position_in_world(c->position)) {
+        vrg_error(&g->diag, "vrg_graph_set_camera: camera->position (%g, %g, %g) is outside the world: each coordinate lies in [%g, %g] (VRG_WORLD_LIMIT)",
+                  c->position[0], c->position[1], c->position[2], -VRG_WORLD_LIMIT, VRG_WORLD_LIMIT);
+        return -1;
+    }
+    g->camera = *c;
+    return 0;
+}
 const vrg_camera *vrg_graph_camera(const vrg_graph *g) { return &g->camera; }
 double vrg_graph_frame_seconds(const vrg_graph *g) { return 1.0 / g->fps; }
 

@@ -80,8 +80,10 @@ void vrg_graph_reset_history(vrg_graph *g);
 /* The next frame's index (random sequences, simulated time), so that a
  * frame can be rendered alike however it is reached; history restarts. */
 void vrg_graph_set_frame_index(vrg_graph *g, uint64_t index);
-/* The camera for the next frame (the previous one becomes prev_camera). */
-void vrg_graph_set_camera(vrg_graph *g, const vrg_camera *camera);
+/* The camera for the next frame (the previous one becomes prev_camera).
+ * Returns 0, or -1 after an error naming the parameter when the position is
+ * not finite or outside the world (VRG_WORLD_LIMIT); the camera then stays. */
+int vrg_graph_set_camera(vrg_graph *g, const vrg_camera *camera);
 const vrg_camera *vrg_graph_camera(const vrg_graph *g);
 /* Simulated seconds per frame (1 / [graph] fps). */
 double vrg_graph_frame_seconds(const vrg_graph *g);
