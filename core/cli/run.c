@@ -594,7 +594,7 @@ int vrg_cli_run(const vrg_run_options *o)
     window_state w = {.speed = 8.0f, .divider = 0.5f, .shown = -1};
     uint32_t next = 0;
     const char **exts = glfwGetRequiredInstanceExtensions(&next);
-    vrg_context_desc cd = {.validate = o->validate, .device = o->device, .instance_extensions = exts, .instance_extension_count = next,
+    vrg_context_desc cd = {.validate = o->validate, .device = o->device, .gpu_timeout_s = o->gpu_timeout_s, .instance_extensions = exts, .instance_extension_count = next,
                            .swapchain = 1};
     int rc = 1;
     vrg_graph *g = NULL, *gb = NULL;
@@ -815,6 +815,7 @@ int vrg_cli_run(const vrg_run_options *o)
     }
     vrg_camera_path_free(&path);
 out:
+    vrg_cli_exit_if_gpu_busy(w.ctx, rc);
     if (w.dev) {
         vkDeviceWaitIdle(w.dev->device);
         vrg_graph_destroy(g);
