@@ -10,7 +10,7 @@ target_include_directories(test_camera PRIVATE ${PROJECT_SOURCE_DIR}/core/includ
 target_link_libraries(test_camera PRIVATE m)
 # shipped_paths reads graphs/paths/*.path from the source tree
 target_compile_definitions(test_camera PRIVATE VRG_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
-foreach(case projection path_keys path_errors sun shipped_paths)
+foreach(case projection path_keys path_errors world_range sun shipped_paths)
   add_test(NAME camera_${case} COMMAND test_camera ${case})
   set_tests_properties(camera_${case} PROPERTIES LABELS "camera" TIMEOUT 120)
 endforeach()

@@ -17,7 +17,7 @@ vrg_use_fast_malloc(test_runtime)
 target_compile_definitions(test_runtime PRIVATE TEST_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
 set(VRG_LOADER_DIR ${CMAKE_CURRENT_BINARY_DIR}/loader_plugins)
 file(MAKE_DIRECTORY ${VRG_LOADER_DIR})
-foreach(case chain history history_cleared accumulate accumulate_count pingpong pingpong_alias alias buffer buffer_texels scene loader validation_live blocks_world blocks_trace terrain_world terrain_trace atlas traversal_errors rayquery gbuffer_normals gbuffer_motion backends_agree light_floor light_wall light_half_res svgf_disocclusion svgf_mse svgf_history_reset svgf_variance svgf_edge accumulate_mean svgf_atrous_options svgf_size_mismatch dispatch_shape hot_reload_shader hot_reload_graph hot_reload_plugin capture_replay soak set_param light_penumbra light_corner light_chain)
+foreach(case chain history history_cleared accumulate accumulate_count pingpong pingpong_alias alias buffer buffer_texels scene loader validation_live blocks_world blocks_trace terrain_world terrain_trace atlas traversal_errors camera_range rayquery gbuffer_normals gbuffer_motion backends_agree light_floor light_wall light_half_res svgf_disocclusion svgf_mse svgf_history_reset svgf_variance svgf_edge accumulate_mean svgf_atrous_options svgf_size_mismatch dispatch_shape hot_reload_shader hot_reload_graph hot_reload_plugin capture_replay soak set_param light_penumbra light_corner light_chain)
   add_test(NAME runtime_${case} COMMAND test_runtime ${case})
   # 77: skipped (e.g. no VK_KHR_ray_query on this device), reported as such
   set_tests_properties(runtime_${case} PROPERTIES ENVIRONMENT "${VRG_TEST_ENV};VOXRG_PLUGIN_PATH=${VRG_LOADER_DIR}" TIMEOUT 300 SKIP_RETURN_CODE 77)
@@ -80,6 +80,15 @@ if(VOXRG_FUZZ)
   target_link_libraries(fuzz_plugin_desc PRIVATE voxrg m)
   add_test(NAME fuzz_plugin_desc COMMAND ${CMAKE_COMMAND} -E env ${VRG_TEST_ENV} $<TARGET_FILE:fuzz_plugin_desc> -runs=200000 -max_len=2048)
   set_tests_properties(fuzz_plugin_desc PROPERTIES TIMEOUT 600)
+  # camera paths: the parser and the curve, seeded with the shipped paths
+  add_executable(fuzz_camera_path fuzz_camera_path.c)
+  target_compile_options(fuzz_camera_path PRIVATE -fsanitize=fuzzer)
+  target_link_options(fuzz_camera_path PRIVATE -fsanitize=fuzzer)
+  target_link_libraries(fuzz_camera_path PRIVATE voxrg m)
+  set(FUZZ_PATH_CORPUS ${CMAKE_CURRENT_BINARY_DIR}/fuzz_path_corpus)
+  add_test(NAME fuzz_camera_path
+           COMMAND sh -c "mkdir -p ${FUZZ_PATH_CORPUS} && cp ${PROJECT_SOURCE_DIR}/graphs/paths/*.path ${FUZZ_PATH_CORPUS}/ && $<TARGET_FILE:fuzz_camera_path> -runs=20000 -max_len=2048 -timeout=10 ${FUZZ_PATH_CORPUS}")
+  set_tests_properties(fuzz_camera_path PROPERTIES TIMEOUT 300)
 endif()
 
 # The loader's checks of plugin descriptors, case by case (no device).

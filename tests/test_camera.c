@@ -362,6 +362,36 @@ static void expect_errors(const char *text, const char *const *expected, int n_e
     CHECK(errors == n_expected && hints == n_expected, "%d errors, %d hints, want %d:\n%s", errors, hints, n_expected, out);
 }
 
+/* The world's range: positions are checked, conversions to int cannot
+ * overflow, and a path's curve stays inside even where it overshoots keys. */
+static int test_world_range(void)
+{
+    float inside[3] = {VRG_WORLD_LIMIT, -VRG_WORLD_LIMIT, 0}, outside[3] = {0, 3e9f, 0}, nan_pos[3] = {0, NAN, 0};
+    CHECK(vrg_camera_position_in_world(inside), "the limit itself is in the world");
+    CHECK(!vrg_camera_position_in_world(outside), "3e9 is in the world");
+    CHECK(!vrg_camera_position_in_world(nan_pos), "NaN is in the world");
+    CHECK(vrg_world_floor(3e9f) == (int)VRG_WORLD_LIMIT, "floor(3e9) = %d", vrg_world_floor(3e9f));
+    CHECK(vrg_world_floor(-INFINITY) == -(int)VRG_WORLD_LIMIT, "floor(-inf) = %d", vrg_world_floor(-INFINITY));
+    CHECK(vrg_world_floor(NAN) == 0, "floor(NaN) = %d", vrg_world_floor(NAN));
+    CHECK(vrg_world_floor(-2.5f) == -3, "floor(-2.5) = %d", vrg_world_floor(-2.5f));
+    /* a quick turn at the edge: Catmull-Rom overshoots the middle key */
+    char text[256];
+    snprintf(text, sizeof text, "0 0 0 0 0 0\n10 %.1f 0 0 0 0\n10.01 %.1f 0 0 0 0\n", (double)VRG_WORLD_LIMIT, (double)VRG_WORLD_LIMIT);
+    vrg_camera_path p;
+    CHECK(vrg_camera_path_parse("edge.path", text, &p, NULL) == 0, "edge path refused");
+    float most = 0;
+    for (int i = 0; i <= 1000; i++) {
+        vrg_camera c;
+        vrg_camera_default(&c);
+        vrg_camera_path_eval(&p, 9.0f + (float)i * 0.002f, &c);
+        CHECK(vrg_camera_position_in_world(c.position), "t %g: x %g left the world", 9.0 + i * 0.002, c.position[0]);
+        most = c.position[0] > most ? c.position[0] : most;
+    }
+    CHECK(most == VRG_WORLD_LIMIT, "the curve did not reach the edge (%g)", most);
+    vrg_camera_path_free(&p);
+    return 0;
+}
+
 static int test_path_errors(void)
 {
     struct {
@@ -378,6 +408,12 @@ static int test_path_errors(void)
         {"0 0 0 0 0 0\n1 0 0 0 0 0\n1 0 0 0 0 0\n", {"bad.path:3: error: time 1 is not after 1 (the keyframe on line 2)"}},
         {"5 0 0 0 0 0\n\n; c\n2 0 0 0 0 0\n", {"bad.path:4: error: time 2 is not after 5 (the keyframe on line 1)"}},
         {"0 0 0 0 0 95\n", {"bad.path:1: error: pitch 95 is outside [-89, 89]"}},
+        /* numbers as graph files read them: decimal only */
+        {"0 0 0 0 0 0\n0x10 0 0 0 0 0\n", {"bad.path:2: error: '0x10' is not a decimal number"}},
+        {"0 0 0 0 0 0\n1 0 0 0 0x1p2 0\n", {"bad.path:2: error: '0x1p2' is not a decimal number"}},
+        /* positions within the world (VRG_WORLD_LIMIT) */
+        {"0 0 40 0 0 0\n1 3e9 40 0 0 0\n", {"bad.path:2: error: position 3e+09 40 0 is outside the world"}},
+        {"0 0 40 -1048577 0 0\n", {"bad.path:1: error: position 0 40 -1.04858e+06 is outside the world"}},
         {"", {"bad.path:1: error: no keyframes"}},
         {"# only comments\n\n; and blanks\n   \n", {"bad.path:1: error: no keyframes"}},
         /* every bad line is reported, and an order check skips bad lines */
@@ -572,7 +608,7 @@ int main(int argc, char **argv)
     static const struct {
         const char *name;
         int (*fn)(void);
-    } cases[] = {{"projection", test_projection}, {"path_keys", test_path_keys}, {"path_errors", test_path_errors},
+    } cases[] = {{"projection", test_projection}, {"path_keys", test_path_keys}, {"path_errors", test_path_errors}, {"world_range", test_world_range},
                  {"sun", test_sun},               {"shipped_paths", test_shipped_paths}};
     if (argc != 2) {
         fprintf(stderr, "usage: test_camera CASE\n");

@@ -185,6 +185,40 @@ assert any("thesis.ini pass atrous GPU" in n for n in names["frame"]), names["fr
 PY
 then ok; else bad "bench --smoke JSON complete"; fi
 
+# --camera: paths refuse what graph files refuse (hex) and positions
+# outside the world, naming FILE:LINE
+printf '0 0 40 0 0 0\n0x2 0 40 0 0 0\n' >"$out/hex.path"
+expect_rc 1 "render --camera hex path" "$voxrg" render "$tests/graphs/blocks_wall.ini" --camera "$out/hex.path" --out "$out/badcam"
+has "$out/stderr" "hex\.path:2: error: '0x2' is not a decimal number" "hex path message"
+printf '0 0 40 0 0 0\n1 3e9 40 0 0 0\n' >"$out/far.path"
+expect_rc 1 "render --camera far path" "$voxrg" render "$tests/graphs/blocks_wall.ini" --camera "$out/far.path" --out "$out/badcam"
+has "$out/stderr" "far\.path:2: error: position 3e\+09 40 0 is outside the world" "far path message"
+expect_rc 2 "bad --gpu-timeout" "$voxrg" render "$tests/graphs/spin.ini" --gpu-timeout 0x10
+has "$out/stderr" "--gpu-timeout .0x10.: expected seconds > 0" "--gpu-timeout message"
+VOXRG_GPU_TIMEOUT=soon expect_rc 1 "bad VOXRG_GPU_TIMEOUT" "$voxrg" render "$tests/graphs/spin.ini"
+has "$out/stderr" "VOXRG_GPU_TIMEOUT='soon': expected seconds > 0" "VOXRG_GPU_TIMEOUT message"
+
+# A shader that never ends (spin.ini): the spin pass ends when its count
+# reaches stop, which by default it never does. `timeout` turns a
+# regression into a failure instead of a hang.
+expect_rc 0 "spin with an end" "$voxrg" render "$tests/graphs/spin.ini" --validate --set spin.stop=3 --out "$out/spin"
+start=$(date +%s)
+expect_rc 1 "render past --gpu-timeout" timeout -s KILL 60 "$voxrg" render "$tests/graphs/spin.ini" --validate --gpu-timeout 1 --out "$out/spin"
+[ $(($(date +%s) - start)) -le 30 ] && ok || bad "--gpu-timeout 1 took $(($(date +%s) - start)) s"
+has "$out/stderr" "frame 0: pass 'spin' \(plugin spin\) has run for more than 1 s on the GPU" "timeout names the pass"
+# without a timeout SIGINT ends it: sent once the device line is out and the
+# frame had time to reach the GPU
+timeout -s KILL 60 "$voxrg" render "$tests/graphs/spin.ini" --validate --out "$out/spin" 2>"$out/stderr" &
+spin_pid=$!
+for _ in $(seq 100); do grep -q "voxrg: device" "$out/stderr" && break; sleep 0.1; done
+sleep 3
+start=$(date +%s)
+kill -INT $spin_pid
+wait $spin_pid; rc=$?
+[ "$rc" -ne 0 ] && [ "$rc" -ne 137 ] && ok || bad "SIGINT during a GPU hang: exit $rc, want non-zero (137: killed by the watchdog)"
+[ $(($(date +%s) - start)) -le 10 ] && ok || bad "SIGINT took $(($(date +%s) - start)) s to end the run"
+has "$out/stderr" "frame 0: interrupted after .* pass 'spin' \(plugin spin\) still running" "SIGINT names the pass"
+
 # run: the window under Xvfb, a screenshot through the program's own option
 env -u DISPLAY "$voxrg" run "$tests/graphs/blocks_wall.ini" --frames 2 >"$out/stdout" 2>"$out/stderr"
 [ $? -eq 1 ] && ok || bad "run without a display exits 1"

@@ -891,6 +891,35 @@ static void test_traversal_errors(void)
     vrg_graph_destroy(g);
 }
 
+/* vrg_graph_set_camera refuses a position outside the world, naming the
+ * parameter, and keeps the camera it had (check-only: no device needed). */
+static void test_camera_range(void)
+{
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *diag = open_memstream(&buf, &len);
+    const char *text = "[graph]\noutput = g\nwidth = 8\nheight = 8\n[camera]\nposition = 1 40 2\n"
+                       "[pass gen]\nplugin = pattern\nout.color = g\n";
+    vrg_graph_desc d = {.path = "camera.ini", .text = text, .diag = diag};
+    vrg_graph *g = NULL;
+    CHECK(vrg_graph_load(NULL, &d, &g) == 0, "graph not loaded");
+    if (g) {
+        vrg_camera far = *vrg_graph_camera(g), nan_cam = far, edge = far;
+        far.position[0] = 3e9f;
+        nan_cam.position[2] = NAN;
+        edge.position[1] = -VRG_WORLD_LIMIT;
+        CHECK(vrg_graph_set_camera(g, &far) == -1, "3e9 accepted");
+        CHECK(vrg_graph_set_camera(g, &nan_cam) == -1, "NaN accepted");
+        CHECK(vrg_graph_camera(g)->position[0] == 1 && vrg_graph_camera(g)->position[2] == 2, "a refused camera was kept");
+        CHECK(vrg_graph_set_camera(g, &edge) == 0, "the world's edge refused");
+        CHECK(vrg_graph_camera(g)->position[1] == -VRG_WORLD_LIMIT, "the camera at the edge was not kept");
+        vrg_graph_destroy(g);
+    }
+    fclose(diag);
+    CHECK(buf && strstr(buf, "vrg_graph_set_camera: camera->position (3e+09, 40, 2) is outside the world"), "message:\n%s", buf ? buf : "");
+    free(buf);
+}
+
 static const char *gbuffer_reads[] = {"gbuffer.position", "gbuffer.depth", "gbuffer.normal", "gbuffer.ids", "gbuffer.motion"};
 
 /* Normals are unit axis vectors and equal the CPU pick ray's face; ids and
@@ -2194,7 +2223,7 @@ int main(int argc, char **argv)
         {"accumulate_count", test_accumulate_count, 1}, {"validation_live", test_validation_live, 1},
         {"blocks_world", test_blocks_world, 1}, {"blocks_trace", test_blocks_trace, 1}, {"terrain_world", test_terrain_world, 1},
         {"terrain_trace", test_terrain_trace, 1},
-        {"atlas", test_atlas, 1},         {"traversal_errors", test_traversal_errors, 0},
+        {"atlas", test_atlas, 1},         {"traversal_errors", test_traversal_errors, 0}, {"camera_range", test_camera_range, 0},
         {"gbuffer_normals", test_gbuffer_normals, 1}, {"gbuffer_motion", test_gbuffer_motion, 1},
         {"light_floor", test_light_floor, 1},         {"light_wall", test_light_wall, 1},
         {"svgf_disocclusion", test_svgf_disocclusion, 1}, {"svgf_mse", test_svgf_mse, 1},

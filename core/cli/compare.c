@@ -767,6 +767,7 @@ int vrg_cli_compare(int argc, char **argv)
         free(r.reference_shown[s]);
     free_result(&r);
     vrg_camera_path_free(&path);
+    vrg_cli_exit_if_gpu_busy(ctx, rc);
     vrg_context_destroy(ctx);
     return rc;
 }

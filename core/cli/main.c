@@ -42,7 +42,7 @@ static const char *usage_check =
 static const char *usage_render =
     "usage: voxrg render GRAPH [--frames N] [--size WxH] [--out DIR] [--set PASS.PARAM=VALUE]...\n"
     "                          [--camera PATH] [--dump RES[,RES...]] [--json FILE] [--validate] [--watch]\n"
-    "                          [--sequence] [--interval MS] [--device NAME|INDEX]\n"
+    "                          [--sequence] [--interval MS] [--gpu-timeout S] [--device NAME|INDEX]\n"
     "Renders N frames (default 1) headless and writes DIR/OUTPUT.png (default DIR: out),\n"
     "plus DIR/RES.png for each dumped image (DIR/RES.bin for buffers). --json writes\n"
     "per-pass GPU timings. --camera plays a camera path (graphs/paths/*.path) at the\n"
@@ -56,7 +56,10 @@ static const char *usage_render =
     "--sequence writes every frame as DIR/NAME-NNNNN.png (output and dumps, each file\n"
     "complete when it appears), --interval paces frames to at least MS apart, and\n"
     "--frames 0 renders until interrupted: with --watch, a script's edit loop.\n"
-    "SIGINT or SIGTERM ends the run after the current frame, writing the files.\n";
+    "SIGINT or SIGTERM ends the run after the current frame, writing the files; a frame\n"
+    "the GPU does not finish within a second of the signal fails instead (exit 1, naming\n"
+    "the pass that was running). --gpu-timeout fails a frame whose GPU work takes more\n"
+    "than S seconds, naming the pass (default: $VOXRG_GPU_TIMEOUT, else 120).\n";
 
 static const char *usage_plugins =
     "usage: voxrg plugins [NAME]\n"
@@ -72,7 +75,7 @@ typedef struct options {
     int dump_count;
     char dump_buf[4096];
     uint32_t width, height, frames; /* frames 0: until interrupted */
-    double interval_ms;
+    double interval_ms, gpu_timeout_s;
     int validate, no_device, help, watch, sequence;
 } options;
 
@@ -87,7 +90,7 @@ static int usage_error(const char *usage, const char *fmt, const char *arg)
 
 static int is_valued_option(const char *a)
 {
-    static const char *valued[] = {"--dot", "--out", "--json", "--device", "--set", "--size", "--frames", "--dump", "--camera", "--screenshot", "--ab", "--record", "--show", "--interval"};
+    static const char *valued[] = {"--dot", "--out", "--json", "--device", "--set", "--size", "--frames", "--dump", "--camera", "--screenshot", "--ab", "--record", "--show", "--interval", "--gpu-timeout"};
     for (size_t i = 0; i < sizeof valued / sizeof valued[0]; i++)
         if (!strcmp(a, valued[i]))
             return 1;
@@ -155,6 +158,9 @@ static int parse_options(int argc, char **argv, options *o, const char *usage)
             if (*end || !(ms >= 0 && ms <= 60000))
                 return usage_error(usage, "--interval '%s': expected milliseconds in 0..60000", next);
             o->interval_ms = ms;
+        } else if (!strcmp(a, "--gpu-timeout")) {
+            if (vrg_cli_parse_seconds(next, &o->gpu_timeout_s) != 0)
+                return usage_error(usage, "--gpu-timeout '%s': expected seconds > 0", next);
         } else if (!strcmp(a, "--dump")) {
             size_t used = strlen(o->dump_buf);
             snprintf(o->dump_buf + used, sizeof o->dump_buf - used, "%s%s", used ? "," : "", next);
@@ -176,7 +182,7 @@ static int load(const options *o, vrg_context **ctx, vrg_graph **g)
 {
     *ctx = NULL;
     if (!o->no_device) {
-        vrg_context_desc cd = {.validate = o->validate, .device = o->device};
+        vrg_context_desc cd = {.validate = o->validate, .device = o->device, .gpu_timeout_s = o->gpu_timeout_s};
         if (vrg_context_create(&cd, ctx) != 0)
             return 1;
     }
@@ -198,6 +204,7 @@ static int load(const options *o, vrg_context **ctx, vrg_graph **g)
 
 static int finish(vrg_context *ctx, vrg_graph *g, int rc)
 {
+    vrg_cli_exit_if_gpu_busy(ctx, rc);
     vrg_graph_destroy(g);
     if (ctx && vrg_context_validation_errors(ctx)) {
         fprintf(stderr, "error: %u validation message%s (see above)\n", vrg_context_validation_errors(ctx),
@@ -330,6 +337,7 @@ static void on_interrupt(int sig)
 {
     (void)sig;
     interrupted = 1;
+    vrg_interrupt(); /* a frame the GPU does not finish soon fails */
 }
 
 /* Sleeps until `start_ms` + `interval_ms` (frame pacing for --interval). */
@@ -366,7 +374,8 @@ static int cmd_render(int argc, char **argv)
     int isatty_err = isatty(2);
     if (o.watch && vrg_graph_watch(g, 1) != 0)
         return finish(ctx, g, 1);
-    /* Ctrl-C or a script's kill: finish the frame, write the files */
+    /* Ctrl-C or a script's kill: finish the frame (if the GPU does so within
+     * VRG_INTERRUPT_GRACE_S), write the files */
     interrupted = 0;
     struct sigaction sa = {.sa_handler = on_interrupt}, old_int, old_term;
     sigaction(SIGINT, &sa, &old_int);
@@ -448,7 +457,7 @@ static int cmd_render(int argc, char **argv)
 static const char *usage_run =
     "usage: voxrg run GRAPH [--ab GRAPH_B] [--size WxH] [--frames N] [--set PASS.PARAM=VALUE]...\n"
     "                       [--camera PATH] [--record PATH] [--show RESOURCE] [--screenshot FILE] [--validate]\n"
-    "                       [--device NAME|INDEX]\n"
+    "                       [--gpu-timeout S] [--device NAME|INDEX]\n"
     "Renders GRAPH in a window until it is closed (or for N frames), presenting its output.\n"
     "W/A/S/D move, Space up, Shift down, hold the right mouse button to look around,\n"
     "scroll or +/- change the speed, T starts or stops the day cycle, [ and ] step the\n"
@@ -483,7 +492,7 @@ static int cmd_run(int argc, char **argv)
                          .show = o.show,
                          .sets = o.sets,
                          .set_count = (uint32_t)o.set_count, .width = o.width ? o.width : 960, .height = o.height ? o.height : 540,
-                         .frames = frames_given ? o.frames : 0, .validate = o.validate};
+                         .frames = frames_given ? o.frames : 0, .validate = o.validate, .gpu_timeout_s = o.gpu_timeout_s};
     return vrg_cli_run(&r);
 }
 

@@ -169,6 +169,10 @@ static int create_swapchain(window_state *w, VkSwapchainKHR old)
     return 0;
 }
 
+/* Blocks per second: a speed that grew to infinity would make 0 * inf = NaN
+ * of a still axis; at the top the world is crossed in a second. */
+static float capped_speed(float speed) { return speed > VRG_WORLD_LIMIT ? VRG_WORLD_LIMIT : speed; }
+
 /* W/A/S/D move, Space up, Shift down, right mouse button held: look,
  * scroll or +/-: speed. */
 static void fly(window_state *w, vrg_camera *cam, float dt)
@@ -186,8 +190,9 @@ static void fly(window_state *w, vrg_camera *cam, float dt)
     for (int i = 0; i < 3; i++)
         move[i] = f * fwd[i] + r * right[i];
     move[1] += u;
+    /* the camera stops at the world's edge (vrg_graph_set_camera refuses beyond) */
     for (int i = 0; i < 3; i++)
-        cam->position[i] += move[i] * w->speed * dt;
+        cam->position[i] = vrg_world_clamp(cam->position[i] + move[i] * w->speed * dt);
     int look = glfwGetMouseButton(win, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
     double mx, my;
     glfwGetCursorPos(win, &mx, &my);
@@ -213,7 +218,7 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
     else if (key == GLFW_KEY_F12 || key == GLFW_KEY_P)
         w->screenshot_requested = 1;
     else if (key == GLFW_KEY_EQUAL || key == GLFW_KEY_KP_ADD)
-        w->speed *= 1.5f;
+        w->speed = capped_speed(w->speed * 1.5f);
     else if (key == GLFW_KEY_MINUS || key == GLFW_KEY_KP_SUBTRACT)
         w->speed /= 1.5f;
     else if (key == GLFW_KEY_T)
@@ -236,7 +241,7 @@ static void on_scroll(GLFWwindow *win, double dx, double dy)
 {
     (void)dx;
     window_state *w = glfwGetWindowUserPointer(win);
-    w->speed *= dy > 0 ? 1.25f : 0.8f;
+    w->speed = capped_speed(w->speed * (dy > 0 ? 1.25f : 0.8f));
 }
 
 static vrg_graph *both_graphs(vrg_graph *a, vrg_graph *b, int k) { return k ? b : a; }
@@ -589,7 +594,7 @@ int vrg_cli_run(const vrg_run_options *o)
     window_state w = {.speed = 8.0f, .divider = 0.5f, .shown = -1};
     uint32_t next = 0;
     const char **exts = glfwGetRequiredInstanceExtensions(&next);
-    vrg_context_desc cd = {.validate = o->validate, .device = o->device, .instance_extensions = exts, .instance_extension_count = next,
+    vrg_context_desc cd = {.validate = o->validate, .device = o->device, .gpu_timeout_s = o->gpu_timeout_s, .instance_extensions = exts, .instance_extension_count = next,
                            .swapchain = 1};
     int rc = 1;
     vrg_graph *g = NULL, *gb = NULL;
@@ -810,6 +815,7 @@ int vrg_cli_run(const vrg_run_options *o)
     }
     vrg_camera_path_free(&path);
 out:
+    vrg_cli_exit_if_gpu_busy(w.ctx, rc);
     if (w.dev) {
         vkDeviceWaitIdle(w.dev->device);
         vrg_graph_destroy(g);

@@ -11,6 +11,7 @@ typedef struct vrg_run_options {
     uint32_t width, height; /* window size */
     uint32_t frames;        /* 0: until the window closes */
     int validate;
+    double gpu_timeout_s;   /* 0: the default (vrg_context_desc) */
 } vrg_run_options;
 /* `voxrg run`: returns the exit status. */
 int vrg_cli_run(const vrg_run_options *o);

@@ -7,6 +7,27 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
+#include "voxrg/voxrg.h"
+
+void vrg_cli_exit_if_gpu_busy(const vrg_context *ctx, int rc)
+{
+    if (!vrg_context_gpu_busy(ctx))
+        return;
+    fflush(NULL);
+    _exit(rc ? rc : 1);
+}
+
+int vrg_cli_parse_seconds(const char *s, double *out)
+{
+    char *end;
+    double v = strtod(s, &end);
+    /* decimal only, as graph files */
+    if (end == s || *end || strpbrk(s, "xX") || !(v > 0) || v > 1e9)
+        return -1;
+    *out = v;
+    return 0;
+}
 
 double vrg_cli_now_ms(void)
 {

@@ -14,4 +14,11 @@ int vrg_cli_mkdir_p(const char *dir);
 const char *vrg_cli_json_str(const char *s, char *buf, size_t cap);
 /* The whole file, NUL-terminated (malloc'd), or NULL. */
 char *vrg_cli_read_text(const char *path);
+/* After a GPU wait gave up (vrg_context_gpu_busy): flushes every stream
+ * and ends the process with rc (1 if 0) without exit's handlers, which could
+ * block on or touch the busy driver. Returns otherwise. */
+struct vrg_context;
+void vrg_cli_exit_if_gpu_busy(const struct vrg_context *ctx, int rc);
+/* --gpu-timeout SECONDS -> 0, else -1. */
+int vrg_cli_parse_seconds(const char *s, double *out);
 #endif

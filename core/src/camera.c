@@ -17,6 +17,23 @@ void vrg_camera_default(vrg_camera *c)
 
 static double clampd(double v, double lo, double hi) { return v < lo ? lo : v > hi ? hi : v; }
 
+int vrg_camera_position_in_world(const float p[3])
+{
+    for (int a = 0; a < 3; a++)
+        if (!(fabsf(p[a]) <= VRG_WORLD_LIMIT)) /* NaN fails too */
+            return 0;
+    return 1;
+}
+
+float vrg_world_clamp(float v)
+{
+    if (v != v)
+        return 0.0f;
+    return v < -VRG_WORLD_LIMIT ? -VRG_WORLD_LIMIT : v > VRG_WORLD_LIMIT ? VRG_WORLD_LIMIT : v;
+}
+
+int vrg_world_floor(float v) { return (int)floorf(vrg_world_clamp(v)); }
+
 /* Pitch at exactly +-90 would make forward parallel to +y and the right
  * vector undefined; NaN angles become 0 so a bad value cannot poison the
  * matrices. */

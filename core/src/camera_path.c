@@ -40,6 +40,11 @@ static int parse_field(const char *s, size_t len, float *value, char *msg, size_
         snprintf(msg, msg_size, "'%s' is not a number", buf);
         return -1;
     }
+    /* decimal only, as graph files (validate.c): strtod also takes hex */
+    if (strpbrk(buf, "xX")) {
+        snprintf(msg, msg_size, "'%s' is not a decimal number", buf);
+        return -1;
+    }
     /* strtod accepts "nan" and "inf", and a finite double can overflow float */
     if (!isfinite(v) || !isfinite((float)v)) {
         snprintf(msg, msg_size, "'%s' is not a finite number", buf);
@@ -87,6 +92,13 @@ static int parse_line(const char *name, int line, const char *s, const char *e, 
     if (v[5] < -89.0f || v[5] > 89.0f) {
         snprintf(msg, sizeof msg, "pitch %g is outside [-89, 89]", v[5]);
         error_at(diag, name, line, "the camera cannot look straight up or down", msg);
+        return -1;
+    }
+    if (!vrg_camera_position_in_world(&v[1])) {
+        char hint_world[96];
+        snprintf(msg, sizeof msg, "position %g %g %g is outside the world", v[1], v[2], v[3]);
+        snprintf(hint_world, sizeof hint_world, "x, y and z lie in [%g, %g] (VRG_WORLD_LIMIT)", -VRG_WORLD_LIMIT, VRG_WORLD_LIMIT);
+        error_at(diag, name, line, hint_world, msg);
         return -1;
     }
     *key = (vrg_camera_key){v[0], {v[1], v[2], v[3]}, v[4], v[5]};
@@ -209,10 +221,17 @@ static void key_values(const vrg_camera_key *k, double yaw, double v[CH])
     v[4] = k->pitch;
 }
 
+/* The curve can overshoot keys at the world's edge; a double beyond float's
+ * range must not reach the conversion either. */
+static float world_clamp(double v)
+{
+    return v != v ? 0.0f : v < -VRG_WORLD_LIMIT ? -VRG_WORLD_LIMIT : v > VRG_WORLD_LIMIT ? VRG_WORLD_LIMIT : (float)v;
+}
+
 static void write_camera(const double v[CH], vrg_camera *c)
 {
     for (int i = 0; i < 3; i++)
-        c->position[i] = (float)v[i];
+        c->position[i] = world_clamp(v[i]);
     c->yaw = (float)v[3];
     c->pitch = (float)(v[4] < -89.0 ? -89.0 : v[4] > 89.0 ? 89.0 : v[4]);
 }

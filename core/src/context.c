@@ -5,7 +5,10 @@
 #include <ctype.h>
 #include <dlfcn.h>
 #include <link.h>
+#include <math.h>
+#include <signal.h>
 #include <stdlib.h>
+#include <time.h>
 #include <string.h>
 #include "internal.h"
 
@@ -342,12 +345,75 @@ static int pin_library(struct dl_phdr_info *info, size_t size, void *user)
 }
 #endif
 
+/* The one place the GPU timeout's default is resolved: the desc, then the
+ * environment, then VRG_GPU_TIMEOUT_DEFAULT_S. */
+static int resolve_gpu_timeout(const vrg_context_desc *desc, double *out)
+{
+    if (!(desc->gpu_timeout_s >= 0) || !isfinite(desc->gpu_timeout_s)) {
+        fprintf(stderr, "error: vrg_context_desc.gpu_timeout_s = %g: expected seconds > 0 (0: the default)\n", desc->gpu_timeout_s);
+        return -1;
+    }
+    *out = VRG_GPU_TIMEOUT_DEFAULT_S;
+    const char *env = getenv("VOXRG_GPU_TIMEOUT");
+    if (desc->gpu_timeout_s > 0)
+        *out = desc->gpu_timeout_s;
+    else if (env && *env) {
+        char *end;
+        double v = strtod(env, &end);
+        if (*end || strpbrk(env, "xX") || !(v > 0) || !isfinite(v)) {
+            fprintf(stderr, "error: VOXRG_GPU_TIMEOUT='%s': expected seconds > 0, e.g. 30\n", env);
+            return -1;
+        }
+        *out = v;
+    }
+    return 0;
+}
+
+static volatile sig_atomic_t interrupt_requested;
+void vrg_interrupt(void) { interrupt_requested = 1; }
+int vrg_context_gpu_busy(const vrg_context *ctx) { return ctx && ctx->gpu_busy; }
+
+static double seconds_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+vrg_wait_result vrg_wait_fence(vrg_context *ctx, VkFence fence, double *waited_s)
+{
+    /* slices short enough that an interrupt is seen at once */
+    const uint64_t slice_ns = 50u * 1000u * 1000u;
+    double start = seconds_now(), interrupted_at = -1;
+    for (;;) {
+        VkResult r = vkWaitForFences(ctx->dev.device, 1, &fence, VK_TRUE, slice_ns);
+        double now = seconds_now();
+        *waited_s = now - start;
+        if (r == VK_SUCCESS)
+            return VRG_WAIT_DONE;
+        if (r != VK_TIMEOUT)
+            return VRG_WAIT_FAILED;
+        if (interrupt_requested && interrupted_at < 0)
+            interrupted_at = now;
+        int interrupted = interrupted_at >= 0 && now - interrupted_at >= VRG_INTERRUPT_GRACE_S;
+        if (interrupted || *waited_s >= ctx->gpu_timeout_s) {
+            ctx->gpu_busy = 1;
+            return interrupted ? VRG_WAIT_INTERRUPTED : VRG_WAIT_TIMEOUT;
+        }
+    }
+}
+
 int vrg_context_create(const vrg_context_desc *desc, vrg_context **out)
 {
     vrg_context_desc defaults = {0};
     if (!desc)
         desc = &defaults;
+    *out = NULL;
+    double timeout;
+    if (resolve_gpu_timeout(desc, &timeout) != 0)
+        return -1;
     vrg_context *ctx = calloc(1, sizeof *ctx);
+    ctx->gpu_timeout_s = timeout;
     ctx->validate = desc->validate;
     ctx->want_swapchain = desc->swapchain;
     *out = NULL;
@@ -394,7 +460,8 @@ int vrg_context_create(const vrg_context_desc *desc, vrg_context **out)
 
 void vrg_context_destroy(vrg_context *ctx)
 {
-    if (!ctx)
+    /* the device still runs work that may never end: waiting would block */
+    if (!ctx || ctx->gpu_busy)
         return;
     if (ctx->dev.device) {
         vkDeviceWaitIdle(ctx->dev.device);

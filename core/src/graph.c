@@ -78,8 +78,10 @@ static int readback_buffer(vrg_graph *g)
         VkDeviceSize bytes = r->kind == VRG_IMAGE ? (VkDeviceSize)r->width * r->height * vrg_format_bytes(r->format) : r->size;
         size += (bytes + 15) / 16 * 16;
     }
-    if (!size)
-        return 0;
+    /* then a word per scheduled pass the GPU sets when the pass is done:
+     * the host reads which one runs while a frame is late (record.c) */
+    g->progress_offset = size;
+    size += 4 * VRG_MAX_PASSES;
     VkBufferCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = size, .usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT};
     VkMemoryRequirements req = {0};
     int type = -1;
@@ -163,6 +165,10 @@ int vrg_graph_load(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph **out
 void vrg_graph_destroy(vrg_graph *g)
 {
     if (!g)
+        return;
+    /* the GPU may still be running this graph's work and never stop:
+     * nothing it uses can be freed (vrg_context_gpu_busy) */
+    if (g->ctx && g->ctx->gpu_busy)
         return;
     vrg_watch_destroy(g->watch);
     if (g->ctx) {
@@ -310,6 +316,10 @@ int vrg_graph_frame(vrg_graph *g)
         vrg_error(&g->diag, "graph '%s' has no device resources (loaded without a context)", g->name);
         return -1;
     }
+    if (g->ctx->gpu_busy) { /* the command buffer may still be executing */
+        vrg_error(&g->diag, "graph '%s': the GPU is still busy with a frame that timed out or was interrupted", g->name);
+        return -1;
+    }
     if (g->watch)
         apply_reloads(g);
     int rc = vrg_record_frame(g);
@@ -384,6 +394,10 @@ int vrg_graph_resize(vrg_graph *g, uint32_t width, uint32_t height)
 {
     if (!width || !height || width > 16384 || height > 16384) {
         vrg_error(&g->diag, "resize to %ux%u: sizes are 1..16384", width, height);
+        return -1;
+    }
+    if (g->ctx && g->ctx->gpu_busy) {
+        vrg_error(&g->diag, "resize: the GPU is still busy with a frame that timed out or was interrupted");
         return -1;
     }
     if (g->ctx)
@@ -677,7 +691,16 @@ int vrg_graph_placement(const vrg_graph *g, const char *name, int *block, uint64
 }
 
 vrg_world *vrg_graph_world(const vrg_graph *g) { return g->world; }
-void vrg_graph_set_camera(vrg_graph *g, const vrg_camera *c) { g->camera = *c; }
+int vrg_graph_set_camera(vrg_graph *g, const vrg_camera *c)
+{
+    if (!vrg_camera_position_in_world(c->position)) {
+        vrg_error(&g->diag, "vrg_graph_set_camera: camera->position (%g, %g, %g) is outside the world: each coordinate lies in [%g, %g] (VRG_WORLD_LIMIT)",
+                  c->position[0], c->position[1], c->position[2], -VRG_WORLD_LIMIT, VRG_WORLD_LIMIT);
+        return -1;
+    }
+    g->camera = *c;
+    return 0;
+}
 const vrg_camera *vrg_graph_camera(const vrg_graph *g) { return &g->camera; }
 double vrg_graph_frame_seconds(const vrg_graph *g) { return 1.0 / g->fps; }
 

@@ -54,6 +54,8 @@ struct vrg_context {
     uint32_t pixel_tile[2];   /* VRG_TILE_W/H: the pixels of a group of a pixel loop (pixel.glsl) */
     uint32_t pixel_rows;      /* VRG_PIXEL_ROWS: tile rows per invocation of a pixel loop */
     int want_swapchain;       /* vrg_context_desc.swapchain */
+    double gpu_timeout_s;     /* resolved: desc, $VOXRG_GPU_TIMEOUT or the default */
+    int gpu_busy;             /* a wait gave up: the device never idles (vrg_context_gpu_busy) */
     struct {
         PFN_vkCreateAccelerationStructureKHR create;
         PFN_vkDestroyAccelerationStructureKHR destroy;
@@ -62,6 +64,11 @@ struct vrg_context {
         PFN_vkGetAccelerationStructureDeviceAddressKHR address;
     } as;
 };
+/* Waits for fence in short slices, giving up after the context's GPU
+ * timeout or an interrupt (vrg_interrupt) plus its grace; either marks the
+ * device busy. *waited_s: the seconds waited. */
+typedef enum { VRG_WAIT_DONE, VRG_WAIT_TIMEOUT, VRG_WAIT_INTERRUPTED, VRG_WAIT_FAILED } vrg_wait_result;
+vrg_wait_result vrg_wait_fence(vrg_context *ctx, VkFence fence, double *waited_s);
 void vrg_name_object(vrg_context *ctx, VkObjectType type, uint64_t handle, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
 int vrg_find_memory_type(const vrg_context *ctx, uint32_t bits, VkMemoryPropertyFlags want);
 
@@ -307,6 +314,7 @@ struct vrg_graph {
     VkDeviceSize readback_size;
     void *readback_map;
     VkDeviceSize readback_offset[VRG_MAX_RESOURCES];
+    VkDeviceSize progress_offset; /* in the readback buffer: a word per scheduled pass, 1 once it ended */
     int frame_done;
     vrg_world *world;         /* the scene's, for host queries */
     vrg_camera camera;        /* for the next frame */

@@ -102,6 +102,52 @@ static void read_timestamps(vrg_graph *g)
         g->pass_ms[g->schedule[k]] = (double)(ts[2 * k + 1] - ts[2 * k]) * ns * 1e-6;
 }
 
+/* After scheduled pass k: its progress word is set once everything before
+ * has run. Not timestamps: lavapipe's vkGetQueryPoolResults waits for the
+ * device to idle, so a late frame's queries cannot be read. */
+static void mark_done(vrg_graph *g, VkCommandBuffer cmd, int k)
+{
+    VkMemoryBarrier2 after = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+        .srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+        .dstStageMask = VK_PIPELINE_STAGE_2_CLEAR_BIT,
+    };
+    VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1, .pMemoryBarriers = &after};
+    vkCmdPipelineBarrier2(cmd, &dep);
+    vkCmdFillBuffer(cmd, g->readback_buffer, g->progress_offset + 4 * (VkDeviceSize)k, 4, 1);
+}
+
+/* The scheduled pass still running on the GPU: the first whose progress
+ * word is unset; -1 if every pass ended (the frame's copies are what runs). */
+static int running_pass(const vrg_graph *g)
+{
+    const volatile uint32_t *done = (const volatile uint32_t *)((const uint8_t *)g->readback_map + g->progress_offset);
+    for (int k = 0; k < g->schedule_count; k++)
+        if (!done[k])
+            return g->schedule[k];
+    return -1;
+}
+
+static void report_stuck(vrg_graph *g, vrg_wait_result wr, double waited_s)
+{
+    unsigned long long frame = (unsigned long long)g->frame.frame_index;
+    if (wr == VRG_WAIT_FAILED) {
+        vrg_error(&g->diag, "frame %llu: waiting for the GPU failed (device lost?)", frame);
+        return;
+    }
+    int k = running_pass(g);
+    char what[VRG_NAME_MAX * 2 + 32];
+    if (k >= 0)
+        snprintf(what, sizeof what, "pass '%s' (plugin %s)", g->passes[k].name, g->passes[k].plugin->name);
+    else
+        snprintf(what, sizeof what, "%s", "the frame's final copies");
+    if (wr == VRG_WAIT_TIMEOUT)
+        vrg_error(&g->diag, "frame %llu: %s has run for more than %g s on the GPU (the limit: --gpu-timeout or $VOXRG_GPU_TIMEOUT)", frame, what,
+                  g->ctx->gpu_timeout_s);
+    else
+        vrg_error(&g->diag, "frame %llu: interrupted after %.1f s on the GPU, %s still running", frame, waited_s, what);
+}
+
 static double now_ms(void)
 {
     struct timespec ts;
@@ -159,18 +205,25 @@ int vrg_record_frame(vrg_graph *g)
         failed |= p->failed;
         if (g->queries)
             vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, g->queries, (uint32_t)(2 * k + 1));
+        mark_done(g, cmd, k);
     }
     copy_readbacks(g, cmd);
     vkEndCommandBuffer(cmd);
     VkCommandBufferSubmitInfo cbi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = cmd};
     VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cbi};
     vkResetFences(dev, 1, &g->fence);
+    /* the host's writes are visible to the submission (coherent memory) */
+    memset((uint8_t *)g->readback_map + g->progress_offset, 0, 4 * (size_t)g->schedule_count);
     VkResult res = vkQueueSubmit2(g->ctx->dev.queue, 1, &si, g->fence);
     g->cpu_ms = now_ms() - start;
-    if (res == VK_SUCCESS)
-        res = vkWaitForFences(dev, 1, &g->fence, VK_TRUE, UINT64_MAX);
     if (res != VK_SUCCESS) {
         vrg_error(&g->diag, "frame %llu: queue submission failed (%d)", (unsigned long long)g->frame.frame_index, res);
+        return -1;
+    }
+    double waited;
+    vrg_wait_result wr = vrg_wait_fence(g->ctx, g->fence, &waited);
+    if (wr != VRG_WAIT_DONE) {
+        report_stuck(g, wr, waited);
         return -1;
     }
     read_timestamps(g);

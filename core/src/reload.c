@@ -102,9 +102,9 @@ static int copy_history(vrg_graph *old, vrg_graph *g)
     VkCommandBufferSubmitInfo cbi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = cmd};
     VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cbi};
     vkResetFences(dev, 1, &g->fence);
-    if (vkQueueSubmit2(g->ctx->dev.queue, 1, &si, g->fence) != VK_SUCCESS ||
-        vkWaitForFences(dev, 1, &g->fence, VK_TRUE, UINT64_MAX) != VK_SUCCESS) {
-        vrg_error(&g->diag, "reload: copying history failed");
+    double waited;
+    if (vkQueueSubmit2(g->ctx->dev.queue, 1, &si, g->fence) != VK_SUCCESS || vrg_wait_fence(g->ctx, g->fence, &waited) != VRG_WAIT_DONE) {
+        vrg_error(&g->diag, "reload: copying history failed (or was interrupted)");
         return -1;
     }
     return 0;

@@ -262,6 +262,33 @@ static void graph_section(vrg_graph *g, const vrg_ast *a, int si, const char *gr
     }
 }
 
+/* Three decimal numbers (parse_double's rules) within the world. */
+static void camera_position(vrg_graph *g, const vrg_key *k, float out[3])
+{
+    char buf[sizeof k->value], *save = NULL;
+    snprintf(buf, sizeof buf, "%s", k->value);
+    double d[3];
+    int n = 0;
+    for (char *tok = strtok_r(buf, " \t", &save); tok; tok = strtok_r(NULL, " \t", &save), n++)
+        if (n >= 3 || parse_double(tok, &d[n]) != 0) {
+            n = -1;
+            break;
+        }
+    if (n != 3) {
+        vrg_error_at(&g->diag, k->line, "three decimal numbers: X Y Z in blocks", "'position = %s' is not a position", k->value);
+        return;
+    }
+    /* checked as doubles: one beyond float's range must not be converted */
+    if (!(fabs(d[0]) <= VRG_WORLD_LIMIT && fabs(d[1]) <= VRG_WORLD_LIMIT && fabs(d[2]) <= VRG_WORLD_LIMIT)) {
+        char hint[96];
+        snprintf(hint, sizeof hint, "X, Y and Z lie in [%g, %g] blocks (VRG_WORLD_LIMIT)", -VRG_WORLD_LIMIT, VRG_WORLD_LIMIT);
+        vrg_error_at(&g->diag, k->line, hint, "'position = %s' is outside the world", k->value);
+        return;
+    }
+    for (int a = 0; a < 3; a++)
+        out[a] = (float)d[a];
+}
+
 /* [camera]: where a still camera stands (--camera PATH or the host moves it). */
 static void camera_section(vrg_graph *g, const vrg_ast *a, int si)
 {
@@ -272,14 +299,9 @@ static void camera_section(vrg_graph *g, const vrg_ast *a, int si)
         if (k->section_index != si || repeated_key(g, a, i))
             continue;
         double v;
-        if (strcmp(k->name, "position") == 0) {
-            float p[3];
-            char extra;
-            if (sscanf(k->value, "%f %f %f %c", &p[0], &p[1], &p[2], &extra) != 3 || !isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
-                vrg_error_at(&g->diag, k->line, "three numbers: X Y Z in blocks", "'position = %s' is not a position", k->value);
-            else
-                memcpy(c->position, p, sizeof p);
-        } else if (strcmp(k->name, "yaw") == 0 || strcmp(k->name, "pitch") == 0 || strcmp(k->name, "fov") == 0) {
+        if (strcmp(k->name, "position") == 0)
+            camera_position(g, k, c->position);
+        else if (strcmp(k->name, "yaw") == 0 || strcmp(k->name, "pitch") == 0 || strcmp(k->name, "fov") == 0) {
             int is_pitch = k->name[0] == 'p', is_fov = k->name[0] == 'f';
             double lo = is_fov ? 1 : is_pitch ? -89 : -360, hi = is_fov ? 179 : is_pitch ? 89 : 360;
             char hint[64];

@@ -251,7 +251,8 @@ vrg_block vrg_world_block(const vrg_world *w, int x, int y, int z)
 int vrg_world_pick(const vrg_world *w, const float origin[3], const float dir_in[3], float max_distance, vrg_world_hit *hit)
 {
     float len = sqrtf(dir_in[0] * dir_in[0] + dir_in[1] * dir_in[1] + dir_in[2] * dir_in[2]);
-    if (!(len > 0))
+    /* outside the world no block exists, and its cells would not fit an int */
+    if (!(len > 0) || !vrg_camera_position_in_world(origin))
         return 0;
     float dir[3] = {dir_in[0] / len, dir_in[1] / len, dir_in[2] / len};
     int cell[3], step[3], normal[3] = {0, 0, 0};

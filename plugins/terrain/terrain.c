@@ -117,7 +117,8 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     scene *s = vrg_pass_user(pass);
     vrg_world *world = s->gpu.world;
     const vrg_camera *cam = &vrg_pass_frame(pass)->camera;
-    int cx = vrg_floor_div16((int)floorf(cam->position[0])), cz = vrg_floor_div16((int)floorf(cam->position[2]));
+    /* the runtime keeps cameras in the world; vrg_world_floor holds even if not */
+    int cx = vrg_floor_div16(vrg_world_floor(cam->position[0])), cz = vrg_floor_div16(vrg_world_floor(cam->position[2]));
     double t0 = now_ms();
     stream_update(s->stream, cx, cz, drop, world);
     if (s->wait)

@@ -38,6 +38,20 @@ typedef struct vrg_camera {
     float far_plane;   /* default 1000; <= near means near * 2 */
 } vrg_camera;
 
+/* The world's extent in blocks: every coordinate of a camera position (x, y
+ * and z) lies in [-VRG_WORLD_LIMIT, VRG_WORLD_LIMIT] (docs/world.md says why
+ * this value). Graph files, camera paths and vrg_graph_set_camera refuse
+ * positions outside it; a camera path's curve and `voxrg run`'s fly camera
+ * stop at its edge. */
+#define VRG_WORLD_LIMIT 1048576.0f
+/* 1 when all three coordinates are finite and within VRG_WORLD_LIMIT. */
+int vrg_camera_position_in_world(const float position[3]);
+/* v clamped to [-VRG_WORLD_LIMIT, VRG_WORLD_LIMIT]; NaN gives 0. */
+float vrg_world_clamp(float v);
+/* floor(v) as an int for any float: v is clamped to the world first, so a
+ * conversion can never be out of int's range. */
+int vrg_world_floor(float v);
+
 /* Origin, yaw 0, pitch 0 and the defaults above. */
 void vrg_camera_default(vrg_camera *c);
 /* Unit view direction (the formula above). */
@@ -63,7 +77,9 @@ void vrg_camera_ray(const vrg_camera *c, uint32_t width, uint32_t height, float 
  * A text file, one keyframe per line:  time x y z yaw pitch
  * (seconds, blocks, degrees), fields separated by spaces or tabs. '#' or ';'
  * starts a comment (to the end of the line); blank lines are ignored. Times
- * strictly increase; pitch is within [-89, 89]; at least one keyframe. */
+ * strictly increase; pitch is within [-89, 89]; x, y and z are within
+ * VRG_WORLD_LIMIT; at least one keyframe. Numbers are decimal, as in graph
+ * files: hexadecimal, "inf" and "nan" are refused. */
 typedef struct vrg_camera_key {
     float time, position[3], yaw, pitch;
 } vrg_camera_key;
@@ -76,7 +92,8 @@ typedef struct vrg_camera_path {
 
 /* Both return 0, or -1 after printing "NAME:LINE: error: message" and a
  * "  hint: ..." line to diag (NULL: stderr) for every bad line: wrong field
- * count, not a number, NaN/inf, pitch out of range, time not increasing; and
+ * count, not a number (hexadecimal included), NaN/inf, pitch out of range,
+ * a position outside the world, time not increasing; and
  * "NAME:1: error: ..." when there is no keyframe at all (load: "FILE: error:
  * cannot open/read camera path: why" when the file itself fails). On -1, *out holds no
  * keys (count 0, keys NULL) and needs no free; on 0, free it with
@@ -98,7 +115,8 @@ void vrg_camera_path_free(vrg_camera_path *p);
  * -340 (a step of exactly 180 turns +180: put a key in between to pick the
  * direction). The yaw written is that continuous value: at a key it equals
  * the file's yaw modulo 360 (exactly the file's value when consecutive file
- * yaws already differ by at most 180). Pitch is clamped to [-89, 89].
+ * yaws already differ by at most 180). Pitch is clamped to [-89, 89], and
+ * the position to VRG_WORLD_LIMIT (the curve can overshoot keys at the edge).
  * A NULL or empty path leaves *inout untouched. */
 void vrg_camera_path_eval(const vrg_camera_path *p, float time, vrg_camera *inout);
 /* Time of the last key (paths play from t = 0; a path whose first key is

@@ -22,7 +22,17 @@ typedef struct vrg_context_desc {
     const char *const *instance_extensions;
     uint32_t instance_extension_count;
     int swapchain;
+    /* Seconds one frame's GPU work may take before vrg_graph_frame gives up,
+     * naming the pass still running. 0: $VOXRG_GPU_TIMEOUT when set, else
+     * VRG_GPU_TIMEOUT_DEFAULT_S. */
+    double gpu_timeout_s;
 } vrg_context_desc;
+
+/* Generous for the slowest shipped graph (reference.ini) on a CPU device. */
+#define VRG_GPU_TIMEOUT_DEFAULT_S 120.0
+/* After vrg_interrupt, how long a GPU wait under way still lets its frame
+ * finish (so that an interrupted run can end after a complete frame). */
+#define VRG_INTERRUPT_GRACE_S 1.0
 
 /* Returns 0 and a context, or -1 after printing why to stderr. */
 int vrg_context_create(const vrg_context_desc *desc, vrg_context **out);
@@ -34,6 +44,17 @@ const vrg_device *vrg_context_device(const vrg_context *ctx);
 VkShaderModule vrg_compile_compute_shader(vrg_context *ctx, const char *path, const char *defines);
 /* Validation messages seen so far (each also printed to stderr). */
 uint32_t vrg_context_validation_errors(const vrg_context *ctx);
+/* Async-signal-safe (a SIGINT/SIGTERM handler may call it): every GPU wait
+ * of this process, the one under way and all later ones, gives up once the
+ * work has had VRG_INTERRUPT_GRACE_S more; that frame then fails, naming the
+ * pass that was running. There is no undoing it: the process is ending. */
+void vrg_interrupt(void);
+/* 1 once a GPU wait gave up (timeout or vrg_interrupt): the device still
+ * runs that work and waiting for it could block forever, so
+ * vrg_graph_destroy and vrg_context_destroy then leave the Vulkan objects
+ * (and the memory they hold) alone. The process should flush its output and
+ * end with _exit (exit's handlers could touch the busy driver). */
+int vrg_context_gpu_busy(const vrg_context *ctx);
 
 typedef struct vrg_graph_desc {
     const char *path;             /* the graph file (also used in messages) */
@@ -80,8 +101,10 @@ void vrg_graph_reset_history(vrg_graph *g);
 /* The next frame's index (random sequences, simulated time), so that a
  * frame can be rendered alike however it is reached; history restarts. */
 void vrg_graph_set_frame_index(vrg_graph *g, uint64_t index);
-/* The camera for the next frame (the previous one becomes prev_camera). */
-void vrg_graph_set_camera(vrg_graph *g, const vrg_camera *camera);
+/* The camera for the next frame (the previous one becomes prev_camera).
+ * Returns 0, or -1 after an error naming the parameter when the position is
+ * not finite or outside the world (VRG_WORLD_LIMIT); the camera then stays. */
+int vrg_graph_set_camera(vrg_graph *g, const vrg_camera *camera);
 const vrg_camera *vrg_graph_camera(const vrg_graph *g);
 /* Simulated seconds per frame (1 / [graph] fps). */
 double vrg_graph_frame_seconds(const vrg_graph *g);

@@ -83,7 +83,8 @@ typedef struct vrg_world_hit {
     float distance;  /* along dir (normalised) */
     vrg_block id;
 } vrg_world_hit;
-/* First non-air block along a ray (Amanatides-Woo DDA); 1 on a hit. */
+/* First non-air block along a ray (Amanatides-Woo DDA); 1 on a hit. An
+ * origin outside the world (VRG_WORLD_LIMIT) hits nothing. */
 int vrg_world_pick(const vrg_world *w, const float origin[3], const float dir[3], float max_distance, vrg_world_hit *hit);
 
 /* Records copies of changed chunks (at most what fits the staging ring)
