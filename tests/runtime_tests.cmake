@@ -106,6 +106,15 @@ foreach(case psnr ssim flip temporal colors)
   set_tests_properties(metrics_${case} PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}" LABELS "metrics")
 endforeach()
 
+# The writer of output files: a failed write keeps the old file, a commit
+# replaces it whole (no device).
+add_executable(test_output test_output.c)
+target_link_libraries(test_output PRIVATE voxrg)
+foreach(case full_disk commit dir_check)
+  add_test(NAME output_${case} COMMAND test_output ${case} WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+  set_tests_properties(output_${case} PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}")
+endforeach()
+
 # voxrg compare end to end (metrics, cache, report, errors); then the report
 # opened in headless Chromium.
 add_test(NAME compare COMMAND python3 ${CMAKE_CURRENT_SOURCE_DIR}/test_compare.py $<TARGET_FILE:voxrg_cli> ${PROJECT_SOURCE_DIR}

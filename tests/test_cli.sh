@@ -76,6 +76,77 @@ then ok; else bad "render JSON"; fi
 expect_rc 1 "dump of an unknown resource" "$voxrg" render "$tests/graphs/chain.ini" --dump nonesuch --out "$out/r2"
 has "$out/stderr" "nonesuch" "dump error names the resource"
 
+# output files: written whole or not at all, errors with the system's reason
+# (a full disk: /dev/full, or the file size limit where no device is
+# opened, since lavapipe's memory is a file that the limit caps too)
+if [ -c /dev/full ]; then
+    expect_rc 1 "check --dot on a full disk" "$voxrg" check "$tests/graphs/chain.ini" --no-device --dot /dev/full
+    has "$out/stderr" "cannot write /dev/full: No space left on device" "--dot full disk message"
+    expect_rc 1 "render --json on a full disk" "$voxrg" render "$tests/graphs/chain.ini" --size 40x24 --out "$out/full" --json /dev/full
+    has "$out/stderr" "cannot write /dev/full: No space left on device" "--json full disk message"
+    mkdir -p "$out/full_png" && ln -sf /dev/full "$out/full_png/final.png"
+    expect_rc 1 "render PNG on a full disk" "$voxrg" render "$tests/graphs/chain.ini" --size 40x24 --out "$out/full_png"
+    has "$out/stderr" "cannot write $out/full_png/final.png: No space left on device" "PNG full disk message"
+fi
+cp "$out/alias.dot" "$out/good.dot"
+(ulimit -f 0; trap '' XFSZ; exec "$voxrg" check "$tests/graphs/chain.ini" --no-device --dot "$out/good.dot") 2>&1 >/dev/null | cat >"$out/stderr"
+if [ "${PIPESTATUS[0]}" -eq 1 ]; then ok; else bad "check --dot past the file size limit: exit ${PIPESTATUS[0]}, want 1"; fi
+has "$out/stderr" "cannot write $out/good.dot: File too large" "--dot past the file size limit names the reason"
+if cmp -s "$out/alias.dot" "$out/good.dot"; then ok; else bad "a failed --dot write changed the old file"; fi
+if [ -z "$(find "$out" -maxdepth 1 -name '.*')" ]; then ok; else bad "temporary files left: $(find "$out" -maxdepth 1 -name '.*')"; fi
+# an unwritable --out or --json folder: found before the first frame
+: >"$out/a_file"
+expect_rc 1 "render --out under a file" "$voxrg" render "$tests/graphs/chain.ini" --frames 3 --size 40x24 --out "$out/a_file/r"
+has "$out/stderr" "$out/a_file/r: Not a directory" "--out message"
+if grep -q "frame 3/3" "$out/stderr"; then bad "--out checked only after rendering"; else ok; fi
+expect_rc 1 "render --json under a file" "$voxrg" render "$tests/graphs/chain.ini" --frames 3 --size 40x24 --out "$out/r3" --json "$out/a_file/r.json"
+has "$out/stderr" "cannot write in $out/a_file: Not a directory" "--json folder message"
+if grep -q "frame 3/3" "$out/stderr"; then bad "--json folder checked only after rendering"; else ok; fi
+# kill -9 during `render --sequence`: no temporary file left, every frame whole
+# (dumps too: more of each frame's time is spent writing files)
+mkdir -p "$out/killed"
+for run in 1 2 3 4 5; do
+    rm -f "$out/killed"/final-0000[0-4].png # the run's first frames: it has started writing once they are back
+    "$voxrg" render "$tests/graphs/chain.ini" --sequence --frames 0 --interval 0 --size 320x180 \
+        --dump gradient,blurred --out "$out/killed" >/dev/null 2>&1 &
+    for _ in $(seq 600); do [ -e "$out/killed/final-00001.png" ] && break; sleep 0.1; done
+    sleep "0.$((RANDOM % 10))$((RANDOM % 10))"
+    kill -9 $! && wait $! 2>/dev/null
+done
+if python3 - "$out/killed" <<'PY'
+import os, re, struct, sys, zlib
+names = sorted(os.listdir(sys.argv[1]))
+frames = [n for n in names if re.fullmatch(r"(final|gradient|blurred)-\d{5}\.png", n)]
+assert frames, names                                     # the runs got to write frames
+assert not [n for n in names if n not in frames], names  # no *.part, no hidden temporary files
+for n in frames:  # whole: every chunk's CRC right, IEND last, all the rows there
+    data, i, idat, kinds = open(os.path.join(sys.argv[1], n), "rb").read(), 8, b"", []
+    while i < len(data):
+        size, kind = struct.unpack(">I4s", data[i:i + 8])
+        body = data[i + 8:i + 8 + size]
+        assert zlib.crc32(kind + body) == struct.unpack(">I", data[i + 8 + size:i + 12 + size])[0], (n, kind)
+        idat += body if kind == b"IDAT" else b""
+        kinds.append(kind)
+        i += 12 + size
+    w, h = struct.unpack(">II", data[16:24])
+    assert kinds[-1] == b"IEND" and (w, h) == (320, 180) and len(zlib.decompress(idat)) == h * (w * 3 + 1), n
+print(len(frames), "frames whole")
+PY
+then ok; else bad "frames of killed --sequence runs"; fi
+# --json under a long run: per-frame lists of the last --json-frames frames, means of all
+expect_rc 2 "bad --json-frames" "$voxrg" render "$tests/graphs/chain.ini" --json-frames 0
+expect_rc 0 "render --json-frames" "$voxrg" render "$tests/graphs/chain.ini" --frames 6 --size 16x16 --json "$out/ring.json" --json-frames 4 --out "$out/ring"
+expect_rc 0 "render --json-frames above --frames" "$voxrg" render "$tests/graphs/chain.ini" --frames 6 --size 16x16 --json "$out/all.json" --json-frames 6 --out "$out/ring"
+if python3 - "$out/ring.json" "$out/all.json" <<'PY'
+import json, sys
+ring, full = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+assert ring["frames"] == 6 and ring["frames_dropped"] == 2, ring
+assert full["frames"] == 6 and full["frames_dropped"] == 0, full
+assert ring["passes"] and all(len(p["gpu_ms"]) == 4 for p in ring["passes"]), ring
+for p in full["passes"]:  # the means: every frame's, kept or not
+    assert len(p["gpu_ms"]) == 6 and abs(p["mean_gpu_ms"] - sum(p["gpu_ms"]) / 6) < 1e-3, p
+PY
+then ok; else bad "--json-frames"; fi
 # --validate: a validation message fails the run
 expect_rc 1 "render with a hazard under --validate" "$voxrg" render "$tests/graphs/hazard.ini" --validate --out "$out/hz"
 has "$out/stderr" "SYNC-HAZARD-WRITE.AFTER.WRITE" "sync validation names the hazard"

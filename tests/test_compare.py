@@ -10,6 +10,8 @@
   temporal error 0.
 - errors: another scene, another size, a missing reference, a variant with
   an unknown parameter: exit 1, a clear message, no report left behind.
+- names: variant names outside the safe set refused; graph names that
+  would overwrite the reference's frames or break metrics.csv handled.
 Usage: test_compare.py VOXRG SOURCE_DIR OUT_DIR"""
 import base64
 import html.parser
@@ -180,10 +182,47 @@ def errors():
               "%s: a report was left behind" % what)
 
 
+def names():
+    """Candidate names become file names under --out and CSV fields: a
+    variant's name outside the safe set is refused before any work; a
+    graph's name that is the reference's frames' is numbered, one with a
+    comma or a quote is quoted in metrics.csv."""
+    out = os.path.join(OUT, "names")
+    os.makedirs(out, exist_ok=True)
+    raw = os.path.join(GRAPHS, "raw.ini")
+    ref = os.path.join(GRAPHS, "reference.ini")
+    escape = os.path.join(OUT, "escaped")
+    for bad in ("reference", "../../escaped", 'a,"b', ".hidden", "x" * 64, "a b"):
+        rc, _, stderr = compare(raw, "--variant", bad + ":ao.rays=1", "--reference", ref, "--frames", "2", out=out)
+        check(rc == 2, "variant name %r: exit %d, want 2" % (bad, rc))
+        check(("--variant '%s:ao.rays=1': a name is 1 to 63 of A-Z a-z 0-9 _ - and dots" % bad) in stderr,
+              "variant name %r: message:\n%s" % (bad, stderr[-1000:]))
+    check(not os.path.exists(escape + "-00000.png") and not os.path.exists(os.path.join(out, "frames")), "a refused variant wrote frames")
+    graphs, small_world = [], lambda text: text.replace("radius      = 13", "radius      = 2")  # cheap to generate
+    for name in ("reference.ini", 'a,"b.ini'):
+        os.makedirs(os.path.join(out, str(len(graphs))), exist_ok=True)
+        graphs.append(os.path.join(out, str(len(graphs)), name))
+        open(graphs[-1], "w").write(small_world(open(raw).read()))
+    small_ref = os.path.join(out, "converged.ini")
+    open(small_ref, "w").write(small_world(open(ref).read()))
+    rc, _, stderr = compare(*graphs, "--variant", "v-1.b_2:ao.rays=1", "--reference", small_ref, "--ref-set", "converge.samples_per_frame=2",
+                            "--size", "32x18", "--frames", "2", "--warmup", "0", out=out)
+    if not check(rc == 0, "compare with odd graph names: exit %d\n%s" % (rc, stderr[-3000:])):
+        return
+    got = [c["name"] for c in json.load(open(os.path.join(out, "metrics.json")))["candidates"]]
+    check(got == ["reference-1", 'a,"b', "v-1.b_2"], "candidate names: %s" % got)
+    import csv
+    rows = list(csv.reader(open(os.path.join(out, "metrics.csv"), newline="")))
+    check(rows[0][0] == "candidate" and [r[0] for r in rows[1:]] == [n for n in got for _ in range(2)] and
+          all(len(r) == 7 for r in rows), "metrics.csv: %s" % rows)
+    frames = set(os.listdir(os.path.join(out, "frames")))
+    check({"reference-00000.png", "reference-1-00000.png", 'a,"b-00000.png', "v-1.b_2-00001.png"} <= frames, "frames/: %s" % sorted(frames))
+
+
 def main():
     shutil.rmtree(OUT, ignore_errors=True)
     os.makedirs(OUT)
-    for case in (errors, identical, e2e):
+    for case in (errors, names, identical, e2e):
         case()
         print("%s: done" % case.__name__, flush=True)
     print("compare: %s" % ("FAILED (%d)" % len(failures) if failures else "ok"))

@@ -71,6 +71,8 @@ int vrg_cli_bench(const vrg_bench_opts *o)
         fprintf(stderr, "error: --suite '%s': one of all, rays, graph, memory, terrain, reload, frame\n", o->suite);
         return 2;
     }
+    if (o->json && vrg_cli_out_file_dir(o->json) != 0) /* before the runs, not after */
+        return 1;
     vrg_context *ctx;
     vrg_context_desc cd = {.device = o->device};
     if (vrg_context_create(&cd, &ctx) != 0)
@@ -97,14 +99,11 @@ int vrg_cli_bench(const vrg_bench_opts *o)
     for (int i = 0; i < n; i++)
         printf("%-100s %10.3f %10.3f %10.3f %10.3f %s\n", figs[i].name, figs[i].median, figs[i].min, figs[i].max, figs[i].p99, figs[i].unit);
     if (rc == 0 && o->json) {
-        FILE *f = fopen(o->json, "w");
-        if (!f) {
-            fprintf(stderr, "error: cannot write %s\n", o->json);
+        vrg_output *out = vrg_output_open(o->json);
+        if (out)
+            write_json(vrg_output_stream(out), ctx, o, figs, of, n, lp, cpus);
+        if (!out || vrg_output_commit(out) != 0)
             rc = 1;
-        } else {
-            write_json(f, ctx, o, figs, of, n, lp, cpus);
-            fclose(f);
-        }
     }
     vrg_context_destroy(ctx);
     return rc;

@@ -8,6 +8,7 @@
  * reference frames, candidates, summaries, files. */
 #define _POSIX_C_SOURCE 200809L
 #include "compare.h"
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -22,6 +23,7 @@
 
 #define MAX_SETS 64
 #define MAX_GRAPHS 8
+#define RESERVED_NAME "reference" /* frames/reference-NNNNN.png */
 
 const char *const vrg_cmp_metric_names[VRG_CMP_METRICS] = {"psnr", "ssim", "flip", "temporal"};
 const char *const vrg_cmp_metric_labels[VRG_CMP_METRICS] = {"PSNR (dB)", "SSIM", "FLIP", "temporal error"};
@@ -84,6 +86,19 @@ static int parse_count(const char *s, uint32_t lo, uint32_t hi, uint32_t *out)
     return 0;
 }
 
+/* A variant's name becomes part of file names under --out
+ * (frames/NAME-NNNNN.png) and a CSV field: no path separators, no
+ * hidden names, nothing to quote, and not the reference's frames' name. */
+static int variant_name_ok(const char *name, size_t len)
+{
+    if (len < 1 || len > 63 || name[0] == '.' || name[len - 1] == '.')
+        return 0;
+    for (size_t i = 0; i < len; i++)
+        if (!isalnum((unsigned char)name[i]) && !strchr("_-.", name[i]))
+            return 0;
+    return !(len == strlen(RESERVED_NAME) && !strncmp(name, RESERVED_NAME, len));
+}
+
 static int parse_options(int argc, char **argv, options *o)
 {
     memset(o, 0, sizeof *o);
@@ -122,8 +137,11 @@ static int parse_options(int argc, char **argv, options *o)
             o->device = next;
         else if (!strcmp(a, "--variant")) {
             const char *colon = strchr(next, ':');
-            if (!colon || colon == next || !colon[1] || colon - next >= 64)
+            if (!colon || colon == next || !colon[1])
                 return usage_error("--variant '%s': expected NAME:PASS.PARAM=VALUE[,...]", next);
+            if (!variant_name_ok(next, (size_t)(colon - next)))
+                return usage_error("--variant '%s': a name is 1 to 63 of A-Z a-z 0-9 _ - and dots (not first or last), "
+                                   "and not 'reference'", next);
             if (o->variant_count == VRG_CMP_MAX_CANDIDATES)
                 return usage_error("too many --variant options (at most %s)", "16");
             o->variants[o->variant_count++] = next;
@@ -191,9 +209,15 @@ static int make_jobs(const options *o, job *jobs, vrg_cmp_result *r)
     for (int i = 0; i < o->graph_count; i++, n++) {
         jobs[n].graph = o->graphs[i];
         stem(o->graphs[i], r->cand[n].name, sizeof r->cand[n].name);
+        int taken = !strcmp(r->cand[n].name, RESERVED_NAME);
         for (int k = 0; k < n; k++) /* two graphs of one name: number them */
-            if (!strcmp(r->cand[k].name, r->cand[n].name))
-                snprintf(r->cand[n].name + strlen(r->cand[n].name), 16, "-%d", n + 1);
+            taken |= !strcmp(r->cand[k].name, r->cand[n].name);
+        if (taken) { /* the number kept whole, the stem cut if need be */
+            char *name = r->cand[n].name, suffix[16];
+            int len = snprintf(suffix, sizeof suffix, "-%d", n + 1);
+            size_t at = strlen(name) + len < sizeof r->cand[n].name ? strlen(name) : sizeof r->cand[n].name - 1 - len;
+            memcpy(name + at, suffix, (size_t)len + 1);
+        }
     }
     for (int v = 0; v < o->variant_count; v++, n++) {
         if (n == VRG_CMP_MAX_CANDIDATES) {
@@ -410,13 +434,11 @@ static int reference_frames(vrg_context *ctx, const options *o, const vrg_camera
             rc = -1;
         /* the PNG first, the deps (which make it valid) after */
         if (rc == 0 && vrg_png_write_rgb8(file, ref[k], r->width, r->height) == 0) {
-            char tmp[1300];
-            snprintf(tmp, sizeof tmp, "%s.tmp", deps);
-            manifest m = {.f = fopen(tmp, "w")};
-            if (m.f) {
+            vrg_output *out = vrg_output_open(deps);
+            if (out) { /* a cache entry that cannot be written is only not cached */
+                manifest m = {.f = vrg_output_stream(out)};
                 vrg_graph_sources(g, write_dep, &m);
-                if (fclose(m.f) == 0)
-                    rename(tmp, deps);
+                vrg_output_commit(out);
             }
         }
         progress("reference", k + 1, o->frames, tty);
@@ -569,51 +591,53 @@ static void num(FILE *f, double v, int json)
         fprintf(f, "%.9g", v);
 }
 
-static FILE *open_tmp(const char *dir, const char *name, char *tmp, char *final, size_t cap)
+/* a CSV field, quoted when it holds a separator, a quote or a line break
+ * (RFC 4180): graph names come from file names, which may */
+static void csv_field(FILE *f, const char *s)
 {
-    snprintf(final, cap, "%s/%s", dir, name);
-    snprintf(tmp, cap, "%s/.%s.tmp", dir, name);
-    FILE *f = fopen(tmp, "w");
-    if (!f)
-        fprintf(stderr, "error: cannot write %s: %s\n", tmp, strerror(errno));
-    return f;
-}
-
-static int close_tmp(FILE *f, const char *tmp, const char *final)
-{
-    if (fclose(f) != 0 || rename(tmp, final) != 0) {
-        fprintf(stderr, "error: cannot write %s: %s\n", final, strerror(errno));
-        remove(tmp);
-        return -1;
+    if (!s[strcspn(s, ",\"\r\n")]) {
+        fputs(s, f);
+        return;
     }
-    return 0;
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"')
+            fputc('"', f);
+        fputc(*s, f);
+    }
+    fputc('"', f);
 }
 
 static int write_csv(const char *dir, const vrg_cmp_result *r)
 {
-    char tmp[1200], final[1200];
-    FILE *f = open_tmp(dir, "metrics.csv", tmp, final, sizeof tmp);
-    if (!f)
+    char final[1200];
+    snprintf(final, sizeof final, "%s/metrics.csv", dir);
+    vrg_output *out = vrg_output_open(final);
+    if (!out)
         return -1;
+    FILE *f = vrg_output_stream(out);
     fprintf(f, "candidate,frame,warmup,psnr,ssim,flip,temporal\n");
     for (int i = 0; i < r->count; i++)
         for (uint32_t k = 0; k < r->frames; k++) {
-            fprintf(f, "%s,%u,%d", r->cand[i].name, k, k < r->warmup);
+            csv_field(f, r->cand[i].name);
+            fprintf(f, ",%u,%d", k, k < r->warmup);
             for (int m = 0; m < VRG_CMP_METRICS; m++) {
                 fputc(',', f);
                 num(f, r->cand[i].per_frame[m][k], 0);
             }
             fputc('\n', f);
         }
-    return close_tmp(f, tmp, final);
+    return vrg_output_commit(out);
 }
 
 static int write_json(const char *dir, const vrg_cmp_result *r)
 {
-    char tmp[1200], final[1200], e1[2100], e2[2100], e3[2100];
-    FILE *f = open_tmp(dir, "metrics.json", tmp, final, sizeof tmp);
-    if (!f)
+    char final[1200], e1[2100], e2[2100], e3[2100];
+    snprintf(final, sizeof final, "%s/metrics.json", dir);
+    vrg_output *out = vrg_output_open(final);
+    if (!out)
         return -1;
+    FILE *f = vrg_output_stream(out);
     fprintf(f, "{\n  \"reference\": {\"graph\": \"%s\", \"overrides\": \"%s\", \"frames_from_cache\": %u},\n",
             vrg_cli_json_str(r->reference, e1, sizeof e1), vrg_cli_json_str(r->reference_overrides, e2, sizeof e2), r->reference_cached);
     fprintf(f, "  \"camera\": %s%s%s,\n", r->camera ? "\"" : "", r->camera ? vrg_cli_json_str(r->camera, e1, sizeof e1) : "null",
@@ -647,7 +671,7 @@ static int write_json(const char *dir, const vrg_cmp_result *r)
         fputs("\n      ]}", f);
     }
     fputs("\n  ]\n}\n", f);
-    return close_tmp(f, tmp, final);
+    return vrg_output_commit(out);
 }
 
 static void print_summary(const vrg_cmp_result *r)
@@ -714,7 +738,7 @@ int vrg_cli_compare(int argc, char **argv)
         return 1;
     if (o.camera && vrg_camera_path_load(o.camera, &path, stderr) != 0)
         return 1;
-    if (vrg_cli_mkdir_p(frames_dir) != 0) {
+    if (vrg_cli_out_dir(o.out) != 0 || vrg_cli_out_dir(frames_dir) != 0) {
         vrg_camera_path_free(&path);
         return 1;
     }

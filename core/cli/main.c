@@ -19,6 +19,7 @@
 
 #define MAX_SETS 64
 #define MAX_DUMPS 32
+#define JSON_FRAMES_DEFAULT 4096 /* docs/graph-format.md */
 
 static const char *usage_main =
     "usage: voxrg COMMAND [options]\n"
@@ -42,10 +43,14 @@ static const char *usage_check =
 static const char *usage_render =
     "usage: voxrg render GRAPH [--frames N] [--size WxH] [--out DIR] [--set PASS.PARAM=VALUE]...\n"
     "                          [--camera PATH] [--dump RES[,RES...]] [--json FILE] [--validate] [--watch]\n"
-    "                          [--sequence] [--interval MS] [--gpu-timeout S] [--device NAME|INDEX]\n"
+    "                          [--sequence] [--interval MS] [--json-frames N] [--gpu-timeout S]\n"
+    "                          [--device NAME|INDEX]\n"
     "Renders N frames (default 1) headless and writes DIR/OUTPUT.png (default DIR: out),\n"
     "plus DIR/RES.png for each dumped image (DIR/RES.bin for buffers). --json writes\n"
-    "per-pass GPU timings. --camera plays a camera path (graphs/paths/*.path) at the\n"
+    "per-pass GPU timings: means over every frame, per-frame lists of the last N\n"
+    "frames (--json-frames, default 4096). Every file is written whole or not at\n"
+    "all, and DIR and the folder of --json are checked before the first frame.\n"
+    "--camera plays a camera path (graphs/paths/*.path) at the\n"
     "graph's fps. --validate turns on the Khronos validation layer with\n"
     "synchronization validation; any message fails the run. A graph that accumulates\n"
     "(the accumulate pass's samples_per_frame) gets that many graph frames per output\n"
@@ -75,6 +80,7 @@ typedef struct options {
     int dump_count;
     char dump_buf[4096];
     uint32_t width, height, frames; /* frames 0: until interrupted */
+    uint32_t json_frames;           /* per-frame timings kept for --json: the last N */
     double interval_ms, gpu_timeout_s;
     int validate, no_device, help, watch, sequence;
 } options;
@@ -90,7 +96,8 @@ static int usage_error(const char *usage, const char *fmt, const char *arg)
 
 static int is_valued_option(const char *a)
 {
-    static const char *valued[] = {"--dot", "--out", "--json", "--device", "--set", "--size", "--frames", "--dump", "--camera", "--screenshot", "--ab", "--record", "--show", "--interval", "--gpu-timeout"};
+    static const char *valued[] = {"--dot", "--out", "--json", "--device", "--set", "--size", "--frames", "--dump", "--camera",
+                                   "--screenshot", "--ab", "--record", "--show", "--interval", "--json-frames", "--gpu-timeout"};
     for (size_t i = 0; i < sizeof valued / sizeof valued[0]; i++)
         if (!strcmp(a, valued[i]))
             return 1;
@@ -101,6 +108,7 @@ static int parse_options(int argc, char **argv, options *o, const char *usage)
 {
     memset(o, 0, sizeof *o);
     o->frames = 1;
+    o->json_frames = JSON_FRAMES_DEFAULT;
     o->out = "out";
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
@@ -152,6 +160,12 @@ static int parse_options(int argc, char **argv, options *o, const char *usage)
             if (*end || n < 0 || n > 10000000)
                 return usage_error(usage, "--frames '%s': expected a positive integer (0: until interrupted)", next);
             o->frames = (uint32_t)n;
+        } else if (!strcmp(a, "--json-frames")) {
+            char *end;
+            long n = strtol(next, &end, 10);
+            if (*end || n < 1 || n > 1000000)
+                return usage_error(usage, "--json-frames '%s': expected 1 to 1000000 frames", next);
+            o->json_frames = (uint32_t)n;
         } else if (!strcmp(a, "--interval")) {
             char *end;
             double ms = strtod(next, &end);
@@ -227,109 +241,121 @@ static int cmd_check(int argc, char **argv)
         return finish(ctx, g, 1);
     vrg_graph_report(g, stdout);
     if (o.dot) {
-        FILE *f = fopen(o.dot, "w");
-        if (!f) {
-            fprintf(stderr, "error: cannot write %s: %s\n", o.dot, strerror(errno));
+        vrg_output *out = vrg_output_open(o.dot);
+        if (!out)
             return finish(ctx, g, 1);
-        }
-        vrg_graph_write_dot(g, f);
-        fclose(f);
+        vrg_graph_write_dot(g, vrg_output_stream(out));
+        if (vrg_output_commit(out) != 0)
+            return finish(ctx, g, 1);
     }
     return finish(ctx, g, 0);
 }
 
 
 /* DIR/NAME.png (or .bin for a buffer); with frame >= 0 DIR/NAME-NNNNN.png,
- * written under a temporary name and renamed, so that a script polling for
- * it never reads half a file, and not announced. */
+ * not announced. Every file appears complete (vrg_output), so a script
+ * polling for a frame never reads half a file. */
 static int write_resource(vrg_graph *g, const char *dir, const char *name, long frame)
 {
     char path[1200];
-    vrg_image_data img;
+    int rc;
     if (vrg_graph_resource_kind(g, name) == VRG_IMAGE) {
+        vrg_image_data img;
         if (vrg_graph_read(g, name, &img) != 0)
             return -1;
-        if (frame < 0) {
+        if (frame < 0)
             snprintf(path, sizeof path, "%s/%s.png", dir, name);
-            int rc = vrg_write_png(path, &img);
-            free(img.pixels);
-            if (rc == 0)
-                fprintf(stderr, "wrote %s\n", path);
-            return rc;
-        }
-        char tmp[1300];
-        snprintf(path, sizeof path, "%s/%s-%05ld.png", dir, name, frame);
-        snprintf(tmp, sizeof tmp, "%s.part", path);
-        int rc = vrg_write_png(tmp, &img);
+        else
+            snprintf(path, sizeof path, "%s/%s-%05ld.png", dir, name, frame);
+        rc = vrg_write_png(path, &img);
         free(img.pixels);
-        if (rc == 0 && rename(tmp, path) != 0) {
-            fprintf(stderr, "error: cannot rename %s to %s: %s\n", tmp, path, strerror(errno));
-            rc = -1;
-        }
-        return rc;
+    } else {
+        if (frame >= 0)
+            return 0; /* buffers: only at the end */
+        void *data;
+        uint64_t size;
+        if (vrg_graph_read_buffer(g, name, &data, &size) != 0)
+            return -1;
+        snprintf(path, sizeof path, "%s/%s.bin", dir, name);
+        rc = vrg_output_write(path, data, size);
+        free(data);
     }
-    if (frame >= 0)
-        return 0; /* buffers: only at the end */
-    void *data;
-    uint64_t size;
-    if (vrg_graph_read_buffer(g, name, &data, &size) != 0)
-        return -1;
-    snprintf(path, sizeof path, "%s/%s.bin", dir, name);
-    FILE *f = fopen(path, "wb");
-    int rc = f && fwrite(data, 1, size, f) == size ? 0 : -1;
-    if (f)
-        fclose(f);
-    free(data);
-    if (rc)
-        fprintf(stderr, "error: cannot write %s\n", path);
-    else
+    if (rc == 0 && frame < 0)
         fprintf(stderr, "wrote %s\n", path);
     return rc;
 }
 
+/* Per-pass GPU ms of the last `keep` frames, a ring, so that an endless
+ * run (--frames 0) holds bounded memory; the sums cover every frame, so
+ * the means stay exact. np: the pass count when rendering began (a reload
+ * under --watch may change it). */
+typedef struct timings {
+    double *ring, *sum;
+    uint32_t np, keep, frames;
+} timings;
 
-
-/* ms: per frame, `stride` passes (the pass count when rendering began; a
- * reload under --watch may change it) */
-static int write_json(const char *path, vrg_context *ctx, vrg_graph *g, const options *o, double *ms, uint32_t stride, uint32_t frames,
-                      double wall_ms)
+static int timings_init(timings *t, uint32_t np, uint32_t keep)
 {
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        fprintf(stderr, "error: cannot write %s: %s\n", path, strerror(errno));
-        return -1;
+    *t = (timings){.np = np, .keep = keep};
+    t->ring = calloc((size_t)keep * (np ? np : 1), sizeof *t->ring);
+    t->sum = calloc(np ? np : 1, sizeof *t->sum);
+    if (t->ring && t->sum)
+        return 0;
+    fprintf(stderr, "error: out of memory for %u frames of timings (--json-frames)\n", keep);
+    return -1;
+}
+
+/* the frame's timings; returns its whole-frame GPU ms */
+static double timings_add(timings *t, vrg_graph *g)
+{
+    double *row = t->ring + (size_t)(t->frames % t->keep) * t->np, total = 0;
+    for (uint32_t i = 0; i < t->np; i++) {
+        row[i] = i < vrg_graph_pass_count(g) ? vrg_graph_pass_ms(g, i) : -1;
+        t->sum[i] += row[i];
+        if (row[i] > 0)
+            total += row[i];
     }
-    uint32_t w, h, np = vrg_graph_pass_count(g) < stride ? vrg_graph_pass_count(g) : stride;
+    t->frames++;
+    return total;
+}
+
+static double timing_at(const timings *t, uint32_t frame, uint32_t pass) { return t->ring[(size_t)(frame % t->keep) * t->np + pass]; }
+
+static int write_json(const char *path, vrg_context *ctx, vrg_graph *g, const options *o, const timings *t, double wall_ms)
+{
+    vrg_output *out = vrg_output_open(path);
+    if (!out)
+        return -1;
+    FILE *f = vrg_output_stream(out);
+    uint32_t frames = t->frames, first = frames > t->keep ? frames - t->keep : 0;
+    uint32_t w, h, np = vrg_graph_pass_count(g) < t->np ? vrg_graph_pass_count(g) : t->np;
     vrg_graph_size(g, &w, &h);
     vrg_memory_stats m = vrg_graph_memory(g);
     char g_esc[2048], d_esc[1024], p_esc[256];
     fprintf(f, "{\n  \"graph\": \"%s\",\n  \"device\": \"%s\",\n  \"width\": %u,\n  \"height\": %u,\n  \"frames\": %u,\n",
             vrg_cli_json_str(o->graph, g_esc, sizeof g_esc), vrg_cli_json_str(vrg_context_device(ctx)->name, d_esc, sizeof d_esc), w, h, frames);
+    fprintf(f, "  \"frames_dropped\": %u,\n", first);
     fprintf(f, "  \"wall_ms_per_frame\": %.4f,\n", wall_ms / frames);
     fprintf(f, "  \"memory\": {\"transient_naive_bytes\": %llu, \"transient_aliased_bytes\": %llu, \"history_bytes\": %llu},\n",
             (unsigned long long)m.naive_bytes, (unsigned long long)m.aliased_bytes, (unsigned long long)m.history_bytes);
     fprintf(f, "  \"passes\": [");
-    int first = 1;
+    int comma = 0;
     for (uint32_t i = 0; i < np; i++) {
-        if (vrg_graph_pass_ms(g, i) < 0 && ms[i] < 0)
+        if (vrg_graph_pass_ms(g, i) < 0 && timing_at(t, first, i) < 0)
             continue; /* culled or not timed */
-        double sum = 0;
-        fprintf(f, "%s\n    {\"name\": \"%s\", \"gpu_ms\": [", first ? "" : ",", vrg_cli_json_str(vrg_graph_pass_name(g, i), p_esc, sizeof p_esc));
-        for (uint32_t k = 0; k < frames; k++) {
-            fprintf(f, "%s%.4f", k ? ", " : "", ms[k * stride + i]);
-            sum += ms[k * stride + i];
-        }
-        fprintf(f, "], \"mean_gpu_ms\": %.4f", sum / frames);
+        fprintf(f, "%s\n    {\"name\": \"%s\", \"gpu_ms\": [", comma ? "," : "", vrg_cli_json_str(vrg_graph_pass_name(g, i), p_esc, sizeof p_esc));
+        for (uint32_t k = first; k < frames; k++)
+            fprintf(f, "%s%.4f", k > first ? ", " : "", timing_at(t, k, i));
+        fprintf(f, "], \"mean_gpu_ms\": %.4f", t->sum[i] / frames);
         double v;
         const char *name;
         for (uint32_t k = 0; (name = vrg_graph_stat_at(g, i, k, &v)); k++)
             fprintf(f, ", \"%s\": %.6g", name, v);
         fprintf(f, "}");
-        first = 0;
+        comma = 1;
     }
     fprintf(f, "\n  ]\n}\n");
-    fclose(f);
-    return 0;
+    return vrg_output_commit(out);
 }
 
 static volatile sig_atomic_t interrupted;
@@ -365,15 +391,25 @@ static int cmd_render(int argc, char **argv)
     vrg_camera_path path = {0};
     if (o.camera && vrg_camera_path_load(o.camera, &path, stderr) != 0)
         return finish(ctx, g, 1);
-    if (o.sequence && vrg_cli_mkdir_p(o.out) != 0)
+    /* every folder written to, before the first frame rather than after the last */
+    if (vrg_cli_out_dir(o.out) != 0 || (o.json && vrg_cli_out_file_dir(o.json) != 0)) {
+        vrg_camera_path_free(&path);
         return finish(ctx, g, 1);
+    }
     vrg_camera camera = *vrg_graph_camera(g);
-    uint32_t np = vrg_graph_pass_count(g), cap = o.frames ? o.frames : 256;
-    double *ms = calloc((size_t)cap * np, sizeof *ms);
+    timings times;
+    if (timings_init(&times, vrg_graph_pass_count(g), o.frames && o.frames < o.json_frames ? o.frames : o.json_frames) != 0) {
+        free(times.ring), free(times.sum);
+        vrg_camera_path_free(&path);
+        return finish(ctx, g, 1);
+    }
     double start = vrg_cli_now_ms();
     int isatty_err = isatty(2);
-    if (o.watch && vrg_graph_watch(g, 1) != 0)
+    if (o.watch && vrg_graph_watch(g, 1) != 0) {
+        free(times.ring), free(times.sum);
+        vrg_camera_path_free(&path);
         return finish(ctx, g, 1);
+    }
     /* Ctrl-C or a script's kill: finish the frame (if the GPU does so within
      * VRG_INTERRUPT_GRACE_S), write the files */
     interrupted = 0;
@@ -384,12 +420,6 @@ static int cmd_render(int argc, char **argv)
     double reloaded = -1;
     for (uint32_t k = 0; (o.frames == 0 || k < o.frames) && rc == 0 && !interrupted; k++) {
         double frame_start = vrg_cli_now_ms();
-        if (k == cap) {
-            double *grown = realloc(ms, (size_t)cap * 2 * np * sizeof *ms);
-            if (!grown)
-                break;
-            ms = grown, cap *= 2;
-        }
         if (path.count) {
             vrg_camera_path_eval(&path, (float)(k * vrg_graph_frame_seconds(g)), &camera);
             vrg_graph_set_camera(g, &camera);
@@ -413,12 +443,7 @@ static int cmd_render(int argc, char **argv)
             reloaded = vrg_graph_reload_ms(g);
             fprintf(stderr, "\nframe %u: reloaded, %.0f ms from save to frame\n", k, reloaded);
         }
-        double total = 0;
-        for (uint32_t i = 0; i < np; i++) {
-            ms[(size_t)k * np + i] = i < vrg_graph_pass_count(g) ? vrg_graph_pass_ms(g, i) : -1;
-            if (ms[(size_t)k * np + i] > 0)
-                total += ms[(size_t)k * np + i];
-        }
+        double total = timings_add(&times, g);
         /* a saved graph file or rebuilt plugin: load it beside the running
          * graph, swap on success (the pass timings above are the old graph's) */
         if (o.watch && vrg_graph_source_changed(g))
@@ -442,15 +467,13 @@ static int cmd_render(int argc, char **argv)
         fprintf(stderr, "error: no frame was rendered\n");
         rc = 1;
     }
-    if (rc == 0 && vrg_cli_mkdir_p(o.out) != 0)
-        rc = 1;
     if (rc == 0)
         rc |= write_resource(g, o.out, vrg_graph_output(g), -1) != 0;
     for (int i = 0; rc == 0 && i < o.dump_count; i++)
         rc |= write_resource(g, o.out, o.dumps[i], -1) != 0;
     if (rc == 0 && o.json)
-        rc |= write_json(o.json, ctx, g, &o, ms, np, done, wall) != 0;
-    free(ms);
+        rc |= write_json(o.json, ctx, g, &o, &times, wall) != 0;
+    free(times.ring), free(times.sum);
     return finish(ctx, g, rc);
 }
 
@@ -635,6 +658,9 @@ static int cmd_bench(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
+    /* a write past the file size limit (ulimit -f) is then an error the
+     * writer reports (EFBIG), not the end of the process */
+    signal(SIGXFSZ, SIG_IGN);
     if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
         fputs(usage_main, argc < 2 ? stderr : stdout);
         return argc < 2 ? 2 : 0;

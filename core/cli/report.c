@@ -384,13 +384,10 @@ static int frames(FILE *f, const vrg_cmp_result *r)
 
 int vrg_cmp_write_report(const char *path, const vrg_cmp_result *r)
 {
-    char tmp[1300];
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *f = fopen(tmp, "w");
-    if (!f) {
-        fprintf(stderr, "error: cannot write %s\n", tmp);
+    vrg_output *out = vrg_output_open(path);
+    if (!out)
         return -1;
-    }
+    FILE *f = vrg_output_stream(out);
     fprintf(f, "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>voxrg compare: ");
     for (int i = 0; i < r->count; i++) {
         fputs(i ? ", " : "", f);
@@ -414,10 +411,10 @@ int vrg_cmp_write_report(const char *path, const vrg_cmp_result *r)
     fputs("<h2>Frames</h2>\n", f);
     int rc = frames(f, r);
     fputs("</body>\n</html>\n", f);
-    if (fclose(f) != 0 || rc != 0 || rename(tmp, path) != 0) {
-        fprintf(stderr, "error: cannot write %s\n", path);
-        remove(tmp);
+    if (rc != 0) {
+        fprintf(stderr, "error: cannot write %s: a frame could not be encoded\n", path);
+        vrg_output_abort(out);
         return -1;
     }
-    return 0;
+    return vrg_output_commit(out);
 }

@@ -39,6 +39,7 @@ typedef struct window_state {
     int looking;
     double mouse_x, mouse_y;
     int screenshot_requested;
+    int screenshot_failed;
     int day_toggle;      /* T: start or stop the day cycle */
     float time_step;     /* [ and ]: hours to step the time of day */
     float divider;       /* --ab: where A ends, 0..1 of the width */
@@ -525,10 +526,12 @@ static int present(window_state *w, VkImage src, VkExtent2D src_ext, VkImage src
         for (size_t i = 0; img.pixels && i < (size_t)sw * sh; i++)
             for (int c = 0; c < 4; c++)
                 img.pixels[4 * i + c] = (float)px[4 * i + (bgr && c < 3 ? 2 - c : c)] / 255.0f;
+        if (!img.pixels)
+            fprintf(stderr, "error: cannot write %s: out of memory\n", screenshot);
         if (img.pixels && vrg_write_png(screenshot, &img) == 0)
             fprintf(stderr, "wrote %s\n", screenshot);
         else
-            fprintf(stderr, "error: cannot write %s\n", screenshot);
+            w->screenshot_failed = 1; /* the run's exit status says so */
         free(img.pixels);
     }
     return res == VK_ERROR_OUT_OF_DATE_KHR || res == VK_SUBOPTIMAL_KHR ? 1 : res == VK_SUCCESS ? 0 : -1;
@@ -598,6 +601,7 @@ int vrg_cli_run(const vrg_run_options *o)
                            .swapchain = 1};
     int rc = 1;
     vrg_graph *g = NULL, *gb = NULL;
+    vrg_output *record_out = NULL;
     FILE *record = NULL;
     if (vrg_context_create(&cd, &w.ctx) != 0)
         goto out;
@@ -658,10 +662,12 @@ int vrg_cli_run(const vrg_run_options *o)
         }
         vrg_graph_watch(gb, 1);
     }
-    if (o->record && !(record = fopen(o->record, "w"))) {
-        fprintf(stderr, "error: cannot write the camera path %s\n", o->record);
+    /* the files written, checked before the first frame */
+    if (o->screenshot && vrg_cli_out_file_dir(o->screenshot) != 0)
         goto out;
-    }
+    if (o->record && !(record_out = vrg_output_open(o->record)))
+        goto out;
+    record = record_out ? vrg_output_stream(record_out) : NULL;
     if (record)
         fprintf(record, "# recorded by voxrg run %s\n# time  x y z  yaw pitch\n", o->graph);
     {
@@ -840,8 +846,12 @@ out:
         if (w.surface)
             vkDestroySurfaceKHR(w.dev->instance, w.surface, NULL);
     }
-    if (record && fclose(record) == 0)
+    if (record_out && vrg_output_commit(record_out) == 0) /* what was flown, a failed run too */
         fprintf(stderr, "wrote %s\n", o->record);
+    else if (record_out)
+        rc = 1;
+    if (w.screenshot_failed)
+        rc = 1;
     if (w.window)
         glfwDestroyWindow(w.window);
     if (w.ctx) {

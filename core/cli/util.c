@@ -1,6 +1,7 @@
 /* Helpers the CLI commands share (util.h). */
 #define _POSIX_C_SOURCE 200809L
 #include "util.h"
+#include "voxrg/voxrg.h"
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -65,6 +66,27 @@ int vrg_cli_mkdir_p(const char *dir)
         return -1;
     }
     return 0;
+}
+
+int vrg_cli_out_dir(const char *dir)
+{
+    return vrg_cli_mkdir_p(dir) == 0 && vrg_output_dir_check(dir) == 0 ? 0 : -1;
+}
+
+int vrg_cli_out_file_dir(const char *file)
+{
+    char dir[1024];
+    const char *slash = strrchr(file, '/');
+    if (!slash)
+        return vrg_output_dir_check(".");
+    if (slash == file)
+        return vrg_output_dir_check("/");
+    if ((size_t)(slash - file) >= sizeof dir) {
+        fprintf(stderr, "error: cannot write %s: %s\n", file, strerror(ENAMETOOLONG));
+        return -1;
+    }
+    snprintf(dir, sizeof dir, "%.*s", (int)(slash - file), file);
+    return vrg_cli_out_dir(dir);
 }
 
 const char *vrg_cli_json_str(const char *s, char *buf, size_t cap)

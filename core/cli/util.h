@@ -10,6 +10,11 @@ double vrg_cli_now_ms(void);
 int vrg_cli_parse_size(const char *s, uint32_t *w, uint32_t *h);
 /* mkdir -p; prints the error and returns -1 on failure. */
 int vrg_cli_mkdir_p(const char *dir);
+/* An output folder checked before any work: created if missing, then
+ * probed with a temporary file; prints the path and the reason, -1. */
+int vrg_cli_out_dir(const char *dir);
+/* The same for the folder FILE goes to. */
+int vrg_cli_out_file_dir(const char *file);
 /* A JSON string body in buf: quotes, backslashes and control characters escaped. */
 const char *vrg_cli_json_str(const char *s, char *buf, size_t cap);
 /* The whole file, NUL-terminated (malloc'd), or NULL. */

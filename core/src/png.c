@@ -71,17 +71,14 @@ uint8_t *vrg_image_rgb8(const vrg_image_data *img)
     return rgb;
 }
 
-static spng_ctx *encoder(const uint8_t *rgb, uint32_t w, uint32_t h, FILE *f, int *err)
+static spng_ctx *encoder(const uint8_t *rgb, uint32_t w, uint32_t h, int *err)
 {
     spng_ctx *ctx = spng_ctx_new(SPNG_CTX_ENCODER);
     if (!ctx) {
         *err = SPNG_EMEM;
         return NULL;
     }
-    if (f)
-        spng_set_png_file(ctx, f);
-    else
-        spng_set_option(ctx, SPNG_ENCODE_TO_BUFFER, 1);
+    spng_set_option(ctx, SPNG_ENCODE_TO_BUFFER, 1);
     struct spng_ihdr ihdr = {.width = w, .height = h, .bit_depth = 8, .color_type = SPNG_COLOR_TYPE_TRUECOLOR};
     spng_set_ihdr(ctx, &ihdr);
     *err = spng_encode_image(ctx, rgb, (size_t)w * h * 3, SPNG_FMT_PNG, SPNG_ENCODE_FINALIZE);
@@ -90,26 +87,23 @@ static spng_ctx *encoder(const uint8_t *rgb, uint32_t w, uint32_t h, FILE *f, in
 
 int vrg_png_write_rgb8(const char *path, const uint8_t *rgb, uint32_t w, uint32_t h)
 {
-    FILE *f = fopen(path, "wb");
-    if (!f) {
-        fprintf(stderr, "error: cannot write %s\n", path);
+    /* encoded in memory, so that the file is written in one piece by the
+     * one writer of output files, and an I/O error keeps its reason */
+    void *png;
+    size_t size;
+    if (vrg_png_encode_rgb8(rgb, w, h, &png, &size) != 0) {
+        fprintf(stderr, "error: PNG encoding of %s failed\n", path);
         return -1;
     }
-    int err;
-    spng_ctx_free(encoder(rgb, w, h, f, &err));
-    if (fclose(f) != 0 && !err)
-        err = SPNG_IO_ERROR;
-    if (err) {
-        fprintf(stderr, "error: PNG encoding of %s failed: %s\n", path, spng_strerror(err));
-        return -1;
-    }
-    return 0;
+    int rc = vrg_output_write(path, png, size);
+    free(png);
+    return rc;
 }
 
 int vrg_png_encode_rgb8(const uint8_t *rgb, uint32_t w, uint32_t h, void **png, size_t *size)
 {
     int err;
-    spng_ctx *ctx = encoder(rgb, w, h, NULL, &err);
+    spng_ctx *ctx = encoder(rgb, w, h, &err);
     *png = err ? NULL : spng_get_png_buffer(ctx, size, &err); /* ours to free */
     spng_ctx_free(ctx);
     return *png && !err ? 0 : -1;
