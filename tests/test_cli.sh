@@ -104,6 +104,13 @@ if unshare -rm true 2>/dev/null; then
 else
     echo "note: no mount namespace here (unshare -rm): the full file system case is covered by test_output only"
 fi
+# fixed tables of the command line fail with the limit named, never drop
+many=$(for i in $(seq 33); do printf 'r%d,' "$i"; done)
+expect_rc 2 "--dump of 33 resources" "$voxrg" render "$tests/graphs/chain.ini" --dump "${many%,}"
+has "$out/stderr" "--dump: more than 32 resources" "--dump limit message"
+many=$(for i in $(seq 65); do printf 'gen.value=0.5,'; done)
+expect_rc 1 "compare --variant with 65 overrides" "$voxrg" compare "$tests/graphs/chain.ini" --reference "$tests/graphs/chain.ini" --out "$out/cmp_many" --variant "v:${many%,}"
+has "$out/stderr" "more than 64 overrides" "--variant override limit message"
 # an unwritable --out or --json folder: found before the first frame
 : >"$out/a_file"
 expect_rc 1 "render --out under a file" "$voxrg" render "$tests/graphs/chain.ini" --frames 3 --size 40x24 --out "$out/a_file/r"

@@ -229,9 +229,17 @@ static int make_jobs(const options *o, job *jobs, vrg_cmp_result *r)
         j->graph = o->graphs[0];
         snprintf(r->cand[n].name, sizeof r->cand[n].name, "%.*s", (int)(colon - o->variants[v]), o->variants[v]);
         snprintf(r->cand[n].overrides, sizeof r->cand[n].overrides, "%s", colon + 1);
-        snprintf(j->buf, sizeof j->buf, "%s", colon + 1);
-        for (char *save, *tok = strtok_r(j->buf, ",", &save); tok && j->set_count < MAX_SETS; tok = strtok_r(NULL, ",", &save))
+        if ((size_t)snprintf(j->buf, sizeof j->buf, "%s", colon + 1) >= sizeof j->buf) {
+            fprintf(stderr, "error: --variant %s: the overrides are longer than %zu characters\n", o->variants[v], sizeof j->buf - 1);
+            return -1;
+        }
+        for (char *save, *tok = strtok_r(j->buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+            if (j->set_count == MAX_SETS) {
+                fprintf(stderr, "error: --variant %s: more than %d overrides\n", o->variants[v], MAX_SETS);
+                return -1;
+            }
             j->sets[j->set_count++] = tok;
+        }
         for (int k = 0; k < n; k++)
             if (!strcmp(r->cand[k].name, r->cand[n].name)) {
                 fprintf(stderr, "error: --variant %s: the name '%s' is taken\n", o->variants[v], r->cand[n].name);

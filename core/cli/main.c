@@ -19,6 +19,8 @@
 
 #define MAX_SETS 64
 #define MAX_DUMPS 32
+#define VRG_STR_(x) #x
+#define VRG_STR(x) VRG_STR_(x)
 #define JSON_FRAMES_DEFAULT 4096 /* docs/graph-format.md */
 
 static const char *usage_main =
@@ -177,16 +179,19 @@ static int parse_options(int argc, char **argv, options *o, const char *usage)
                 return usage_error(usage, "--gpu-timeout '%s': expected seconds > 0", next);
         } else if (!strcmp(a, "--dump")) {
             size_t used = strlen(o->dump_buf);
-            snprintf(o->dump_buf + used, sizeof o->dump_buf - used, "%s%s", used ? "," : "", next);
+            if ((size_t)snprintf(o->dump_buf + used, sizeof o->dump_buf - used, "%s%s", used ? "," : "", next) >= sizeof o->dump_buf - used)
+                return usage_error(usage, "--dump: the names given add up to more than %s characters", "4095");
         } else if (!o->graph)
             o->graph = a, takes = 0;
         else
             return usage_error(usage, "unexpected argument '%s'", a);
         i += takes;
     }
-    for (char *tok = strtok(o->dump_buf, ","); tok; tok = strtok(NULL, ","))
-        if (o->dump_count < MAX_DUMPS)
-            o->dumps[o->dump_count++] = tok;
+    for (char *tok = strtok(o->dump_buf, ","); tok; tok = strtok(NULL, ",")) {
+        if (o->dump_count == MAX_DUMPS)
+            return usage_error(usage, "--dump: more than %s resources", VRG_STR(MAX_DUMPS));
+        o->dumps[o->dump_count++] = tok;
+    }
     if (!o->help && !o->graph)
         return usage_error(usage, "no graph file given%s", "");
     return 0;
