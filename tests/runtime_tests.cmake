@@ -17,7 +17,7 @@ vrg_use_fast_malloc(test_runtime)
 target_compile_definitions(test_runtime PRIVATE TEST_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
 set(VRG_LOADER_DIR ${CMAKE_CURRENT_BINARY_DIR}/loader_plugins)
 file(MAKE_DIRECTORY ${VRG_LOADER_DIR})
-foreach(case chain history history_cleared accumulate accumulate_count pingpong pingpong_alias alias buffer buffer_texels scene loader validation_live blocks_world blocks_trace terrain_world terrain_trace atlas traversal_errors rayquery gbuffer_normals gbuffer_motion backends_agree light_floor light_wall light_half_res svgf_disocclusion svgf_mse svgf_history_reset svgf_variance svgf_edge accumulate_mean svgf_atrous_options svgf_size_mismatch dispatch_shape hot_reload_shader hot_reload_graph hot_reload_plugin capture_replay soak set_param light_penumbra light_corner light_chain)
+foreach(case chain history history_cleared accumulate accumulate_count pingpong pingpong_alias alias buffer buffer_texels scene loader validation_live blocks_world blocks_trace terrain_world terrain_trace atlas traversal_errors rayquery gbuffer_normals gbuffer_motion backends_agree light_floor light_wall light_half_res svgf_disocclusion svgf_mse svgf_history_reset svgf_variance svgf_edge accumulate_mean svgf_atrous_options svgf_size_mismatch dispatch_shape hot_reload_shader hot_reload_graph hot_reload_plugin capture_replay soak set_param light_penumbra light_corner light_chain history_many many_uses alias_many)
   add_test(NAME runtime_${case} COMMAND test_runtime ${case})
   # 77: skipped (e.g. no VK_KHR_ray_query on this device), reported as such
   set_tests_properties(runtime_${case} PROPERTIES ENVIRONMENT "${VRG_TEST_ENV};VOXRG_PLUGIN_PATH=${VRG_LOADER_DIR}" TIMEOUT 300 SKIP_RETURN_CODE 77)

@@ -233,6 +233,125 @@ static void test_history_cleared(void)
     vrg_graph_destroy(g);
 }
 
+/* A graph given as text (path: for messages only). */
+static vrg_graph *load_text(const char *text, const char *const *reads, uint32_t nreads)
+{
+    vrg_graph_desc d = {.path = "generated.ini", .text = text, .readback = reads, .readback_count = nreads};
+    vrg_graph *g = NULL;
+    if (vrg_graph_load(ctx, &d, &g) != 0) {
+        fprintf(stderr, "cannot load the generated graph\n");
+        failures++;
+        return NULL;
+    }
+    return g;
+}
+
+static void append(char **text, size_t *len, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(NULL, 0, fmt, ap);
+    va_end(ap);
+    *text = realloc(*text, *len + (size_t)n + 1);
+    va_start(ap, fmt);
+    vsnprintf(*text + *len, (size_t)n + 1, fmt, ap);
+    va_end(ap);
+    *len += (size_t)n;
+}
+
+/* More history images than one barrier batch holds, all cleared in the same
+ * frame (the first, and after a reset): every clear gets its barrier (a
+ * missing one is a validation error) and every counter counts from 1. */
+static void test_history_many(void)
+{
+    enum { COUNTERS = 70 };
+    char *text = NULL, names[COUNTERS][16];
+    const char *reads[COUNTERS];
+    size_t len = 0;
+    append(&text, &len, "[graph]\nname = history_many\noutput = c0\nwidth = 8\nheight = 8\n");
+    for (int i = 0; i < COUNTERS; i++) {
+        append(&text, &len, "[pass n%d]\nplugin = counter\nalways_read = 1\nin.prev = c%d@prev\nout.count = c%d\n", i, i, i);
+        snprintf(names[i], sizeof names[i], "c%d", i);
+        reads[i] = names[i];
+    }
+    vrg_graph *g = load_text(text, reads, COUNTERS);
+    free(text);
+    if (!g)
+        return;
+    for (int round = 0; round < 2; round++) {
+        if (round)
+            vrg_graph_reset_history(g);
+        for (int frame = 1; frame <= 2; frame++) {
+            CHECK(vrg_graph_frame(g) == 0, "frame failed");
+            for (int i = 0; i < COUNTERS; i += COUNTERS - 1) {
+                vrg_image_data img;
+                CHECK(vrg_graph_read(g, names[i], &img) == 0, "readback of %s failed", names[i]);
+                CHECK(px(&img, 7, 7, 0) == (float)frame, "round %d frame %d: %s is %g", round, frame, names[i], px(&img, 7, 7, 0));
+                free(img.pixels);
+            }
+        }
+    }
+    vrg_graph_destroy(g);
+}
+
+/* A pass with more internal images than a barrier batch, all in one
+ * vrg_pass_use (a dropped barrier leaves an image in the wrong layout for its
+ * clear: a validation error), and more figures than there once was room for,
+ * with names longer than 31 characters. */
+static void test_many_uses(void)
+{
+    vrg_graph *g = load_text("[graph]\nname = many_uses\noutput = out\nwidth = 16\nheight = 16\n"
+                             "[pass m]\nplugin = many_uses\nimages = 70\nfigures = 20\nout.color = out\n",
+                             NULL, 0);
+    if (!g)
+        return;
+    for (int frame = 0; frame < 2; frame++)
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_image_data img;
+    CHECK(vrg_graph_read(g, "out", &img) == 0, "readback failed");
+    CHECK(px(&img, 3, 3, 0) == 70.0f, "output is %g, not 70", px(&img, 3, 3, 0));
+    free(img.pixels);
+    for (int i = 0; i < 20; i++) {
+        char name[96];
+        double v = -1;
+        snprintf(name, sizeof name, "figure_named_at_length_beyond_thirty_one_characters_%d", i);
+        CHECK(vrg_graph_stat(g, "m", name, &v) == 0 && v == i, "figure %d: %s, %g", i, name, v);
+    }
+    vrg_graph_destroy(g);
+}
+
+/* One image (big) placed over more than 64 earlier ones whose lifetimes
+ * ended before it starts; only the last few of them are written. Its first
+ * use must wait for those writes (the aliasing barrier), or synchronization
+ * validation reports a hazard. */
+static void test_alias_many(void)
+{
+    vrg_graph *g = load_text("[graph]\nname = alias_many\noutput = sum\nwidth = 128\nheight = 128\n"
+                             "[pass m]\nplugin = many_uses\nimages = 70\nwritten = 6\nscale = 0.0625\nfigures = 0\nout.color = small\n"
+                             "[pass gen]\nplugin = pattern\nout.color = big\n"
+                             "[pass s]\nplugin = add\nin.a = small\nin.b = big\nout.sum = sum\n",
+                             NULL, 0);
+    if (!g)
+        return;
+    int big_block, block;
+    uint64_t big_offset, big_size, offset, size;
+    CHECK(vrg_graph_placement(g, "big", &big_block, &big_offset, &big_size) == 0, "no placement of big");
+    for (int i = 0; i < 70; i++) {
+        char name[32];
+        snprintf(name, sizeof name, "m.t%d", i);
+        CHECK(vrg_graph_placement(g, name, &block, &offset, &size) == 0 && block == big_block && offset >= big_offset &&
+                  offset + size <= big_offset + big_size,
+              "%s (block %d, %llu + %llu) is not inside big's memory (block %d, %llu + %llu): the test proves nothing", name, block,
+              (unsigned long long)offset, (unsigned long long)size, big_block, (unsigned long long)big_offset, (unsigned long long)big_size);
+    }
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_image_data img;
+    CHECK(vrg_graph_read(g, "sum", &img) == 0, "readback failed");
+    CHECK(px(&img, 0, 0, 0) == 70.0f, "sum is %g, not 70 + 0", px(&img, 0, 0, 0));
+    free(img.pixels);
+    vrg_graph_destroy(g);
+}
+
 /* accumulate: out = mix(history, color, alpha) once history is valid. The
  * input changes with a --set between graphs, so use two frames of one graph
  * whose color is constant: the result must stay the colour (mix of equals),
@@ -2206,6 +2325,7 @@ int main(int argc, char **argv)
         {"light_half_res", test_light_half_res, 1},
         {"light_penumbra", test_light_penumbra, 1},   {"light_corner", test_light_corner, 1},
         {"light_chain", test_light_chain, 1},
+        {"history_many", test_history_many, 1}, {"many_uses", test_many_uses, 1}, {"alias_many", test_alias_many, 1},
     };
     if (argc != 2) {
         fprintf(stderr, "usage: test_runtime CASE\n");

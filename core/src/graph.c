@@ -178,9 +178,11 @@ void vrg_graph_destroy(vrg_graph *g)
     }
     for (int i = 0; i < g->pass_count; i++) {
         vrg_pass_free_params(&g->passes[i]);
+        vrg_pass_clear_stats(&g->passes[i], 1);
         if (g->passes[i].plugin)
             vrg_plugin_release(g->passes[i].plugin); /* last: nothing of the plugin's is used after */
     }
+    free(g->overlaps);
     free(g);
 }
 

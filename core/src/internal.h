@@ -145,7 +145,7 @@ typedef struct vrg_resource {
     int history_cleared;     /* cleared at the start of this frame: @prev holds no past */
     int persistent;          /* written by a VRG_SLOT_PERSISTENT slot: kept, not aliased */
     int is_output, readback;
-    int internal_owner;      /* pass index for internal resources, -1 otherwise */
+    int internal_owner;      /* pass index for internal resources, -1 otherwise (a pass's internal resources: no table of their own) */
     vrg_access internal_first_access;
     /* compile */
     int first_use, last_use; /* schedule positions; -1 unused */
@@ -162,8 +162,7 @@ typedef struct vrg_resource {
     VkMemoryRequirements req;
     int block;               /* alias heap index, -1 own memory */
     VkDeviceSize offset;
-    int overlaps[VRG_MAX_RESOURCES / 8]; /* earlier-placed resources sharing memory */
-    int overlap_count;
+    int overlap_first, overlap_count; /* resources sharing memory: a run of vrg_graph.overlaps */
     vrg_sync sync[2];
     int touched[2];          /* used already this frame (else its contents are discarded) */
     int dummy;               /* 1x1 stand-in bound to an unconnected optional input */
@@ -184,8 +183,6 @@ struct vrg_pass {
     const vrg_plugin *plugin;
     double params[VRG_MAX_PARAMS];
     vrg_binding_ref slots[VRG_MAX_SLOTS];
-    int internal[16];         /* resource indices of requested internal resources */
-    int internal_count;
     int culled;
     int order;                /* position in schedule, -1 culled */
     vrg_graph *graph;
@@ -198,13 +195,15 @@ struct vrg_pass {
     struct vrg_param_value *strings;     /* string parameter values, in file order */
     int string_count;
     struct vrg_host_buffer *host_buffers;
-    struct {
-        char name[32];
-        double value;
-    } stats[16];
-    int stat_count;
+    struct vrg_pass_figure *stats; /* vrg_pass_stat: this frame's, grown as named */
+    int stat_count, stat_cap;
     VkCommandBuffer cmd;      /* during execute */
 };
+
+typedef struct vrg_pass_figure {
+    char *name;
+    double value;
+} vrg_pass_figure;
 
 typedef struct vrg_param_value {
     int param; /* index into the plugin's parameter table */
@@ -223,6 +222,8 @@ typedef struct vrg_host_buffer {
 
 void vrg_pass_free_params(vrg_pass *p);
 void vrg_pass_free_host_buffers(vrg_pass *p);
+/* Forgets the figures of vrg_pass_stat (a new frame); free: also the table. */
+void vrg_pass_clear_stats(vrg_pass *p, int free_table);
 int vrg_pass_add_string(vrg_pass *p, int param, const char *value, int line, int replace);
 
 typedef struct vrg_barrier_rec {
@@ -272,8 +273,10 @@ struct vrg_graph {
     int schedule[VRG_MAX_PASSES];
     int schedule_count;
     /* allocate */
-    vrg_heap_block blocks[4];
+    vrg_heap_block blocks[VK_MAX_MEMORY_TYPES]; /* disjoint type sets: see compile.c */
     int block_count;
+    int *overlaps;            /* every resource's list of those it shares memory with */
+    int overlap_used, overlap_cap;
     uint64_t naive_bytes, aliased_bytes, history_bytes;
     int allocated;
     /* record */
@@ -308,8 +311,9 @@ const char *vrg_format_list(void);
 VkFormat vrg_format_parse(const char *s);
 uint32_t vrg_format_channels(VkFormat f);
 void vrg_resource_extent(const vrg_graph *g, const vrg_resource *r, uint32_t *w, uint32_t *h);
-/* Place resources with the given sizes into heap blocks; fills block/offset/overlaps. */
-void vrg_plan_aliasing(vrg_graph *g);
+/* Place resources with the given sizes into heap blocks; fills block/offset/overlaps.
+ * Returns 0, or -1 after reporting. */
+int vrg_plan_aliasing(vrg_graph *g);
 /* allocate.c */
 int vrg_allocate(vrg_graph *g);
 void vrg_free_resources(vrg_graph *g);
