@@ -1986,24 +1986,27 @@ static const char *reloadme_source =
     "    if (cap < sizeof(state)) return 0;\n    memcpy(dst, vrg_pass_user(p), sizeof(state));\n    return sizeof(state);\n}\n"
     "static int restore(vrg_pass *p, const void *src, size_t n) {\n"
     "    if (n != sizeof(state)) return -1;\n    memcpy(vrg_pass_user(p), src, n);\n    return 0;\n}\n"
-    "static const vrg_plugin_desc desc = {.abi_version = ABI, .name = \"reloadme\", .kind = VRG_PLUGIN_PASS,\n"
+    "#ifndef NAME\n#define NAME \"reloadme\"\n#endif\n"
+    "static const vrg_plugin_desc desc = {.abi_version = ABI, .name = NAME, .kind = VRG_PLUGIN_PASS,\n"
     "    .help = \"test: hot reload\", .shader_dir = DIR, .slots = slots, .slot_count = 1, .create = create,\n"
     "    .destroy = destroy, .execute = execute, .save_state = save, .restore_state = restore};\n"
     "VRG_PLUGIN(desc)\n";
 
 /* Builds the test plugin `reloadme` (VERSION paints red or green, ABI its
  * declared ABI version) into dir/reloadme.so with the system compiler. */
-static int build_reloadme(const char *dir, int version, const char *abi)
+static int build_plugin_named(const char *dir, const char *name, int version, const char *abi)
 {
     char src[1100], cmd[4096];
-    snprintf(src, sizeof src, "%s/reloadme.c", dir);
+    snprintf(src, sizeof src, "%s/%s.c", dir, name);
     save_file(src, reloadme_source);
     snprintf(cmd, sizeof cmd,
-             "cc -std=c11 -shared -fPIC -I'%s/../core/include' -DVERSION=%d -DABI=%s -DDIR='\"%s\"' '%s' -o '%s/reloadme.so.new' && "
-             "mv '%s/reloadme.so.new' '%s/reloadme.so'",
-             TEST_DIR, version, abi, dir, src, dir, dir, dir);
+             "cc -std=c11 -shared -fPIC -I'%s/../core/include' -DNAME='\"%s\"' -DVERSION=%d -DABI=%s -DDIR='\"%s\"' '%s' -o '%s/%s.so.new' && "
+             "mv '%s/%s.so.new' '%s/%s.so'",
+             TEST_DIR, name, version, abi, dir, src, dir, name, dir, name, dir, name);
     return system(cmd);
 }
+
+static int build_reloadme(const char *dir, int version, const char *abi) { return build_plugin_named(dir, "reloadme", version, abi); }
 
 /* How many distinct files named like `name` are mapped into this process:
  * the versions of a plugin still loaded. */
@@ -2027,6 +2030,148 @@ static int mapped_versions(const char *name)
     if (f)
         fclose(f);
     return n;
+}
+
+/* More rebuilt plugins in one reload than there once was room for: every
+ * one of them runs its new version afterwards. */
+static void test_hot_reload_many_plugins(void)
+{
+    enum { PLUGINS = 10 };
+    char dir[] = "/tmp/voxrg-plugins-XXXXXX";
+    if (!mkdtemp(dir)) {
+        CHECK(0, "mkdtemp failed");
+        return;
+    }
+    char path[1100], shader[1100], name[PLUGINS][32], *text = NULL;
+    const char *reads[PLUGINS];
+    size_t tlen = 0;
+    snprintf(path, sizeof path, "%s/many.ini", dir);
+    snprintf(shader, sizeof shader, "%s/reloadme.comp", dir);
+    save_file(shader, "#version 450\nlayout(local_size_x = 8, local_size_y = 8) in;\n"
+                      "layout(binding = 0, rgba16f) uniform writeonly image2D dst;\n"
+                      "layout(push_constant) uniform P { vec4 c; } pc;\n"
+                      "void main() { imageStore(dst, ivec2(gl_GlobalInvocationID.xy), pc.c); }\n");
+    append(&text, &tlen, "[graph]\noutput = c0\nwidth = 8\nheight = 8\n");
+    for (int i = 0; i < PLUGINS; i++) {
+        snprintf(name[i], sizeof name[i], "reloadme%d", i);
+        append(&text, &tlen, "[pass p%d]\nplugin = %s\nout.color = c%d\n", i, name[i], i);
+        CHECK(build_plugin_named(dir, name[i], 1, "VRG_ABI_VERSION") == 0, "cannot build %s with cc", name[i]);
+    }
+    save_file(path, text);
+    free(text);
+    char cname[PLUGINS][16];
+    for (int i = 0; i < PLUGINS; i++) {
+        snprintf(cname[i], sizeof cname[i], "c%d", i);
+        reads[i] = cname[i];
+    }
+    setenv("VOXRG_PLUGIN_PATH", dir, 1);
+    vrg_graph_desc d = {.path = path, .readback = reads, .readback_count = PLUGINS};
+    vrg_graph *g = NULL;
+    if (vrg_graph_load(ctx, &d, &g) == 0) {
+        CHECK(vrg_graph_watch(g, 1) == 0, "watch failed");
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+        for (int i = 0; i < PLUGINS; i++)
+            CHECK(build_plugin_named(dir, name[i], 2, "VRG_ABI_VERSION") == 0, "cannot rebuild %s", name[i]);
+        CHECK(vrg_graph_frame(g) == 0, "frame failed"); /* notices every rebuild at once */
+        CHECK(vrg_graph_source_changed(g) && vrg_graph_reload(&g) == 0, "reload failed: %s",
+              vrg_graph_reload_error(g) ? vrg_graph_reload_error(g) : "");
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+        for (int i = 0; i < PLUGINS; i++) {
+            vrg_image_data img;
+            CHECK(vrg_graph_read(g, cname[i], &img) == 0, "readback of %s failed", cname[i]);
+            CHECK(px(&img, 1, 1, 0) == 0 && px(&img, 1, 1, 1) == 1, "%s still runs version 1 (%g %g)", name[i], px(&img, 1, 1, 0),
+                  px(&img, 1, 1, 1));
+            free(img.pixels);
+        }
+        vrg_graph_destroy(g);
+    } else
+        CHECK(0, "cannot load %s", path);
+    unsetenv("VOXRG_PLUGIN_PATH");
+    for (int i = 0; i < PLUGINS; i++) {
+        char f[1100];
+        snprintf(f, sizeof f, "%s/%s.so", dir, name[i]);
+        remove(f);
+        snprintf(f, sizeof f, "%s/%s.c", dir, name[i]);
+        remove(f);
+    }
+    remove(shader), remove(path), rmdir(dir);
+}
+
+/* More saved files in one poll than there once was room for (the last were
+ * dropped): one pass's shader with many includes, all saved again, then the
+ * one file that matters, another pass's shader (pattern.comp, taken from
+ * $VOXRG_SHADER_OVERRIDE), saved last with a new colour. The includes also
+ * outnumber the include table there once was (the last were left out of the
+ * source: TINT, in the last include, was undeclared). */
+static void test_hot_reload_many_files(void)
+{
+    enum { INCLUDES = 40 };
+    char dir[] = "/tmp/voxrg-includes-XXXXXX";
+    if (!mkdtemp(dir)) {
+        CHECK(0, "mkdtemp failed");
+        return;
+    }
+    char user[1100], graph[1100], pattern[1100], inc[INCLUDES][1100], *text = NULL;
+    size_t tlen = 0;
+    snprintf(user, sizeof user, "%s/user.comp", dir);
+    snprintf(graph, sizeof graph, "%s/g.ini", dir);
+    snprintf(pattern, sizeof pattern, "%s/pattern.comp", dir);
+    append(&text, &tlen, "#version 450\n");
+    for (int i = 0; i < INCLUDES; i++) {
+        snprintf(inc[i], sizeof inc[i], "%s/inc%d.glsl", dir, i);
+        append(&text, &tlen, "#include \"inc%d.glsl\"\n", i);
+    }
+    append(&text, &tlen, "layout(local_size_x = 8, local_size_y = 8) in;\nlayout(binding = 0, rgba16f) uniform writeonly image2D dst;\n"
+                         "void main() { imageStore(dst, ivec2(gl_GlobalInvocationID.xy), vec4(TINT, 1.0)); }\n");
+    static const char pattern_shader[] = "#version 450\nlayout(local_size_x = 8, local_size_y = 8) in;\n"
+                                         "layout(binding = 0, rgba16f) uniform writeonly image2D dst;\n"
+                                         "layout(push_constant) uniform P { float value; } pc;\n"
+                                         "void main() { imageStore(dst, ivec2(gl_GlobalInvocationID.xy), vec4(%d.0, 0.5, 0.0, 1.0)); }\n";
+    char pattern_text[sizeof pattern_shader + 16];
+    save_file(graph, "[graph]\noutput = color\nwidth = 8\nheight = 8\n[pass s]\nplugin = shader_file\nout.color = color\n"
+                     "[pass p]\nplugin = pattern\nout.color = grad\n");
+    for (int i = 0; i < INCLUDES - 1; i++)
+        save_file(inc[i], "\n");
+    save_file(inc[INCLUDES - 1], "#define TINT vec3(1.0, 0.0, 0.0)\n");
+    save_file(user, text);
+    snprintf(pattern_text, sizeof pattern_text, pattern_shader, 1);
+    save_file(pattern, pattern_text);
+    setenv("VOXRG_SHADER_PATH", dir, 1);
+    setenv("VOXRG_SHADER_OVERRIDE", dir, 1);
+    static const char *reads[] = {"grad"};
+    vrg_graph_desc d = {.path = graph, .readback = reads, .readback_count = 1};
+    vrg_graph *g = NULL;
+    if (vrg_graph_load(ctx, &d, &g) == 0) {
+        CHECK(vrg_graph_watch(g, 1) == 0, "watch failed");
+        vrg_image_data img;
+        for (int step = 0; step < 2; step++) {
+            if (step == 1) { /* the first pass's files saved again unchanged, the change last */
+                save_file(user, text);
+                for (int i = 0; i < INCLUDES - 1; i++)
+                    save_file(inc[i], "\n");
+                save_file(inc[INCLUDES - 1], "#define TINT vec3(1.0, 0.0, 0.0)\n");
+                snprintf(pattern_text, sizeof pattern_text, pattern_shader, 2);
+                save_file(pattern, pattern_text);
+            }
+            CHECK(vrg_graph_frame(g) == 0, "step %d: frame failed", step);
+            CHECK(vrg_graph_read(g, "color", &img) == 0, "readback failed");
+            CHECK(px(&img, 3, 3, 0) == 1.0f && px(&img, 3, 3, 1) == 0.0f, "step %d: colour %g %g", step, px(&img, 3, 3, 0), px(&img, 3, 3, 1));
+            free(img.pixels);
+            CHECK(vrg_graph_read(g, "grad", &img) == 0, "readback failed");
+            CHECK(px(&img, 3, 3, 0) == (float)(step + 1), "step %d: pattern.comp's colour is %g, want %d (its save was not seen)", step,
+                  px(&img, 3, 3, 0), step + 1);
+            free(img.pixels);
+            CHECK(!vrg_graph_reload_error(g), "step %d: reload error %s", step, vrg_graph_reload_error(g));
+        }
+        vrg_graph_destroy(g);
+    } else
+        CHECK(0, "cannot load %s", graph);
+    free(text);
+    unsetenv("VOXRG_SHADER_PATH");
+    unsetenv("VOXRG_SHADER_OVERRIDE");
+    for (int i = 0; i < INCLUDES; i++)
+        remove(inc[i]);
+    remove(user), remove(graph), remove(pattern), rmdir(dir);
 }
 
 /* Hot reload of a rebuilt plugin: the new build runs from the next graph
@@ -2325,7 +2470,8 @@ int main(int argc, char **argv)
         {"light_half_res", test_light_half_res, 1},
         {"light_penumbra", test_light_penumbra, 1},   {"light_corner", test_light_corner, 1},
         {"light_chain", test_light_chain, 1},
-        {"history_many", test_history_many, 1}, {"many_uses", test_many_uses, 1}, {"alias_many", test_alias_many, 1},
+        {"history_many", test_history_many, 1}, {"hot_reload_many_plugins", test_hot_reload_many_plugins, 1},
+        {"hot_reload_many_files", test_hot_reload_many_files, 1}, {"many_uses", test_many_uses, 1}, {"alias_many", test_alias_many, 1},
     };
     if (argc != 2) {
         fprintf(stderr, "usage: test_runtime CASE\n");

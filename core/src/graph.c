@@ -245,9 +245,11 @@ void vrg_graph_sources(const vrg_graph *g, void (*fn)(void *user, const char *pa
  * the diagnostics as usual and are kept for vrg_graph_reload_error. */
 static void apply_reloads(vrg_graph *g)
 {
-    char changed[32][VRG_PATH_MAX], self[VRG_PATH_MAX];
-    int n = vrg_watch_poll(g->watch, changed, 32);
-    if (n == 0)
+    char (*changed)[VRG_PATH_MAX], self[VRG_PATH_MAX];
+    int n = vrg_watch_poll(g->watch, &changed);
+    if (n < 0)
+        vrg_error(&g->diag, "hot reload: out of memory listing the changed files");
+    if (n <= 0)
         return;
     /* the graph file itself: the host reloads it (vrg_graph_reload) */
     if (g->loaded_from_file && realpath(g->path, self))
@@ -258,11 +260,8 @@ static void apply_reloads(vrg_graph *g)
         for (int k = 0; k < g->pass_count; k++) {
             if (strcmp(changed[i], g->passes[k].plugin->source) != 0)
                 continue;
-            int known = 0;
-            for (int j = 0; j < g->changed_plugin_count; j++)
-                known |= strcmp(g->changed_plugins[j], changed[i]) == 0;
-            if (!known && g->changed_plugin_count < 8)
-                snprintf(g->changed_plugins[g->changed_plugin_count++], VRG_PATH_MAX, "%s", changed[i]);
+            g->passes[k].plugin_rebuilt = 1;
+            g->plugins_rebuilt = 1;
             g->source_changed = 1;
         }
     char *text = NULL;
@@ -295,6 +294,7 @@ static void apply_reloads(vrg_graph *g)
         }
         g->pending_since = newest;
     }
+    free(changed);
 }
 
 int vrg_graph_frame(vrg_graph *g)

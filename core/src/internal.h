@@ -191,6 +191,7 @@ struct vrg_pass {
     /* shader pipelines cached by the dispatch helper */
     struct vrg_pipeline *pipelines;
     int failed;               /* an error during execute: frame fails */
+    int plugin_rebuilt;       /* its plugin's file was rebuilt: vrg_graph_reload loads it */
     uint64_t buffer_size[VRG_MAX_SLOTS]; /* vrg_pass_set_buffer_size, 0 if not set */
     struct vrg_param_value *strings;     /* string parameter values, in file order */
     int string_count;
@@ -248,8 +249,7 @@ struct vrg_graph {
     double reload_ms;          /* save-to-frame time of the last reload, -1 if none */
     double pending_since;      /* newest save (epoch seconds) reloaded in this frame, 0: none */
     int source_changed;        /* the graph file or a plugin was saved since load (reload.c) */
-    char changed_plugins[8][VRG_PATH_MAX]; /* rebuilt plugin files waiting for vrg_graph_reload */
-    int changed_plugin_count;
+    int plugins_rebuilt;       /* passes with plugin_rebuilt set wait for vrg_graph_reload */
     int params_changed;        /* the next frame is the first after a parameter-only reload */
     int history_carried;       /* a structural reload copied matching history resources over */
     struct vrg_capture *capture; /* vrg_graph_capture_frame: this frame's commands are kept */
@@ -358,8 +358,9 @@ typedef struct vrg_watch vrg_watch;
 vrg_watch *vrg_watch_create(void);
 void vrg_watch_destroy(vrg_watch *w);
 int vrg_watch_add(vrg_watch *w, const char *path);
-/* Tracked files whose write completed since the last poll (at most max). */
-int vrg_watch_poll(vrg_watch *w, char (*changed)[VRG_PATH_MAX], int max);
+/* Tracked files whose write completed since the last poll, in *changed
+ * (every one; the caller frees it). -1: out of memory. */
+int vrg_watch_poll(vrg_watch *w, char (**changed)[VRG_PATH_MAX]);
 /* report.c */
 const char *vrg_access_name(vrg_access a);
 
