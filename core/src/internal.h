@@ -92,14 +92,13 @@ int vrg_plugin_list(const vrg_plugin **out, int max);
 
 /* ---- parse (parse.c): the file as written, with line numbers ---- */
 typedef struct vrg_key {
-    char section[VRG_NAME_MAX + 16];
     char name[VRG_NAME_MAX];
     char value[256];
     int line;
     int section_index; /* index into vrg_ast.sections */
 } vrg_key;
 typedef struct vrg_section {
-    char name[VRG_NAME_MAX + 16];
+    char name[256]; /* longer than any line that can be read */
     int line;
 } vrg_section;
 typedef struct vrg_ast {

@@ -75,6 +75,16 @@ static int valid_name(const char *s)
     return 1;
 }
 
+/* Names longer than the tables hold are an error of their own (not "not
+ * valid", and never cut short). Returns 1 after reporting. */
+static int name_too_long(vrg_graph *g, int line, const char *what, const char *name, size_t len)
+{
+    if (len < VRG_NAME_MAX)
+        return 0;
+    vrg_error_at(&g->diag, line, NULL, "%s name '%.*s' is longer than %d characters", what, (int)len, name, VRG_NAME_MAX - 1);
+    return 1;
+}
+
 static int find_resource(const vrg_graph *g, const char *name)
 {
     for (int i = 0; i < g->res_count; i++)
@@ -210,10 +220,12 @@ static void graph_section(vrg_graph *g, const vrg_ast *a, int si)
         if (k->section_index != si || repeated_key(g, a, i))
             continue;
         double v;
-        if (strcmp(k->name, "name") == 0)
-            snprintf(g->name, sizeof g->name, "%s", k->value);
-        else if (strcmp(k->name, "output") == 0) {
-            snprintf(g->output_name, sizeof g->output_name, "%s", k->value);
+        if (strcmp(k->name, "name") == 0) {
+            if (!name_too_long(g, k->line, "graph", k->value, strlen(k->value)))
+                snprintf(g->name, sizeof g->name, "%s", k->value);
+        } else if (strcmp(k->name, "output") == 0) {
+            if (!name_too_long(g, k->line, "resource", k->value, strlen(k->value)))
+                snprintf(g->output_name, sizeof g->output_name, "%s", k->value);
             g->output_line = k->line;
         } else if (strcmp(k->name, "width") == 0)
             positive_int(&g->diag, k, 16384, &g->width);
@@ -311,6 +323,8 @@ static void bind_slot(vrg_graph *g, vrg_pass *p, const vrg_key *k, const char *s
      * so it is not also reported as missing. */
     p->slots[s].bad = 1;
     p->slots[s].line = k->line;
+    if (name_too_long(g, k->line, "resource", k->value, strcspn(k->value, "@")))
+        return;
     char name[VRG_NAME_MAX + 8];
     snprintf(name, sizeof name, "%s", k->value);
     char *at = strchr(name, '@');
@@ -393,6 +407,8 @@ static void pass_section(vrg_graph *g, const vrg_ast *a, int si, vrg_pass *p)
 
 static void resource_section(vrg_graph *g, const vrg_ast *a, int si, const char *name)
 {
+    if (name_too_long(g, a->sections[si].line, "resource", name, strlen(name)))
+        return;
     int ri = find_resource(g, name);
     if (ri < 0) {
         vrg_note_at(&g->diag, a->sections[si].line, "[resource %s] is not used by any pass", name);
@@ -490,7 +506,9 @@ static void collect_sections(vrg_graph *g, const vrg_ast *a, const char *graph_p
             continue;
         /* a pass or the scene */
         const char *pname = kind == SEC_SCENE ? "scene" : arg;
-        if (kind == SEC_PASS && (!valid_name(pname) || strlen(pname) >= VRG_NAME_MAX)) {
+        if (kind == SEC_PASS && name_too_long(g, sec->line, "pass", pname, strlen(pname)))
+            continue;
+        if (kind == SEC_PASS && !valid_name(pname)) {
             vrg_error_at(&g->diag, sec->line, "pass names use letters, digits, '_', '-' and '.'", "'%s' is not a valid pass name", pname);
             continue;
         }
@@ -862,9 +880,10 @@ int vrg_validate(vrg_graph *g, const vrg_ast *ast, const vrg_graph_desc *desc)
     resolve_resources(g);
     check_conflicting_uses(g);
     if (graph_si >= 0) {
-        if (!g->output_name[0])
-            vrg_error_at(&g->diag, ast->sections[graph_si].line, "add 'output = RESOURCE' to [graph]", "the graph has no output");
-        else {
+        if (!g->output_name[0]) {
+            if (!g->output_line) /* else given, but not usable: already reported */
+                vrg_error_at(&g->diag, ast->sections[graph_si].line, "add 'output = RESOURCE' to [graph]", "the graph has no output");
+        } else {
             g->output = find_resource(g, g->output_name);
             if (g->output >= 0 && g->res[g->output].writer_unknown)
                 ; /* its writer's plugin failed to load: already reported */
