@@ -1,6 +1,7 @@
 /* Helpers the CLI commands share (util.h). */
 #define _POSIX_C_SOURCE 200809L
 #include "util.h"
+#include <ctype.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -18,11 +19,13 @@ double vrg_cli_now_ms(void)
 int vrg_cli_parse_size(const char *s, uint32_t *w, uint32_t *h)
 {
     char *end;
+    if (!isdigit((unsigned char)s[0]))
+        return -1;
     long a = strtol(s, &end, 10);
-    if (*end != 'x' || a <= 0 || a > 16384)
+    if (*end != 'x' || !isdigit((unsigned char)end[1]) || a <= 0 || a > VRG_CLI_SIZE_MAX)
         return -1;
     long b = strtol(end + 1, &end, 10);
-    if (*end || b <= 0 || b > 16384)
+    if (*end || b <= 0 || b > VRG_CLI_SIZE_MAX)
         return -1;
     *w = (uint32_t)a;
     *h = (uint32_t)b;

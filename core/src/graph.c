@@ -124,7 +124,13 @@ int vrg_graph_load(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph **out
     g->output = -1;
     vrg_camera_default(&g->camera);
     snprintf(g->name, sizeof g->name, "graph");
-    int rc = vrg_parse(g->path, desc->text, ast, &g->diag);
+    int rc;
+    if (desc->path && strlen(desc->path) >= sizeof g->path) {
+        vrg_error(&g->diag, "graph path is longer than %zu characters", sizeof g->path - 1);
+        rc = -1;
+        ast->fatal = 1;
+    } else
+        rc = vrg_parse(g->path, desc->text, ast, &g->diag);
     /* Keep going after syntax errors so one run shows every problem. */
     if (!ast->fatal && (rc == 0 || ast->section_count > 0))
         rc = vrg_validate(g, ast, desc) | rc;

@@ -68,8 +68,8 @@ int vrg_find_memory_type(const vrg_context *ctx, uint32_t bits, VkMemoryProperty
 /* ---- plugin loading (plugin_loader.c) ---- */
 typedef struct vrg_plugin {
     char name[VRG_NAME_MAX];
-    char path[1024];   /* the file loaded: the source, or a reload's private copy */
-    char source[1024]; /* the file the build writes (hot reload watches it) */
+    char path[VRG_PATH_MAX];   /* the file loaded: the source, or a reload's private copy */
+    char source[VRG_PATH_MAX]; /* the file the build writes (hot reload watches it) */
     void *handle;
     const vrg_plugin_desc *desc;
     unsigned generation; /* load order: the highest of a name is its current version */
@@ -258,7 +258,7 @@ struct vrg_graph {
     int loaded_from_file;
     uint32_t subframes; /* graph frames per output frame (vrg_pass_set_subframes), 0 or 1: one */
     vrg_diag diag;
-    char path[1024];
+    char path[VRG_PATH_MAX];
     char name[VRG_NAME_MAX];
     char output_name[VRG_NAME_MAX];
     int output_line;

@@ -58,27 +58,27 @@ void vrg_plugin_release(const vrg_plugin *cp)
     memset(p, 0, sizeof *p);
 }
 
-static int add_dir(char dirs[][1024], int n, int max, const char *dir)
+static int add_dir(char dirs[][VRG_PATH_MAX], int n, int max, const char *dir)
 {
     for (int i = 0; i < n; i++)
         if (strcmp(dirs[i], dir) == 0)
             return n;
     if (n < max)
-        snprintf(dirs[n++], 1024, "%s", dir);
+        snprintf(dirs[n++], VRG_PATH_MAX, "%s", dir);
     return n;
 }
 
-static int search_dirs(const char *graph_path, char dirs[][1024], int max)
+static int search_dirs(const char *graph_path, char dirs[][VRG_PATH_MAX], int max)
 {
     int n = 0;
-    char dir[1100];
+    char dir[VRG_PATH_MAX + 16];
     const char *env = getenv("VOXRG_PLUGIN_PATH");
     if (env) {
         const char *p = env;
         while (*p && n < max) {
             const char *c = strchr(p, ':');
             size_t len = c ? (size_t)(c - p) : strlen(p);
-            if (len && len < 1024) {
+            if (len && len < VRG_PATH_MAX) {
                 snprintf(dir, sizeof dir, "%.*s", (int)len, p);
                 n = add_dir(dirs, n, max, dir);
             }
@@ -93,7 +93,7 @@ static int search_dirs(const char *graph_path, char dirs[][1024], int max)
         snprintf(dir, sizeof dir, "%.*s/plugins", len, slash ? graph_path : ".");
         n = add_dir(dirs, n, max, dir);
     }
-    char exe[1024];
+    char exe[VRG_PATH_MAX];
     ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
     if (len > 0) {
         exe[len] = '\0';
@@ -185,12 +185,12 @@ const vrg_plugin *vrg_plugin_load(const char *name, const char *graph_path, vrg_
         vrg_error_at(d, line, NULL, "too many plugins (at most %d)", VRG_MAX_PLUGINS);
         return NULL;
     }
-    char dirs[32][1024];
+    char dirs[32][VRG_PATH_MAX];
     int nd = search_dirs(graph_path, dirs, 32);
     vrg_plugin p = {0};
     snprintf(p.name, sizeof p.name, "%s", name);
     for (int i = 0; i < nd && !p.path[0]; i++) {
-        char path[1200];
+        char path[VRG_PATH_MAX + VRG_NAME_MAX + 8];
         snprintf(path, sizeof path, "%s/%s.so", dirs[i], name);
         if (access(path, F_OK) == 0) {
             char *real = realpath(path, NULL);
@@ -318,7 +318,7 @@ static int by_name(const void *a, const void *b)
 
 int vrg_plugin_list(const vrg_plugin **out, int max)
 {
-    char dirs[32][1024];
+    char dirs[32][VRG_PATH_MAX];
     int nd = search_dirs(NULL, dirs, 32);
     vrg_diag quiet = {.out = stderr, .file = "plugins"};
     for (int i = 0; i < nd; i++) {
