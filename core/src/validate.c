@@ -597,6 +597,28 @@ static void apply_overrides(vrg_graph *g, const vrg_graph_desc *desc)
 
 /* Resolve each resource's kind, format and size from its writer and the
  * [resource] overrides; then check every reader against it. */
+/* A persistent resource (a scene's world, an acceleration structure) is
+ * kept up to date in place, one copy: an @prev read of it would give it a
+ * second copy that its writer updates only every other frame, so frames
+ * would alternate between the world and an empty buffer. An error, not a
+ * silent alternation. */
+static void check_prev_of_persistent(vrg_graph *g)
+{
+    for (int pi = 0; pi < g->pass_count; pi++) {
+        const vrg_pass *p = &g->passes[pi];
+        for (int s = 0; p->plugin && s < (int)p->plugin->desc->slot_count; s++) {
+            const vrg_binding_ref *b = &p->slots[s];
+            if (b->res < 0 || !b->prev || !g->res[b->res].persistent || g->res[b->res].writer < 0)
+                continue;
+            const vrg_resource *r = &g->res[b->res];
+            char h[160];
+            snprintf(h, sizeof h, "pass '%s' keeps it up to date in place (line %d): read '%s' without @prev", g->passes[r->writer].name,
+                     r->writer_line, r->name);
+            vrg_error_at(&g->diag, b->line, h, "'%s@prev': resource '%s' is persistent and has no last frame's copy", r->name, r->name);
+        }
+    }
+}
+
 static void resolve_resources(vrg_graph *g)
 {
     for (int ri = 0; ri < g->res_count; ri++) {
@@ -878,6 +900,7 @@ int vrg_validate(vrg_graph *g, const vrg_ast *ast, const vrg_graph_desc *desc)
             resource_section(g, ast, si, arg);
     }
     resolve_resources(g);
+    check_prev_of_persistent(g);
     check_conflicting_uses(g);
     if (graph_si >= 0) {
         if (!g->output_name[0]) {
