@@ -352,6 +352,36 @@ static void test_alias_many(void)
     vrg_graph_destroy(g);
 }
 
+/* The dispatch helper's limits fail the frame with a message naming them:
+ * more bound slots than bindings (the rest were once left unbound), defines
+ * longer than it takes (once cut short). */
+static void test_dispatch_limits(void)
+{
+    static const struct {
+        const char *set, *want;
+    } cases[] = {
+        {"m.long_defines=0", "its slots need more than the 16 bindings of a dispatch"},
+        {"m.long_defines=1", "defines of 399 characters (at most"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char *log = NULL;
+        size_t len = 0;
+        FILE *diag = open_memstream(&log, &len);
+        const char *sets[] = {cases[i].set};
+        vrg_graph_desc d = {.path = "limits.ini", .overrides = sets, .override_count = 1, .diag = diag,
+                            .text = "[graph]\noutput = out\nwidth = 8\nheight = 8\n[pass m]\nplugin = many_slots\nout.color = out\n"};
+        vrg_graph *g = NULL;
+        CHECK(vrg_graph_load(ctx, &d, &g) == 0, "cannot load the graph");
+        if (g) {
+            CHECK(vrg_graph_frame(g) != 0, "%s: the frame did not fail", cases[i].set);
+            vrg_graph_destroy(g);
+        }
+        fclose(diag);
+        CHECK(log && strstr(log, cases[i].want), "%s: no '%s' in: %s", cases[i].set, cases[i].want, log ? log : "");
+        free(log);
+    }
+}
+
 /* accumulate: out = mix(history, color, alpha) once history is valid. The
  * input changes with a --set between graphs, so use two frames of one graph
  * whose color is constant: the result must stay the colour (mix of equals),
@@ -2471,7 +2501,7 @@ int main(int argc, char **argv)
         {"light_penumbra", test_light_penumbra, 1},   {"light_corner", test_light_corner, 1},
         {"light_chain", test_light_chain, 1},
         {"history_many", test_history_many, 1}, {"hot_reload_many_plugins", test_hot_reload_many_plugins, 1},
-        {"hot_reload_many_files", test_hot_reload_many_files, 1}, {"many_uses", test_many_uses, 1}, {"alias_many", test_alias_many, 1},
+        {"hot_reload_many_files", test_hot_reload_many_files, 1}, {"many_uses", test_many_uses, 1}, {"dispatch_limits", test_dispatch_limits, 1}, {"alias_many", test_alias_many, 1},
     };
     if (argc != 2) {
         fprintf(stderr, "usage: test_runtime CASE\n");
