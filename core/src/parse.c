@@ -67,9 +67,11 @@ static int on_key(void *user, const char *section, const char *name, const char 
         a->fatal = 1;
         return 1;
     }
+    if (strlen(name) >= sizeof a->keys[0].name) { /* reported, not kept cut short: no follow-on errors */
+        vrg_error_at(r->d, r->line, NULL, "key '%.*s...' is longer than %zu characters", 20, name, sizeof a->keys[0].name - 1);
+        return 1;
+    }
     vrg_key *k = &a->keys[a->key_count++];
-    if (strlen(name) >= sizeof k->name)
-        vrg_error_at(r->d, r->line, NULL, "key '%.*s...' is longer than %zu characters", 20, name, sizeof k->name - 1);
     snprintf(k->name, sizeof k->name, "%s", name);
     if (strlen(value) >= sizeof k->value)
         vrg_error_at(r->d, r->line, NULL, "value of '%s' is too long (at most %zu characters)", name, sizeof k->value - 1);
