@@ -2013,6 +2013,7 @@ static const char *reloadme_source =
     "    float pc[4] = {VERSION == 1, VERSION == 2, s->frames / 100.0f, 1};\n"
     "    (void)vrg_dispatch(p, cmd, &(vrg_dispatch_desc){.shader = \"reloadme.comp\", .push = pc, .push_size = sizeof pc});\n}\n"
     "static size_t save(vrg_pass *p, void *dst, size_t cap) {\n"
+    "#ifdef SAVE_TOO_MUCH\n    (void)p, (void)dst;\n    return cap + 1;\n#endif\n"
     "    if (cap < sizeof(state)) return 0;\n    memcpy(dst, vrg_pass_user(p), sizeof(state));\n    return sizeof(state);\n}\n"
     "static int restore(vrg_pass *p, const void *src, size_t n) {\n"
     "    if (n != sizeof(state)) return -1;\n    memcpy(vrg_pass_user(p), src, n);\n    return 0;\n}\n"
@@ -2024,16 +2025,21 @@ static const char *reloadme_source =
 
 /* Builds the test plugin `reloadme` (VERSION paints red or green, ABI its
  * declared ABI version) into dir/reloadme.so with the system compiler. */
-static int build_plugin_named(const char *dir, const char *name, int version, const char *abi)
+static int build_plugin_flags(const char *dir, const char *name, int version, const char *abi, const char *flags)
 {
     char src[1100], cmd[4096];
     snprintf(src, sizeof src, "%s/%s.c", dir, name);
     save_file(src, reloadme_source);
     snprintf(cmd, sizeof cmd,
-             "cc -std=c11 -shared -fPIC -I'%s/../core/include' -DNAME='\"%s\"' -DVERSION=%d -DABI=%s -DDIR='\"%s\"' '%s' -o '%s/%s.so.new' && "
+             "cc -std=c11 -shared -fPIC -I'%s/../core/include' %s -DNAME='\"%s\"' -DVERSION=%d -DABI=%s -DDIR='\"%s\"' '%s' -o '%s/%s.so.new' && "
              "mv '%s/%s.so.new' '%s/%s.so'",
-             TEST_DIR, name, version, abi, dir, src, dir, name, dir, name, dir, name);
+             TEST_DIR, flags, name, version, abi, dir, src, dir, name, dir, name, dir, name);
     return system(cmd);
+}
+
+static int build_plugin_named(const char *dir, const char *name, int version, const char *abi)
+{
+    return build_plugin_flags(dir, name, version, abi, "");
 }
 
 static int build_reloadme(const char *dir, int version, const char *abi) { return build_plugin_named(dir, "reloadme", version, abi); }
@@ -2202,6 +2208,55 @@ static void test_hot_reload_many_files(void)
     for (int i = 0; i < INCLUDES; i++)
         remove(inc[i]);
     remove(user), remove(graph), remove(pattern), rmdir(dir);
+}
+
+/* A save_state() that claims more bytes than it may write: the new instance
+ * starts afresh with a message naming the limit (it was once dropped without
+ * a word). */
+static void test_hot_reload_state_too_big(void)
+{
+    char dir[] = "/tmp/voxrg-state-XXXXXX";
+    if (!mkdtemp(dir)) {
+        CHECK(0, "mkdtemp failed");
+        return;
+    }
+    char path[1100], shader[1100], so[1100], src[1100];
+    snprintf(path, sizeof path, "%s/state.ini", dir);
+    snprintf(shader, sizeof shader, "%s/reloadme.comp", dir);
+    snprintf(so, sizeof so, "%s/bigstate.so", dir);
+    snprintf(src, sizeof src, "%s/bigstate.c", dir);
+    save_file(path, "[graph]\noutput = color\nwidth = 8\nheight = 8\n[pass r]\nplugin = bigstate\nout.color = color\n");
+    save_file(shader, "#version 450\nlayout(local_size_x = 8, local_size_y = 8) in;\n"
+                      "layout(binding = 0, rgba16f) uniform writeonly image2D dst;\n"
+                      "layout(push_constant) uniform P { vec4 c; } pc;\n"
+                      "void main() { imageStore(dst, ivec2(gl_GlobalInvocationID.xy), pc.c); }\n");
+    CHECK(build_plugin_flags(dir, "bigstate", 1, "VRG_ABI_VERSION", "-DSAVE_TOO_MUCH") == 0, "cannot build the test plugin with cc");
+    setenv("VOXRG_PLUGIN_PATH", dir, 1);
+    char *log = NULL;
+    size_t len = 0;
+    FILE *diag = open_memstream(&log, &len);
+    vrg_graph_desc d = {.path = path, .diag = diag};
+    vrg_graph *g = NULL;
+    if (vrg_graph_load(ctx, &d, &g) == 0) {
+        CHECK(vrg_graph_watch(g, 1) == 0, "watch failed");
+        for (int i = 0; i < 3; i++)
+            CHECK(vrg_graph_frame(g) == 0, "frame failed");
+        CHECK(build_plugin_flags(dir, "bigstate", 2, "VRG_ABI_VERSION", "-DSAVE_TOO_MUCH") == 0, "rebuild failed");
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+        CHECK(vrg_graph_source_changed(g) && vrg_graph_reload(&g) == 0, "reload failed");
+        vrg_image_data img;
+        CHECK(vrg_graph_frame(g) == 0 && vrg_graph_read(g, "color", &img) == 0, "frame failed");
+        CHECK(px(&img, 1, 1, 1) == 1 && fabsf(px(&img, 1, 1, 2) - 0.01f) < 1e-3f, "version 2 did not start afresh: %g %g %g", px(&img, 1, 1, 0),
+              px(&img, 1, 1, 1), px(&img, 1, 1, 2));
+        free(img.pixels);
+        vrg_graph_destroy(g);
+    } else
+        CHECK(0, "cannot load %s", path);
+    fclose(diag);
+    CHECK(log && strstr(log, "save_state() returned 65537 bytes, more than the 65536 it may write"), "no message: %s", log ? log : "");
+    free(log);
+    unsetenv("VOXRG_PLUGIN_PATH");
+    remove(so), remove(src), remove(shader), remove(path), rmdir(dir);
 }
 
 /* Hot reload of a rebuilt plugin: the new build runs from the next graph
@@ -2501,7 +2556,8 @@ int main(int argc, char **argv)
         {"light_penumbra", test_light_penumbra, 1},   {"light_corner", test_light_corner, 1},
         {"light_chain", test_light_chain, 1},
         {"history_many", test_history_many, 1}, {"hot_reload_many_plugins", test_hot_reload_many_plugins, 1},
-        {"hot_reload_many_files", test_hot_reload_many_files, 1}, {"many_uses", test_many_uses, 1}, {"dispatch_limits", test_dispatch_limits, 1}, {"alias_many", test_alias_many, 1},
+        {"hot_reload_many_files", test_hot_reload_many_files, 1}, {"many_uses", test_many_uses, 1}, {"dispatch_limits", test_dispatch_limits, 1},
+        {"hot_reload_state_too_big", test_hot_reload_state_too_big, 1}, {"alias_many", test_alias_many, 1},
     };
     if (argc != 2) {
         fprintf(stderr, "usage: test_runtime CASE\n");

@@ -123,7 +123,9 @@ static void carry_state(vrg_graph *old, vrg_graph *g)
                 continue;
             if (p->plugin->desc->save_state && q->plugin->desc->restore_state) {
                 size_t n = p->plugin->desc->save_state(p, state, sizeof state);
-                if (n <= sizeof state && q->plugin->desc->restore_state(q, state, n) != 0)
+                if (n > sizeof state)
+                    vrg_pass_error(q, "save_state() returned %zu bytes, more than the %zu it may write: the pass starts afresh", n, sizeof state);
+                else if (q->plugin->desc->restore_state(q, state, n) != 0)
                     vrg_pass_error(q, "restore_state() failed: the pass starts afresh");
             }
         }
