@@ -37,6 +37,10 @@ has "$out/stderr" "--interval .soon.: expected milliseconds" "--interval message
 expect_rc 2 "negative --frames" "$voxrg" render "$tests/graphs/alias.ini" --frames -1
 expect_rc 1 "missing graph file" "$voxrg" check "$tests/graphs/does-not-exist.ini" --no-device
 has "$out/stderr" "cannot open graph file" "missing graph message"
+# more plugin folders than are searched: an error, not folders left out
+many=$(seq -f "$out/plugin_dir_%g" 30 | paste -sd:)
+expect_rc 1 "too many plugin folders" env VOXRG_PLUGIN_PATH="$many" "$voxrg" check "$tests/graphs/alias.ini" --no-device
+has "$out/stderr" "VOXRG_PLUGIN_PATH names more than 27 folders" "plugin folder limit message"
 # a FIFO as the graph file: refused at once, never waited on
 mkfifo "$out/fifo.ini"
 expect_rc 1 "FIFO as the graph file" timeout 20 "$voxrg" check "$out/fifo.ini" --no-device
@@ -46,6 +50,9 @@ deep="$out"
 while [ ${#deep} -lt 1100 ]; do deep="$deep/folder_with_a_long_name_for_the_path_length_test"; done
 mkdir -p "$deep" && cp "$tests/graphs/chain.ini" "$deep/chain.ini"
 expect_rc 0 "graph path over 1023 characters" "$voxrg" check "$deep/chain.ini" --no-device
+cp "$tests/bad/unknown_key.ini" "$deep/unknown_key.ini"
+expect_rc 1 "errors of a graph path over 1023 characters" "$voxrg" check "$deep/unknown_key.ini" --no-device
+has "$out/stderr" "^$deep/unknown_key.ini:[0-9]+: error: unknown key" "the whole path and the message"
 long=$(printf '%04100d' 0)
 expect_rc 1 "graph path over 4095 characters" "$voxrg" check "$out/$long.ini" --no-device
 has "$out/stderr" "graph path is longer than 4095 characters" "long path message"

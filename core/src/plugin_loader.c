@@ -68,14 +68,23 @@ static int add_dir(char dirs[][VRG_PATH_MAX], int n, int max, const char *dir)
     return n;
 }
 
-static int search_dirs(const char *graph_path, char dirs[][VRG_PATH_MAX], int max)
+enum { SEARCH_DIRS = 32, FIXED_DIRS = 5 }; /* fixed: the graph's two, the executable's two, the build's */
+
+/* The folders searched for plugins, in order. *env_overflow is set when
+ * $VOXRG_PLUGIN_PATH names more folders than fit beside the fixed ones. */
+static int search_dirs(const char *graph_path, char dirs[][VRG_PATH_MAX], int max, int *env_overflow)
 {
     int n = 0;
     char dir[VRG_PATH_MAX + 16];
     const char *env = getenv("VOXRG_PLUGIN_PATH");
+    *env_overflow = 0;
     if (env) {
         const char *p = env;
-        while (*p && n < max) {
+        while (*p) {
+            if (n == max - FIXED_DIRS) {
+                *env_overflow = 1;
+                break;
+            }
             const char *c = strchr(p, ':');
             size_t len = c ? (size_t)(c - p) : strlen(p);
             if (len && len < VRG_PATH_MAX) {
@@ -185,8 +194,13 @@ const vrg_plugin *vrg_plugin_load(const char *name, const char *graph_path, vrg_
         vrg_error_at(d, line, NULL, "too many plugins (at most %d)", VRG_MAX_PLUGINS);
         return NULL;
     }
-    char dirs[32][VRG_PATH_MAX];
-    int nd = search_dirs(graph_path, dirs, 32);
+    char dirs[SEARCH_DIRS][VRG_PATH_MAX];
+    int overflow;
+    int nd = search_dirs(graph_path, dirs, SEARCH_DIRS, &overflow);
+    if (overflow) {
+        vrg_error_at(d, line, NULL, "$VOXRG_PLUGIN_PATH names more than %d folders", SEARCH_DIRS - FIXED_DIRS);
+        return NULL;
+    }
     vrg_plugin p = {0};
     snprintf(p.name, sizeof p.name, "%s", name);
     for (int i = 0; i < nd && !p.path[0]; i++) {
@@ -318,9 +332,12 @@ static int by_name(const void *a, const void *b)
 
 int vrg_plugin_list(const vrg_plugin **out, int max)
 {
-    char dirs[32][VRG_PATH_MAX];
-    int nd = search_dirs(NULL, dirs, 32);
+    char dirs[SEARCH_DIRS][VRG_PATH_MAX];
+    int overflow;
+    int nd = search_dirs(NULL, dirs, SEARCH_DIRS, &overflow);
     vrg_diag quiet = {.out = stderr, .file = "plugins"};
+    if (overflow)
+        vrg_error(&quiet, "$VOXRG_PLUGIN_PATH names more than %d folders: those after it are not searched", SEARCH_DIRS - FIXED_DIRS);
     for (int i = 0; i < nd; i++) {
         DIR *dir = opendir(dirs[i]);
         if (!dir)

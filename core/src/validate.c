@@ -835,20 +835,23 @@ static int cycle_dfs(vrg_graph *g, int pi, int *state, int *stack, int depth)
         if (w < 0)
             continue;
         if (state[w] == 1) {
-            char path[1024] = "";
+            /* every pass of the cycle, however many: sized, not cut short */
+            size_t cap = (size_t)(depth + 2) * (VRG_NAME_MAX + 4), used = 0;
+            char *path = malloc(cap);
             int start = depth;
             while (start > 0 && stack[start] != w)
                 start--;
             int first = w;
-            for (int i = start; i <= depth; i++) {
+            for (int i = start; path && i <= depth; i++) {
                 if (g->passes[stack[i]].line < g->passes[first].line)
                     first = stack[i];
-                strncat(path, g->passes[stack[i]].name, sizeof path - strlen(path) - 1);
-                strncat(path, " -> ", sizeof path - strlen(path) - 1);
+                used += (size_t)snprintf(path + used, cap - used, "%s -> ", g->passes[stack[i]].name);
             }
-            strncat(path, g->passes[w].name, sizeof path - strlen(path) - 1);
+            if (path)
+                snprintf(path + used, cap - used, "%s", g->passes[w].name);
             vrg_error_at(&g->diag, g->passes[first].line, "read last frame's value with NAME@prev to break the cycle",
-                         "cycle between passes: %s", path);
+                         "cycle between passes: %s", path ? path : "(out of memory listing them)");
+            free(path);
             return 1;
         }
         if (state[w] == 0 && cycle_dfs(g, w, state, stack, depth + 1))
