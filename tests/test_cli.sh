@@ -56,6 +56,9 @@ has "$out/stderr" "^$deep/unknown_key.ini:[0-9]+: error: unknown key" "the whole
 long=$(printf '%04100d' 0)
 expect_rc 1 "graph path over 4095 characters" "$voxrg" check "$out/$long.ini" --no-device
 has "$out/stderr" "graph path is longer than 4095 characters" "long path message"
+# --out deeper than 1023 characters: that folder, not a cut one
+expect_rc 0 "render --out over 1023 characters" "$voxrg" render "$tests/graphs/chain.ini" --size 8x8 --out "$deep/render"
+if [ -s "$deep/render/$(sed -n 's/^output *= *//p' "$tests/graphs/chain.ini").png" ]; then ok; else bad "render --out over 1023 characters: no PNG in $deep/render"; fi
 # names at the documented limit render
 expect_rc 0 "63-character names" "$voxrg" render "$tests/graphs/long_names.ini" --validate --frames 2 --out "$out/long_names"
 if [ -s "$out/long_names/$(printf 'r%.0s' $(seq 63)).png" ]; then ok; else bad "63-character names: no output PNG"; ls "$out/long_names"; fi

@@ -34,19 +34,24 @@ int vrg_cli_parse_size(const char *s, uint32_t *w, uint32_t *h)
 
 int vrg_cli_mkdir_p(const char *dir)
 {
-    char buf[1024];
-    snprintf(buf, sizeof buf, "%s", dir);
+    char *buf = strdup(dir); /* any length: a cut path would create another folder */
+    if (!buf) {
+        fprintf(stderr, "error: cannot create directory %s: out of memory\n", dir);
+        return -1;
+    }
     for (char *p = buf + 1; *p; p++)
         if (*p == '/') {
             *p = '\0';
             mkdir(buf, 0777);
             *p = '/';
         }
+    int rc = 0;
     if (mkdir(buf, 0777) != 0 && errno != EEXIST) {
         fprintf(stderr, "error: cannot create directory %s: %s\n", dir, strerror(errno));
-        return -1;
+        rc = -1;
     }
-    return 0;
+    free(buf);
+    return rc;
 }
 
 const char *vrg_cli_json_str(const char *s, char *buf, size_t cap)
