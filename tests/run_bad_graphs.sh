@@ -42,7 +42,8 @@ failed=0
 for f in "$dir"/*.ini; do
     [ -e "$f" ] || { echo "error: no .ini files in $dir" >&2; exit 2; }
     problems=""
-    expects=$(sed -n 's/^; expect: *//p' "$f")
+    # a file of CR-only line ends has its expectations on CR-ended lines
+    expects=$(tr '\r' '\n' <"$f" | sed -n 's/^; expect: *//p')
     if [ -z "$expects" ]; then
         problems="  no '; expect: LINE SUBSTRING' line in the file"
     fi

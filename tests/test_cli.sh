@@ -27,11 +27,41 @@ expect_rc 2 "no command" "$voxrg"
 expect_rc 2 "unknown command" "$voxrg" frobnicate
 expect_rc 2 "unknown option" "$voxrg" check "$tests/graphs/alias.ini" --bogus
 expect_rc 2 "bad --size" "$voxrg" render "$tests/graphs/alias.ini" --size 12by4
+has "$out/stderr" "--size '12by4': expected WxH, W and H whole numbers from 1 to 16384" "--size range in the message"
+expect_rc 2 "--size over the range" "$voxrg" render "$tests/graphs/alias.ini" --size 16385x4
+has "$out/stderr" "from 1 to 16384" "--size range in the message"
+expect_rc 2 "bench --size over the range" "$voxrg" bench --size 0x4
+has "$out/stderr" "from 1 to 16384" "bench --size range in the message"
 expect_rc 2 "bad --interval" "$voxrg" render "$tests/graphs/alias.ini" --interval soon
 has "$out/stderr" "--interval .soon.: expected milliseconds" "--interval message"
 expect_rc 2 "negative --frames" "$voxrg" render "$tests/graphs/alias.ini" --frames -1
 expect_rc 1 "missing graph file" "$voxrg" check "$tests/graphs/does-not-exist.ini" --no-device
 has "$out/stderr" "cannot open graph file" "missing graph message"
+# any number of plugin folders: every one searched, none left out
+many=$(seq -f "$out/plugin_dir_%g" 40 | paste -sd:)
+expect_rc 1 "many plugin folders" env VOXRG_PLUGIN_PATH="$many" "$voxrg" plugins nonesuch
+has "$out/stderr" "plugin_dir_40 \(VOXRG_PLUGIN_PATH\)" "the 40th plugin folder is searched"
+# a FIFO as the graph file: refused at once, never waited on
+mkfifo "$out/fifo.ini"
+expect_rc 1 "FIFO as the graph file" timeout 20 "$voxrg" check "$out/fifo.ini" --no-device
+has "$out/stderr" "graph file '$out/fifo.ini' is not a regular file" "FIFO message"
+# a graph path over 1023 characters (deep folders) is read like any other
+deep="$out"
+while [ ${#deep} -lt 1100 ]; do deep="$deep/folder_with_a_long_name_for_the_path_length_test"; done
+mkdir -p "$deep" && cp "$tests/graphs/chain.ini" "$deep/chain.ini"
+expect_rc 0 "graph path over 1023 characters" "$voxrg" check "$deep/chain.ini" --no-device
+cp "$tests/bad/unknown_key.ini" "$deep/unknown_key.ini"
+expect_rc 1 "errors of a graph path over 1023 characters" "$voxrg" check "$deep/unknown_key.ini" --no-device
+has "$out/stderr" "^$deep/unknown_key.ini:[0-9]+: error: unknown key" "the whole path and the message"
+long=$(printf '%04100d' 0)
+expect_rc 1 "graph path over 4095 characters" "$voxrg" check "$out/$long.ini" --no-device
+has "$out/stderr" "graph path is longer than 4095 characters" "long path message"
+# --out deeper than 1023 characters: that folder, not a cut one
+expect_rc 0 "render --out over 1023 characters" "$voxrg" render "$tests/graphs/chain.ini" --size 8x8 --out "$deep/render"
+if [ -s "$deep/render/$(sed -n 's/^output *= *//p' "$tests/graphs/chain.ini").png" ]; then ok; else bad "render --out over 1023 characters: no PNG in $deep/render"; fi
+# names at the documented limit render
+expect_rc 0 "63-character names" "$voxrg" render "$tests/graphs/long_names.ini" --validate --frames 2 --out "$out/long_names"
+if [ -s "$out/long_names/$(printf 'r%.0s' $(seq 63)).png" ]; then ok; else bad "63-character names: no output PNG"; ls "$out/long_names"; fi
 expect_rc 1 "unknown --set parameter" "$voxrg" check "$tests/graphs/alias.ini" --no-device --set gen.nope=1
 has "$out/stderr" "has no parameter 'nope'" "--set unknown parameter"
 expect_rc 1 "out-of-range --set" "$voxrg" check "$tests/graphs/alias.ini" --no-device --set gen.value=5

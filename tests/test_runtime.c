@@ -233,6 +233,155 @@ static void test_history_cleared(void)
     vrg_graph_destroy(g);
 }
 
+/* A graph given as text (path: for messages only). */
+static vrg_graph *load_text(const char *text, const char *const *reads, uint32_t nreads)
+{
+    vrg_graph_desc d = {.path = "generated.ini", .text = text, .readback = reads, .readback_count = nreads};
+    vrg_graph *g = NULL;
+    if (vrg_graph_load(ctx, &d, &g) != 0) {
+        fprintf(stderr, "cannot load the generated graph\n");
+        failures++;
+        return NULL;
+    }
+    return g;
+}
+
+static void append(char **text, size_t *len, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(NULL, 0, fmt, ap);
+    va_end(ap);
+    *text = realloc(*text, *len + (size_t)n + 1);
+    va_start(ap, fmt);
+    vsnprintf(*text + *len, (size_t)n + 1, fmt, ap);
+    va_end(ap);
+    *len += (size_t)n;
+}
+
+/* More history images than one barrier batch holds, all cleared in the same
+ * frame (the first, and after a reset): every clear gets its barrier (a
+ * missing one is a validation error) and every counter counts from 1. */
+static void test_history_many(void)
+{
+    enum { COUNTERS = 70 };
+    char *text = NULL, names[COUNTERS][16];
+    const char *reads[COUNTERS];
+    size_t len = 0;
+    append(&text, &len, "[graph]\nname = history_many\noutput = c0\nwidth = 8\nheight = 8\n");
+    for (int i = 0; i < COUNTERS; i++) {
+        append(&text, &len, "[pass n%d]\nplugin = counter\nalways_read = 1\nin.prev = c%d@prev\nout.count = c%d\n", i, i, i);
+        snprintf(names[i], sizeof names[i], "c%d", i);
+        reads[i] = names[i];
+    }
+    vrg_graph *g = load_text(text, reads, COUNTERS);
+    free(text);
+    if (!g)
+        return;
+    for (int round = 0; round < 2; round++) {
+        if (round)
+            vrg_graph_reset_history(g);
+        for (int frame = 1; frame <= 2; frame++) {
+            CHECK(vrg_graph_frame(g) == 0, "frame failed");
+            for (int i = 0; i < COUNTERS; i += COUNTERS - 1) {
+                vrg_image_data img;
+                CHECK(vrg_graph_read(g, names[i], &img) == 0, "readback of %s failed", names[i]);
+                CHECK(px(&img, 7, 7, 0) == (float)frame, "round %d frame %d: %s is %g", round, frame, names[i], px(&img, 7, 7, 0));
+                free(img.pixels);
+            }
+        }
+    }
+    vrg_graph_destroy(g);
+}
+
+/* A pass with more internal images than a barrier batch, all in one
+ * vrg_pass_use (a dropped barrier leaves an image in the wrong layout for its
+ * clear: a validation error), and more figures than there once was room for,
+ * with names longer than 31 characters. */
+static void test_many_uses(void)
+{
+    vrg_graph *g = load_text("[graph]\nname = many_uses\noutput = out\nwidth = 16\nheight = 16\n"
+                             "[pass m]\nplugin = many_uses\nimages = 70\nfigures = 20\nout.color = out\n",
+                             NULL, 0);
+    if (!g)
+        return;
+    for (int frame = 0; frame < 2; frame++)
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_image_data img;
+    CHECK(vrg_graph_read(g, "out", &img) == 0, "readback failed");
+    CHECK(px(&img, 3, 3, 0) == 70.0f, "output is %g, not 70", px(&img, 3, 3, 0));
+    free(img.pixels);
+    for (int i = 0; i < 20; i++) {
+        char name[96];
+        double v = -1;
+        snprintf(name, sizeof name, "figure_named_at_length_beyond_thirty_one_characters_%d", i);
+        CHECK(vrg_graph_stat(g, "m", name, &v) == 0 && v == i, "figure %d: %s, %g", i, name, v);
+    }
+    vrg_graph_destroy(g);
+}
+
+/* One image (big) placed over more than 64 earlier ones whose lifetimes
+ * ended before it starts; only the last few of them are written. Its first
+ * use must wait for those writes (the aliasing barrier), or synchronization
+ * validation reports a hazard. */
+static void test_alias_many(void)
+{
+    vrg_graph *g = load_text("[graph]\nname = alias_many\noutput = sum\nwidth = 128\nheight = 128\n"
+                             "[pass m]\nplugin = many_uses\nimages = 70\nwritten = 6\nscale = 0.0625\nfigures = 0\nout.color = small\n"
+                             "[pass gen]\nplugin = pattern\nout.color = big\n"
+                             "[pass s]\nplugin = add\nin.a = small\nin.b = big\nout.sum = sum\n",
+                             NULL, 0);
+    if (!g)
+        return;
+    int big_block, block;
+    uint64_t big_offset, big_size, offset, size;
+    CHECK(vrg_graph_placement(g, "big", &big_block, &big_offset, &big_size) == 0, "no placement of big");
+    for (int i = 0; i < 70; i++) {
+        char name[32];
+        snprintf(name, sizeof name, "m.t%d", i);
+        CHECK(vrg_graph_placement(g, name, &block, &offset, &size) == 0 && block == big_block && offset >= big_offset &&
+                  offset + size <= big_offset + big_size,
+              "%s (block %d, %llu + %llu) is not inside big's memory (block %d, %llu + %llu): the test proves nothing", name, block,
+              (unsigned long long)offset, (unsigned long long)size, big_block, (unsigned long long)big_offset, (unsigned long long)big_size);
+    }
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_image_data img;
+    CHECK(vrg_graph_read(g, "sum", &img) == 0, "readback failed");
+    CHECK(px(&img, 0, 0, 0) == 70.0f, "sum is %g, not 70 + 0", px(&img, 0, 0, 0));
+    free(img.pixels);
+    vrg_graph_destroy(g);
+}
+
+/* The dispatch helper's limits fail the frame with a message naming them:
+ * more bound slots than bindings (the rest were once left unbound), defines
+ * longer than it takes (once cut short). */
+static void test_dispatch_limits(void)
+{
+    static const struct {
+        const char *set, *want;
+    } cases[] = {
+        {"m.long_defines=0", "its slots need more than the 16 bindings of a dispatch"},
+        {"m.long_defines=1", "defines of 399 characters (at most"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char *log = NULL;
+        size_t len = 0;
+        FILE *diag = open_memstream(&log, &len);
+        const char *sets[] = {cases[i].set};
+        vrg_graph_desc d = {.path = "limits.ini", .overrides = sets, .override_count = 1, .diag = diag,
+                            .text = "[graph]\noutput = out\nwidth = 8\nheight = 8\n[pass m]\nplugin = many_slots\nout.color = out\n"};
+        vrg_graph *g = NULL;
+        CHECK(vrg_graph_load(ctx, &d, &g) == 0, "cannot load the graph");
+        if (g) {
+            CHECK(vrg_graph_frame(g) != 0, "%s: the frame did not fail", cases[i].set);
+            vrg_graph_destroy(g);
+        }
+        fclose(diag);
+        CHECK(log && strstr(log, cases[i].want), "%s: no '%s' in: %s", cases[i].set, cases[i].want, log ? log : "");
+        free(log);
+    }
+}
+
 /* accumulate: out = mix(history, color, alpha) once history is valid. The
  * input changes with a --set between graphs, so use two frames of one graph
  * whose color is constant: the result must stay the colour (mix of equals),
@@ -1893,27 +2042,36 @@ static const char *reloadme_source =
     "    float pc[4] = {VERSION == 1, VERSION == 2, s->frames / 100.0f, 1};\n"
     "    (void)vrg_dispatch(p, cmd, &(vrg_dispatch_desc){.shader = \"reloadme.comp\", .push = pc, .push_size = sizeof pc});\n}\n"
     "static size_t save(vrg_pass *p, void *dst, size_t cap) {\n"
+    "#ifdef SAVE_TOO_MUCH\n    (void)p, (void)dst;\n    return cap + 1;\n#endif\n"
     "    if (cap < sizeof(state)) return 0;\n    memcpy(dst, vrg_pass_user(p), sizeof(state));\n    return sizeof(state);\n}\n"
     "static int restore(vrg_pass *p, const void *src, size_t n) {\n"
     "    if (n != sizeof(state)) return -1;\n    memcpy(vrg_pass_user(p), src, n);\n    return 0;\n}\n"
-    "static const vrg_plugin_desc desc = {.abi_version = ABI, .name = \"reloadme\", .kind = VRG_PLUGIN_PASS,\n"
+    "#ifndef NAME\n#define NAME \"reloadme\"\n#endif\n"
+    "static const vrg_plugin_desc desc = {.abi_version = ABI, .name = NAME, .kind = VRG_PLUGIN_PASS,\n"
     "    .help = \"test: hot reload\", .shader_dir = DIR, .slots = slots, .slot_count = 1, .create = create,\n"
     "    .destroy = destroy, .execute = execute, .save_state = save, .restore_state = restore};\n"
     "VRG_PLUGIN(desc)\n";
 
 /* Builds the test plugin `reloadme` (VERSION paints red or green, ABI its
  * declared ABI version) into dir/reloadme.so with the system compiler. */
-static int build_reloadme(const char *dir, int version, const char *abi)
+static int build_plugin_flags(const char *dir, const char *name, int version, const char *abi, const char *flags)
 {
     char src[1100], cmd[4096];
-    snprintf(src, sizeof src, "%s/reloadme.c", dir);
+    snprintf(src, sizeof src, "%s/%s.c", dir, name);
     save_file(src, reloadme_source);
     snprintf(cmd, sizeof cmd,
-             "cc -std=c11 -shared -fPIC -I'%s/../core/include' -DVERSION=%d -DABI=%s -DDIR='\"%s\"' '%s' -o '%s/reloadme.so.new' && "
-             "mv '%s/reloadme.so.new' '%s/reloadme.so'",
-             TEST_DIR, version, abi, dir, src, dir, dir, dir);
+             "cc -std=c11 -shared -fPIC -I'%s/../core/include' %s -DNAME='\"%s\"' -DVERSION=%d -DABI=%s -DDIR='\"%s\"' '%s' -o '%s/%s.so.new' && "
+             "mv '%s/%s.so.new' '%s/%s.so'",
+             TEST_DIR, flags, name, version, abi, dir, src, dir, name, dir, name, dir, name);
     return system(cmd);
 }
+
+static int build_plugin_named(const char *dir, const char *name, int version, const char *abi)
+{
+    return build_plugin_flags(dir, name, version, abi, "");
+}
+
+static int build_reloadme(const char *dir, int version, const char *abi) { return build_plugin_named(dir, "reloadme", version, abi); }
 
 /* How many distinct files named like `name` are mapped into this process:
  * the versions of a plugin still loaded. */
@@ -1937,6 +2095,197 @@ static int mapped_versions(const char *name)
     if (f)
         fclose(f);
     return n;
+}
+
+/* More rebuilt plugins in one reload than there once was room for: every
+ * one of them runs its new version afterwards. */
+static void test_hot_reload_many_plugins(void)
+{
+    enum { PLUGINS = 10 };
+    char dir[] = "/tmp/voxrg-plugins-XXXXXX";
+    if (!mkdtemp(dir)) {
+        CHECK(0, "mkdtemp failed");
+        return;
+    }
+    char path[1100], shader[1100], name[PLUGINS][32], *text = NULL;
+    const char *reads[PLUGINS];
+    size_t tlen = 0;
+    snprintf(path, sizeof path, "%s/many.ini", dir);
+    snprintf(shader, sizeof shader, "%s/reloadme.comp", dir);
+    save_file(shader, "#version 450\nlayout(local_size_x = 8, local_size_y = 8) in;\n"
+                      "layout(binding = 0, rgba16f) uniform writeonly image2D dst;\n"
+                      "layout(push_constant) uniform P { vec4 c; } pc;\n"
+                      "void main() { imageStore(dst, ivec2(gl_GlobalInvocationID.xy), pc.c); }\n");
+    append(&text, &tlen, "[graph]\noutput = c0\nwidth = 8\nheight = 8\n");
+    for (int i = 0; i < PLUGINS; i++) {
+        snprintf(name[i], sizeof name[i], "reloadme%d", i);
+        append(&text, &tlen, "[pass p%d]\nplugin = %s\nout.color = c%d\n", i, name[i], i);
+        CHECK(build_plugin_named(dir, name[i], 1, "VRG_ABI_VERSION") == 0, "cannot build %s with cc", name[i]);
+    }
+    save_file(path, text);
+    free(text);
+    char cname[PLUGINS][16];
+    for (int i = 0; i < PLUGINS; i++) {
+        snprintf(cname[i], sizeof cname[i], "c%d", i);
+        reads[i] = cname[i];
+    }
+    setenv("VOXRG_PLUGIN_PATH", dir, 1);
+    vrg_graph_desc d = {.path = path, .readback = reads, .readback_count = PLUGINS};
+    vrg_graph *g = NULL;
+    if (vrg_graph_load(ctx, &d, &g) == 0) {
+        CHECK(vrg_graph_watch(g, 1) == 0, "watch failed");
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+        for (int i = 0; i < PLUGINS; i++)
+            CHECK(build_plugin_named(dir, name[i], 2, "VRG_ABI_VERSION") == 0, "cannot rebuild %s", name[i]);
+        CHECK(vrg_graph_frame(g) == 0, "frame failed"); /* notices every rebuild at once */
+        CHECK(vrg_graph_source_changed(g) && vrg_graph_reload(&g) == 0, "reload failed: %s",
+              vrg_graph_reload_error(g) ? vrg_graph_reload_error(g) : "");
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+        for (int i = 0; i < PLUGINS; i++) {
+            vrg_image_data img;
+            CHECK(vrg_graph_read(g, cname[i], &img) == 0, "readback of %s failed", cname[i]);
+            CHECK(px(&img, 1, 1, 0) == 0 && px(&img, 1, 1, 1) == 1, "%s still runs version 1 (%g %g)", name[i], px(&img, 1, 1, 0),
+                  px(&img, 1, 1, 1));
+            free(img.pixels);
+        }
+        vrg_graph_destroy(g);
+    } else
+        CHECK(0, "cannot load %s", path);
+    unsetenv("VOXRG_PLUGIN_PATH");
+    for (int i = 0; i < PLUGINS; i++) {
+        char f[1100];
+        snprintf(f, sizeof f, "%s/%s.so", dir, name[i]);
+        remove(f);
+        snprintf(f, sizeof f, "%s/%s.c", dir, name[i]);
+        remove(f);
+    }
+    remove(shader), remove(path), rmdir(dir);
+}
+
+/* More saved files in one poll than there once was room for (the last were
+ * dropped): one pass's shader with many includes, all saved again, then the
+ * one file that matters, another pass's shader (pattern.comp, taken from
+ * $VOXRG_SHADER_OVERRIDE), saved last with a new colour. The includes also
+ * outnumber the include table there once was (the last were left out of the
+ * source: TINT, in the last include, was undeclared). */
+static void test_hot_reload_many_files(void)
+{
+    enum { INCLUDES = 40 };
+    char dir[] = "/tmp/voxrg-includes-XXXXXX";
+    if (!mkdtemp(dir)) {
+        CHECK(0, "mkdtemp failed");
+        return;
+    }
+    char user[1100], graph[1100], pattern[1100], inc[INCLUDES][1100], *text = NULL;
+    size_t tlen = 0;
+    snprintf(user, sizeof user, "%s/user.comp", dir);
+    snprintf(graph, sizeof graph, "%s/g.ini", dir);
+    snprintf(pattern, sizeof pattern, "%s/pattern.comp", dir);
+    append(&text, &tlen, "#version 450\n");
+    for (int i = 0; i < INCLUDES; i++) {
+        snprintf(inc[i], sizeof inc[i], "%s/inc%d.glsl", dir, i);
+        append(&text, &tlen, "#include \"inc%d.glsl\"\n", i);
+    }
+    append(&text, &tlen, "layout(local_size_x = 8, local_size_y = 8) in;\nlayout(binding = 0, rgba16f) uniform writeonly image2D dst;\n"
+                         "void main() { imageStore(dst, ivec2(gl_GlobalInvocationID.xy), vec4(TINT, 1.0)); }\n");
+    static const char pattern_shader[] = "#version 450\nlayout(local_size_x = 8, local_size_y = 8) in;\n"
+                                         "layout(binding = 0, rgba16f) uniform writeonly image2D dst;\n"
+                                         "layout(push_constant) uniform P { float value; } pc;\n"
+                                         "void main() { imageStore(dst, ivec2(gl_GlobalInvocationID.xy), vec4(%d.0, 0.5, 0.0, 1.0)); }\n";
+    char pattern_text[sizeof pattern_shader + 16];
+    save_file(graph, "[graph]\noutput = color\nwidth = 8\nheight = 8\n[pass s]\nplugin = shader_file\nout.color = color\n"
+                     "[pass p]\nplugin = pattern\nout.color = grad\n");
+    for (int i = 0; i < INCLUDES - 1; i++)
+        save_file(inc[i], "\n");
+    save_file(inc[INCLUDES - 1], "#define TINT vec3(1.0, 0.0, 0.0)\n");
+    save_file(user, text);
+    snprintf(pattern_text, sizeof pattern_text, pattern_shader, 1);
+    save_file(pattern, pattern_text);
+    setenv("VOXRG_SHADER_PATH", dir, 1);
+    setenv("VOXRG_SHADER_OVERRIDE", dir, 1);
+    static const char *reads[] = {"grad"};
+    vrg_graph_desc d = {.path = graph, .readback = reads, .readback_count = 1};
+    vrg_graph *g = NULL;
+    if (vrg_graph_load(ctx, &d, &g) == 0) {
+        CHECK(vrg_graph_watch(g, 1) == 0, "watch failed");
+        vrg_image_data img;
+        for (int step = 0; step < 2; step++) {
+            if (step == 1) { /* the first pass's files saved again unchanged, the change last */
+                save_file(user, text);
+                for (int i = 0; i < INCLUDES - 1; i++)
+                    save_file(inc[i], "\n");
+                save_file(inc[INCLUDES - 1], "#define TINT vec3(1.0, 0.0, 0.0)\n");
+                snprintf(pattern_text, sizeof pattern_text, pattern_shader, 2);
+                save_file(pattern, pattern_text);
+            }
+            CHECK(vrg_graph_frame(g) == 0, "step %d: frame failed", step);
+            CHECK(vrg_graph_read(g, "color", &img) == 0, "readback failed");
+            CHECK(px(&img, 3, 3, 0) == 1.0f && px(&img, 3, 3, 1) == 0.0f, "step %d: colour %g %g", step, px(&img, 3, 3, 0), px(&img, 3, 3, 1));
+            free(img.pixels);
+            CHECK(vrg_graph_read(g, "grad", &img) == 0, "readback failed");
+            CHECK(px(&img, 3, 3, 0) == (float)(step + 1), "step %d: pattern.comp's colour is %g, want %d (its save was not seen)", step,
+                  px(&img, 3, 3, 0), step + 1);
+            free(img.pixels);
+            CHECK(!vrg_graph_reload_error(g), "step %d: reload error %s", step, vrg_graph_reload_error(g));
+        }
+        vrg_graph_destroy(g);
+    } else
+        CHECK(0, "cannot load %s", graph);
+    free(text);
+    unsetenv("VOXRG_SHADER_PATH");
+    unsetenv("VOXRG_SHADER_OVERRIDE");
+    for (int i = 0; i < INCLUDES; i++)
+        remove(inc[i]);
+    remove(user), remove(graph), remove(pattern), rmdir(dir);
+}
+
+/* A save_state() that claims more bytes than it may write: the new instance
+ * starts afresh with a message naming the limit (it was once dropped without
+ * a word). */
+static void test_hot_reload_state_too_big(void)
+{
+    char dir[] = "/tmp/voxrg-state-XXXXXX";
+    if (!mkdtemp(dir)) {
+        CHECK(0, "mkdtemp failed");
+        return;
+    }
+    char path[1100], shader[1100], so[1100], src[1100];
+    snprintf(path, sizeof path, "%s/state.ini", dir);
+    snprintf(shader, sizeof shader, "%s/reloadme.comp", dir);
+    snprintf(so, sizeof so, "%s/bigstate.so", dir);
+    snprintf(src, sizeof src, "%s/bigstate.c", dir);
+    save_file(path, "[graph]\noutput = color\nwidth = 8\nheight = 8\n[pass r]\nplugin = bigstate\nout.color = color\n");
+    save_file(shader, "#version 450\nlayout(local_size_x = 8, local_size_y = 8) in;\n"
+                      "layout(binding = 0, rgba16f) uniform writeonly image2D dst;\n"
+                      "layout(push_constant) uniform P { vec4 c; } pc;\n"
+                      "void main() { imageStore(dst, ivec2(gl_GlobalInvocationID.xy), pc.c); }\n");
+    CHECK(build_plugin_flags(dir, "bigstate", 1, "VRG_ABI_VERSION", "-DSAVE_TOO_MUCH") == 0, "cannot build the test plugin with cc");
+    setenv("VOXRG_PLUGIN_PATH", dir, 1);
+    char *log = NULL;
+    size_t len = 0;
+    FILE *diag = open_memstream(&log, &len);
+    vrg_graph_desc d = {.path = path, .diag = diag};
+    vrg_graph *g = NULL;
+    if (vrg_graph_load(ctx, &d, &g) == 0) {
+        CHECK(vrg_graph_watch(g, 1) == 0, "watch failed");
+        for (int i = 0; i < 3; i++)
+            CHECK(vrg_graph_frame(g) == 0, "frame failed");
+        CHECK(build_plugin_flags(dir, "bigstate", 2, "VRG_ABI_VERSION", "-DSAVE_TOO_MUCH") == 0, "rebuild failed");
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+        CHECK(vrg_graph_source_changed(g) && vrg_graph_reload(&g) == 0, "reload failed");
+        vrg_image_data img;
+        CHECK(vrg_graph_frame(g) == 0 && vrg_graph_read(g, "color", &img) == 0, "frame failed");
+        CHECK(px(&img, 1, 1, 1) == 1 && fabsf(px(&img, 1, 1, 2) - 0.01f) < 1e-3f, "version 2 did not start afresh: %g %g %g", px(&img, 1, 1, 0),
+              px(&img, 1, 1, 1), px(&img, 1, 1, 2));
+        free(img.pixels);
+        vrg_graph_destroy(g);
+    } else
+        CHECK(0, "cannot load %s", path);
+    fclose(diag);
+    CHECK(log && strstr(log, "save_state() returned 65537 bytes, more than the 65536 it may write"), "no message: %s", log ? log : "");
+    free(log);
+    unsetenv("VOXRG_PLUGIN_PATH");
+    remove(so), remove(src), remove(shader), remove(path), rmdir(dir);
 }
 
 /* Hot reload of a rebuilt plugin: the new build runs from the next graph
@@ -2235,6 +2584,9 @@ int main(int argc, char **argv)
         {"light_half_res", test_light_half_res, 1},
         {"light_penumbra", test_light_penumbra, 1},   {"light_corner", test_light_corner, 1},
         {"light_chain", test_light_chain, 1},
+        {"history_many", test_history_many, 1}, {"hot_reload_many_plugins", test_hot_reload_many_plugins, 1},
+        {"hot_reload_many_files", test_hot_reload_many_files, 1}, {"many_uses", test_many_uses, 1}, {"dispatch_limits", test_dispatch_limits, 1},
+        {"hot_reload_state_too_big", test_hot_reload_state_too_big, 1}, {"alias_many", test_alias_many, 1},
     };
     if (argc != 2) {
         fprintf(stderr, "usage: test_runtime CASE\n");

@@ -151,7 +151,7 @@ static int parse_options(int argc, char **argv, options *o)
             o->ref_sets[o->ref_set_count++] = next;
         } else if (!strcmp(a, "--size")) {
             if (vrg_cli_parse_size(next, &o->width, &o->height) != 0)
-                return usage_error("--size '%s': expected WxH, e.g. 320x180", next);
+                return usage_error("--size '%s': expected WxH, " VRG_CLI_SIZE_RANGE ", e.g. 320x180", next);
         } else if (!strcmp(a, "--frames")) {
             if (parse_count(next, 1, 100000, &o->frames) != 0)
                 return usage_error("--frames '%s': expected 1 to 100000", next);

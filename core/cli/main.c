@@ -155,7 +155,7 @@ static int parse_options(int argc, char **argv, options *o, const char *usage)
             o->sets[o->set_count++] = next;
         } else if (!strcmp(a, "--size")) {
             if (vrg_cli_parse_size(next, &o->width, &o->height) != 0)
-                return usage_error(usage, "--size '%s': expected WxH, e.g. 320x180", next);
+                return usage_error(usage, "--size '%s': expected WxH, " VRG_CLI_SIZE_RANGE ", e.g. 320x180", next);
         } else if (!strcmp(a, "--frames")) {
             char *end;
             long n = strtol(next, &end, 10);
@@ -646,7 +646,7 @@ static int cmd_bench(int argc, char **argv)
                 return usage_error(usage_bench, "--radius '%s': 1 to 32", argv[i]);
         } else if (!strcmp(argv[i], "--size")) {
             if (vrg_cli_parse_size(argv[++i], &o.width, &o.height) != 0)
-                return usage_error(usage_bench, "--size '%s': expected WxH, e.g. 640x360", argv[i]);
+                return usage_error(usage_bench, "--size '%s': expected WxH, " VRG_CLI_SIZE_RANGE ", e.g. 640x360", argv[i]);
         } else if (!strcmp(argv[i], "--runs")) {
             o.runs = atoi(argv[++i]);
             if (o.runs < 1 || o.runs > 64)

@@ -2,6 +2,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "util.h"
 #include "voxrg/voxrg.h"
+#include <ctype.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -40,11 +41,13 @@ double vrg_cli_now_ms(void)
 int vrg_cli_parse_size(const char *s, uint32_t *w, uint32_t *h)
 {
     char *end;
+    if (!isdigit((unsigned char)s[0]))
+        return -1;
     long a = strtol(s, &end, 10);
-    if (*end != 'x' || a <= 0 || a > 16384)
+    if (*end != 'x' || !isdigit((unsigned char)end[1]) || a <= 0 || a > VRG_CLI_SIZE_MAX)
         return -1;
     long b = strtol(end + 1, &end, 10);
-    if (*end || b <= 0 || b > 16384)
+    if (*end || b <= 0 || b > VRG_CLI_SIZE_MAX)
         return -1;
     *w = (uint32_t)a;
     *h = (uint32_t)b;
@@ -53,19 +56,24 @@ int vrg_cli_parse_size(const char *s, uint32_t *w, uint32_t *h)
 
 int vrg_cli_mkdir_p(const char *dir)
 {
-    char buf[1024];
-    snprintf(buf, sizeof buf, "%s", dir);
+    char *buf = strdup(dir); /* any length: a cut path would create another folder */
+    if (!buf) {
+        fprintf(stderr, "error: cannot create directory %s: out of memory\n", dir);
+        return -1;
+    }
     for (char *p = buf + 1; *p; p++)
         if (*p == '/') {
             *p = '\0';
             mkdir(buf, 0777);
             *p = '/';
         }
+    int rc = 0;
     if (mkdir(buf, 0777) != 0 && errno != EEXIST) {
         fprintf(stderr, "error: cannot create directory %s: %s\n", dir, strerror(errno));
-        return -1;
+        rc = -1;
     }
-    return 0;
+    free(buf);
+    return rc;
 }
 
 int vrg_cli_out_dir(const char *dir)
@@ -75,7 +83,7 @@ int vrg_cli_out_dir(const char *dir)
 
 int vrg_cli_out_file_dir(const char *file)
 {
-    char dir[1024];
+    char dir[4096];
     const char *slash = strrchr(file, '/');
     if (!slash)
         return vrg_output_dir_check(".");

@@ -6,7 +6,12 @@
 
 /* Monotonic milliseconds. */
 double vrg_cli_now_ms(void);
-/* "WxH" (each 1..16384) -> 0, else -1. */
+/* The largest --size side: as a graph file's width and height. */
+#define VRG_CLI_SIZE_MAX 16384
+#define VRG_CLI_STR_(x) #x
+#define VRG_CLI_STR(x) VRG_CLI_STR_(x)
+#define VRG_CLI_SIZE_RANGE "W and H whole numbers from 1 to " VRG_CLI_STR(VRG_CLI_SIZE_MAX)
+/* "WxH" (each 1..VRG_CLI_SIZE_MAX) -> 0, else -1. */
 int vrg_cli_parse_size(const char *s, uint32_t *w, uint32_t *h);
 /* mkdir -p; prints the error and returns -1 on failure. */
 int vrg_cli_mkdir_p(const char *dir);

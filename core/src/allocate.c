@@ -224,7 +224,8 @@ int vrg_allocate(vrg_graph *g)
         else if (create_objects(g, i) != 0)
             return -1;
     }
-    vrg_plan_aliasing(g);
+    if (vrg_plan_aliasing(g) != 0)
+        return -1;
     if (!g->ctx)
         return 0;
     for (int b = 0; b < g->block_count; b++) {

@@ -109,7 +109,7 @@ static int barrier_for(vrg_graph *g, int ri, int copy, vrg_access access, vrg_ba
     out->copy = copy;
     if (discard) {
         for (int i = 0; i < r->overlap_count; i++) {
-            const vrg_sync *o = &g->res[r->overlaps[i]].sync[0];
+            const vrg_sync *o = &g->res[g->overlaps[r->overlap_first + i]].sync[0];
             out->src_stage |= o->write_stages | o->read_stages;
             out->src_access |= o->write_access;
             out->aliasing |= (o->write_stages | o->read_stages) != 0;
@@ -141,15 +141,38 @@ int vrg_resource_barrier(vrg_graph *g, int res, int copy, vrg_access access, vrg
     return barrier_for(g, res, copy, access, out);
 }
 
+/* One vkCmdPipelineBarrier2 per batch of this many of each kind: a frame's
+ * history clear can bring every kept resource's two copies at once, more
+ * than a stack array should hold. Barriers of one call are for distinct
+ * resource copies, so splitting them changes no ordering. */
+enum { BARRIER_BATCH = 64 };
+
+static void flush_batch(vrg_graph *g, VkCommandBuffer cmd, const VkImageMemoryBarrier2 *img, uint32_t ni,
+                        const VkBufferMemoryBarrier2 *buf, uint32_t nb)
+{
+    if (!ni && !nb)
+        return;
+    VkDependencyInfo dep = {
+        .sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
+        .bufferMemoryBarrierCount = nb,
+        .pBufferMemoryBarriers = buf,
+        .imageMemoryBarrierCount = ni,
+        .pImageMemoryBarriers = img,
+    };
+    if (g->capture)
+        vrg_capture_barrier(g->capture, &dep);
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
 void vrg_emit_barriers(vrg_graph *g, VkCommandBuffer cmd, const vrg_barrier_rec *b, int n)
 {
-    VkImageMemoryBarrier2 img[64];
-    VkBufferMemoryBarrier2 buf[64];
+    VkImageMemoryBarrier2 img[BARRIER_BATCH];
+    VkBufferMemoryBarrier2 buf[BARRIER_BATCH];
     uint32_t ni = 0, nb = 0;
     for (int i = 0; i < n; i++) {
         const vrg_resource *r = &g->res[b[i].res];
         VkPipelineStageFlags2 src = b[i].src_stage ? b[i].src_stage : VK_PIPELINE_STAGE_2_NONE;
-        if (r->kind == VRG_IMAGE && ni < 64)
+        if (r->kind == VRG_IMAGE)
             img[ni++] = (VkImageMemoryBarrier2){
                 .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
                 .srcStageMask = src,
@@ -163,7 +186,7 @@ void vrg_emit_barriers(vrg_graph *g, VkCommandBuffer cmd, const vrg_barrier_rec 
                 .image = r->image[b[i].copy],
                 .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, VK_REMAINING_MIP_LEVELS, 0, 1},
             };
-        else if ((r->kind == VRG_BUFFER || r->kind == VRG_ACCEL) && r->buffer[b[i].copy] && nb < 64)
+        else if ((r->kind == VRG_BUFFER || r->kind == VRG_ACCEL) && r->buffer[b[i].copy])
             buf[nb++] = (VkBufferMemoryBarrier2){
                 .sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
                 .srcStageMask = src,
@@ -175,17 +198,10 @@ void vrg_emit_barriers(vrg_graph *g, VkCommandBuffer cmd, const vrg_barrier_rec 
                 .buffer = r->buffer[b[i].copy],
                 .size = VK_WHOLE_SIZE,
             };
+        if (ni == BARRIER_BATCH || nb == BARRIER_BATCH) {
+            flush_batch(g, cmd, img, ni, buf, nb);
+            ni = nb = 0;
+        }
     }
-    if (!ni && !nb)
-        return;
-    VkDependencyInfo dep = {
-        .sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
-        .bufferMemoryBarrierCount = nb,
-        .pBufferMemoryBarriers = buf,
-        .imageMemoryBarrierCount = ni,
-        .pImageMemoryBarriers = img,
-    };
-    if (g->capture)
-        vrg_capture_barrier(g->capture, &dep);
-    vkCmdPipelineBarrier2(cmd, &dep);
+    flush_batch(g, cmd, img, ni, buf, nb);
 }

@@ -16,32 +16,62 @@ static void add(vrg_diag *d, int line, const char *text)
         return;
     }
     if (d->count == d->cap) {
-        d->cap = d->cap ? d->cap * 2 : 16;
-        d->entries = realloc(d->entries, d->cap * sizeof *d->entries);
+        int cap = d->cap ? d->cap * 2 : 16;
+        vrg_diag_entry *grown = realloc(d->entries, (size_t)cap * sizeof *grown);
+        if (!grown) { /* printed now rather than lost */
+            fputs(text, diag_out(d));
+            return;
+        }
+        d->entries = grown;
+        d->cap = cap;
     }
-    d->entries[d->count++] = (vrg_diag_entry){line, d->count, strdup(text)};
+    char *copy = strdup(text);
+    if (!copy) {
+        fputs(text, diag_out(d));
+        return;
+    }
+    d->entries[d->count] = (vrg_diag_entry){line, d->count, copy};
+    d->count++;
 }
 
-static void vadd(vrg_diag *d, int line, const char *prefix, const char *hint, const char *fmt, va_list ap)
+/* Messages are as long as they need: a file name of any length, the whole
+ * message after it. */
+static void vadd(vrg_diag *d, int line, const char *kind, const char *hint, const char *fmt, va_list ap)
 {
-    char msg[2048];
-    int n = snprintf(msg, sizeof msg, "%s", prefix);
-    if (n < (int)sizeof msg)
-        n += vsnprintf(msg + n, sizeof msg - (size_t)n, fmt, ap);
-    if (n < (int)sizeof msg)
-        n += snprintf(msg + n, sizeof msg - (size_t)n, "\n");
-    if (hint && n < (int)sizeof msg)
-        snprintf(msg + n, sizeof msg - (size_t)n, "  hint: %s\n", hint);
-    add(d, line, msg);
+    char *file = NULL, *body = NULL, *text = NULL;
+    size_t fn = 0, bn = 0, tn = 0;
+    FILE *f = open_memstream(&file, &fn), *b = open_memstream(&body, &bn), *t = open_memstream(&text, &tn);
+    if (f && b && t) {
+        if (line == INT_MAX)
+            fprintf(f, "%s: ", kind);
+        else
+            fprintf(f, "%s:%d: %s: ", d->file ? d->file : "<graph>", line, kind);
+        vfprintf(b, fmt, ap);
+        fclose(f), f = NULL;
+        fclose(b), b = NULL;
+        fprintf(t, "%s%s\n", file, body);
+        if (hint)
+            fprintf(t, "  hint: %s\n", hint);
+        fclose(t), t = NULL;
+        add(d, line, text);
+    } else
+        fprintf(diag_out(d), "%s: (out of memory formatting a message)\n", kind);
+    if (f)
+        fclose(f);
+    if (b)
+        fclose(b);
+    if (t)
+        fclose(t);
+    free(file);
+    free(body);
+    free(text);
 }
 
 void vrg_error_at(vrg_diag *d, int line, const char *hint, const char *fmt, ...)
 {
-    char prefix[1100];
-    snprintf(prefix, sizeof prefix, "%s:%d: error: ", d->file ? d->file : "<graph>", line > 0 ? line : 1);
     va_list ap;
     va_start(ap, fmt);
-    vadd(d, line > 0 ? line : 1, prefix, hint, fmt, ap);
+    vadd(d, line > 0 ? line : 1, "error", hint, fmt, ap);
     va_end(ap);
     d->errors++;
 }
@@ -50,18 +80,16 @@ void vrg_error(vrg_diag *d, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    vadd(d, INT_MAX, "error: ", NULL, fmt, ap);
+    vadd(d, INT_MAX, "error", NULL, fmt, ap);
     va_end(ap);
     d->errors++;
 }
 
 void vrg_note_at(vrg_diag *d, int line, const char *fmt, ...)
 {
-    char prefix[1100];
-    snprintf(prefix, sizeof prefix, "%s:%d: note: ", d->file ? d->file : "<graph>", line);
     va_list ap;
     va_start(ap, fmt);
-    vadd(d, line, prefix, NULL, fmt, ap);
+    vadd(d, line, "note", NULL, fmt, ap);
     va_end(ap);
 }
 

@@ -8,7 +8,7 @@
 #include "internal.h"
 
 typedef struct vrg_pipeline {
-    char path[1024];
+    char path[VRG_PATH_MAX];
     char shader[256]; /* as the pass named it */
     char *deps;       /* files it was compiled from (shader.c), for hot reload */
     char defines[256];
@@ -109,7 +109,7 @@ static vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *d
     for (vrg_pipeline *pl = p->pipelines; pl; pl = pl->next)
         if (strcmp(pl->shader, shader) == 0 && strcmp(pl->defines, defines) == 0 && pl->count == count && memcmp(pl->types, types, count * sizeof *types) == 0)
             return pl;
-    char path[1024];
+    char path[VRG_PATH_MAX];
     if (vrg_shader_resolve(p, shader, path, sizeof path) != 0) {
         vrg_pass_error(p, "shader '%s' not found (searched the plugin's folder, $VOXRG_SHADER_PATH, shaders/)", shader);
         return NULL;
@@ -208,12 +208,15 @@ static int resolve_bindings(vrg_pass *p, const vrg_dispatch_desc *d, bound *out)
     const vrg_plugin_desc *pd = p->plugin->desc;
     int n = 0;
     if (!d->bindings[0].res) {
-        for (uint32_t s = 0; s < pd->slot_count && n < VRG_MAX_BINDINGS; s++) {
+        for (uint32_t s = 0; s < pd->slot_count; s++) {
             int r = p->slots[s].res;
             /* acceleration structures that do not exist (unconnected, or a scene
              * on the DDA backend) are left out: declare them last */
             if (r < 0 || (p->graph->res[r].kind == VRG_ACCEL && !p->graph->res[r].accel))
                 continue;
+            if (n == VRG_MAX_BINDINGS)
+                return vrg_pass_error(p, "its slots need more than the %d bindings of a dispatch: name the ones the shader uses in bindings[]",
+                                      VRG_MAX_BINDINGS);
             out[n++] = (bound){r, p->slots[s].prev, pd->slots[s].access};
         }
         return n;
@@ -250,7 +253,13 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
     if (d->push_size > 128)
         return vrg_pass_error(p, "push constants of %u bytes (at most 128)", d->push_size);
     /* A bound acceleration structure selects trace.glsl's ray-query backend. */
-    char defines[256];
+    char defines[sizeof ((vrg_pipeline *)0)->defines];
+    if (d->shader && strlen(d->shader) >= sizeof ((vrg_pipeline *)0)->shader)
+        return vrg_pass_error(p, "shader name of %zu characters (at most %zu)", strlen(d->shader), sizeof ((vrg_pipeline *)0)->shader - 1);
+    /* room for the ray-query backend's defines added below */
+    size_t max_defines = sizeof defines - sizeof " TRACE_RAYQUERY TLAS_BINDING=99";
+    if (d->defines && strlen(d->defines) > max_defines)
+        return vrg_pass_error(p, "defines of %zu characters (at most %zu)", strlen(d->defines), max_defines);
     snprintf(defines, sizeof defines, "%s", d->defines ? d->defines : "");
     for (int i = 0; i < n; i++)
         if (g->res[b[i].res].kind == VRG_ACCEL) {

@@ -132,7 +132,13 @@ int vrg_graph_load(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph **out
     g->output = -1;
     vrg_camera_default(&g->camera);
     snprintf(g->name, sizeof g->name, "graph");
-    int rc = vrg_parse(g->path, desc->text, ast, &g->diag);
+    int rc;
+    if (desc->path && strlen(desc->path) >= sizeof g->path) {
+        vrg_error(&g->diag, "graph path is longer than %zu characters", sizeof g->path - 1);
+        rc = -1;
+        ast->fatal = 1;
+    } else
+        rc = vrg_parse(g->path, desc->text, ast, &g->diag);
     /* Keep going after syntax errors so one run shows every problem. */
     if (!ast->fatal && (rc == 0 || ast->section_count > 0))
         rc = vrg_validate(g, ast, desc) | rc;
@@ -193,9 +199,11 @@ void vrg_graph_destroy(vrg_graph *g)
     }
     for (int i = 0; i < g->pass_count; i++) {
         vrg_pass_free_params(&g->passes[i]);
+        vrg_pass_clear_stats(&g->passes[i], 1);
         if (g->passes[i].plugin)
             vrg_plugin_release(g->passes[i].plugin); /* last: nothing of the plugin's is used after */
     }
+    free(g->overlaps);
     free(g);
 }
 
@@ -258,9 +266,11 @@ void vrg_graph_sources(const vrg_graph *g, void (*fn)(void *user, const char *pa
  * the diagnostics as usual and are kept for vrg_graph_reload_error. */
 static void apply_reloads(vrg_graph *g)
 {
-    char changed[32][VRG_PATH_MAX], self[VRG_PATH_MAX];
-    int n = vrg_watch_poll(g->watch, changed, 32);
-    if (n == 0)
+    char (*changed)[VRG_PATH_MAX], self[VRG_PATH_MAX];
+    int n = vrg_watch_poll(g->watch, &changed);
+    if (n < 0)
+        vrg_error(&g->diag, "hot reload: out of memory listing the changed files");
+    if (n <= 0)
         return;
     /* the graph file itself: the host reloads it (vrg_graph_reload) */
     if (g->loaded_from_file && realpath(g->path, self))
@@ -271,11 +281,8 @@ static void apply_reloads(vrg_graph *g)
         for (int k = 0; k < g->pass_count; k++) {
             if (strcmp(changed[i], g->passes[k].plugin->source) != 0)
                 continue;
-            int known = 0;
-            for (int j = 0; j < g->changed_plugin_count; j++)
-                known |= strcmp(g->changed_plugins[j], changed[i]) == 0;
-            if (!known && g->changed_plugin_count < 8)
-                snprintf(g->changed_plugins[g->changed_plugin_count++], VRG_PATH_MAX, "%s", changed[i]);
+            g->passes[k].plugin_rebuilt = 1;
+            g->plugins_rebuilt = 1;
             g->source_changed = 1;
         }
     char *text = NULL;
@@ -308,6 +315,7 @@ static void apply_reloads(vrg_graph *g)
         }
         g->pending_since = newest;
     }
+    free(changed);
 }
 
 int vrg_graph_frame(vrg_graph *g)

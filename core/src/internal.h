@@ -75,8 +75,8 @@ int vrg_find_memory_type(const vrg_context *ctx, uint32_t bits, VkMemoryProperty
 /* ---- plugin loading (plugin_loader.c) ---- */
 typedef struct vrg_plugin {
     char name[VRG_NAME_MAX];
-    char path[1024];   /* the file loaded: the source, or a reload's private copy */
-    char source[1024]; /* the file the build writes (hot reload watches it) */
+    char path[VRG_PATH_MAX];   /* the file loaded: the source, or a reload's private copy */
+    char source[VRG_PATH_MAX]; /* the file the build writes (hot reload watches it) */
     void *handle;
     const vrg_plugin_desc *desc;
     unsigned generation; /* load order: the highest of a name is its current version */
@@ -116,14 +116,13 @@ int vrg_plugin_list(const vrg_plugin **out, int max, FILE *problems);
 
 /* ---- parse (parse.c): the file as written, with line numbers ---- */
 typedef struct vrg_key {
-    char section[VRG_NAME_MAX + 16];
     char name[VRG_NAME_MAX];
     char value[256];
     int line;
     int section_index; /* index into vrg_ast.sections */
 } vrg_key;
 typedef struct vrg_section {
-    char name[VRG_NAME_MAX + 16];
+    char name[256]; /* longer than any line that can be read */
     int line;
 } vrg_section;
 typedef struct vrg_ast {
@@ -169,7 +168,7 @@ typedef struct vrg_resource {
     int history_cleared;     /* cleared at the start of this frame: @prev holds no past */
     int persistent;          /* written by a VRG_SLOT_PERSISTENT slot: kept, not aliased */
     int is_output, readback;
-    int internal_owner;      /* pass index for internal resources, -1 otherwise */
+    int internal_owner;      /* pass index for internal resources, -1 otherwise (a pass's internal resources: no table of their own) */
     vrg_access internal_first_access;
     /* compile */
     int first_use, last_use; /* schedule positions; -1 unused */
@@ -186,8 +185,7 @@ typedef struct vrg_resource {
     VkMemoryRequirements req;
     int block;               /* alias heap index, -1 own memory */
     VkDeviceSize offset;
-    int overlaps[VRG_MAX_RESOURCES / 8]; /* earlier-placed resources sharing memory */
-    int overlap_count;
+    int overlap_first, overlap_count; /* resources sharing memory: a run of vrg_graph.overlaps */
     vrg_sync sync[2];
     int touched[2];          /* used already this frame (else its contents are discarded) */
     int dummy;               /* 1x1 stand-in bound to an unconnected optional input */
@@ -208,8 +206,6 @@ struct vrg_pass {
     const vrg_plugin *plugin;
     double params[VRG_MAX_PARAMS];
     vrg_binding_ref slots[VRG_MAX_SLOTS];
-    int internal[16];         /* resource indices of requested internal resources */
-    int internal_count;
     int culled;
     int order;                /* position in schedule, -1 culled */
     vrg_graph *graph;
@@ -218,17 +214,20 @@ struct vrg_pass {
     /* shader pipelines cached by the dispatch helper */
     struct vrg_pipeline *pipelines;
     int failed;               /* an error during execute: frame fails */
+    int plugin_rebuilt;       /* its plugin's file was rebuilt: vrg_graph_reload loads it */
     uint64_t buffer_size[VRG_MAX_SLOTS]; /* vrg_pass_set_buffer_size, 0 if not set */
     struct vrg_param_value *strings;     /* string parameter values, in file order */
     int string_count;
     struct vrg_host_buffer *host_buffers;
-    struct {
-        char name[32];
-        double value;
-    } stats[16];
-    int stat_count;
+    struct vrg_pass_figure *stats; /* vrg_pass_stat: this frame's, grown as named */
+    int stat_count, stat_cap;
     VkCommandBuffer cmd;      /* during execute */
 };
+
+typedef struct vrg_pass_figure {
+    char *name;
+    double value;
+} vrg_pass_figure;
 
 typedef struct vrg_param_value {
     int param; /* index into the plugin's parameter table */
@@ -247,6 +246,8 @@ typedef struct vrg_host_buffer {
 
 void vrg_pass_free_params(vrg_pass *p);
 void vrg_pass_free_host_buffers(vrg_pass *p);
+/* Forgets the figures of vrg_pass_stat (a new frame); free: also the table. */
+void vrg_pass_clear_stats(vrg_pass *p, int free_table);
 int vrg_pass_add_string(vrg_pass *p, int param, const char *value, int line, int replace);
 
 typedef struct vrg_barrier_rec {
@@ -271,8 +272,7 @@ struct vrg_graph {
     double reload_ms;          /* save-to-frame time of the last reload, -1 if none */
     double pending_since;      /* newest save (epoch seconds) reloaded in this frame, 0: none */
     int source_changed;        /* the graph file or a plugin was saved since load (reload.c) */
-    char changed_plugins[8][VRG_PATH_MAX]; /* rebuilt plugin files waiting for vrg_graph_reload */
-    int changed_plugin_count;
+    int plugins_rebuilt;       /* passes with plugin_rebuilt set wait for vrg_graph_reload */
     int params_changed;        /* the next frame is the first after a parameter-only reload */
     int history_carried;       /* a structural reload copied matching history resources over */
     struct vrg_capture *capture; /* vrg_graph_capture_frame: this frame's commands are kept */
@@ -282,7 +282,7 @@ struct vrg_graph {
     int loaded_from_file;
     uint32_t subframes; /* graph frames per output frame (vrg_pass_set_subframes), 0 or 1: one */
     vrg_diag diag;
-    char path[1024];
+    char path[VRG_PATH_MAX];
     char name[VRG_NAME_MAX];
     char output_name[VRG_NAME_MAX];
     int output_line;
@@ -296,8 +296,10 @@ struct vrg_graph {
     int schedule[VRG_MAX_PASSES];
     int schedule_count;
     /* allocate */
-    vrg_heap_block blocks[4];
+    vrg_heap_block blocks[VK_MAX_MEMORY_TYPES]; /* disjoint type sets: see compile.c */
     int block_count;
+    int *overlaps;            /* every resource's list of those it shares memory with */
+    int overlap_used, overlap_cap;
     uint64_t naive_bytes, aliased_bytes, history_bytes;
     int allocated;
     /* record */
@@ -333,8 +335,9 @@ const char *vrg_format_list(void);
 VkFormat vrg_format_parse(const char *s);
 uint32_t vrg_format_channels(VkFormat f);
 void vrg_resource_extent(const vrg_graph *g, const vrg_resource *r, uint32_t *w, uint32_t *h);
-/* Place resources with the given sizes into heap blocks; fills block/offset/overlaps. */
-void vrg_plan_aliasing(vrg_graph *g);
+/* Place resources with the given sizes into heap blocks; fills block/offset/overlaps.
+ * Returns 0, or -1 after reporting. */
+int vrg_plan_aliasing(vrg_graph *g);
 /* allocate.c */
 int vrg_allocate(vrg_graph *g);
 void vrg_free_resources(vrg_graph *g);
@@ -379,8 +382,9 @@ typedef struct vrg_watch vrg_watch;
 vrg_watch *vrg_watch_create(void);
 void vrg_watch_destroy(vrg_watch *w);
 int vrg_watch_add(vrg_watch *w, const char *path);
-/* Tracked files whose write completed since the last poll (at most max). */
-int vrg_watch_poll(vrg_watch *w, char (*changed)[VRG_PATH_MAX], int max);
+/* Tracked files whose write completed since the last poll, in *changed
+ * (every one; the caller frees it). -1: out of memory. */
+int vrg_watch_poll(vrg_watch *w, char (**changed)[VRG_PATH_MAX]);
 /* report.c */
 const char *vrg_access_name(vrg_access a);
 

@@ -2,8 +2,13 @@
  * inih does the tokenising; we feed it lines through our own reader so we
  * know which line each key came from (Debian's inih is built without
  * INI_HANDLER_LINENO). Meaning is given to the keys in validate.c. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <fcntl.h>
 #include <ini.h>
 #include <stdbool.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <stdlib.h>
 #include <string.h>
 #include "internal.h"
@@ -12,10 +17,14 @@ typedef struct line_reader {
     const char *text; /* whole file */
     size_t pos, len;
     int line;         /* line number of the line last handed to inih */
+    int next_section; /* index of the next header scan_sections found */
     vrg_ast *ast;
     vrg_diag *d;
 } line_reader;
 
+/* A section header goes to inih as "[#INDEX]", INDEX into ast->sections:
+ * inih's section-name buffer is shorter than the names a graph may use, and
+ * on_key then needs no search by name. */
 static char *read_line(char *str, int num, void *stream)
 {
     line_reader *r = stream;
@@ -31,8 +40,13 @@ static char *read_line(char *str, int num, void *stream)
         vrg_error_at(r->d, r->line + 1, "split the value or shorten names", "line is longer than %d characters", num - 2);
         copy = 0; /* hand inih a blank line: no follow-on syntax error */
     }
-    memcpy(str, r->text + r->pos, copy);
-    str[copy] = '\0';
+    const vrg_ast *a = r->ast;
+    if (r->next_section < a->section_count && a->sections[r->next_section].line == r->line + 1)
+        snprintf(str, (size_t)num, "[#%d]", r->next_section++);
+    else {
+        memcpy(str, r->text + r->pos, copy);
+        str[copy] = '\0';
+    }
     r->pos += n + (r->pos + n < r->len ? 1 : 0);
     r->line++;
     return str;
@@ -42,29 +56,37 @@ static int on_key(void *user, const char *section, const char *name, const char 
 {
     line_reader *r = user;
     vrg_ast *a = r->ast;
-    /* The key belongs to the nearest header above it with this name
-     * (sections were found by scan_sections, duplicates included). */
-    int sec = -1;
-    for (int i = a->section_count - 1; i >= 0; i--)
-        if (a->sections[i].line <= r->line && strcmp(a->sections[i].name, section) == 0) { sec = i; break; }
-    if (sec < 0) {
+    if (section[0] != '#') { /* "" before the first header */
         vrg_error_at(r->d, r->line, "put every key under a [section] header", "key '%s' outside any section", name);
         return 1;
     }
     if (a->key_count >= VRG_MAX_KEYS) {
-        vrg_error_at(r->d, r->line, NULL, "too many keys (at most %d)", VRG_MAX_KEYS);
+        /* once: the rest of the file is not read (no error per key) */
+        if (!a->fatal)
+            vrg_error_at(r->d, r->line, NULL, "too many keys (at most %d)", VRG_MAX_KEYS);
         a->fatal = 1;
-        return 0;
+        return 1;
+    }
+    if (strlen(name) >= sizeof a->keys[0].name) { /* reported, not kept cut short: no follow-on errors */
+        vrg_error_at(r->d, r->line, NULL, "key '%.*s...' is longer than %zu characters", 20, name, sizeof a->keys[0].name - 1);
+        return 1;
     }
     vrg_key *k = &a->keys[a->key_count++];
-    snprintf(k->section, sizeof k->section, "%s", section);
     snprintf(k->name, sizeof k->name, "%s", name);
     if (strlen(value) >= sizeof k->value)
         vrg_error_at(r->d, r->line, NULL, "value of '%s' is too long (at most %zu characters)", name, sizeof k->value - 1);
     snprintf(k->value, sizeof k->value, "%s", value);
     k->line = r->line;
-    k->section_index = sec;
+    k->section_index = atoi(section + 1);
     return 1;
+}
+
+/* After a header's ']' only blanks and a comment may follow. */
+static int header_tail_ok(const char *c, const char *end)
+{
+    while (c < end && (*c == ' ' || *c == '\t'))
+        c++;
+    return c == end || *c == ';' || *c == '#';
 }
 
 /* Section headers are found by a scan of our own: inih does not report empty
@@ -88,12 +110,15 @@ static int scan_sections(const char *text, vrg_ast *a, vrg_diag *d)
                     a->fatal = 1; /* the rest of the file was not read: checking it would only mislead */
                     return -1;
                 }
+                if (!header_tail_ok(close + 1, p + n))
+                    vrg_error_at(d, line, "a header is '[NAME]', optionally followed by a comment", "text after ']' of the section header");
                 vrg_section *sec = &a->sections[a->section_count++];
                 size_t len = (size_t)(close - s - 1);
-                /* inih strips whitespace around the name; match it */
+                /* blanks around the name do not count (as in inih) */
                 const char *b = s + 1;
                 while (len && (*b == ' ' || *b == '\t')) { b++; len--; }
                 while (len && (b[len - 1] == ' ' || b[len - 1] == '\t')) len--;
+                /* only a line too long to read (reported as such) can be cut here */
                 if (len >= sizeof sec->name)
                     len = sizeof sec->name - 1;
                 memcpy(sec->name, b, len);
@@ -106,40 +131,91 @@ static int scan_sections(const char *text, vrg_ast *a, vrg_diag *d)
     return 0;
 }
 
+/* A copy with line ends made '\n' and a leading UTF-8 byte-order mark
+ * dropped. CR-only and CRLF files are accepted rather than refused: they are
+ * text files of lines like any other, and a message would only make the
+ * user convert them. NULL when out of memory. */
+static char *normalised(const char *text)
+{
+    if ((unsigned char)text[0] == 0xEF && (unsigned char)text[1] == 0xBB && (unsigned char)text[2] == 0xBF)
+        text += 3;
+    char *out = malloc(strlen(text) + 1), *o = out;
+    if (!out)
+        return NULL;
+    for (const char *c = text; *c; c++) {
+        if (*c == '\r') {
+            *o++ = '\n';
+            if (c[1] == '\n')
+                c++;
+        } else
+            *o++ = *c;
+    }
+    *o = '\0';
+    return out;
+}
+
+/* The whole file, or NULL after reporting. Only a regular file is read: a
+ * FIFO or a device would block or never end. */
+static char *read_graph_file(const char *path, vrg_ast *ast, vrg_diag *d)
+{
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) {
+        vrg_error(d, "cannot open graph file '%s': %s", path, strerror(errno));
+        return NULL;
+    }
+    struct stat st;
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        close(fd);
+        vrg_error(d, "graph file '%s' is not a regular file", path);
+        return NULL;
+    }
+    if (st.st_size > (1 << 20)) {
+        close(fd);
+        vrg_error(d, "graph file '%s' is not a readable text file under 1 MiB", path);
+        return NULL;
+    }
+    char *text = malloc((size_t)st.st_size + 1);
+    size_t got = 0;
+    ssize_t n = 1;
+    while (text && got < (size_t)st.st_size && (n = read(fd, text + got, (size_t)st.st_size - got)) > 0)
+        got += (size_t)n;
+    close(fd);
+    if (!text || n < 0) {
+        free(text);
+        vrg_error(d, "graph file '%s' is not a readable text file under 1 MiB", path);
+        return NULL;
+    }
+    text[got] = '\0';
+    /* a NUL would silently end the text here */
+    if (strlen(text) != got) {
+        int line = 1;
+        for (const char *c = text; *c; c++)
+            line += *c == '\n';
+        vrg_error_at(d, line, "graph files are text", "NUL byte in the file");
+        ast->fatal = 1;
+        free(text);
+        return NULL;
+    }
+    return text;
+}
+
 int vrg_parse(const char *path, const char *text, vrg_ast *ast, vrg_diag *d)
 {
-    char *owned = NULL;
+    char *read = NULL;
     memset(ast, 0, sizeof *ast);
     if (!text) {
-        FILE *f = fopen(path, "rb");
-        if (!f) {
-            vrg_error(d, "cannot open graph file '%s'", path);
+        read = read_graph_file(path, ast, d);
+        if (!read)
             return -1;
-        }
-        fseek(f, 0, SEEK_END);
-        long n = ftell(f);
-        fseek(f, 0, SEEK_SET);
-        if (n < 0 || n > (1 << 20)) {
-            fclose(f);
-            vrg_error(d, "graph file '%s' is not a readable text file under 1 MiB", path);
-            return -1;
-        }
-        owned = malloc((size_t)n + 1);
-        size_t got = fread(owned, 1, (size_t)n, f);
-        owned[got] = '\0';
-        fclose(f);
-        /* a NUL would silently end the text here */
-        if (strlen(owned) != got) {
-            int line = 1;
-            for (const char *c = owned; *c; c++)
-                line += *c == '\n';
-            vrg_error_at(d, line, "graph files are text", "NUL byte in the file");
-            ast->fatal = 1;
-            free(owned);
-            return -1;
-        }
-        text = owned;
+        text = read;
     }
+    char *owned = normalised(text);
+    free(read);
+    if (!owned) {
+        vrg_error(d, "graph file '%s': out of memory", path);
+        return -1;
+    }
+    text = owned;
     int errors_before = d->errors;
     if (scan_sections(text, ast, d) != 0) {
         free(owned);

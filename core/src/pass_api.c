@@ -289,22 +289,23 @@ static vrg_res request(vrg_pass *p, const char *name, vrg_resource_kind kind)
         vrg_pass_error(p, "internal resource '%s' requested outside create()", name);
         return (vrg_res){-1};
     }
-    for (int i = 0; i < p->internal_count; i++)
-        if (strcmp(g->res[p->internal[i]].name, full) == 0) {
-            vrg_pass_error(p, "internal resource '%s' requested twice", name);
-            return (vrg_res){-1};
-        }
     int before = g->res_count;
     int r = vrg_graph_add_resource(g, full);
-    if (r < 0 || r < before || p->internal_count >= (int)(sizeof p->internal / sizeof p->internal[0])) {
-        vrg_pass_error(p, "cannot add internal resource '%s' (name taken or too many)", name);
+    if (r >= 0 && r < before) {
+        if (g->res[r].internal_owner == (int)(p - g->passes))
+            vrg_pass_error(p, "internal resource '%s' requested twice", name);
+        else
+            vrg_pass_error(p, "cannot add internal resource '%s': the graph has a resource named '%s'", name, full);
+        return (vrg_res){-1};
+    }
+    if (r < 0) {
+        vrg_pass_error(p, "cannot add internal resource '%s': too many resources (at most %d in a graph)", name, VRG_MAX_RESOURCES);
         return (vrg_res){-1};
     }
     vrg_resource *res = &g->res[r];
     res->kind = kind;
     res->internal_owner = (int)(p - g->passes);
     res->line = p->line;
-    p->internal[p->internal_count++] = r;
     return (vrg_res){r << 1};
 }
 
@@ -350,10 +351,12 @@ int vrg_pass_lookup(const vrg_pass *p, const char *name, int *res, int *prev, in
             return *res >= 0 ? 0 : -1;
         }
     size_t n = strlen(p->name);
-    for (int i = 0; i < p->internal_count; i++) {
-        const char *full = p->graph->res[p->internal[i]].name;
-        if (strncmp(full, p->name, n) == 0 && full[n] == '.' && strcmp(full + n + 1, name) == 0) {
-            *res = p->internal[i];
+    const vrg_graph *g = p->graph;
+    for (int i = 0; i < g->res_count; i++) {
+        const char *full = g->res[i].name;
+        if (g->res[i].internal_owner == (int)(p - g->passes) && strncmp(full, p->name, n) == 0 && full[n] == '.' &&
+            strcmp(full + n + 1, name) == 0) {
+            *res = i;
             *prev = 0;
             *slot = -1;
             return 0;
@@ -439,14 +442,19 @@ uint64_t vrg_res_size(const vrg_pass *p, vrg_res h)
 
 void vrg_pass_use(vrg_pass *p, VkCommandBuffer cmd, const vrg_use *uses, uint32_t count)
 {
+    /* in batches: a plugin may name any number of resources */
     vrg_barrier_rec b[64];
     int n = 0;
-    for (uint32_t i = 0; i < count && n < 64; i++) {
-        if (uses[i].res.id < 0)
+    for (uint32_t i = 0; i < count; i++) {
+        if (uses[i].res.id < 0 || (uses[i].res.id >> 1) >= p->graph->res_count)
             continue;
         int res = uses[i].res.id >> 1;
         if (vrg_resource_barrier(p->graph, res, vrg_copy_of(p->graph, res, uses[i].res.id & 1), uses[i].access, &b[n]))
             n++;
+        if (n == (int)(sizeof b / sizeof b[0])) {
+            vrg_emit_barriers(p->graph, cmd, b, n);
+            n = 0;
+        }
     }
     vrg_emit_barriers(p->graph, cmd, b, n);
 }
@@ -458,8 +466,32 @@ void vrg_pass_stat(vrg_pass *p, const char *name, double value)
             p->stats[i].value = value;
             return;
         }
-    if (p->stat_count < (int)(sizeof p->stats / sizeof p->stats[0])) {
-        snprintf(p->stats[p->stat_count].name, sizeof p->stats[0].name, "%s", name);
-        p->stats[p->stat_count++].value = value;
+    if (p->stat_count == p->stat_cap) {
+        int cap = p->stat_cap ? 2 * p->stat_cap : 16;
+        vrg_pass_figure *grown = realloc(p->stats, (size_t)cap * sizeof *grown);
+        if (!grown) {
+            vrg_pass_error(p, "vrg_pass_stat('%s'): out of memory", name);
+            return;
+        }
+        p->stats = grown;
+        p->stat_cap = cap;
+    }
+    char *copy = strdup(name);
+    if (!copy) {
+        vrg_pass_error(p, "vrg_pass_stat('%s'): out of memory", name);
+        return;
+    }
+    p->stats[p->stat_count++] = (vrg_pass_figure){copy, value};
+}
+
+void vrg_pass_clear_stats(vrg_pass *p, int free_table)
+{
+    for (int i = 0; i < p->stat_count; i++)
+        free(p->stats[i].name);
+    p->stat_count = 0;
+    if (free_table) {
+        free(p->stats);
+        p->stats = NULL;
+        p->stat_cap = 0;
     }
 }

@@ -12,9 +12,9 @@
  * were cleared: history is valid this frame when none was. */
 static int clear_kept(vrg_graph *g, VkCommandBuffer cmd)
 {
-    vrg_barrier_rec b[VRG_MAX_RESOURCES] = {0};
+    vrg_barrier_rec b[2 * VRG_MAX_RESOURCES] = {0}; /* both copies of every resource */
     int n = 0, cleared = 0;
-    for (int i = 0; i < g->res_count && n < VRG_MAX_RESOURCES - 1; i++) {
+    for (int i = 0; i < g->res_count; i++) {
         vrg_resource *r = &g->res[i];
         r->history_cleared = r->history && g->history_reset && !r->history_kept;
         r->history_kept = 0;
@@ -194,7 +194,7 @@ int vrg_record_frame(vrg_graph *g)
         int n = vrg_pass_barriers(g, p, b, VRG_MAX_SLOTS);
         vrg_emit_barriers(g, cmd, b, n);
         p->failed = 0;
-        p->stat_count = 0; /* figures are this frame's */
+        vrg_pass_clear_stats(p, 0); /* figures are this frame's */
         p->cmd = cmd;
         double t0 = now_ms();
         vrg_running before = vrg_running_enter("execute", p->name, p->plugin);

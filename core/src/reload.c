@@ -136,6 +136,37 @@ static void carry_state(vrg_graph *old, vrg_graph *g)
     }
 }
 
+/* Every rebuilt plugin file (passes marked by apply_reloads), once each.
+ * Returns -1 with reload_error set at the first that fails. */
+static int reload_plugins(vrg_graph *old)
+{
+    int rc = 0;
+    for (int i = 0; i < old->pass_count && rc == 0 && old->plugins_rebuilt; i++) {
+        const vrg_pass *p = &old->passes[i];
+        int done = 0;
+        for (int j = 0; j < i; j++)
+            done |= old->passes[j].plugin_rebuilt && strcmp(old->passes[j].plugin->source, p->plugin->source) == 0;
+        if (!p->plugin_rebuilt || done)
+            continue;
+        char *text = NULL;
+        size_t len = 0;
+        FILE *mem = open_memstream(&text, &len);
+        vrg_diag pd = {.out = mem ? mem : old->desc.diag, .file = old->path};
+        rc = vrg_plugin_reload(p->plugin->source, &pd);
+        if (mem) {
+            fclose(mem);
+            fputs(text ? text : "", old->desc.diag ? old->desc.diag : stderr);
+        }
+        if (rc != 0)
+            snprintf(old->reload_error, sizeof old->reload_error, "%s", text ? text : "plugin reload failed");
+        free(text);
+    }
+    for (int i = 0; i < old->pass_count; i++)
+        old->passes[i].plugin_rebuilt = 0;
+    old->plugins_rebuilt = 0;
+    return rc;
+}
+
 int vrg_graph_reload(vrg_graph **pg)
 {
     vrg_graph *old = *pg;
@@ -144,26 +175,10 @@ int vrg_graph_reload(vrg_graph **pg)
         return -1;
     }
     /* rebuilt plugins first: the new graph picks up their newest versions */
-    for (int i = 0; i < old->changed_plugin_count; i++) {
-        char *text = NULL;
-        size_t len = 0;
-        FILE *mem = open_memstream(&text, &len);
-        vrg_diag pd = {.out = mem ? mem : old->desc.diag, .file = old->path};
-        int rc = vrg_plugin_reload(old->changed_plugins[i], &pd);
-        if (mem) {
-            fclose(mem);
-            fputs(text ? text : "", old->desc.diag ? old->desc.diag : stderr);
-        }
-        if (rc != 0) {
-            snprintf(old->reload_error, sizeof old->reload_error, "%s", text ? text : "plugin reload failed");
-            free(text);
-            old->changed_plugin_count = 0;
-            old->source_changed = 0;
-            return -1;
-        }
-        free(text);
+    if (reload_plugins(old) != 0) {
+        old->source_changed = 0;
+        return -1;
     }
-    old->changed_plugin_count = 0;
     vrg_graph_desc d = old->desc;
     d.text = NULL;
     d.path = old->path;

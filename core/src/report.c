@@ -76,17 +76,16 @@ static void print_barrier(const vrg_graph *g, const vrg_barrier_rec *b, FILE *f)
 /* Runs the barrier tracker over one frame without recording anything. */
 static void simulate_frame(vrg_graph *g, FILE *f)
 {
-    vrg_barrier_rec b[VRG_MAX_SLOTS + 16];
+    /* a pass's slots and any number of internal resources; the readback: any resource */
+    vrg_barrier_rec b[VRG_MAX_SLOTS + VRG_MAX_RESOURCES];
     for (int i = 0; i < g->res_count; i++)
         g->res[i].touched[0] = g->res[i].touched[1] = 0;
     for (int k = 0; k < g->schedule_count; k++) {
         vrg_pass *p = &g->passes[g->schedule[k]];
         int n = vrg_pass_barriers(g, p, b, VRG_MAX_SLOTS);
-        for (int j = 0; j < p->internal_count && n < VRG_MAX_SLOTS + 16; j++) {
-            int ri = p->internal[j];
-            if (vrg_resource_barrier(g, ri, 0, g->res[ri].internal_first_access, &b[n]))
+        for (int ri = 0; ri < g->res_count; ri++)
+            if (g->res[ri].internal_owner == g->schedule[k] && vrg_resource_barrier(g, ri, 0, g->res[ri].internal_first_access, &b[n]))
                 n++;
-        }
         if (f) {
             fprintf(f, "  %-12s %d barrier%s\n", p->name, n, n == 1 ? "" : "s");
             for (int i = 0; i < n; i++)
@@ -94,7 +93,7 @@ static void simulate_frame(vrg_graph *g, FILE *f)
         }
     }
     int n = 0;
-    for (int i = 0; i < g->res_count && n < VRG_MAX_SLOTS; i++)
+    for (int i = 0; i < g->res_count; i++)
         if (g->res[i].first_use >= 0 && (g->res[i].is_output || g->res[i].readback) &&
             vrg_resource_barrier(g, i, vrg_copy_of(g, i, 0), VRG_ACCESS_TRANSFER_SRC, &b[n]))
             n++;

@@ -89,8 +89,8 @@ typedef struct expand_ctx {
     const char *defines; /* "A=1 B" : #define lines after #version */
     char *out;
     size_t len, cap;
-    char seen[32][1024];
-    int seen_count;
+    char (*seen)[VRG_PATH_MAX]; /* every file included, grown as needed */
+    int seen_count, seen_cap;
     FILE *diag;
     int failed;
 } expand_ctx;
@@ -130,6 +130,24 @@ static int resolve_include(const char *includer, const char *name, char *out, si
     return -1;
 }
 
+/* Adds a file to the included ones; -1 (reported) when out of memory. */
+static int remember_include(expand_ctx *e, const char *resolved)
+{
+    if (e->seen_count == e->seen_cap) {
+        int cap = e->seen_cap ? 2 * e->seen_cap : 16;
+        char (*grown)[VRG_PATH_MAX] = realloc(e->seen, (size_t)cap * sizeof *grown);
+        if (!grown) {
+            fprintf(e->diag, "%s: error: out of memory\n", resolved);
+            e->failed = 1;
+            return -1;
+        }
+        e->seen = grown;
+        e->seen_cap = cap;
+    }
+    snprintf(e->seen[e->seen_count++], sizeof e->seen[0], "%s", resolved);
+    return 0;
+}
+
 static void expand(expand_ctx *e, const char *path, const char *text, int depth)
 {
     int line = 0;
@@ -153,7 +171,7 @@ static void expand(expand_ctx *e, const char *path, const char *text, int depth)
                     q++;
                 char close = *q == '"' ? '"' : *q == '<' ? '>' : 0;
                 const char *qe = close ? memchr(q + 1, close, (size_t)(p + n - q - 1)) : NULL;
-                char name[512], resolved[1024];
+                char name[512], resolved[VRG_PATH_MAX];
                 if (!qe || (size_t)(qe - q - 1) >= sizeof name) {
                     fprintf(e->diag, "%s:%d: error: malformed #include\n", path, line);
                     e->failed = 1;
@@ -169,8 +187,7 @@ static void expand(expand_ctx *e, const char *path, const char *text, int depth)
                         int seen = 0;
                         for (int i = 0; i < e->seen_count; i++)
                             seen |= strcmp(e->seen[i], resolved) == 0;
-                        if (!seen && e->seen_count < 32) {
-                            snprintf(e->seen[e->seen_count++], sizeof e->seen[0], "%s", resolved);
+                        if (!seen && remember_include(e, resolved) == 0) {
                             char *inc = read_file(resolved, NULL);
                             if (inc) {
                                 emitf(e, "#line %d \"%s\"\n", resolved, 1);
@@ -310,6 +327,7 @@ int vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, 
     src = e.out;
     out->deps = NULL;
     if (e.failed) {
+        free(e.seen);
         free(src);
         return -1;
     }
@@ -321,6 +339,7 @@ int vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, 
         if (realpath(i < 0 ? path : e.seen[i], real))
             used += (size_t)snprintf(out->deps + used, cap - used, "%s\n", real);
     }
+    free(e.seen);
     glslang_input_t input = {
         .language = GLSLANG_SOURCE_GLSL,
         .stage = GLSLANG_STAGE_COMPUTE,

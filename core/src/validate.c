@@ -76,6 +76,16 @@ static int valid_name(const char *s)
     return 1;
 }
 
+/* Names longer than the tables hold are an error of their own (not "not
+ * valid", and never cut short). Returns 1 after reporting. */
+static int name_too_long(vrg_graph *g, int line, const char *what, const char *name, size_t len)
+{
+    if (len < VRG_NAME_MAX)
+        return 0;
+    vrg_error_at(&g->diag, line, NULL, "%s name '%.*s' is longer than %d characters", what, (int)len, name, VRG_NAME_MAX - 1);
+    return 1;
+}
+
 static int find_resource(const vrg_graph *g, const char *name)
 {
     for (int i = 0; i < g->res_count; i++)
@@ -233,10 +243,12 @@ static void graph_section(vrg_graph *g, const vrg_ast *a, int si, const char *gr
         if (k->section_index != si || repeated_key(g, a, i))
             continue;
         double v;
-        if (strcmp(k->name, "name") == 0)
-            snprintf(g->name, sizeof g->name, "%s", k->value);
-        else if (strcmp(k->name, "output") == 0) {
-            snprintf(g->output_name, sizeof g->output_name, "%s", k->value);
+        if (strcmp(k->name, "name") == 0) {
+            if (!name_too_long(g, k->line, "graph", k->value, strlen(k->value)))
+                snprintf(g->name, sizeof g->name, "%s", k->value);
+        } else if (strcmp(k->name, "output") == 0) {
+            if (!name_too_long(g, k->line, "resource", k->value, strlen(k->value)))
+                snprintf(g->output_name, sizeof g->output_name, "%s", k->value);
             g->output_line = k->line;
         } else if (strcmp(k->name, "width") == 0)
             positive_int(&g->diag, k, 16384, &g->width);
@@ -358,6 +370,8 @@ static void bind_slot(vrg_graph *g, vrg_pass *p, const vrg_key *k, const char *s
      * so it is not also reported as missing. */
     p->slots[s].bad = 1;
     p->slots[s].line = k->line;
+    if (name_too_long(g, k->line, "resource", k->value, strcspn(k->value, "@")))
+        return;
     char name[VRG_NAME_MAX + 8];
     snprintf(name, sizeof name, "%s", k->value);
     char *at = strchr(name, '@');
@@ -440,6 +454,8 @@ static void pass_section(vrg_graph *g, const vrg_ast *a, int si, vrg_pass *p)
 
 static void resource_section(vrg_graph *g, const vrg_ast *a, int si, const char *name)
 {
+    if (name_too_long(g, a->sections[si].line, "resource", name, strlen(name)))
+        return;
     int ri = find_resource(g, name);
     if (ri < 0) {
         vrg_note_at(&g->diag, a->sections[si].line, "[resource %s] is not used by any pass", name);
@@ -546,7 +562,9 @@ static void collect_sections(vrg_graph *g, const vrg_ast *a, const char *graph_p
             continue;
         /* a pass or the scene */
         const char *pname = kind == SEC_SCENE ? "scene" : arg;
-        if (kind == SEC_PASS && (!valid_name(pname) || strlen(pname) >= VRG_NAME_MAX)) {
+        if (kind == SEC_PASS && name_too_long(g, sec->line, "pass", pname, strlen(pname)))
+            continue;
+        if (kind == SEC_PASS && !valid_name(pname)) {
             vrg_error_at(&g->diag, sec->line, "pass names use letters, digits, '_', '-' and '.'", "'%s' is not a valid pass name", pname);
             continue;
         }
@@ -635,6 +653,28 @@ static void apply_overrides(vrg_graph *g, const vrg_graph_desc *desc)
 
 /* Resolve each resource's kind, format and size from its writer and the
  * [resource] overrides; then check every reader against it. */
+/* A persistent resource (a scene's world, an acceleration structure) is
+ * kept up to date in place, one copy: an @prev read of it would give it a
+ * second copy that its writer updates only every other frame, so frames
+ * would alternate between the world and an empty buffer. An error, not a
+ * silent alternation. */
+static void check_prev_of_persistent(vrg_graph *g)
+{
+    for (int pi = 0; pi < g->pass_count; pi++) {
+        const vrg_pass *p = &g->passes[pi];
+        for (int s = 0; p->plugin && s < (int)p->plugin->desc->slot_count; s++) {
+            const vrg_binding_ref *b = &p->slots[s];
+            if (b->res < 0 || !b->prev || !g->res[b->res].persistent || g->res[b->res].writer < 0)
+                continue;
+            const vrg_resource *r = &g->res[b->res];
+            char h[160];
+            snprintf(h, sizeof h, "pass '%s' keeps it up to date in place (line %d): read '%s' without @prev", g->passes[r->writer].name,
+                     r->writer_line, r->name);
+            vrg_error_at(&g->diag, b->line, h, "'%s@prev': resource '%s' is persistent and has no last frame's copy", r->name, r->name);
+        }
+    }
+}
+
 static void resolve_resources(vrg_graph *g)
 {
     for (int ri = 0; ri < g->res_count; ri++) {
@@ -851,20 +891,23 @@ static int cycle_dfs(vrg_graph *g, int pi, int *state, int *stack, int depth)
         if (w < 0)
             continue;
         if (state[w] == 1) {
-            char path[1024] = "";
+            /* every pass of the cycle, however many: sized, not cut short */
+            size_t cap = (size_t)(depth + 2) * (VRG_NAME_MAX + 4), used = 0;
+            char *path = malloc(cap);
             int start = depth;
             while (start > 0 && stack[start] != w)
                 start--;
             int first = w;
-            for (int i = start; i <= depth; i++) {
+            for (int i = start; path && i <= depth; i++) {
                 if (g->passes[stack[i]].line < g->passes[first].line)
                     first = stack[i];
-                strncat(path, g->passes[stack[i]].name, sizeof path - strlen(path) - 1);
-                strncat(path, " -> ", sizeof path - strlen(path) - 1);
+                used += (size_t)snprintf(path + used, cap - used, "%s -> ", g->passes[stack[i]].name);
             }
-            strncat(path, g->passes[w].name, sizeof path - strlen(path) - 1);
+            if (path)
+                snprintf(path + used, cap - used, "%s", g->passes[w].name);
             vrg_error_at(&g->diag, g->passes[first].line, "read last frame's value with NAME@prev to break the cycle",
-                         "cycle between passes: %s", path);
+                         "cycle between passes: %s", path ? path : "(out of memory listing them)");
+            free(path);
             return 1;
         }
         if (state[w] == 0 && cycle_dfs(g, w, state, stack, depth + 1))
@@ -921,11 +964,13 @@ int vrg_validate(vrg_graph *g, const vrg_ast *ast, const vrg_graph_desc *desc)
             resource_section(g, ast, si, arg);
     }
     resolve_resources(g);
+    check_prev_of_persistent(g);
     check_conflicting_uses(g);
     if (graph_si >= 0) {
-        if (!g->output_name[0])
-            vrg_error_at(&g->diag, ast->sections[graph_si].line, "add 'output = RESOURCE' to [graph]", "the graph has no output");
-        else {
+        if (!g->output_name[0]) {
+            if (!g->output_line) /* else given, but not usable: already reported */
+                vrg_error_at(&g->diag, ast->sections[graph_si].line, "add 'output = RESOURCE' to [graph]", "the graph has no output");
+        } else {
             g->output = find_resource(g, g->output_name);
             if (g->output >= 0 && g->res[g->output].writer_unknown)
                 ; /* its writer's plugin failed to load: already reported */

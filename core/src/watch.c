@@ -80,9 +80,28 @@ int vrg_watch_add(vrg_watch *w, const char *path)
     return 0;
 }
 
-int vrg_watch_poll(vrg_watch *w, char (*changed)[VRG_PATH_MAX], int max)
+/* Adds path to *list unless it is there; the list grows as needed. */
+static int add_changed(char (**list)[VRG_PATH_MAX], int n, int *cap, const char *path)
 {
-    int n = 0;
+    for (int k = 0; k < n; k++)
+        if (strcmp((*list)[k], path) == 0)
+            return n;
+    if (n == *cap) {
+        int grown_cap = *cap ? 2 * *cap : 16;
+        char (*grown)[VRG_PATH_MAX] = realloc(*list, (size_t)grown_cap * sizeof *grown);
+        if (!grown)
+            return -1;
+        *list = grown;
+        *cap = grown_cap;
+    }
+    snprintf((*list)[n], VRG_PATH_MAX, "%s", path);
+    return n + 1;
+}
+
+int vrg_watch_poll(vrg_watch *w, char (**changed)[VRG_PATH_MAX])
+{
+    int n = 0, cap = 0;
+    *changed = NULL;
     if (!w)
         return 0;
     char buf[16384] __attribute__((aligned(__alignof__(struct inotify_event))));
@@ -98,11 +117,13 @@ int vrg_watch_poll(vrg_watch *w, char (*changed)[VRG_PATH_MAX], int max)
             for (int i = 0; i < w->count; i++) {
                 if (w->files[i].wd != ev->wd || strcmp(w->files[i].name, ev->name) != 0)
                     continue;
-                int dup = 0;
-                for (int k = 0; k < n; k++)
-                    dup |= strcmp(changed[k], w->files[i].path) == 0;
-                if (!dup && n < max)
-                    snprintf(changed[n++], VRG_PATH_MAX, "%s", w->files[i].path);
+                int grown = add_changed(changed, n, &cap, w->files[i].path);
+                if (grown < 0) {
+                    free(*changed);
+                    *changed = NULL;
+                    return -1;
+                }
+                n = grown;
             }
         }
     }

@@ -306,7 +306,8 @@ uint32_t vrg_res_mips(const vrg_pass *pass, vrg_res res);
 
 /* For commands the pass records itself: bring resources to an access with
  * exact barriers (needed between two uses of an internal resource, or when
- * a pass uses a slot in a way other than declared). Batched in one barrier. */
+ * a pass uses a slot in a way other than declared). Batched: as few barrier
+ * commands as the runtime's batch size allows, any number of uses. */
 typedef struct vrg_use {
     vrg_res res;
     vrg_access access;
