@@ -128,7 +128,7 @@ static void carry_state(vrg_graph *old, vrg_graph *g)
                 int rc = n <= sizeof state ? q->plugin->desc->restore_state(q, state, n) : 0;
                 vrg_running_leave(before);
                 if (n > sizeof state)
-                    vrg_pass_error(q, "save_state() returned %zu bytes, more than the %zu it was given: the pass starts afresh", n, sizeof state);
+                    vrg_pass_error(q, "save_state() returned %zu bytes, more than the %zu it may write: the pass starts afresh", n, sizeof state);
                 else if (rc != 0)
                     vrg_pass_error(q, "restore_state() failed: the pass starts afresh");
             }
