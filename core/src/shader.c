@@ -313,11 +313,11 @@ int vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, 
     /* Every shader sees the device's preferred workgroup shape and pixel
      * loop (pixel.glsl). On a CPU device: one SIMD row per group shading a
      * 4x2 tile, 32 tiles per invocation. lavapipe runs every 8 invocations
-     * as a coroutine with its own allocation and set-up; 8x1 groups ran
-     * passes 2-3x faster than 8x8, 8 rows per invocation another 1.5-8x,
-     * 32 tiles instead of 8 rows another 5-10% on ray passes, and 4x2 tiles
-     * instead of rows of 8 pixels 5-10% (the lanes' rays are more alike;
-     * docs/benchmarks.md). On a GPU: 8x8 groups, one pixel per invocation. */
+     * as a coroutine with its own allocation and set-up, so fewer, fuller
+     * invocations win: 8x1 groups over 8x8, several rows per invocation,
+     * 32 tiles over 8 rows on ray passes, and 4x2 tiles over rows of 8
+     * pixels (the lanes' rays are more alike); docs/benchmarks.md has each
+     * step's figure. On a GPU: 8x8 groups, one pixel per invocation. */
     char all_defines[1200];
     snprintf(all_defines, sizeof all_defines, "VRG_GROUP_X=%u VRG_GROUP_Y=%u VRG_TILE_W=%uu VRG_TILE_H=%uu VRG_PIXEL_ROWS=%uu %s", ctx->group_size[0],
              ctx->group_size[1], ctx->pixel_tile[0], ctx->pixel_tile[1], ctx->pixel_rows, defines ? defines : "");

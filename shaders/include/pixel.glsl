@@ -10,10 +10,11 @@
 //
 // Why a loop: lavapipe runs every SIMD row of invocations as a coroutine with
 // its own allocation and set-up, which cost more than a simple pass's work;
-// shading several pixels per invocation made such passes up to 8x faster.
+// shading several pixels per invocation made such passes much faster
+// (docs/benchmarks.md).
 // Why tiles: the lanes of a SIMD row run in lockstep, and a ray loop runs
 // until its slowest lane is done; the rays of a 4x2 tile are more alike than
-// those of 8 pixels in a row (shadow rays ~10% faster on lavapipe).
+// those of 8 pixels in a row, so fewer lanes idle (docs/benchmarks.md).
 // Why these rows: the dispatch covers Q rows of tiles and invocation row q
 // shades tile rows q, q + Q, q + 2Q, ... lavapipe gives each of its threads
 // one contiguous block of a dispatch's workgroups, so with plain rows one

@@ -41,8 +41,8 @@ void basis_of(vec3 n, out vec3 t, out vec3 b)
 
 // Cosine-weighted direction in the hemisphere around n (pdf = cos / pi).
 // Unit length by construction (an orthonormal basis, r^2 + z^2 = 1), to a
-// few ulps: no normalize (its square root and division were ~2% of the AO
-// pass on lavapipe).
+// few ulps: no normalize (its square root and division were a measurable
+// part of the AO pass on lavapipe: docs/benchmarks.md).
 vec3 sample_cosine(vec3 n, float u1, float u2)
 {
     float r = sqrt(u1), phi = 6.28318530718 * u2;

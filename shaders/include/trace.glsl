@@ -87,8 +87,8 @@ bool trace_any(vec3 o, vec3 d, float tmax)
 // 4^3 sub-brick, 2^3 cell or 2x1x2 layer of one) or tests one voxel and
 // steps past it. On a CPU device the lanes of a SIMD row then wait for
 // each other only at the end; nested loops (bricks, then voxels) made a
-// lane that entered a brick wait for the others' bricks (AO rays 10-15%
-// slower, docs/benchmarks.md).
+// lane that entered a brick wait for the others' bricks (measured slower:
+// docs/benchmarks.md).
 // any_hit skips what only the closest hit needs.
 Hit trace_dda(vec3 o, vec3 d, float tmax, bool any_hit)
 {
@@ -145,8 +145,8 @@ Hit trace_dda(vec3 o, vec3 d, float tmax, bool any_hit)
         uint sub = chunk_mask == 0u ? 0u : ((bi < 4u ? chunk_sub.x : chunk_sub.y) >> (8u * (bi & 3u))) & 0xffu;
         int size = chunk_mask == 0u ? 16 : sub == 0u ? 8 : (sub & (1u << uint(s.x + 2 * (s.z + 2 * s.y)))) == 0u ? 4 : 2;
         // Each `if` is a branch on "any lane" on a CPU device: one for the
-        // word's fetch, one for a hit, the rest selects (~5% faster than
-        // nested ifs with the hit's work inside the loop).
+        // word's fetch, one for a hit, the rest selects (faster than nested
+        // ifs with the hit's work inside the loop: docs/benchmarks.md).
         uint word = uint(base) + world_occ_word(l);
         if (size == 2 && word != cached_word) {
             cached_word = word;
@@ -163,7 +163,7 @@ Hit trace_dda(vec3 o, vec3 d, float tmax, bool any_hit)
         }
         // In a non-empty 2^3 cell the 2x1x2 layer of it holding v may still
         // be empty: rays along a floor cross that air 2 voxels at a time
-        // (AO rays take 8% fewer iterations, ~3% less time).
+        // (fewer iterations for AO rays: docs/benchmarks.md).
         ivec3 box = !cell ? ivec3(size) : (bits & world_layer2_bits(l)) == 0u ? ivec3(2, 1, 2) : ivec3(1);
         // leave the empty box (or the voxel): its exit face, and the voxel
         // past it from the exit point (no error adds up over the steps)

@@ -14,7 +14,7 @@
 // CPU device texel fetches are SIMD gathers, storage-buffer loads with
 // per-invocation addresses a scalar loop per lane; and lavapipe fetches
 // four words for about the price of one (a call per fetch), so a chunk's
-// header is one fetch, not three (shadow rays 7% faster, docs/benchmarks.md).
+// header is one fetch, not three (docs/benchmarks.md has the gain).
 layout(binding = WORLD_BINDING) uniform usamplerBuffer world_texels;
 uvec4 world_texel(uint t) { return texelFetch(world_texels, int(t)); }
 // Word c of a texel: selects, because a dynamically indexed vector spills

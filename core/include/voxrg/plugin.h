@@ -80,7 +80,7 @@ typedef enum vrg_access {
      * R32G32B32A32_UINT (see vrg_slot_desc.format). For data read at
      * addresses that differ per invocation: lavapipe fetches texels with
      * SIMD gathers but loads such storage-buffer words one lane at a time
-     * (the world is read this way: ~1.3x faster traversal). At most the
+     * (the world is read this way; docs/benchmarks.md has the gain). At most the
      * device's maxTexelBufferElements texels. */
     VRG_ACCESS_TEXEL_READ,
 } vrg_access;
