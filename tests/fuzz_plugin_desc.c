@@ -65,7 +65,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                             .execute = flags & 8 ? NULL : noop, .params = flags & 16 ? NULL : params, .param_count = np,
                             .slots = flags & 32 ? NULL : slots, .slot_count = ns};
     vrg_diag d = {.out = devnull, .file = "fuzz.ini"};
-    if (vrg_plugin_check_desc(&desc, "p", "/fuzz/p.so", &d, 1) != 0)
+    if (_vrg_plugin_check_desc(&desc, "p", "/fuzz/p.so", &d, 1) != 0)
         return 0;
     for (uint32_t i = 0; i < desc.param_count; i++) {
         const vrg_param_desc *pd = &desc.params[i];

@@ -66,7 +66,7 @@ if(VOXRG_FUZZ)
   target_compile_options(fuzz_graph PRIVATE -fsanitize=fuzzer)
   target_link_options(fuzz_graph PRIVATE -fsanitize=fuzzer)
   target_link_libraries(fuzz_graph PRIVATE voxrg)
-  target_compile_options(voxrg PRIVATE -fsanitize=fuzzer-no-link)
+  target_compile_options(voxrg_objects PRIVATE -fsanitize=fuzzer-no-link)
   set(FUZZ_CORPUS ${CMAKE_CURRENT_BINARY_DIR}/fuzz_corpus)
   add_test(NAME fuzz_graph
            COMMAND ${CMAKE_COMMAND} -E env ${VRG_TEST_ENV}
@@ -74,10 +74,9 @@ if(VOXRG_FUZZ)
   set_tests_properties(fuzz_graph PROPERTIES TIMEOUT 600)
   # plugin descriptors: from nothing (no seed corpus: the input is a recipe)
   add_executable(fuzz_plugin_desc fuzz_plugin_desc.c)
-  target_include_directories(fuzz_plugin_desc PRIVATE ${PROJECT_SOURCE_DIR}/core/src)
   target_compile_options(fuzz_plugin_desc PRIVATE -fsanitize=fuzzer)
   target_link_options(fuzz_plugin_desc PRIVATE -fsanitize=fuzzer)
-  target_link_libraries(fuzz_plugin_desc PRIVATE voxrg m)
+  target_link_libraries(fuzz_plugin_desc PRIVATE voxrg_internal m)
   add_test(NAME fuzz_plugin_desc COMMAND ${CMAKE_COMMAND} -E env ${VRG_TEST_ENV} $<TARGET_FILE:fuzz_plugin_desc> -runs=200000 -max_len=2048)
   set_tests_properties(fuzz_plugin_desc PROPERTIES TIMEOUT 600)
   # camera paths: the parser and the curve, seeded with the shipped paths
@@ -91,10 +90,12 @@ if(VOXRG_FUZZ)
   set_tests_properties(fuzz_camera_path PROPERTIES TIMEOUT 300)
 endif()
 
+# The library exports exactly what its public headers declare.
+add_test(NAME exports COMMAND python3 ${CMAKE_CURRENT_SOURCE_DIR}/check_exports.py $<TARGET_FILE:voxrg> ${PROJECT_SOURCE_DIR}/core/include)
+
 # The loader's checks of plugin descriptors, case by case (no device).
 add_executable(test_plugin_desc test_plugin_desc.c)
-target_include_directories(test_plugin_desc PRIVATE ${PROJECT_SOURCE_DIR}/core/src)
-target_link_libraries(test_plugin_desc PRIVATE voxrg m)
+target_link_libraries(test_plugin_desc PRIVATE voxrg_internal m)
 add_test(NAME plugin_desc COMMAND test_plugin_desc)
 set_tests_properties(plugin_desc PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}")
 

@@ -144,6 +144,32 @@ def broken_files_case(d):
     check(rc == 0 and "paint.so" in err and "not a regular file" in err, "FIFO plugin in the listing: exit %d\n%s" % (rc, err))
 
 
+# --- descriptors of other sizes (headers older or newer than voxrg's) ---
+SIZED = r"""#include <stddef.h>
+#include "voxrg/plugin.h"
+static void execute(vrg_pass *p, VkCommandBuffer cmd) { (void)p; (void)cmd; }
+static const vrg_slot_desc slots[] = {{.name = "color", .dir = VRG_OUT, .kind = VRG_IMAGE,
+    .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT}};
+static const struct { vrg_plugin_desc d; unsigned long long newer; } desc = {{.abi_version = VRG_ABI_VERSION, .name = "sized",
+    .kind = VRG_PLUGIN_PASS, .help = "test: descriptor size", .slots = slots, .slot_count = 1, .execute = execute}, NEWER};
+VRG_EXPORT const vrg_plugin_desc *vrg_plugin_entry(uint32_t host_abi) { (void)host_abi; return &desc.d; }
+VRG_EXPORT const uint32_t vrg_plugin_desc_size = SIZE;
+"""
+
+
+def desc_size_case(d):
+    for what, size, newer, want_rc, want in (
+            ("older headers (no check field)", "offsetof(vrg_plugin_desc, check)", "0", 0, "test: descriptor size"),
+            ("newer headers, new field unset", "sizeof desc", "0", 0, "test: descriptor size"),
+            ("newer headers, new field set", "sizeof desc", "1", 1, "sets fields this voxrg"),
+            ("too short for execute", "8", "0", 1, "too short to hold execute")):
+        lib = os.path.join(d, what.replace(" ", "_").replace(",", "").replace("(", "").replace(")", ""))
+        os.makedirs(lib)
+        build(SIZED, os.path.join(lib, "sized.so"), ["SIZE=" + size, "NEWER=" + newer])
+        rc, out, err = run(["plugins", "sized"], {"VOXRG_PLUGIN_PATH": lib})
+        check(rc == want_rc and want in out + err, "descriptor size, %s: exit %d, want %d with '%s'\n%s%s" % (what, rc, want_rc, want, out, err))
+
+
 # --- a pass that crashes ------------------------------------------------------------
 def crash_case(d):
     graph = os.path.join(d, "crash.ini")
@@ -257,7 +283,7 @@ def watch_case(d):
 def main():
     shutil.rmtree(OUT, ignore_errors=True)
     os.makedirs(TMPDIR)
-    for name, case in (("policy", policy_case), ("broken_files", broken_files_case), ("crash", crash_case), ("watch", watch_case)):
+    for name, case in (("policy", policy_case), ("broken_files", broken_files_case), ("desc_size", desc_size_case), ("crash", crash_case), ("watch", watch_case)):
         d = os.path.join(OUT, name)
         os.makedirs(d)
         try:

@@ -61,7 +61,7 @@ static int create_accel(vrg_graph *g, vrg_resource *r)
     if (!r->size)
         return 0;
     if (!ctx->dev.features.acceleration_structure) {
-        vrg_error_at(&g->diag, r->writer_line, "use the DDA traversal on this device", "resource '%s' needs VK_KHR_acceleration_structure, which '%s' lacks",
+        _vrg_error_at(&g->diag, r->writer_line, "use the DDA traversal on this device", "resource '%s' needs VK_KHR_acceleration_structure, which '%s' lacks",
                      r->name, ctx->device_name);
         return -1;
     }
@@ -88,12 +88,12 @@ static int create_accel(vrg_graph *g, vrg_resource *r)
         return -1;
     vkGetBufferMemoryRequirements(dev, r->buffer[0], &r->req);
     VkMemoryAllocateFlagsInfo flags = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO, .flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT};
-    int type = vrg_find_memory_type(ctx, r->req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    int type = _vrg_find_memory_type(ctx, r->req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .pNext = &flags, .allocationSize = r->req.size,
                                .memoryTypeIndex = (uint32_t)type};
     if (type < 0 || vkAllocateMemory(dev, &ai, NULL, &r->own_memory[0]) != VK_SUCCESS ||
         vkBindBufferMemory(dev, r->buffer[0], r->own_memory[0], 0) != VK_SUCCESS) {
-        vrg_error(&g->diag, "out of device memory for acceleration structure '%s'", r->name);
+        _vrg_error(&g->diag, "out of device memory for acceleration structure '%s'", r->name);
         return -1;
     }
     VkAccelerationStructureCreateInfoKHR ci = {.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_CREATE_INFO_KHR,
@@ -101,11 +101,11 @@ static int create_accel(vrg_graph *g, vrg_resource *r)
                                                .size = sizes.accelerationStructureSize,
                                                .type = VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR};
     if (ctx->as.create(dev, &ci, NULL, &r->accel) != VK_SUCCESS) {
-        vrg_error(&g->diag, "cannot create acceleration structure '%s'", r->name);
+        _vrg_error(&g->diag, "cannot create acceleration structure '%s'", r->name);
         return -1;
     }
-    vrg_name_object(ctx, VK_OBJECT_TYPE_ACCELERATION_STRUCTURE_KHR, (uint64_t)r->accel, "%s/%s", g->name, r->name);
-    vrg_name_object(ctx, VK_OBJECT_TYPE_BUFFER, (uint64_t)r->buffer[0], "%s/%s (storage)", g->name, r->name);
+    _vrg_name_object(ctx, VK_OBJECT_TYPE_ACCELERATION_STRUCTURE_KHR, (uint64_t)r->accel, "%s/%s", g->name, r->name);
+    _vrg_name_object(ctx, VK_OBJECT_TYPE_BUFFER, (uint64_t)r->buffer[0], "%s/%s (storage)", g->name, r->name);
     return 0;
 }
 
@@ -117,7 +117,7 @@ static int create_objects(vrg_graph *g, int ri)
     int copies = r->history ? 2 : 1;
     if (r->kind == VRG_ACCEL)
         return create_accel(g, r);
-    vrg_resource_extent(g, r, &r->width, &r->height);
+    _vrg_resource_extent(g, r, &r->width, &r->height);
     r->mips = 1;
     if (r->kind == VRG_IMAGE && r->mip_request > 1) {
         uint32_t full = 1, m = r->width > r->height ? r->width : r->height;
@@ -127,7 +127,7 @@ static int create_objects(vrg_graph *g, int ri)
     }
     uint32_t max_dim = ctx->props.limits.maxImageDimension2D;
     if (r->kind == VRG_IMAGE && (r->width > max_dim || r->height > max_dim)) {
-        vrg_error_at(&g->diag, r->line, "lower its scale or the graph size", "resource '%s' would be %ux%u, larger than '%s' allows (%u)", r->name,
+        _vrg_error_at(&g->diag, r->line, "lower its scale or the graph size", "resource '%s' would be %ux%u, larger than '%s' allows (%u)", r->name,
                      r->width, r->height, ctx->device_name, max_dim);
         return -1;
     }
@@ -137,9 +137,9 @@ static int create_objects(vrg_graph *g, int ri)
             needed_usage(g, ri, &need);
             VkImageUsageFlags have = image_usage(ctx, r->format);
             if ((need & have) != need) {
-                vrg_error_at(&g->diag, r->line, "choose another format in its [resource] section",
+                _vrg_error_at(&g->diag, r->line, "choose another format in its [resource] section",
                              "resource '%s': format %s does not support the uses the graph makes of it on this device", r->name,
-                             vrg_format_name(r->format));
+                             _vrg_format_name(r->format));
                 return -1;
             }
             /* Also every use the format allows, so passes may vrg_pass_use() it other ways. */
@@ -157,21 +157,21 @@ static int create_objects(vrg_graph *g, int ri)
                 .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED,
             };
             if (vkCreateImage(dev, &ci, NULL, &r->image[c]) != VK_SUCCESS) {
-                vrg_error_at(&g->diag, r->line, NULL, "resource '%s': vkCreateImage failed (%ux%u %s)", r->name, r->width, r->height,
-                             vrg_format_name(r->format));
+                _vrg_error_at(&g->diag, r->line, NULL, "resource '%s': vkCreateImage failed (%ux%u %s)", r->name, r->width, r->height,
+                             _vrg_format_name(r->format));
                 return -1;
             }
-            vrg_name_object(ctx, VK_OBJECT_TYPE_IMAGE, (uint64_t)r->image[c], "%s/%s%s", g->name, r->name, c ? " (copy 1)" : "");
+            _vrg_name_object(ctx, VK_OBJECT_TYPE_IMAGE, (uint64_t)r->image[c], "%s/%s%s", g->name, r->name, c ? " (copy 1)" : "");
             vkGetImageMemoryRequirements(dev, r->image[c], &r->req);
         } else {
             r->buffer_usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT |
                               VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
             VkBufferCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = r->size, .usage = r->buffer_usage};
             if (vkCreateBuffer(dev, &ci, NULL, &r->buffer[c]) != VK_SUCCESS) {
-                vrg_error_at(&g->diag, r->line, NULL, "resource '%s': vkCreateBuffer failed (%llu bytes)", r->name, (unsigned long long)r->size);
+                _vrg_error_at(&g->diag, r->line, NULL, "resource '%s': vkCreateBuffer failed (%llu bytes)", r->name, (unsigned long long)r->size);
                 return -1;
             }
-            vrg_name_object(ctx, VK_OBJECT_TYPE_BUFFER, (uint64_t)r->buffer[c], "%s/%s%s", g->name, r->name, c ? " (copy 1)" : "");
+            _vrg_name_object(ctx, VK_OBJECT_TYPE_BUFFER, (uint64_t)r->buffer[c], "%s/%s%s", g->name, r->name, c ? " (copy 1)" : "");
             vkGetBufferMemoryRequirements(dev, r->buffer[c], &r->req);
         }
     }
@@ -191,28 +191,28 @@ static int bind_memory(vrg_graph *g, vrg_resource *r, int c, VkDeviceMemory mem,
 
 static int alloc_memory(vrg_graph *g, VkDeviceSize size, uint32_t type_bits, VkDeviceMemory *out, const char *what)
 {
-    int type = vrg_find_memory_type(g->ctx, type_bits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    int type = _vrg_find_memory_type(g->ctx, type_bits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     if (type < 0)
-        type = vrg_find_memory_type(g->ctx, type_bits, 0);
+        type = _vrg_find_memory_type(g->ctx, type_bits, 0);
     VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = size, .memoryTypeIndex = (uint32_t)type};
     if (type < 0 || vkAllocateMemory(g->ctx->dev.device, &ai, NULL, out) != VK_SUCCESS) {
-        vrg_error(&g->diag, "out of device memory allocating %llu bytes for %s", (unsigned long long)size, what);
+        _vrg_error(&g->diag, "out of device memory allocating %llu bytes for %s", (unsigned long long)size, what);
         return -1;
     }
-    vrg_name_object(g->ctx, VK_OBJECT_TYPE_DEVICE_MEMORY, (uint64_t)*out, "%s/%s", g->name, what);
+    _vrg_name_object(g->ctx, VK_OBJECT_TYPE_DEVICE_MEMORY, (uint64_t)*out, "%s/%s", g->name, what);
     return 0;
 }
 
 static void estimate_requirements(vrg_graph *g, vrg_resource *r)
 {
-    vrg_resource_extent(g, r, &r->width, &r->height);
-    uint64_t bytes = r->kind == VRG_IMAGE ? (uint64_t)r->width * r->height * vrg_format_bytes(r->format)
+    _vrg_resource_extent(g, r, &r->width, &r->height);
+    uint64_t bytes = r->kind == VRG_IMAGE ? (uint64_t)r->width * r->height * _vrg_format_bytes(r->format)
                    : r->kind == VRG_ACCEL  ? r->size * 128 /* about a node per instance */
                                            : r->size;
     r->req = (VkMemoryRequirements){.size = (bytes + 255) / 256 * 256, .alignment = 256, .memoryTypeBits = 1};
 }
 
-int vrg_allocate(vrg_graph *g)
+int _vrg_allocate(vrg_graph *g)
 {
     for (int i = 0; i < g->res_count; i++) {
         vrg_resource *r = &g->res[i];
@@ -224,7 +224,7 @@ int vrg_allocate(vrg_graph *g)
         else if (create_objects(g, i) != 0)
             return -1;
     }
-    if (vrg_plan_aliasing(g) != 0)
+    if (_vrg_plan_aliasing(g) != 0)
         return -1;
     if (!g->ctx)
         return 0;
@@ -251,7 +251,7 @@ int vrg_allocate(vrg_graph *g)
                 mem = r->own_memory[c];
             }
             if (bind_memory(g, r, c, mem, offset) != 0) {
-                vrg_error(&g->diag, "binding memory for resource '%s' failed", r->name);
+                _vrg_error(&g->diag, "binding memory for resource '%s' failed", r->name);
                 return -1;
             }
             if (r->kind == VRG_IMAGE) {
@@ -263,10 +263,10 @@ int vrg_allocate(vrg_graph *g)
                     .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, VK_REMAINING_MIP_LEVELS, 0, 1},
                 };
                 if (vkCreateImageView(g->ctx->dev.device, &vi, NULL, &r->view[c]) != VK_SUCCESS) {
-                    vrg_error(&g->diag, "cannot create a view of resource '%s'", r->name);
+                    _vrg_error(&g->diag, "cannot create a view of resource '%s'", r->name);
                     return -1;
                 }
-                vrg_name_object(g->ctx, VK_OBJECT_TYPE_IMAGE_VIEW, (uint64_t)r->view[c], "%s/%s%s", g->name, r->name, c ? " (copy 1)" : "");
+                _vrg_name_object(g->ctx, VK_OBJECT_TYPE_IMAGE_VIEW, (uint64_t)r->view[c], "%s/%s%s", g->name, r->name, c ? " (copy 1)" : "");
             }
         }
     }
@@ -276,7 +276,7 @@ int vrg_allocate(vrg_graph *g)
     return 0;
 }
 
-void vrg_free_resources(vrg_graph *g)
+void _vrg_free_resources(vrg_graph *g)
 {
     if (!g->ctx)
         return;

@@ -5,7 +5,7 @@
 #include <string.h>
 #include "internal.h"
 
-vrg_access_info vrg_access_info_of(vrg_access a, vrg_resource_kind kind)
+vrg_access_info _vrg_access_info_of(vrg_access a, vrg_resource_kind kind)
 {
     const VkPipelineStageFlags2 cs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
     const VkPipelineStageFlags2 xfer = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
@@ -42,7 +42,7 @@ vrg_access_info vrg_access_info_of(vrg_access a, vrg_resource_kind kind)
  * every earlier access (and the last write made available); read-after-write
  * needs the write made visible to the reading stage; a layout change counts
  * as a write. Reads already made visible need nothing. */
-int vrg_sync_use(vrg_sync *s, vrg_access_info need, int discard, vrg_barrier_rec *b)
+int _vrg_sync_use(vrg_sync *s, vrg_access_info need, int discard, vrg_barrier_rec *b)
 {
     int is_image = need.layout != VK_IMAGE_LAYOUT_UNDEFINED;
     VkImageLayout old = discard ? VK_IMAGE_LAYOUT_UNDEFINED : s->layout;
@@ -87,7 +87,7 @@ int vrg_sync_use(vrg_sync *s, vrg_access_info need, int discard, vrg_barrier_rec
     return needed;
 }
 
-int vrg_copy_of(const vrg_graph *g, int res, int prev)
+int _vrg_copy_of(const vrg_graph *g, int res, int prev)
 {
     if (!g->res[res].history)
         return 0;
@@ -104,7 +104,7 @@ static int barrier_for(vrg_graph *g, int ri, int copy, vrg_access access, vrg_ba
     int discard = transient && !r->touched[copy];
     vrg_sync before = r->sync[copy];
     r->touched[copy] = 1;
-    int needed = vrg_sync_use(&r->sync[copy], vrg_access_info_of(access, r->kind), discard, out);
+    int needed = _vrg_sync_use(&r->sync[copy], _vrg_access_info_of(access, r->kind), discard, out);
     out->res = ri;
     out->copy = copy;
     if (discard) {
@@ -122,21 +122,21 @@ static int barrier_for(vrg_graph *g, int ri, int copy, vrg_access access, vrg_ba
     return needed;
 }
 
-int vrg_pass_barriers(vrg_graph *g, vrg_pass *p, vrg_barrier_rec *out, int max)
+int _vrg_pass_barriers(vrg_graph *g, vrg_pass *p, vrg_barrier_rec *out, int max)
 {
     int n = 0;
     for (int s = 0; s < (int)p->plugin->desc->slot_count && n < max; s++) {
         const vrg_binding_ref *b = &p->slots[s];
         if (b->res < 0 || (g->res[b->res].kind == VRG_ACCEL && !g->res[b->res].size)) /* an empty TLAS: nothing to order */
             continue;
-        int copy = vrg_copy_of(g, b->res, b->prev);
+        int copy = _vrg_copy_of(g, b->res, b->prev);
         if (barrier_for(g, b->res, copy, vrg_slot(p, s)->access, &out[n]))
             n++;
     }
     return n;
 }
 
-int vrg_resource_barrier(vrg_graph *g, int res, int copy, vrg_access access, vrg_barrier_rec *out)
+int _vrg_resource_barrier(vrg_graph *g, int res, int copy, vrg_access access, vrg_barrier_rec *out)
 {
     return barrier_for(g, res, copy, access, out);
 }
@@ -160,11 +160,11 @@ static void flush_batch(vrg_graph *g, VkCommandBuffer cmd, const VkImageMemoryBa
         .pImageMemoryBarriers = img,
     };
     if (g->capture)
-        vrg_capture_barrier(g->capture, &dep);
+        _vrg_capture_barrier(g->capture, &dep);
     vkCmdPipelineBarrier2(cmd, &dep);
 }
 
-void vrg_emit_barriers(vrg_graph *g, VkCommandBuffer cmd, const vrg_barrier_rec *b, int n)
+void _vrg_emit_barriers(vrg_graph *g, VkCommandBuffer cmd, const vrg_barrier_rec *b, int n)
 {
     VkImageMemoryBarrier2 img[BARRIER_BATCH];
     VkBufferMemoryBarrier2 buf[BARRIER_BATCH];

@@ -57,7 +57,7 @@ static cap_cmd *append(vrg_capture *c)
     return cmd;
 }
 
-void vrg_capture_barrier(vrg_capture *c, const VkDependencyInfo *dep)
+void _vrg_capture_barrier(vrg_capture *c, const VkDependencyInfo *dep)
 {
     cap_cmd *cmd = append(c);
     if (!cmd)
@@ -74,7 +74,7 @@ void vrg_capture_barrier(vrg_capture *c, const VkDependencyInfo *dep)
     c->barriers++;
 }
 
-void vrg_capture_dispatch(vrg_capture *c, VkPipeline pipeline, VkPipelineLayout layout, uint32_t write_count, const VkWriteDescriptorSet *writes,
+void _vrg_capture_dispatch(vrg_capture *c, VkPipeline pipeline, VkPipelineLayout layout, uint32_t write_count, const VkWriteDescriptorSet *writes,
                           const void *push, uint32_t push_size, const uint32_t groups[3])
 {
     cap_cmd *cmd = append(c);

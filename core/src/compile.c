@@ -29,7 +29,7 @@ static const struct {
     {"r11g11b10f", VK_FORMAT_B10G11R11_UFLOAT_PACK32, 4, 3},
 };
 
-VkFormat vrg_format_parse(const char *s)
+VkFormat _vrg_format_parse(const char *s)
 {
     for (size_t i = 0; i < sizeof formats / sizeof formats[0]; i++)
         if (strcmp(formats[i].name, s) == 0)
@@ -37,7 +37,7 @@ VkFormat vrg_format_parse(const char *s)
     return VK_FORMAT_UNDEFINED;
 }
 
-const char *vrg_format_list(void)
+const char *_vrg_format_list(void)
 {
     static char list[512];
     if (!list[0]) {
@@ -50,7 +50,7 @@ const char *vrg_format_list(void)
     return list;
 }
 
-const char *vrg_format_name(VkFormat f)
+const char *_vrg_format_name(VkFormat f)
 {
     for (size_t i = 0; i < sizeof formats / sizeof formats[0]; i++)
         if (formats[i].format == f)
@@ -58,7 +58,7 @@ const char *vrg_format_name(VkFormat f)
     return "unknown-format";
 }
 
-uint64_t vrg_format_bytes(VkFormat f)
+uint64_t _vrg_format_bytes(VkFormat f)
 {
     for (size_t i = 0; i < sizeof formats / sizeof formats[0]; i++)
         if (formats[i].format == f)
@@ -66,7 +66,7 @@ uint64_t vrg_format_bytes(VkFormat f)
     return 16;
 }
 
-uint32_t vrg_format_channels(VkFormat f)
+uint32_t _vrg_format_channels(VkFormat f)
 {
     for (size_t i = 0; i < sizeof formats / sizeof formats[0]; i++)
         if (formats[i].format == f)
@@ -74,7 +74,7 @@ uint32_t vrg_format_channels(VkFormat f)
     return 4;
 }
 
-void vrg_resource_extent(const vrg_graph *g, const vrg_resource *r, uint32_t *w, uint32_t *h)
+void _vrg_resource_extent(const vrg_graph *g, const vrg_resource *r, uint32_t *w, uint32_t *h)
 {
     if (r->abs_width) {
         *w = r->abs_width;
@@ -161,7 +161,7 @@ static int schedule(vrg_graph *g)
     }
     for (int i = 0; i < g->pass_count; i++)
         if (!g->passes[i].culled && !done[i]) {
-            vrg_error_at(&g->diag, g->passes[i].line, NULL, "pass '%s' cannot be scheduled (cycle)", g->passes[i].name);
+            _vrg_error_at(&g->diag, g->passes[i].line, NULL, "pass '%s' cannot be scheduled (cycle)", g->passes[i].name);
             return -1;
         }
     return 0;
@@ -205,7 +205,7 @@ static void lifetimes(vrg_graph *g)
     }
 }
 
-int vrg_compile(vrg_graph *g)
+int _vrg_compile(vrg_graph *g)
 {
     cull(g);
     if (schedule(g) != 0)
@@ -248,7 +248,7 @@ static int by_size_desc(const void *x, const void *y)
 static int block_for(vrg_graph *g, const vrg_resource *r)
 {
     if (!r->req.memoryTypeBits) {
-        vrg_error(&g->diag, "resource '%s': the device allows no memory type for it", r->name);
+        _vrg_error(&g->diag, "resource '%s': the device allows no memory type for it", r->name);
         return -1;
     }
     int b;
@@ -298,7 +298,7 @@ static int list_overlaps(vrg_graph *g, const sized_res *placed, int placed_count
                 int cap = g->overlap_cap ? 2 * g->overlap_cap : 256;
                 int *grown = realloc(g->overlaps, (size_t)cap * sizeof *grown);
                 if (!grown) {
-                    vrg_error(&g->diag, "out of memory planning aliased memory");
+                    _vrg_error(&g->diag, "out of memory planning aliased memory");
                     return -1;
                 }
                 g->overlaps = grown;
@@ -311,7 +311,7 @@ static int list_overlaps(vrg_graph *g, const sized_res *placed, int placed_count
     return 0;
 }
 
-int vrg_plan_aliasing(vrg_graph *g)
+int _vrg_plan_aliasing(vrg_graph *g)
 {
     sized_res order[VRG_MAX_RESOURCES];
     int n = 0;

@@ -380,7 +380,7 @@ static double seconds_now(void)
     return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
-vrg_wait_result vrg_wait_fence(vrg_context *ctx, VkFence fence, double *waited_s)
+vrg_wait_result _vrg_wait_fence(vrg_context *ctx, VkFence fence, double *waited_s)
 {
     /* slices short enough that an interrupt is seen at once */
     const uint64_t slice_ns = 50u * 1000u * 1000u;
@@ -440,12 +440,12 @@ int vrg_context_create(const vrg_context_desc *desc, vrg_context **out)
         .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
     };
     vkCreateSampler(ctx->dev.device, &si, NULL, &ctx->sampler_linear);
-    vrg_name_object(ctx, VK_OBJECT_TYPE_SAMPLER, (uint64_t)ctx->sampler_linear, "voxrg linear clamp sampler");
+    _vrg_name_object(ctx, VK_OBJECT_TYPE_SAMPLER, (uint64_t)ctx->sampler_linear, "voxrg linear clamp sampler");
     si.magFilter = si.minFilter = VK_FILTER_NEAREST;
     si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
     si.maxLod = VK_LOD_CLAMP_NONE;
     vkCreateSampler(ctx->dev.device, &si, NULL, &ctx->sampler_mips);
-    vrg_name_object(ctx, VK_OBJECT_TYPE_SAMPLER, (uint64_t)ctx->sampler_mips, "voxrg nearest-texel trilinear-mip sampler");
+    _vrg_name_object(ctx, VK_OBJECT_TYPE_SAMPLER, (uint64_t)ctx->sampler_mips, "voxrg nearest-texel trilinear-mip sampler");
     if (!desc->quiet) {
         const vrg_features *f = &ctx->dev.features;
         fprintf(stderr, "voxrg: device %s (ray query %s, acceleration structures %s, timestamps %s)%s\n", ctx->device_name,
@@ -484,7 +484,7 @@ void vrg_context_destroy(vrg_context *ctx)
 const vrg_device *vrg_context_device(const vrg_context *ctx) { return &ctx->dev; }
 uint32_t vrg_context_validation_errors(const vrg_context *ctx) { return ctx->validation_errors; }
 
-void vrg_name_object(vrg_context *ctx, VkObjectType type, uint64_t handle, const char *fmt, ...)
+void _vrg_name_object(vrg_context *ctx, VkObjectType type, uint64_t handle, const char *fmt, ...)
 {
     if (!ctx->set_name || !handle)
         return;
@@ -498,7 +498,7 @@ void vrg_name_object(vrg_context *ctx, VkObjectType type, uint64_t handle, const
     ctx->set_name(ctx->dev.device, &info);
 }
 
-int vrg_find_memory_type(const vrg_context *ctx, uint32_t bits, VkMemoryPropertyFlags want)
+int _vrg_find_memory_type(const vrg_context *ctx, uint32_t bits, VkMemoryPropertyFlags want)
 {
     for (uint32_t i = 0; i < ctx->mem_props.memoryTypeCount; i++)
         if ((bits & (1u << i)) && (ctx->mem_props.memoryTypes[i].propertyFlags & want) == want)

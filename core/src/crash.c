@@ -2,7 +2,7 @@
  * and the callback before the process ends: without it a bug in someone's
  * pass ends `voxrg render` with a bare "Segmentation fault".
  *
- * Plugin code runs only between vrg_running_enter/leave (loading, check,
+ * Plugin code runs only between _vrg_running_enter/leave (loading, check,
  * create, resize, execute, destroy, save/restore state); the handler reads
  * that thread's record, writes one line with write(2) (async-signal-safe),
  * removes a plugin copy that was being loaded, then puts back the handler
@@ -90,7 +90,7 @@ static void install(void)
         sigaction(fatal_signals[i], &sa, &previous[fatal_signals[i]]);
 }
 
-vrg_running vrg_running_enter(const char *what, const char *pass, const vrg_plugin *plugin)
+vrg_running _vrg_running_enter(const char *what, const char *pass, const vrg_plugin *plugin)
 {
     static int installed;
     if (!installed) {
@@ -102,9 +102,9 @@ vrg_running vrg_running_enter(const char *what, const char *pass, const vrg_plug
     return before;
 }
 
-void vrg_running_leave(vrg_running before) { running = before; }
+void _vrg_running_leave(vrg_running before) { running = before; }
 
-void vrg_crash_cleanup_set(const char *dir, const char *file)
+void _vrg_crash_cleanup_set(const char *dir, const char *file)
 {
     snprintf(loading_dir, sizeof loading_dir, "%s", dir ? dir : "");
     snprintf(loading_file, sizeof loading_file, "%s", file ? file : "");

@@ -67,7 +67,7 @@ static void vadd(vrg_diag *d, int line, const char *kind, const char *hint, cons
     free(text);
 }
 
-void vrg_error_at(vrg_diag *d, int line, const char *hint, const char *fmt, ...)
+void _vrg_error_at(vrg_diag *d, int line, const char *hint, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
@@ -76,7 +76,7 @@ void vrg_error_at(vrg_diag *d, int line, const char *hint, const char *fmt, ...)
     d->errors++;
 }
 
-void vrg_error(vrg_diag *d, const char *fmt, ...)
+void _vrg_error(vrg_diag *d, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
@@ -85,7 +85,7 @@ void vrg_error(vrg_diag *d, const char *fmt, ...)
     d->errors++;
 }
 
-void vrg_note_at(vrg_diag *d, int line, const char *fmt, ...)
+void _vrg_note_at(vrg_diag *d, int line, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
@@ -101,7 +101,7 @@ static int by_line(const void *a, const void *b)
     return x->seq - y->seq;
 }
 
-void vrg_diag_flush(vrg_diag *d)
+void _vrg_diag_flush(vrg_diag *d)
 {
     if (d->count)
         qsort(d->entries, (size_t)d->count, sizeof *d->entries, by_line);

@@ -41,7 +41,7 @@ static int build_pipeline(vrg_pass *p, vrg_pipeline *pl)
     VkDevice dev = ctx->dev.device;
     vrg_shader_module sm;
     FILE *diag = p->graph->diag.out ? p->graph->diag.out : stderr;
-    if (vrg_shader_compile(ctx, pl->path, pl->defines, &sm, diag) != 0) {
+    if (_vrg_shader_compile(ctx, pl->path, pl->defines, &sm, diag) != 0) {
         vrg_pass_error(p, "shader %s failed to compile", pl->path);
         return -1;
     }
@@ -83,7 +83,7 @@ static int build_pipeline(vrg_pass *p, vrg_pipeline *pl)
         vrg_pass_error(p, "vkCreateComputePipelines failed for %s (%d)", pl->path, res);
         return -1;
     }
-    vrg_name_object(ctx, VK_OBJECT_TYPE_PIPELINE, (uint64_t)pl->pipeline, "%s/%s: %s", p->graph->name, p->name, pl->shader);
+    _vrg_name_object(ctx, VK_OBJECT_TYPE_PIPELINE, (uint64_t)pl->pipeline, "%s/%s: %s", p->graph->name, p->name, pl->shader);
     return 0;
 }
 
@@ -110,7 +110,7 @@ static vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *d
         if (strcmp(pl->shader, shader) == 0 && strcmp(pl->defines, defines) == 0 && pl->count == count && memcmp(pl->types, types, count * sizeof *types) == 0)
             return pl;
     char path[VRG_PATH_MAX];
-    if (vrg_shader_resolve(p, shader, path, sizeof path) != 0) {
+    if (_vrg_shader_resolve(p, shader, path, sizeof path) != 0) {
         vrg_pass_error(p, "shader '%s' not found (searched the plugin's folder, $VOXRG_SHADER_PATH, shaders/)", shader);
         return NULL;
     }
@@ -126,7 +126,7 @@ static vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *d
     }
     pl->next = p->pipelines;
     p->pipelines = pl;
-    vrg_graph_watch_pipeline(p->graph, pl->deps);
+    _vrg_graph_watch_pipeline(p->graph, pl->deps);
     return pl;
 }
 
@@ -143,7 +143,7 @@ static int uses_file(const char *deps, const char *path)
     return 0;
 }
 
-int vrg_pipelines_reload(vrg_pass *p, char (*changed)[VRG_PATH_MAX], int count)
+int _vrg_pipelines_reload(vrg_pass *p, char (*changed)[VRG_PATH_MAX], int count)
 {
     VkDevice dev = p->graph->ctx->dev.device;
     int swapped = 0, failed = 0;
@@ -168,14 +168,14 @@ int vrg_pipelines_reload(vrg_pass *p, char (*changed)[VRG_PATH_MAX], int count)
         vrg_pipeline *next = pl->next;
         *pl = fresh;
         pl->next = next;
-        vrg_graph_watch_pipeline(p->graph, pl->deps);
+        _vrg_graph_watch_pipeline(p->graph, pl->deps);
         swapped++;
     }
     p->failed = 0; /* a failed reload keeps the pass running on its old pipeline */
     return failed ? -1 : swapped;
 }
 
-void vrg_pipelines_deps(vrg_pass *p, void (*fn)(void *user, const char *path), void *user)
+void _vrg_pipelines_deps(vrg_pass *p, void (*fn)(void *user, const char *path), void *user)
 {
     for (vrg_pipeline *pl = p->pipelines; pl; pl = pl->next)
         for (const char *d = pl->deps; d && *d;) {
@@ -187,7 +187,7 @@ void vrg_pipelines_deps(vrg_pass *p, void (*fn)(void *user, const char *path), v
         }
 }
 
-void vrg_pipelines_destroy(vrg_pass *p)
+void _vrg_pipelines_destroy(vrg_pass *p)
 {
     VkDevice dev = p->graph->ctx ? p->graph->ctx->dev.device : VK_NULL_HANDLE;
     while (p->pipelines) {
@@ -223,7 +223,7 @@ static int resolve_bindings(vrg_pass *p, const vrg_dispatch_desc *d, bound *out)
     }
     for (; n < VRG_MAX_BINDINGS && d->bindings[n].res; n++) {
         int res, prev, slot;
-        if (vrg_pass_lookup(p, d->bindings[n].res, &res, &prev, &slot) != 0)
+        if (_vrg_pass_lookup(p, d->bindings[n].res, &res, &prev, &slot) != 0)
             return vrg_pass_error(p, "binding %d names '%s', which is neither a slot nor an internal resource of this pass", n,
                                   d->bindings[n].res);
         vrg_access a = d->bindings[n].access;
@@ -244,7 +244,7 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
     VkDescriptorType types[VRG_MAX_BINDINGS];
     for (int i = 0; i < n; i++) {
         if (b[i].access == VRG_ACCESS_TRANSFER_SRC || b[i].access == VRG_ACCESS_TRANSFER_DST || b[i].access == VRG_ACCESS_AS_BUILD)
-            return vrg_pass_error(p, "binding %d: %s access cannot be bound to a shader", i, vrg_access_name(b[i].access));
+            return vrg_pass_error(p, "binding %d: %s access cannot be bound to a shader", i, _vrg_access_name(b[i].access));
         if (g->res[b[i].res].kind == VRG_ACCEL && !g->res[b[i].res].accel)
             return vrg_pass_error(p, "binding %d: acceleration structure '%s' was not built (its scene uses no ray-query backend)", i,
                                   g->res[b[i].res].name);
@@ -280,8 +280,8 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
     VkBufferView tv[VRG_MAX_BINDINGS];
     for (int i = 0; i < n; i++) {
         vrg_resource *r = &g->res[b[i].res];
-        int copy = vrg_copy_of(g, b[i].res, b[i].prev);
-        if (vrg_resource_barrier(g, b[i].res, copy, b[i].access, &bars[nb]))
+        int copy = _vrg_copy_of(g, b[i].res, b[i].prev);
+        if (_vrg_resource_barrier(g, b[i].res, copy, b[i].access, &bars[nb]))
             nb++;
         w[i] = (VkWriteDescriptorSet){
             .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstBinding = (uint32_t)i, .descriptorCount = 1, .descriptorType = types[i]};
@@ -290,17 +290,17 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
                 .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR, .accelerationStructureCount = 1, .pAccelerationStructures = &r->accel};
             w[i].pNext = &ai[i];
         } else if (r->kind == VRG_IMAGE) {
-            vrg_access_info info = vrg_access_info_of(b[i].access, VRG_IMAGE);
+            vrg_access_info info = _vrg_access_info_of(b[i].access, VRG_IMAGE);
             VkSampler sampler = r->mips > 1 ? g->ctx->sampler_mips : g->ctx->sampler_linear;
             ii[i] = (VkDescriptorImageInfo){.sampler = sampler, .imageView = r->view[copy], .imageLayout = info.layout};
             w[i].pImageInfo = &ii[i];
         } else if (types[i] == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) {
             /* the writer's texel format (validate.c); internal buffers: words */
             VkFormat texel = r->format ? r->format : VK_FORMAT_R32_UINT;
-            uint64_t texels = r->size / vrg_format_bytes(texel), max = g->ctx->dev.features.max_texel_buffer_texels;
+            uint64_t texels = r->size / _vrg_format_bytes(texel), max = g->ctx->dev.features.max_texel_buffer_texels;
             if (texels > max)
                 return vrg_pass_error(p, "binding %d: buffer '%s' holds %llu %s texels, more than this device's texel buffers can (%llu)", i, r->name,
-                                      (unsigned long long)texels, vrg_format_name(texel), (unsigned long long)max);
+                                      (unsigned long long)texels, _vrg_format_name(texel), (unsigned long long)max);
             if (!r->texel_view[copy]) {
                 VkBufferViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO, .buffer = r->buffer[copy],
                                              .format = texel, .range = VK_WHOLE_SIZE};
@@ -314,14 +314,14 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
             w[i].pBufferInfo = &bi[i];
         }
     }
-    vrg_emit_barriers(g, cmd, bars, nb);
+    _vrg_emit_barriers(g, cmd, bars, nb);
 
     uint32_t gx = d->groups_x, gy = d->groups_y ? d->groups_y : 1, gz = d->groups_z ? d->groups_z : 1;
     if (!gx) {
         int dom = -1;
         if (d->domain) {
             int prev, slot;
-            if (vrg_pass_lookup(p, d->domain, &dom, &prev, &slot) != 0)
+            if (_vrg_pass_lookup(p, d->domain, &dom, &prev, &slot) != 0)
                 return vrg_pass_error(p, "dispatch domain '%s' is not a resource of this pass", d->domain);
         } else {
             for (uint32_t s = 0; s < p->plugin->desc->slot_count && dom < 0; s++)
@@ -345,7 +345,7 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
         gz = 1;
     }
     if (g->capture)
-        vrg_capture_dispatch(g->capture, pl->pipeline, pl->layout, (uint32_t)n, w, d->push, d->push_size, (const uint32_t[3]){gx, gy, gz});
+        _vrg_capture_dispatch(g->capture, pl->pipeline, pl->layout, (uint32_t)n, w, d->push, d->push_size, (const uint32_t[3]){gx, gy, gz});
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pl->pipeline);
     if (n)
         g->ctx->push_descriptor(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pl->layout, 0, (uint32_t)n, w);

@@ -13,9 +13,9 @@ static int create_passes(vrg_graph *g)
 {
     for (int k = 0; k < g->schedule_count; k++) {
         vrg_pass *p = &g->passes[g->schedule[k]];
-        vrg_running before = vrg_running_enter("create", p->name, p->plugin);
+        vrg_running before = _vrg_running_enter("create", p->name, p->plugin);
         int rc = p->plugin->desc->create ? p->plugin->desc->create(p) : 0;
-        vrg_running_leave(before);
+        _vrg_running_leave(before);
         if (rc != 0) {
             if (!p->failed)
                 vrg_pass_error(p, "create() failed");
@@ -32,9 +32,9 @@ static int resize_passes(vrg_graph *g)
 {
     for (int k = 0; k < g->schedule_count; k++) {
         vrg_pass *p = &g->passes[g->schedule[k]];
-        vrg_running before = vrg_running_enter("resize", p->name, p->plugin);
+        vrg_running before = _vrg_running_enter("resize", p->name, p->plugin);
         int rc = p->plugin->desc->resize ? p->plugin->desc->resize(p) : 0;
-        vrg_running_leave(before);
+        _vrg_running_leave(before);
         if (rc != 0) {
             if (!p->failed)
                 vrg_pass_error(p, "resize() failed");
@@ -52,7 +52,7 @@ static int frame_objects(vrg_graph *g)
         .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, .commandPool = ctx->cmd_pool, .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY, .commandBufferCount = 1};
     VkFenceCreateInfo fi = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     if (vkAllocateCommandBuffers(dev, &ai, &g->cmd) != VK_SUCCESS || vkCreateFence(dev, &fi, NULL, &g->fence) != VK_SUCCESS) {
-        vrg_error(&g->diag, "cannot create the frame's command buffer and fence");
+        _vrg_error(&g->diag, "cannot create the frame's command buffer and fence");
         return -1;
     }
     if (ctx->dev.features.timestamps && g->schedule_count) {
@@ -60,9 +60,9 @@ static int frame_objects(vrg_graph *g)
             .sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO, .queryType = VK_QUERY_TYPE_TIMESTAMP, .queryCount = (uint32_t)(2 * g->schedule_count)};
         if (vkCreateQueryPool(dev, &qi, NULL, &g->queries) != VK_SUCCESS)
             g->queries = VK_NULL_HANDLE; /* timings become -1; rendering goes on */
-        vrg_name_object(ctx, VK_OBJECT_TYPE_QUERY_POOL, (uint64_t)g->queries, "%s/pass timestamps", g->name);
+        _vrg_name_object(ctx, VK_OBJECT_TYPE_QUERY_POOL, (uint64_t)g->queries, "%s/pass timestamps", g->name);
     }
-    vrg_name_object(ctx, VK_OBJECT_TYPE_COMMAND_BUFFER, (uint64_t)g->cmd, "%s/frame", g->name);
+    _vrg_name_object(ctx, VK_OBJECT_TYPE_COMMAND_BUFFER, (uint64_t)g->cmd, "%s/frame", g->name);
     return 0;
 }
 
@@ -75,7 +75,7 @@ static int readback_buffer(vrg_graph *g)
         if (r->first_use < 0 || !(r->is_output || r->readback))
             continue;
         g->readback_offset[i] = size;
-        VkDeviceSize bytes = r->kind == VRG_IMAGE ? (VkDeviceSize)r->width * r->height * vrg_format_bytes(r->format) : r->size;
+        VkDeviceSize bytes = r->kind == VRG_IMAGE ? (VkDeviceSize)r->width * r->height * _vrg_format_bytes(r->format) : r->size;
         size += (bytes + 15) / 16 * 16;
     }
     /* then a word per scheduled pass the GPU sets when the pass is done:
@@ -87,17 +87,17 @@ static int readback_buffer(vrg_graph *g)
     int type = -1;
     if (vkCreateBuffer(dev, &ci, NULL, &g->readback_buffer) == VK_SUCCESS) {
         vkGetBufferMemoryRequirements(dev, g->readback_buffer, &req);
-        type = vrg_find_memory_type(g->ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+        type = _vrg_find_memory_type(g->ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
     }
     VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size, .memoryTypeIndex = (uint32_t)type};
     if (type < 0 || vkAllocateMemory(dev, &ai, NULL, &g->readback_memory) != VK_SUCCESS ||
         vkBindBufferMemory(dev, g->readback_buffer, g->readback_memory, 0) != VK_SUCCESS ||
         vkMapMemory(dev, g->readback_memory, 0, VK_WHOLE_SIZE, 0, &g->readback_map) != VK_SUCCESS) {
-        vrg_error(&g->diag, "cannot allocate %llu bytes of host-visible memory for readback", (unsigned long long)size);
+        _vrg_error(&g->diag, "cannot allocate %llu bytes of host-visible memory for readback", (unsigned long long)size);
         return -1;
     }
     g->readback_size = size;
-    vrg_name_object(g->ctx, VK_OBJECT_TYPE_BUFFER, (uint64_t)g->readback_buffer, "%s/readback", g->name);
+    _vrg_name_object(g->ctx, VK_OBJECT_TYPE_BUFFER, (uint64_t)g->readback_buffer, "%s/readback", g->name);
     return 0;
 }
 
@@ -134,24 +134,24 @@ int vrg_graph_load(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph **out
     snprintf(g->name, sizeof g->name, "graph");
     int rc;
     if (desc->path && strlen(desc->path) >= sizeof g->path) {
-        vrg_error(&g->diag, "graph path is longer than %zu characters", sizeof g->path - 1);
+        _vrg_error(&g->diag, "graph path is longer than %zu characters", sizeof g->path - 1);
         rc = -1;
         ast->fatal = 1;
     } else
-        rc = vrg_parse(g->path, desc->text, ast, &g->diag);
+        rc = _vrg_parse(g->path, desc->text, ast, &g->diag);
     /* Keep going after syntax errors so one run shows every problem. */
     if (!ast->fatal && (rc == 0 || ast->section_count > 0))
-        rc = vrg_validate(g, ast, desc) | rc;
+        rc = _vrg_validate(g, ast, desc) | rc;
     free(ast);
     if (rc == 0)
-        rc = vrg_compile(g);
+        rc = _vrg_compile(g);
     if (rc == 0 && ctx) {
         rc = create_passes(g);
         if (rc == 0)
-            rc = vrg_compile(g); /* internal resources now exist: lifetimes again */
+            rc = _vrg_compile(g); /* internal resources now exist: lifetimes again */
     }
     if (rc == 0)
-        rc = vrg_allocate(g);
+        rc = _vrg_allocate(g);
     if (rc == 0 && ctx) {
         rc = frame_objects(g);
         if (rc == 0)
@@ -159,7 +159,7 @@ int vrg_graph_load(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph **out
         if (rc == 0)
             rc = resize_passes(g);
     }
-    vrg_diag_flush(&g->diag);
+    _vrg_diag_flush(&g->diag);
     if (rc != 0) {
         vrg_graph_destroy(g);
         return -1;
@@ -176,32 +176,32 @@ void vrg_graph_destroy(vrg_graph *g)
      * nothing it uses can be freed (vrg_context_gpu_busy) */
     if (g->ctx && g->ctx->gpu_busy)
         return;
-    vrg_watch_destroy(g->watch);
+    _vrg_watch_destroy(g->watch);
     if (g->ctx) {
         VkDevice dev = g->ctx->dev.device;
         vkDeviceWaitIdle(dev);
         for (int i = 0; i < g->pass_count; i++) {
             vrg_pass *p = &g->passes[i];
             if (p->created && p->plugin->desc->destroy) {
-                vrg_running before = vrg_running_enter("destroy", p->name, p->plugin);
+                vrg_running before = _vrg_running_enter("destroy", p->name, p->plugin);
                 p->plugin->desc->destroy(p);
-                vrg_running_leave(before);
+                _vrg_running_leave(before);
             }
-            vrg_pipelines_destroy(p);
-            vrg_pass_free_host_buffers(p);
+            _vrg_pipelines_destroy(p);
+            _vrg_pass_free_host_buffers(p);
         }
         free_readback(g);
-        vrg_free_resources(g);
+        _vrg_free_resources(g);
         if (g->cmd)
             vkFreeCommandBuffers(dev, g->ctx->cmd_pool, 1, &g->cmd);
         vkDestroyFence(dev, g->fence, NULL);
         vkDestroyQueryPool(dev, g->queries, NULL);
     }
     for (int i = 0; i < g->pass_count; i++) {
-        vrg_pass_free_params(&g->passes[i]);
-        vrg_pass_clear_stats(&g->passes[i], 1);
+        _vrg_pass_free_params(&g->passes[i]);
+        _vrg_pass_clear_stats(&g->passes[i], 1);
         if (g->passes[i].plugin)
-            vrg_plugin_release(g->passes[i].plugin); /* last: nothing of the plugin's is used after */
+            _vrg_plugin_release(g->passes[i].plugin); /* last: nothing of the plugin's is used after */
     }
     free(g->overlaps);
     free(g);
@@ -209,9 +209,9 @@ void vrg_graph_destroy(vrg_graph *g)
 
 /* ---- hot reload ---- */
 
-static void watch_path(void *user, const char *path) { vrg_watch_add(user, path); }
+static void watch_path(void *user, const char *path) { _vrg_watch_add(user, path); }
 
-void vrg_graph_watch_pipeline(vrg_graph *g, const char *deps)
+void _vrg_graph_watch_pipeline(vrg_graph *g, const char *deps)
 {
     if (!g->watch)
         return;
@@ -219,7 +219,7 @@ void vrg_graph_watch_pipeline(vrg_graph *g, const char *deps)
         const char *end = strchr(d, '\n');
         char path[VRG_PATH_MAX];
         snprintf(path, sizeof path, "%.*s", (int)(end ? end - d : (long)strlen(d)), d);
-        vrg_watch_add(g->watch, path);
+        _vrg_watch_add(g->watch, path);
         d = end ? end + 1 : d + strlen(d);
     }
 }
@@ -227,24 +227,24 @@ void vrg_graph_watch_pipeline(vrg_graph *g, const char *deps)
 int vrg_graph_watch(vrg_graph *g, int on)
 {
     if (!on) {
-        vrg_watch_destroy(g->watch);
+        _vrg_watch_destroy(g->watch);
         g->watch = NULL;
         return 0;
     }
     if (g->watch)
         return 0;
-    g->watch = vrg_watch_create();
+    g->watch = _vrg_watch_create();
     if (!g->watch) {
-        vrg_error(&g->diag, "hot reload: cannot watch files (inotify: %s)", strerror(errno));
+        _vrg_error(&g->diag, "hot reload: cannot watch files (inotify: %s)", strerror(errno));
         return -1;
     }
     g->reload_ms = -1;
     if (g->loaded_from_file)
-        vrg_watch_add(g->watch, g->path);
+        _vrg_watch_add(g->watch, g->path);
     for (int i = 0; i < g->pass_count; i++)
-        vrg_watch_add(g->watch, g->passes[i].plugin->source);
+        _vrg_watch_add(g->watch, g->passes[i].plugin->source);
     for (int i = 0; i < g->pass_count; i++)
-        vrg_pipelines_deps(&g->passes[i], watch_path, g->watch);
+        _vrg_pipelines_deps(&g->passes[i], watch_path, g->watch);
     return 0;
 }
 
@@ -258,7 +258,7 @@ void vrg_graph_sources(const vrg_graph *g, void (*fn)(void *user, const char *pa
         if (g->passes[i].plugin)
             fn(user, g->passes[i].plugin->source);
     for (int i = 0; i < g->pass_count; i++)
-        vrg_pipelines_deps((vrg_pass *)&g->passes[i], fn, user);
+        _vrg_pipelines_deps((vrg_pass *)&g->passes[i], fn, user);
 }
 
 /* Saved shaders: recompile the pipelines that read them before this frame
@@ -267,9 +267,9 @@ void vrg_graph_sources(const vrg_graph *g, void (*fn)(void *user, const char *pa
 static void apply_reloads(vrg_graph *g)
 {
     char (*changed)[VRG_PATH_MAX], self[VRG_PATH_MAX];
-    int n = vrg_watch_poll(g->watch, &changed);
+    int n = _vrg_watch_poll(g->watch, &changed);
     if (n < 0)
-        vrg_error(&g->diag, "hot reload: out of memory listing the changed files");
+        _vrg_error(&g->diag, "hot reload: out of memory listing the changed files");
     if (n <= 0)
         return;
     /* the graph file itself: the host reloads it (vrg_graph_reload) */
@@ -293,7 +293,7 @@ static void apply_reloads(vrg_graph *g)
         g->diag.out = mem;
     int failed = 0, swapped = 0;
     for (int i = 0; i < g->pass_count; i++) {
-        int r = vrg_pipelines_reload(&g->passes[i], changed, n);
+        int r = _vrg_pipelines_reload(&g->passes[i], changed, n);
         failed |= r < 0;
         swapped += r > 0 ? r : 0;
     }
@@ -321,16 +321,16 @@ static void apply_reloads(vrg_graph *g)
 int vrg_graph_frame(vrg_graph *g)
 {
     if (!g->ctx || !g->allocated) {
-        vrg_error(&g->diag, "graph '%s' has no device resources (loaded without a context)", g->name);
+        _vrg_error(&g->diag, "graph '%s' has no device resources (loaded without a context)", g->name);
         return -1;
     }
     if (g->ctx->gpu_busy) { /* the command buffer may still be executing */
-        vrg_error(&g->diag, "graph '%s': the GPU is still busy with a frame that timed out or was interrupted", g->name);
+        _vrg_error(&g->diag, "graph '%s': the GPU is still busy with a frame that timed out or was interrupted", g->name);
         return -1;
     }
     if (g->watch)
         apply_reloads(g);
-    int rc = vrg_record_frame(g);
+    int rc = _vrg_record_frame(g);
     if (g->pending_since > 0) { /* this frame used the change: it is on screen now */
         struct timespec now;
         clock_gettime(CLOCK_REALTIME, &now);
@@ -349,7 +349,7 @@ static int find_param(vrg_graph *g, const char *pass_param, vrg_pass **out)
         if (strlen(g->passes[i].name) == (size_t)(dot - pass_param) && strncmp(g->passes[i].name, pass_param, (size_t)(dot - pass_param)) == 0)
             p = &g->passes[i];
     if (!p) {
-        vrg_error(&g->diag, "%s: no pass of that name (PASS.PARAM)", pass_param);
+        _vrg_error(&g->diag, "%s: no pass of that name (PASS.PARAM)", pass_param);
         return -1;
     }
     *out = p;
@@ -357,7 +357,7 @@ static int find_param(vrg_graph *g, const char *pass_param, vrg_pass **out)
     for (uint32_t i = 0; i < d->param_count; i++)
         if (strcmp(d->params[i].name, dot + 1) == 0)
             return (int)i;
-    vrg_error(&g->diag, "%s: pass '%s' (plugin %s) has no parameter '%s'", pass_param, p->name, p->plugin->name, dot + 1);
+    _vrg_error(&g->diag, "%s: pass '%s' (plugin %s) has no parameter '%s'", pass_param, p->name, p->plugin->name, dot + 1);
     return -1;
 }
 
@@ -378,11 +378,11 @@ int vrg_graph_set_param(vrg_graph *g, const char *pass_param, double value)
     if (i >= 0) {
         const vrg_param_desc *pd = &p->plugin->desc->params[i];
         if (pd->type == VRG_PARAM_STRING) {
-            vrg_error(&g->diag, "set %s: a string parameter; edit the graph file (it reloads)", pass_param);
+            _vrg_error(&g->diag, "set %s: a string parameter; edit the graph file (it reloads)", pass_param);
             return -1;
         }
         if (value != value || (pd->type != VRG_PARAM_FLOAT && value != floor(value)) || ((pd->min != 0 || pd->max != 0) && (value < pd->min || value > pd->max))) {
-            vrg_error(&g->diag, "set %s = %g: %s takes %s in [%g, %g]", pass_param, value, pd->name, pd->type == VRG_PARAM_FLOAT ? "a number" : "an integer",
+            _vrg_error(&g->diag, "set %s = %g: %s takes %s in [%g, %g]", pass_param, value, pd->name, pd->type == VRG_PARAM_FLOAT ? "a number" : "an integer",
                       pd->min, pd->max);
             return -1;
         }
@@ -401,20 +401,20 @@ double vrg_graph_reload_ms(const vrg_graph *g) { return g->watch ? g->reload_ms 
 int vrg_graph_resize(vrg_graph *g, uint32_t width, uint32_t height)
 {
     if (!width || !height || width > 16384 || height > 16384) {
-        vrg_error(&g->diag, "resize to %ux%u: sizes are 1..16384", width, height);
+        _vrg_error(&g->diag, "resize to %ux%u: sizes are 1..16384", width, height);
         return -1;
     }
     if (g->ctx && g->ctx->gpu_busy) {
-        vrg_error(&g->diag, "resize: the GPU is still busy with a frame that timed out or was interrupted");
+        _vrg_error(&g->diag, "resize: the GPU is still busy with a frame that timed out or was interrupted");
         return -1;
     }
     if (g->ctx)
         vkDeviceWaitIdle(g->ctx->dev.device);
     free_readback(g);
-    vrg_free_resources(g);
+    _vrg_free_resources(g);
     g->width = width;
     g->height = height;
-    if (vrg_allocate(g) != 0)
+    if (_vrg_allocate(g) != 0)
         return -1;
     if (g->ctx && (readback_buffer(g) != 0 || resize_passes(g) != 0))
         return -1;
@@ -434,16 +434,16 @@ static int find_readable(vrg_graph *g, const char *name)
     for (int i = 0; i < g->res_count; i++)
         if (strcmp(g->res[i].name, name) == 0) {
             if (!(g->res[i].is_output || g->res[i].readback || i == g->shown) || g->res[i].first_use < 0) {
-                vrg_error(&g->diag, "resource '%s' is not read back (ask for it in vrg_graph_desc.readback / --dump)", name);
+                _vrg_error(&g->diag, "resource '%s' is not read back (ask for it in vrg_graph_desc.readback / --dump)", name);
                 return -1;
             }
             if (!g->frame_done) {
-                vrg_error(&g->diag, "resource '%s': no frame rendered yet", name);
+                _vrg_error(&g->diag, "resource '%s': no frame rendered yet", name);
                 return -1;
             }
             return i;
         }
-    vrg_error(&g->diag, "the graph has no resource '%s'", name);
+    _vrg_error(&g->diag, "the graph has no resource '%s'", name);
     return -1;
 }
 
@@ -504,14 +504,14 @@ int vrg_graph_show(vrg_graph *g, const char *name)
             g->shown = i;
             return 0;
         }
-    vrg_error(&g->diag, "show %s: not an image this graph keeps for viewing (load it with keep_images)", name);
+    _vrg_error(&g->diag, "show %s: not an image this graph keeps for viewing (load it with keep_images)", name);
     return -1;
 }
 
 VkImageView vrg_graph_image_view(vrg_graph *g, const char *name)
 {
     int i = find_readable(g, name);
-    return i < 0 || g->res[i].kind != VRG_IMAGE ? VK_NULL_HANDLE : g->res[i].view[vrg_copy_of(g, i, g->res[i].history)];
+    return i < 0 || g->res[i].kind != VRG_IMAGE ? VK_NULL_HANDLE : g->res[i].view[_vrg_copy_of(g, i, g->res[i].history)];
 }
 
 int vrg_graph_image(vrg_graph *g, const char *name, VkImage *image, VkExtent2D *extent, VkFormat *format)
@@ -521,11 +521,11 @@ int vrg_graph_image(vrg_graph *g, const char *name, VkImage *image, VkExtent2D *
         return -1;
     vrg_resource *r = &g->res[i];
     if (r->kind != VRG_IMAGE) {
-        vrg_error(&g->diag, "resource '%s' is not an image", name);
+        _vrg_error(&g->diag, "resource '%s' is not an image", name);
         return -1;
     }
     /* the frame counter moved on: last frame's copy is now the "previous" one */
-    *image = r->image[vrg_copy_of(g, i, r->history)];
+    *image = r->image[_vrg_copy_of(g, i, r->history)];
     *extent = (VkExtent2D){r->width, r->height};
     *format = r->format;
     return 0;
@@ -539,11 +539,11 @@ int vrg_graph_read(vrg_graph *g, const char *name, vrg_image_data *out)
         return -1;
     vrg_resource *r = &g->res[i];
     if (r->kind != VRG_IMAGE) {
-        vrg_error(&g->diag, "resource '%s' is a buffer: use vrg_graph_read_buffer", name);
+        _vrg_error(&g->diag, "resource '%s' is a buffer: use vrg_graph_read_buffer", name);
         return -1;
     }
     const uint8_t *src = (const uint8_t *)g->readback_map + g->readback_offset[i];
-    uint32_t ch = vrg_format_channels(r->format);
+    uint32_t ch = _vrg_format_channels(r->format);
     size_t n = (size_t)r->width * r->height;
     out->width = r->width;
     out->height = r->height;
@@ -607,7 +607,7 @@ int vrg_graph_read_buffer(vrg_graph *g, const char *name, void **data, uint64_t 
         return -1;
     vrg_resource *r = &g->res[i];
     if (r->kind != VRG_BUFFER) {
-        vrg_error(&g->diag, "resource '%s' is an image: use vrg_graph_read", name);
+        _vrg_error(&g->diag, "resource '%s' is an image: use vrg_graph_read", name);
         return -1;
     }
     *data = malloc(r->size);
@@ -702,7 +702,7 @@ vrg_world *vrg_graph_world(const vrg_graph *g) { return g->world; }
 int vrg_graph_set_camera(vrg_graph *g, const vrg_camera *c)
 {
     if (!vrg_camera_position_in_world(c->position)) {
-        vrg_error(&g->diag, "vrg_graph_set_camera: camera->position (%g, %g, %g) is outside the world: each coordinate lies in [%g, %g] (VRG_WORLD_LIMIT)",
+        _vrg_error(&g->diag, "vrg_graph_set_camera: camera->position (%g, %g, %g) is outside the world: each coordinate lies in [%g, %g] (VRG_WORLD_LIMIT)",
                   c->position[0], c->position[1], c->position[2], -VRG_WORLD_LIMIT, VRG_WORLD_LIMIT);
         return -1;
     }

@@ -27,14 +27,14 @@ typedef struct vrg_diag {
     FILE *out;
     const char *file;
     int errors;
-    int collect; /* hold messages until vrg_diag_flush, then print sorted by line */
+    int collect; /* hold messages until _vrg_diag_flush, then print sorted by line */
     vrg_diag_entry *entries;
     int count, cap;
 } vrg_diag;
-void vrg_error_at(vrg_diag *d, int line, const char *hint, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
-void vrg_error(vrg_diag *d, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-void vrg_note_at(vrg_diag *d, int line, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-void vrg_diag_flush(vrg_diag *d);
+void _vrg_error_at(vrg_diag *d, int line, const char *hint, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
+void _vrg_error(vrg_diag *d, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void _vrg_note_at(vrg_diag *d, int line, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+void _vrg_diag_flush(vrg_diag *d);
 
 /* ---- context (context.c) ---- */
 struct vrg_context {
@@ -68,9 +68,9 @@ struct vrg_context {
  * timeout or an interrupt (vrg_interrupt) plus its grace; either marks the
  * device busy. *waited_s: the seconds waited. */
 typedef enum { VRG_WAIT_DONE, VRG_WAIT_TIMEOUT, VRG_WAIT_INTERRUPTED, VRG_WAIT_FAILED } vrg_wait_result;
-vrg_wait_result vrg_wait_fence(vrg_context *ctx, VkFence fence, double *waited_s);
-void vrg_name_object(vrg_context *ctx, VkObjectType type, uint64_t handle, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
-int vrg_find_memory_type(const vrg_context *ctx, uint32_t bits, VkMemoryPropertyFlags want);
+vrg_wait_result _vrg_wait_fence(vrg_context *ctx, VkFence fence, double *waited_s);
+void _vrg_name_object(vrg_context *ctx, VkObjectType type, uint64_t handle, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
+int _vrg_find_memory_type(const vrg_context *ctx, uint32_t bits, VkMemoryPropertyFlags want);
 
 /* ---- plugin loading (plugin_loader.c) ---- */
 typedef struct vrg_plugin {
@@ -78,41 +78,42 @@ typedef struct vrg_plugin {
     char path[VRG_PATH_MAX];   /* the file loaded: the source, or a reload's private copy */
     char source[VRG_PATH_MAX]; /* the file the build writes (hot reload watches it) */
     void *handle;
-    const vrg_plugin_desc *desc;
+    const vrg_plugin_desc *desc; /* &desc_copy once kept */
+    vrg_plugin_desc desc_copy;   /* the plugin's descriptor at this runtime's size */
     unsigned generation; /* load order: the highest of a name is its current version */
-    int users;           /* passes of live graphs running it (vrg_plugin_acquire) */
+    int users;           /* passes of live graphs running it (_vrg_plugin_acquire) */
 } vrg_plugin;
 /* Finds NAME on the search path (plugin_loader.c's header comment) and loads
  * a private copy of it; NULL after reporting at `line`. A file already loaded
  * is not loaded again. `graph_path` is the graph file (for its plugin_path,
  * ':'-separated folders relative to it, NULL if none). */
-const vrg_plugin *vrg_plugin_load(const char *name, const char *graph_path, const char *plugin_path, vrg_diag *d, int line);
+const vrg_plugin *_vrg_plugin_load(const char *name, const char *graph_path, const char *plugin_path, vrg_diag *d, int line);
 /* The checks a plugin's descriptor must pass (also run by the fuzzer). */
-int vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const char *path, vrg_diag *d, int line);
+int _vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const char *path, vrg_diag *d, int line);
 
 /* ---- crash reports (crash.c) ---- */
 /* What plugin code this thread runs now: a fatal signal names it. */
 typedef struct vrg_running {
     const char *what, *pass, *plugin, *file;
 } vrg_running;
-vrg_running vrg_running_enter(const char *what, const char *pass, const vrg_plugin *plugin);
-void vrg_running_leave(vrg_running before);
+vrg_running _vrg_running_enter(const char *what, const char *pass, const vrg_plugin *plugin);
+void _vrg_running_leave(vrg_running before);
 /* A plugin copy being loaded, removed if loading dies (NULLs: none). */
-void vrg_crash_cleanup_set(const char *dir, const char *file);
+void _vrg_crash_cleanup_set(const char *dir, const char *file);
 /* capture.c: called where the runtime records, while g->capture is set */
-void vrg_capture_barrier(struct vrg_capture *c, const VkDependencyInfo *dep);
-void vrg_capture_dispatch(struct vrg_capture *c, VkPipeline pipeline, VkPipelineLayout layout, uint32_t write_count,
+void _vrg_capture_barrier(struct vrg_capture *c, const VkDependencyInfo *dep);
+void _vrg_capture_dispatch(struct vrg_capture *c, VkPipeline pipeline, VkPipelineLayout layout, uint32_t write_count,
                           const VkWriteDescriptorSet *writes, const void *push, uint32_t push_size, const uint32_t groups[3]);
 /* A pass runs the plugin / no longer does. A superseded version (a hot
  * reload loaded a newer one) is unloaded when its last user goes. */
-void vrg_plugin_acquire(const vrg_plugin *p);
-void vrg_plugin_release(const vrg_plugin *p);
+void _vrg_plugin_acquire(const vrg_plugin *p);
+void _vrg_plugin_release(const vrg_plugin *p);
 /* A rebuilt plugin file becomes the newest version of its plugin (hot reload). */
-int vrg_plugin_reload(const char *source_path, vrg_diag *d);
+int _vrg_plugin_reload(const char *source_path, vrg_diag *d);
 /* Every plugin on the search path (for `voxrg plugins`), the current
  * version of each file; returns how many there are (more than max: only max
  * filled). Files that fail to load are reported to `problems` (NULL: not). */
-int vrg_plugin_list(const vrg_plugin **out, int max, FILE *problems);
+int _vrg_plugin_list(const vrg_plugin **out, int max, FILE *problems);
 
 /* ---- parse (parse.c): the file as written, with line numbers ---- */
 typedef struct vrg_key {
@@ -133,7 +134,7 @@ typedef struct vrg_ast {
     int syntax_error_line; /* inih's first error, 0 if none */
     int fatal;             /* a limit or encoding error: the file was not read whole */
 } vrg_ast;
-int vrg_parse(const char *path, const char *text, vrg_ast *ast, vrg_diag *d);
+int _vrg_parse(const char *path, const char *text, vrg_ast *ast, vrg_diag *d);
 
 /* ---- the validated graph ---- */
 enum { VRG_RES_GRAPH = 0, VRG_RES_INTERNAL = 1 };
@@ -244,11 +245,11 @@ typedef struct vrg_host_buffer {
     struct vrg_host_buffer *next;
 } vrg_host_buffer;
 
-void vrg_pass_free_params(vrg_pass *p);
-void vrg_pass_free_host_buffers(vrg_pass *p);
+void _vrg_pass_free_params(vrg_pass *p);
+void _vrg_pass_free_host_buffers(vrg_pass *p);
 /* Forgets the figures of vrg_pass_stat (a new frame); free: also the table. */
-void vrg_pass_clear_stats(vrg_pass *p, int free_table);
-int vrg_pass_add_string(vrg_pass *p, int param, const char *value, int line, int replace);
+void _vrg_pass_clear_stats(vrg_pass *p, int free_table);
+int _vrg_pass_add_string(vrg_pass *p, int param, const char *value, int line, int replace);
 
 typedef struct vrg_barrier_rec {
     int res, copy;
@@ -324,25 +325,25 @@ struct vrg_graph {
 };
 
 /* validate.c: AST → graph (plugins loaded, slots resolved, every check). */
-int vrg_validate(vrg_graph *g, const vrg_ast *ast, const vrg_graph_desc *desc);
+int _vrg_validate(vrg_graph *g, const vrg_ast *ast, const vrg_graph_desc *desc);
 /* compile.c: cull, order, lifetimes; alias placement of sized resources. */
-int vrg_compile(vrg_graph *g);
+int _vrg_compile(vrg_graph *g);
 /* Add an internal resource for a pass (used by create()). */
-int vrg_graph_add_resource(vrg_graph *g, const char *name);
-uint64_t vrg_format_bytes(VkFormat f);
-const char *vrg_format_name(VkFormat f);
-const char *vrg_format_list(void);
-VkFormat vrg_format_parse(const char *s);
-uint32_t vrg_format_channels(VkFormat f);
-void vrg_resource_extent(const vrg_graph *g, const vrg_resource *r, uint32_t *w, uint32_t *h);
+int _vrg_graph_add_resource(vrg_graph *g, const char *name);
+uint64_t _vrg_format_bytes(VkFormat f);
+const char *_vrg_format_name(VkFormat f);
+const char *_vrg_format_list(void);
+VkFormat _vrg_format_parse(const char *s);
+uint32_t _vrg_format_channels(VkFormat f);
+void _vrg_resource_extent(const vrg_graph *g, const vrg_resource *r, uint32_t *w, uint32_t *h);
 /* Place resources with the given sizes into heap blocks; fills block/offset/overlaps.
  * Returns 0, or -1 after reporting. */
-int vrg_plan_aliasing(vrg_graph *g);
+int _vrg_plan_aliasing(vrg_graph *g);
 /* allocate.c */
-int vrg_allocate(vrg_graph *g);
-void vrg_free_resources(vrg_graph *g);
+int _vrg_allocate(vrg_graph *g);
+void _vrg_free_resources(vrg_graph *g);
 /* record.c */
-int vrg_record_frame(vrg_graph *g);
+int _vrg_record_frame(vrg_graph *g);
 /* barrier.c: the access a use needs, and the barrier that gets it there. */
 typedef struct vrg_access_info {
     VkPipelineStageFlags2 stage;
@@ -350,43 +351,43 @@ typedef struct vrg_access_info {
     VkImageLayout layout;
     int writes;
 } vrg_access_info;
-vrg_access_info vrg_access_info_of(vrg_access a, vrg_resource_kind kind);
+vrg_access_info _vrg_access_info_of(vrg_access a, vrg_resource_kind kind);
 /* Updates *s for a use; returns 1 and fills *b when a barrier is needed. */
-int vrg_sync_use(vrg_sync *s, vrg_access_info need, int discard, vrg_barrier_rec *b);
+int _vrg_sync_use(vrg_sync *s, vrg_access_info need, int discard, vrg_barrier_rec *b);
 /* Barriers to bring a pass's resources to their declared accesses. */
-int vrg_pass_barriers(vrg_graph *g, vrg_pass *p, vrg_barrier_rec *out, int max);
-void vrg_emit_barriers(vrg_graph *g, VkCommandBuffer cmd, const vrg_barrier_rec *b, int n);
-int vrg_copy_of(const vrg_graph *g, int res, int prev);
-int vrg_pass_lookup(const vrg_pass *p, const char *name, int *res, int *prev, int *slot);
-int vrg_resource_barrier(vrg_graph *g, int res, int copy, vrg_access access, vrg_barrier_rec *out);
+int _vrg_pass_barriers(vrg_graph *g, vrg_pass *p, vrg_barrier_rec *out, int max);
+void _vrg_emit_barriers(vrg_graph *g, VkCommandBuffer cmd, const vrg_barrier_rec *b, int n);
+int _vrg_copy_of(const vrg_graph *g, int res, int prev);
+int _vrg_pass_lookup(const vrg_pass *p, const char *name, int *res, int *prev, int *slot);
+int _vrg_resource_barrier(vrg_graph *g, int res, int copy, vrg_access access, vrg_barrier_rec *out);
 /* shader.c */
 typedef struct vrg_shader_module {
     VkShaderModule module;
     uint32_t local_size[3];
     char *deps; /* the file and every file it includes, real paths, one per line (free()) */
 } vrg_shader_module;
-int vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, vrg_shader_module *out, FILE *diag);
-int vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t cap);
-void vrg_pipelines_destroy(vrg_pass *p);
+int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, vrg_shader_module *out, FILE *diag);
+int _vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t cap);
+void _vrg_pipelines_destroy(vrg_pass *p);
 /* Hot reload: recompile this pass's pipelines that use any of the changed
  * files; a pipeline whose new version fails keeps running (the errors go to
  * diag). Returns how many were swapped, -1 if any failed. */
-int vrg_pipelines_reload(vrg_pass *p, char (*changed)[VRG_PATH_MAX], int count);
+int _vrg_pipelines_reload(vrg_pass *p, char (*changed)[VRG_PATH_MAX], int count);
 /* Adds a pipeline's files (newline-separated) to the graph's watch, if any. */
-void vrg_graph_watch_pipeline(vrg_graph *g, const char *deps);
+void _vrg_graph_watch_pipeline(vrg_graph *g, const char *deps);
 /* Calls fn for every file the pass's pipelines read (hot reload watches them). */
-void vrg_pipelines_deps(vrg_pass *p, void (*fn)(void *user, const char *path), void *user);
+void _vrg_pipelines_deps(vrg_pass *p, void (*fn)(void *user, const char *path), void *user);
 
 /* ---- hot reload (watch.c) ---- */
 typedef struct vrg_watch vrg_watch;
-vrg_watch *vrg_watch_create(void);
-void vrg_watch_destroy(vrg_watch *w);
-int vrg_watch_add(vrg_watch *w, const char *path);
+vrg_watch *_vrg_watch_create(void);
+void _vrg_watch_destroy(vrg_watch *w);
+int _vrg_watch_add(vrg_watch *w, const char *path);
 /* Tracked files whose write completed since the last poll, in *changed
  * (every one; the caller frees it). -1: out of memory. */
-int vrg_watch_poll(vrg_watch *w, char (**changed)[VRG_PATH_MAX]);
+int _vrg_watch_poll(vrg_watch *w, char (**changed)[VRG_PATH_MAX]);
 /* report.c */
-const char *vrg_access_name(vrg_access a);
+const char *_vrg_access_name(vrg_access a);
 
 static inline const vrg_slot_desc *vrg_slot(const vrg_pass *p, int i) { return &p->plugin->desc->slots[i]; }
 

@@ -17,7 +17,7 @@ int vrg_pass_error(vrg_pass *p, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    vrg_error_at(&p->graph->diag, p->line, NULL, "pass '%s' (plugin %s): %s", p->name, p->plugin ? p->plugin->path : "?", msg);
+    _vrg_error_at(&p->graph->diag, p->line, NULL, "pass '%s' (plugin %s): %s", p->name, p->plugin ? p->plugin->path : "?", msg);
     p->failed = 1;
     return -1;
 }
@@ -54,7 +54,7 @@ double vrg_param(const vrg_pass *p, const char *name)
 
 int vrg_param_int(const vrg_pass *p, const char *name) { return (int)vrg_param(p, name); }
 
-int vrg_pass_add_string(vrg_pass *p, int param, const char *value, int line, int replace)
+int _vrg_pass_add_string(vrg_pass *p, int param, const char *value, int line, int replace)
 {
     if (replace) {
         int k = 0;
@@ -71,7 +71,7 @@ int vrg_pass_add_string(vrg_pass *p, int param, const char *value, int line, int
     return 0;
 }
 
-void vrg_pass_free_params(vrg_pass *p)
+void _vrg_pass_free_params(vrg_pass *p)
 {
     for (int i = 0; i < p->string_count; i++)
         free(p->strings[i].value);
@@ -149,9 +149,9 @@ int vrg_pass_error_at(vrg_pass *p, int line, const char *fmt, ...)
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
     if (line > 0)
-        vrg_error_at(&p->graph->diag, line, NULL, "%s", msg);
+        _vrg_error_at(&p->graph->diag, line, NULL, "%s", msg);
     else
-        vrg_error(&p->graph->diag, "pass '%s': %s", p->name, msg);
+        _vrg_error(&p->graph->diag, "pass '%s': %s", p->name, msg);
     p->failed = 1;
     return -1;
 }
@@ -204,7 +204,7 @@ void *vrg_pass_buffer(vrg_pass *p, const vrg_buffer_desc *d, VkBuffer *buffer, V
         vkGetBufferMemoryRequirements(dev, hb->buffer, &req);
         VkMemoryPropertyFlags want = d->host_visible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
                                                      : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
-        type = vrg_find_memory_type(ctx, req.memoryTypeBits, want);
+        type = _vrg_find_memory_type(ctx, req.memoryTypeBits, want);
     }
     VkMemoryAllocateFlagsInfo flags = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO, .flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT};
     VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .pNext = wants_address ? &flags : NULL,
@@ -216,7 +216,7 @@ void *vrg_pass_buffer(vrg_pass *p, const vrg_buffer_desc *d, VkBuffer *buffer, V
                        d->name);
         return NULL;
     }
-    vrg_name_object(ctx, VK_OBJECT_TYPE_BUFFER, (uint64_t)hb->buffer, "%s/%s.%s", p->graph->name, p->name, d->name);
+    _vrg_name_object(ctx, VK_OBJECT_TYPE_BUFFER, (uint64_t)hb->buffer, "%s/%s.%s", p->graph->name, p->name, d->name);
     if (wants_address && address) {
         VkBufferDeviceAddressInfo info = {.sType = VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO, .buffer = hb->buffer};
         *address = vkGetBufferDeviceAddress(dev, &info);
@@ -251,7 +251,7 @@ VkAccelerationStructureKHR vrg_res_accel(const vrg_pass *p, vrg_res h)
     return r ? r->accel : VK_NULL_HANDLE;
 }
 
-void vrg_pass_free_host_buffers(vrg_pass *p)
+void _vrg_pass_free_host_buffers(vrg_pass *p)
 {
     while (p->host_buffers) {
         vrg_host_buffer *hb = p->host_buffers;
@@ -290,7 +290,7 @@ static vrg_res request(vrg_pass *p, const char *name, vrg_resource_kind kind)
         return (vrg_res){-1};
     }
     int before = g->res_count;
-    int r = vrg_graph_add_resource(g, full);
+    int r = _vrg_graph_add_resource(g, full);
     if (r >= 0 && r < before) {
         if (g->res[r].internal_owner == (int)(p - g->passes))
             vrg_pass_error(p, "internal resource '%s' requested twice", name);
@@ -333,7 +333,7 @@ vrg_res vrg_pass_request_buffer(vrg_pass *p, const char *name, uint64_t size)
 }
 
 /* Slot (or internal resource) by name, dummies included: what the dispatch helper binds. */
-int vrg_pass_lookup(const vrg_pass *p, const char *name, int *res, int *prev, int *slot)
+int _vrg_pass_lookup(const vrg_pass *p, const char *name, int *res, int *prev, int *slot)
 {
     const vrg_plugin_desc *d = p->plugin->desc;
     /* "in.color" / "out.color" pick a direction; a bare name takes the first
@@ -368,7 +368,7 @@ int vrg_pass_lookup(const vrg_pass *p, const char *name, int *res, int *prev, in
 vrg_res vrg_pass_res(const vrg_pass *p, const char *name)
 {
     int res, prev, slot;
-    if (vrg_pass_lookup(p, name, &res, &prev, &slot) != 0 || (slot >= 0 && p->slots[slot].dummy))
+    if (_vrg_pass_lookup(p, name, &res, &prev, &slot) != 0 || (slot >= 0 && p->slots[slot].dummy))
         return (vrg_res){-1};
     return (vrg_res){(res << 1) | prev};
 }
@@ -387,7 +387,7 @@ static const vrg_resource *res_of(const vrg_pass *p, vrg_res h, int *copy)
 {
     if (h.id < 0 || (h.id >> 1) >= p->graph->res_count)
         return NULL;
-    *copy = vrg_copy_of(p->graph, h.id >> 1, h.id & 1);
+    *copy = _vrg_copy_of(p->graph, h.id >> 1, h.id & 1);
     return &p->graph->res[h.id >> 1];
 }
 
@@ -449,14 +449,14 @@ void vrg_pass_use(vrg_pass *p, VkCommandBuffer cmd, const vrg_use *uses, uint32_
         if (uses[i].res.id < 0 || (uses[i].res.id >> 1) >= p->graph->res_count)
             continue;
         int res = uses[i].res.id >> 1;
-        if (vrg_resource_barrier(p->graph, res, vrg_copy_of(p->graph, res, uses[i].res.id & 1), uses[i].access, &b[n]))
+        if (_vrg_resource_barrier(p->graph, res, _vrg_copy_of(p->graph, res, uses[i].res.id & 1), uses[i].access, &b[n]))
             n++;
         if (n == (int)(sizeof b / sizeof b[0])) {
-            vrg_emit_barriers(p->graph, cmd, b, n);
+            _vrg_emit_barriers(p->graph, cmd, b, n);
             n = 0;
         }
     }
-    vrg_emit_barriers(p->graph, cmd, b, n);
+    _vrg_emit_barriers(p->graph, cmd, b, n);
 }
 
 void vrg_pass_stat(vrg_pass *p, const char *name, double value)
@@ -484,7 +484,7 @@ void vrg_pass_stat(vrg_pass *p, const char *name, double value)
     p->stats[p->stat_count++] = (vrg_pass_figure){copy, value};
 }
 
-void vrg_pass_clear_stats(vrg_pass *p, int free_table)
+void _vrg_pass_clear_stats(vrg_pass *p, int free_table)
 {
     for (int i = 0; i < p->stat_count; i++)
         free(p->stats[i].name);

@@ -24,6 +24,7 @@
 #include <fcntl.h>
 #include <limits.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -68,9 +69,9 @@ static vrg_plugin *free_slot(int claim)
     return claim ? &loaded[loaded_count++] : &loaded[loaded_count];
 }
 
-void vrg_plugin_acquire(const vrg_plugin *p) { ((vrg_plugin *)p)->users++; }
+void _vrg_plugin_acquire(const vrg_plugin *p) { ((vrg_plugin *)p)->users++; }
 
-void vrg_plugin_release(const vrg_plugin *cp)
+void _vrg_plugin_release(const vrg_plugin *cp)
 {
     vrg_plugin *p = (vrg_plugin *)cp;
     if (--p->users > 0 || newest(p->source, 1) == p)
@@ -89,11 +90,11 @@ static void fail(vrg_diag *d, int line, const char *hint, const char *fmt, ...)
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
     if (line > 0)
-        vrg_error_at(d, line, hint, "%s", msg);
+        _vrg_error_at(d, line, hint, "%s", msg);
     else if (hint)
-        vrg_error(d, "%s\n  hint: %s", msg, hint);
+        _vrg_error(d, "%s\n  hint: %s", msg, hint);
     else
-        vrg_error(d, "%s", msg);
+        _vrg_error(d, "%s", msg);
 }
 
 /* ---- the search path ---- */
@@ -307,7 +308,7 @@ static void *open_private(const vrg_plugin *p, const unsigned char *data, size_t
         return NULL;
     }
     snprintf(file, sizeof file, "%s/%s.so", dir, p->name);
-    vrg_crash_cleanup_set(dir, file);
+    _vrg_crash_cleanup_set(dir, file);
     int fd = open(file, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0500);
     size_t put = 0;
     while (fd >= 0 && put < size) {
@@ -321,16 +322,40 @@ static void *open_private(const vrg_plugin *p, const unsigned char *data, size_t
     if (fd < 0 || put != size || close(fd) != 0)
         snprintf(why, cap, "cannot write its private copy %s: %s", file, strerror(fd < 0 || put != size ? err : errno));
     else {
-        vrg_running before = vrg_running_enter("loading (dlopen and the plugin's constructors)", NULL, p);
+        vrg_running before = _vrg_running_enter("loading (dlopen and the plugin's constructors)", NULL, p);
         handle = dlopen(file, RTLD_NOW | RTLD_LOCAL);
-        vrg_running_leave(before);
+        _vrg_running_leave(before);
         if (!handle)
             snprintf(why, cap, "%s", dlerror());
     }
     unlink(file);
     rmdir(dir);
-    vrg_crash_cleanup_set(NULL, NULL);
+    _vrg_crash_cleanup_set(NULL, NULL);
     return handle;
+}
+
+/* The plugin's descriptor at this runtime's size: a shorter one (older
+ * headers) gets zeros for the fields it lacks, a longer one (newer
+ * headers) is refused if it sets any field this runtime does not know. */
+static int copy_desc(vrg_plugin *p, uint32_t size, vrg_diag *d, int line)
+{
+    const unsigned char *bytes = (const unsigned char *)p->desc;
+    size_t known = sizeof(vrg_plugin_desc);
+    if (size < offsetof(vrg_plugin_desc, execute) + sizeof p->desc->execute) {
+        fail(d, line, "rebuild the plugin against this voxrg's headers", "plugin '%s' (%s): its descriptor is %u bytes, too short to hold execute",
+             p->name, p->source, size);
+        return 0;
+    }
+    for (size_t i = known; i < size; i++)
+        if (bytes[i]) {
+            fail(d, line, "update voxrg, or rebuild the plugin against this voxrg's headers",
+                 "plugin '%s' (%s): its descriptor (%u bytes) sets fields this voxrg (%zu bytes) does not know", p->name, p->source, size, known);
+            return 0;
+        }
+    memset(&p->desc_copy, 0, sizeof p->desc_copy);
+    memcpy(&p->desc_copy, bytes, size < known ? size : known);
+    p->desc = &p->desc_copy;
+    return 1;
 }
 
 /* Loads p->source into *p: read, ELF check, private copy, entry point, ABI
@@ -359,15 +384,18 @@ static int load_file(vrg_plugin *p, vrg_diag *d, int line)
         fail(d, line, "a plugin's source ends with VRG_PLUGIN(desc)", "plugin '%s' (%s) does not export %s", p->name, p->source,
                      VRG_PLUGIN_ENTRY_SYMBOL);
     else {
-        vrg_running before = vrg_running_enter(VRG_PLUGIN_ENTRY_SYMBOL, NULL, p);
+        vrg_running before = _vrg_running_enter(VRG_PLUGIN_ENTRY_SYMBOL, NULL, p);
         p->desc = entry(VRG_ABI_VERSION);
-        vrg_running_leave(before);
+        _vrg_running_leave(before);
+        /* plugins built before the size was exported have this runtime's layout */
+        const uint32_t *size = (const uint32_t *)dlsym(p->handle, VRG_PLUGIN_DESC_SIZE_SYMBOL);
         if (!p->desc)
             fail(d, line, NULL, "plugin '%s' (%s): %s returned NULL", p->name, p->source, VRG_PLUGIN_ENTRY_SYMBOL);
         else if (p->desc->abi_version != VRG_ABI_VERSION)
             fail(d, line, "rebuild the plugin against this voxrg's headers", "plugin '%s' (%s) has ABI version %u, this voxrg expects ABI version %u",
                          p->name, p->source, p->desc->abi_version, VRG_ABI_VERSION);
-        else if (vrg_plugin_check_desc(p->desc, p->name, p->source, d, line) == 0)
+        else if (copy_desc(p, size ? *size : (uint32_t)sizeof(vrg_plugin_desc), d, line) &&
+                 _vrg_plugin_check_desc(p->desc, p->name, p->source, d, line) == 0)
             return 0;
     }
     dlclose(p->handle);
@@ -380,6 +408,7 @@ static const vrg_plugin *keep(const vrg_plugin *p)
 {
     vrg_plugin *slot = free_slot(1);
     *slot = *p;
+    slot->desc = &slot->desc_copy;
     slot->generation = ++last_generation;
     slot->users = 0;
     return slot;
@@ -423,7 +452,7 @@ static int valid_name(const char *s)
     return 1;
 }
 
-int vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const char *path, vrg_diag *d, int line)
+int _vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const char *path, vrg_diag *d, int line)
 {
     const char *why = NULL;
     char buf[512];
@@ -470,7 +499,7 @@ int vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const c
         int as_access = s->access == VRG_ACCESS_AS_BUILD || s->access == VRG_ACCESS_RAY_QUERY;
         if ((s->access == VRG_ACCESS_SAMPLED && s->kind != VRG_IMAGE) || ((s->access == VRG_ACCESS_UNIFORM || s->access == VRG_ACCESS_TEXEL_READ) && s->kind != VRG_BUFFER) ||
             as_access != (s->kind == VRG_ACCEL)) {
-            fail(d, line, NULL, "plugin '%s' (%s): slot '%s': %s access does not fit a%s", name, path, s->name, vrg_access_name(s->access),
+            fail(d, line, NULL, "plugin '%s' (%s): slot '%s': %s access does not fit a%s", name, path, s->name, _vrg_access_name(s->access),
                          s->kind == VRG_IMAGE ? "n image" : s->kind == VRG_BUFFER ? " buffer" : "n acceleration structure");
             return -1;
         }
@@ -478,12 +507,12 @@ int vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const c
         int texel_format = s->format == VK_FORMAT_R32_UINT || s->format == VK_FORMAT_R32G32_UINT || s->format == VK_FORMAT_R32G32B32A32_UINT;
         if (s->kind == VRG_BUFFER && s->format && !texel_format) {
             fail(d, line, NULL, "plugin '%s' (%s): slot '%s': a buffer's format is the texel format of its TEXEL_READ views: r32ui, rg32ui or rgba32ui, not %s",
-                         name, path, s->name, vrg_format_name(s->format));
+                         name, path, s->name, _vrg_format_name(s->format));
             return -1;
         }
         if (s->kind == VRG_BUFFER && s->format && s->dir == VRG_IN && s->access != VRG_ACCESS_TEXEL_READ) {
             fail(d, line, NULL, "plugin '%s' (%s): slot '%s': a %s input names a texel format; only texel-read inputs (VRG_ACCESS_TEXEL_READ) and outputs do",
-                         name, path, s->name, vrg_access_name(s->access));
+                         name, path, s->name, _vrg_access_name(s->access));
             return -1;
         }
         for (uint32_t j = 0; j < i; j++)
@@ -497,7 +526,7 @@ int vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const c
 
 /* ---- the entry points ---- */
 
-const vrg_plugin *vrg_plugin_load(const char *name, const char *graph_path, const char *plugin_path, vrg_diag *d, int line)
+const vrg_plugin *_vrg_plugin_load(const char *name, const char *graph_path, const char *plugin_path, vrg_diag *d, int line)
 {
     if (!name[0] || strchr(name, '/') || strlen(name) >= VRG_NAME_MAX) {
         fail(d, line, "a plugin is named by its file name without .so (at most 63 characters)", "unknown plugin '%s'", name);
@@ -530,7 +559,7 @@ const vrg_plugin *vrg_plugin_load(const char *name, const char *graph_path, cons
     char other[sizeof file];
     for (int k = at + 1; s.dirs[at].origin <= DIR_INSTALLED && (k = search_path_find(&s, name, k, other, sizeof other)) >= 0; k++)
         if (s.dirs[k].origin > DIR_INSTALLED)
-            vrg_note_at(d, line, "%s (%s) is not used: the %s plugin %s comes first; built-in and installed plugins are never shadowed, "
+            _vrg_note_at(d, line, "%s (%s) is not used: the %s plugin %s comes first; built-in and installed plugins are never shadowed, "
                         "so give yours another name", other, origin_names[s.dirs[k].origin], origin_names[s.dirs[at].origin], real);
     if ((result = newest(real, 1)))
         goto done; /* this file is loaded already: the newest version of it */
@@ -558,15 +587,15 @@ done:
  * is loaded like any plugin, from a private copy, and becomes the newest
  * version of that file (graphs loaded from now on use it); the old version
  * stays loaded while graphs still run it, and is unloaded with its last user. */
-int vrg_plugin_reload(const char *path, vrg_diag *d)
+int _vrg_plugin_reload(const char *path, vrg_diag *d)
 {
     vrg_plugin *old = newest(path, 1);
     if (!old) {
-        vrg_error(d, "plugin %s: not a loaded plugin", path);
+        _vrg_error(d, "plugin %s: not a loaded plugin", path);
         return -1;
     }
     if (!free_slot(0)) {
-        vrg_error(d, "plugin %s: %d plugin versions are loaded, the most a process holds", path, VRG_MAX_PLUGINS);
+        _vrg_error(d, "plugin %s: %d plugin versions are loaded, the most a process holds", path, VRG_MAX_PLUGINS);
         return -1;
     }
     vrg_plugin p = {0};
@@ -578,7 +607,7 @@ int vrg_plugin_reload(const char *path, vrg_diag *d)
     keep(&p);
     if (old->users == 0) { /* superseded with no pass running it: unload now */
         old->users = 1;
-        vrg_plugin_release(old);
+        _vrg_plugin_release(old);
     }
     return 0;
 }
@@ -588,7 +617,7 @@ static int by_name(const void *a, const void *b)
     return strcmp((*(const vrg_plugin *const *)a)->name, (*(const vrg_plugin *const *)b)->name);
 }
 
-int vrg_plugin_list(const vrg_plugin **out, int max, FILE *problems)
+int _vrg_plugin_list(const vrg_plugin **out, int max, FILE *problems)
 {
     search_path s;
     search_path_build(&s, NULL, NULL);
@@ -603,14 +632,14 @@ int vrg_plugin_list(const vrg_plugin **out, int max, FILE *problems)
                 continue;
             char name[VRG_NAME_MAX];
             if (len - 3 >= VRG_NAME_MAX) {
-                vrg_error(&diag, "%s/%s: the name is longer than %d characters, so no graph can name it", s.dirs[i].path, e->d_name, VRG_NAME_MAX - 1);
+                _vrg_error(&diag, "%s/%s: the name is longer than %d characters, so no graph can name it", s.dirs[i].path, e->d_name, VRG_NAME_MAX - 1);
                 continue;
             }
             snprintf(name, sizeof name, "%.*s", (int)(len - 3), e->d_name);
             char file[VRG_PATH_MAX + VRG_NAME_MAX + 8];
             /* only the file the search order picks for this name */
             if (search_path_find(&s, name, 0, file, sizeof file) == i)
-                vrg_plugin_load(name, NULL, NULL, &diag, 0);
+                _vrg_plugin_load(name, NULL, NULL, &diag, 0);
         }
         if (dir)
             closedir(dir);
@@ -632,7 +661,7 @@ int vrg_plugin_list(const vrg_plugin **out, int max, FILE *problems)
 int vrg_list_plugins(const vrg_plugin_desc **descs, const char **paths, int max, FILE *problems)
 {
     const vrg_plugin *list[VRG_MAX_PLUGINS];
-    int n = vrg_plugin_list(list, VRG_MAX_PLUGINS, problems);
+    int n = _vrg_plugin_list(list, VRG_MAX_PLUGINS, problems);
     for (int i = 0; i < n && i < max && i < VRG_MAX_PLUGINS; i++) {
         descs[i] = list[i]->desc;
         paths[i] = list[i]->source;
@@ -645,7 +674,7 @@ int vrg_find_plugin(const char *name, FILE *diag, const vrg_plugin_desc **desc, 
     vrg_diag d = {.out = diag ? diag : stderr, .file = "plugins"};
     /* a graph's own plugin_path is that graph's: this answers for the
      * search path every graph shares */
-    const vrg_plugin *p = vrg_plugin_load(name, NULL, NULL, &d, 0);
+    const vrg_plugin *p = _vrg_plugin_load(name, NULL, NULL, &d, 0);
     if (!p)
         return -1;
     *desc = p->desc;

@@ -24,11 +24,11 @@ static int clear_kept(vrg_graph *g, VkCommandBuffer cmd)
         for (int c = 0; c < (r->history ? 2 : 1); c++) {
             /* old contents are garbage: start from UNDEFINED */
             r->sync[c].layout = VK_IMAGE_LAYOUT_UNDEFINED;
-            if (vrg_sync_use(&r->sync[c], vrg_access_info_of(VRG_ACCESS_TRANSFER_DST, r->kind), 1, &b[n]))
+            if (_vrg_sync_use(&r->sync[c], _vrg_access_info_of(VRG_ACCESS_TRANSFER_DST, r->kind), 1, &b[n]))
                 b[n].res = i, b[n].copy = c, n++;
         }
     }
-    vrg_emit_barriers(g, cmd, b, n);
+    _vrg_emit_barriers(g, cmd, b, n);
     for (int k = 0; k < n; k++) {
         vrg_resource *r = &g->res[b[k].res];
         if (r->kind == VRG_IMAGE) {
@@ -50,16 +50,16 @@ static void copy_readbacks(vrg_graph *g, VkCommandBuffer cmd)
         if (r->first_use < 0 || !(r->is_output || r->readback))
             continue;
         want[nw++] = i;
-        if (vrg_resource_barrier(g, i, vrg_copy_of(g, i, 0), VRG_ACCESS_TRANSFER_SRC, &b[n]))
+        if (_vrg_resource_barrier(g, i, _vrg_copy_of(g, i, 0), VRG_ACCESS_TRANSFER_SRC, &b[n]))
             n++;
     }
     /* the viewer's choice: left in TRANSFER_SRC like the output, not copied */
-    if (g->shown >= 0 && vrg_resource_barrier(g, g->shown, vrg_copy_of(g, g->shown, 0), VRG_ACCESS_TRANSFER_SRC, &b[n]))
+    if (g->shown >= 0 && _vrg_resource_barrier(g, g->shown, _vrg_copy_of(g, g->shown, 0), VRG_ACCESS_TRANSFER_SRC, &b[n]))
         n++;
-    vrg_emit_barriers(g, cmd, b, n);
+    _vrg_emit_barriers(g, cmd, b, n);
     for (int k = 0; k < nw; k++) {
         vrg_resource *r = &g->res[want[k]];
-        int c = vrg_copy_of(g, want[k], 0);
+        int c = _vrg_copy_of(g, want[k], 0);
         if (r->kind == VRG_IMAGE) {
             VkBufferImageCopy region = {
                 .bufferOffset = g->readback_offset[want[k]],
@@ -132,7 +132,7 @@ static void report_stuck(vrg_graph *g, vrg_wait_result wr, double waited_s)
 {
     unsigned long long frame = (unsigned long long)g->frame.frame_index;
     if (wr == VRG_WAIT_FAILED) {
-        vrg_error(&g->diag, "frame %llu: waiting for the GPU failed (device lost?)", frame);
+        _vrg_error(&g->diag, "frame %llu: waiting for the GPU failed (device lost?)", frame);
         return;
     }
     int k = running_pass(g);
@@ -142,10 +142,10 @@ static void report_stuck(vrg_graph *g, vrg_wait_result wr, double waited_s)
     else
         snprintf(what, sizeof what, "%s", "the frame's final copies");
     if (wr == VRG_WAIT_TIMEOUT)
-        vrg_error(&g->diag, "frame %llu: %s has run for more than %g s on the GPU (the limit: --gpu-timeout or $VOXRG_GPU_TIMEOUT)", frame, what,
+        _vrg_error(&g->diag, "frame %llu: %s has run for more than %g s on the GPU (the limit: --gpu-timeout or $VOXRG_GPU_TIMEOUT)", frame, what,
                   g->ctx->gpu_timeout_s);
     else
-        vrg_error(&g->diag, "frame %llu: interrupted after %.1f s on the GPU, %s still running", frame, waited_s, what);
+        _vrg_error(&g->diag, "frame %llu: interrupted after %.1f s on the GPU, %s still running", frame, waited_s, what);
 }
 
 static double now_ms(void)
@@ -155,7 +155,7 @@ static double now_ms(void)
     return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
-int vrg_record_frame(vrg_graph *g)
+int _vrg_record_frame(vrg_graph *g)
 {
     double start = now_ms(); /* the runtime's CPU time: up to the submit, not the GPU's */
     VkDevice dev = g->ctx->dev.device;
@@ -191,15 +191,15 @@ int vrg_record_frame(vrg_graph *g)
         if (g->queries)
             vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, g->queries, (uint32_t)(2 * k));
         vrg_barrier_rec b[VRG_MAX_SLOTS];
-        int n = vrg_pass_barriers(g, p, b, VRG_MAX_SLOTS);
-        vrg_emit_barriers(g, cmd, b, n);
+        int n = _vrg_pass_barriers(g, p, b, VRG_MAX_SLOTS);
+        _vrg_emit_barriers(g, cmd, b, n);
         p->failed = 0;
-        vrg_pass_clear_stats(p, 0); /* figures are this frame's */
+        _vrg_pass_clear_stats(p, 0); /* figures are this frame's */
         p->cmd = cmd;
         double t0 = now_ms();
-        vrg_running before = vrg_running_enter("execute", p->name, p->plugin);
+        vrg_running before = _vrg_running_enter("execute", p->name, p->plugin);
         p->plugin->desc->execute(p, cmd);
-        vrg_running_leave(before);
+        _vrg_running_leave(before);
         g->pass_cpu_ms[g->schedule[k]] = now_ms() - t0;
         p->cmd = VK_NULL_HANDLE;
         failed |= p->failed;
@@ -217,11 +217,11 @@ int vrg_record_frame(vrg_graph *g)
     VkResult res = vkQueueSubmit2(g->ctx->dev.queue, 1, &si, g->fence);
     g->cpu_ms = now_ms() - start;
     if (res != VK_SUCCESS) {
-        vrg_error(&g->diag, "frame %llu: queue submission failed (%d)", (unsigned long long)g->frame.frame_index, res);
+        _vrg_error(&g->diag, "frame %llu: queue submission failed (%d)", (unsigned long long)g->frame.frame_index, res);
         return -1;
     }
     double waited;
-    vrg_wait_result wr = vrg_wait_fence(g->ctx, g->fence, &waited);
+    vrg_wait_result wr = _vrg_wait_fence(g->ctx, g->fence, &waited);
     if (wr != VRG_WAIT_DONE) {
         report_stuck(g, wr, waited);
         return -1;

@@ -76,13 +76,13 @@ static int copy_history(vrg_graph *old, vrg_graph *g)
         to->history_kept = 1;
         for (int c = 0; c < 2; c++) {
             vrg_barrier_rec src, dst;
-            if (vrg_sync_use(&from->sync[c], vrg_access_info_of(VRG_ACCESS_TRANSFER_SRC, from->kind), 0, &src)) {
+            if (_vrg_sync_use(&from->sync[c], _vrg_access_info_of(VRG_ACCESS_TRANSFER_SRC, from->kind), 0, &src)) {
                 src.res = j, src.copy = c;
-                vrg_emit_barriers(old, cmd, &src, 1);
+                _vrg_emit_barriers(old, cmd, &src, 1);
             }
-            if (vrg_sync_use(&to->sync[c], vrg_access_info_of(VRG_ACCESS_TRANSFER_DST, to->kind), 1, &dst)) {
+            if (_vrg_sync_use(&to->sync[c], _vrg_access_info_of(VRG_ACCESS_TRANSFER_DST, to->kind), 1, &dst)) {
                 dst.res = i, dst.copy = c;
-                vrg_emit_barriers(g, cmd, &dst, 1);
+                _vrg_emit_barriers(g, cmd, &dst, 1);
             }
             if (to->kind == VRG_IMAGE) {
                 VkImageCopy region = {
@@ -103,8 +103,8 @@ static int copy_history(vrg_graph *old, vrg_graph *g)
     VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cbi};
     vkResetFences(dev, 1, &g->fence);
     double waited;
-    if (vkQueueSubmit2(g->ctx->dev.queue, 1, &si, g->fence) != VK_SUCCESS || vrg_wait_fence(g->ctx, g->fence, &waited) != VRG_WAIT_DONE) {
-        vrg_error(&g->diag, "reload: copying history failed (or was interrupted)");
+    if (vkQueueSubmit2(g->ctx->dev.queue, 1, &si, g->fence) != VK_SUCCESS || _vrg_wait_fence(g->ctx, g->fence, &waited) != VRG_WAIT_DONE) {
+        _vrg_error(&g->diag, "reload: copying history failed (or was interrupted)");
         return -1;
     }
     return 0;
@@ -122,11 +122,11 @@ static void carry_state(vrg_graph *old, vrg_graph *g)
             if (strcmp(p->name, q->name) != 0 || strcmp(p->plugin->name, q->plugin->name) != 0 || !p->created || !q->created)
                 continue;
             if (p->plugin->desc->save_state && q->plugin->desc->restore_state) {
-                vrg_running before = vrg_running_enter("save_state", p->name, p->plugin);
+                vrg_running before = _vrg_running_enter("save_state", p->name, p->plugin);
                 size_t n = p->plugin->desc->save_state(p, state, sizeof state);
-                vrg_running_enter("restore_state", q->name, q->plugin);
+                _vrg_running_enter("restore_state", q->name, q->plugin);
                 int rc = n <= sizeof state ? q->plugin->desc->restore_state(q, state, n) : 0;
-                vrg_running_leave(before);
+                _vrg_running_leave(before);
                 if (n > sizeof state)
                     vrg_pass_error(q, "save_state() returned %zu bytes, more than the %zu it may write: the pass starts afresh", n, sizeof state);
                 else if (rc != 0)
@@ -152,7 +152,7 @@ static int reload_plugins(vrg_graph *old)
         size_t len = 0;
         FILE *mem = open_memstream(&text, &len);
         vrg_diag pd = {.out = mem ? mem : old->desc.diag, .file = old->path};
-        rc = vrg_plugin_reload(p->plugin->source, &pd);
+        rc = _vrg_plugin_reload(p->plugin->source, &pd);
         if (mem) {
             fclose(mem);
             fputs(text ? text : "", old->desc.diag ? old->desc.diag : stderr);
@@ -171,7 +171,7 @@ int vrg_graph_reload(vrg_graph **pg)
 {
     vrg_graph *old = *pg;
     if (!old->ctx || !old->loaded_from_file) {
-        vrg_error(&old->diag, "reload: the graph was not loaded from a file with a device");
+        _vrg_error(&old->diag, "reload: the graph was not loaded from a file with a device");
         return -1;
     }
     /* rebuilt plugins first: the new graph picks up their newest versions */

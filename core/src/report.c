@@ -5,7 +5,7 @@
 #include <string.h>
 #include "internal.h"
 
-const char *vrg_access_name(vrg_access a)
+const char *_vrg_access_name(vrg_access a)
 {
     static const char *names[] = {"?",           "sampled",      "storage-read", "storage-write", "storage-read-write",
                                   "uniform",     "transfer-src", "transfer-dst", "as-build",      "ray-query",
@@ -82,9 +82,9 @@ static void simulate_frame(vrg_graph *g, FILE *f)
         g->res[i].touched[0] = g->res[i].touched[1] = 0;
     for (int k = 0; k < g->schedule_count; k++) {
         vrg_pass *p = &g->passes[g->schedule[k]];
-        int n = vrg_pass_barriers(g, p, b, VRG_MAX_SLOTS);
+        int n = _vrg_pass_barriers(g, p, b, VRG_MAX_SLOTS);
         for (int ri = 0; ri < g->res_count; ri++)
-            if (g->res[ri].internal_owner == g->schedule[k] && vrg_resource_barrier(g, ri, 0, g->res[ri].internal_first_access, &b[n]))
+            if (g->res[ri].internal_owner == g->schedule[k] && _vrg_resource_barrier(g, ri, 0, g->res[ri].internal_first_access, &b[n]))
                 n++;
         if (f) {
             fprintf(f, "  %-12s %d barrier%s\n", p->name, n, n == 1 ? "" : "s");
@@ -95,7 +95,7 @@ static void simulate_frame(vrg_graph *g, FILE *f)
     int n = 0;
     for (int i = 0; i < g->res_count; i++)
         if (g->res[i].first_use >= 0 && (g->res[i].is_output || g->res[i].readback) &&
-            vrg_resource_barrier(g, i, vrg_copy_of(g, i, 0), VRG_ACCESS_TRANSFER_SRC, &b[n]))
+            _vrg_resource_barrier(g, i, _vrg_copy_of(g, i, 0), VRG_ACCESS_TRANSFER_SRC, &b[n]))
             n++;
     if (f) {
         fprintf(f, "  %-12s %d barrier%s\n", "(readback)", n, n == 1 ? "" : "s");
@@ -150,7 +150,7 @@ void vrg_graph_report(const vrg_graph *g, FILE *f)
             continue;
         char what[64], mem[96], sz[32];
         if (r->kind == VRG_IMAGE)
-            snprintf(what, sizeof what, "image %-8s %ux%u", vrg_format_name(r->format), r->width, r->height);
+            snprintf(what, sizeof what, "image %-8s %ux%u", _vrg_format_name(r->format), r->width, r->height);
         else if (r->kind == VRG_ACCEL)
             snprintf(what, sizeof what, r->size ? "accel, %llu instances" : "accel, not built", (unsigned long long)r->size);
         else
@@ -199,7 +199,7 @@ void vrg_graph_write_dot(const vrg_graph *g, FILE *f)
         if (r->internal_owner >= 0 || r->dummy)
             continue;
         fprintf(f, "  \"res:%s\" [shape=%s, label=\"%s\\n%s\"%s];\n", r->name, r->kind == VRG_IMAGE ? "ellipse" : "cylinder", r->name,
-                r->kind == VRG_IMAGE ? vrg_format_name(r->format) : "buffer", r->is_output ? ", penwidth=2" : "");
+                r->kind == VRG_IMAGE ? _vrg_format_name(r->format) : "buffer", r->is_output ? ", penwidth=2" : "");
         if (r->writer >= 0)
             fprintf(f, "  \"pass:%s\" -> \"res:%s\";\n", g->passes[r->writer].name, r->name);
     }
@@ -216,5 +216,5 @@ void vrg_graph_write_dot(const vrg_graph *g, FILE *f)
     fprintf(f, "}\n");
 }
 
-const char *vrg_format_label(VkFormat f) { return vrg_format_name(f); }
-const char *vrg_access_label(vrg_access a) { return vrg_access_name(a); }
+const char *vrg_format_label(VkFormat f) { return _vrg_format_name(f); }
+const char *vrg_access_label(vrg_access a) { return _vrg_access_name(a); }

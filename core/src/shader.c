@@ -53,7 +53,7 @@ static int override(const char *name, char *out, size_t cap)
     return exists(out) ? 0 : -1;
 }
 
-int vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t cap)
+int _vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t cap)
 {
     if (name[0] == '/') {
         snprintf(out, cap, "%s", name);
@@ -295,13 +295,13 @@ static void local_size_of(const uint32_t *spv, size_t words, uint32_t out[3])
 VkShaderModule vrg_compile_compute_shader(vrg_context *ctx, const char *path, const char *defines)
 {
     vrg_shader_module sm;
-    if (vrg_shader_compile(ctx, path, defines, &sm, stderr) != 0)
+    if (_vrg_shader_compile(ctx, path, defines, &sm, stderr) != 0)
         return VK_NULL_HANDLE;
     free(sm.deps);
     return sm.module;
 }
 
-int vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, vrg_shader_module *out, FILE *diag)
+int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, vrg_shader_module *out, FILE *diag)
 {
     pthread_once(&glslang_once, glslang_init);
     size_t len;
@@ -374,7 +374,7 @@ int vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, 
         local_size_of(spv, words, out->local_size);
         VkShaderModuleCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, .codeSize = words * 4, .pCode = spv};
         if (vkCreateShaderModule(ctx->dev.device, &ci, NULL, &out->module) == VK_SUCCESS) {
-            vrg_name_object(ctx, VK_OBJECT_TYPE_SHADER_MODULE, (uint64_t)out->module, "%s", path);
+            _vrg_name_object(ctx, VK_OBJECT_TYPE_SHADER_MODULE, (uint64_t)out->module, "%s", path);
             rc = 0;
         } else
             fprintf(diag, "%s: error: vkCreateShaderModule failed\n", path);

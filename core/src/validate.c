@@ -57,7 +57,7 @@ static int positive_int(vrg_diag *d, const vrg_key *k, uint32_t max, uint32_t *o
     if (parse_int(k->value, &v) != 0 || v <= 0 || v > (long)max) {
         char hint[96];
         snprintf(hint, sizeof hint, "a whole number from 1 to %u", max);
-        vrg_error_at(d, k->line, hint, "'%s = %s' must be a positive integer", k->name, k->value);
+        _vrg_error_at(d, k->line, hint, "'%s = %s' must be a positive integer", k->name, k->value);
         return -1;
     }
     *out = (uint32_t)v;
@@ -82,7 +82,7 @@ static int name_too_long(vrg_graph *g, int line, const char *what, const char *n
 {
     if (len < VRG_NAME_MAX)
         return 0;
-    vrg_error_at(&g->diag, line, NULL, "%s name '%.*s' is longer than %d characters", what, (int)len, name, VRG_NAME_MAX - 1);
+    _vrg_error_at(&g->diag, line, NULL, "%s name '%.*s' is longer than %d characters", what, (int)len, name, VRG_NAME_MAX - 1);
     return 1;
 }
 
@@ -94,7 +94,7 @@ static int find_resource(const vrg_graph *g, const char *name)
     return -1;
 }
 
-int vrg_graph_add_resource(vrg_graph *g, const char *name)
+int _vrg_graph_add_resource(vrg_graph *g, const char *name)
 {
     int i = find_resource(g, name);
     if (i >= 0)
@@ -140,7 +140,7 @@ static int set_param(vrg_graph *g, vrg_pass *p, int idx, const char *value, int 
     const vrg_param_desc *pd = &p->plugin->desc->params[idx];
     if (pd->type == VRG_PARAM_STRING) {
         /* a list grows by file lines; --set replaces it */
-        vrg_pass_add_string(p, idx, value, line, !line || !(pd->flags & VRG_PARAM_REPEATABLE));
+        _vrg_pass_add_string(p, idx, value, line, !line || !(pd->flags & VRG_PARAM_REPEATABLE));
         (void)g;
         (void)what;
         return 0;
@@ -158,18 +158,18 @@ static int set_param(vrg_graph *g, vrg_pass *p, int idx, const char *value, int 
     if (bad) {
         const char *kind = pd->type == VRG_PARAM_BOOL ? "true or false" : pd->type == VRG_PARAM_INT ? "an integer" : "a finite number";
         if (line)
-            vrg_error_at(&g->diag, line, hint, "%s = '%s' is not a number of the right kind: %s expects %s", what, value, pd->name, kind);
+            _vrg_error_at(&g->diag, line, hint, "%s = '%s' is not a number of the right kind: %s expects %s", what, value, pd->name, kind);
         else
-            vrg_error(&g->diag, "--set %s=%s: not a number of the right kind (%s expects %s)", what, value, pd->name, kind);
+            _vrg_error(&g->diag, "--set %s=%s: not a number of the right kind (%s expects %s)", what, value, pd->name, kind);
         return -1;
     }
     if ((pd->min != 0 || pd->max != 0) && (v < pd->min || v > pd->max)) {
         char h[256];
         snprintf(h, sizeof h, "%s lies in [%g, %g]%s%s", pd->name, pd->min, pd->max, hint ? ": " : "", hint ? hint : "");
         if (line)
-            vrg_error_at(&g->diag, line, h, "%s = %s is out of range", what, value);
+            _vrg_error_at(&g->diag, line, h, "%s = %s is out of range", what, value);
         else
-            vrg_error(&g->diag, "--set %s=%s is out of range (%s)", what, value, h);
+            _vrg_error(&g->diag, "--set %s=%s is out of range (%s)", what, value, h);
         return -1;
     }
     p->params[idx] = v;
@@ -186,7 +186,7 @@ static int repeated_key(vrg_graph *g, const vrg_ast *a, int ki)
         if (a->keys[i].section_index == k->section_index && strcmp(a->keys[i].name, k->name) == 0) {
             char h[64];
             snprintf(h, sizeof h, "first given at line %d", a->keys[i].line);
-            vrg_error_at(&g->diag, k->line, h, "duplicate key '%s' in [%s]", k->name, a->sections[k->section_index].name);
+            _vrg_error_at(&g->diag, k->line, h, "duplicate key '%s' in [%s]", k->name, a->sections[k->section_index].name);
             return 1;
         }
     return 0;
@@ -228,9 +228,9 @@ static void check_plugin_path(vrg_graph *g, const vrg_key *k, const char *graph_
             snprintf(dir, sizeof dir, "%.*s/%.*s", (int)(slash - graph_path), graph_path, len, p);
         struct stat st;
         if (len == 0)
-            vrg_error_at(&g->diag, k->line, "folders separated by ':', relative to the graph file", "'plugin_path' has an empty entry");
+            _vrg_error_at(&g->diag, k->line, "folders separated by ':', relative to the graph file", "'plugin_path' has an empty entry");
         else if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode))
-            vrg_error_at(&g->diag, k->line, "folders separated by ':', relative to the graph file", "plugin_path: '%.*s' (%s) is not a folder", len, p, dir);
+            _vrg_error_at(&g->diag, k->line, "folders separated by ':', relative to the graph file", "plugin_path: '%.*s' (%s) is not a folder", len, p, dir);
         p = c ? c + 1 : p + len;
     }
 }
@@ -257,20 +257,20 @@ static void graph_section(vrg_graph *g, const vrg_ast *a, int si, const char *gr
         else if (strcmp(k->name, "seed") == 0) {
             double d;
             if (parse_double(k->value, &d) != 0 || d < 0 || d > 4294967295.0 || d != floor(d))
-                vrg_error_at(&g->diag, k->line, "a whole number from 0 to 4294967295", "'seed = %s' must be a non-negative integer", k->value);
+                _vrg_error_at(&g->diag, k->line, "a whole number from 0 to 4294967295", "'seed = %s' must be a non-negative integer", k->value);
             else
                 g->seed = (uint32_t)d;
         } else if (strcmp(k->name, "fps") == 0) {
             if (parse_double(k->value, &v) != 0)
-                vrg_error_at(&g->diag, k->line, "frames per second of simulated time", "'fps = %s' is not a number", k->value);
+                _vrg_error_at(&g->diag, k->line, "frames per second of simulated time", "'fps = %s' is not a number", k->value);
             else if (v <= 0)
-                vrg_error_at(&g->diag, k->line, "frames per second of simulated time", "'fps = %s' must be > 0", k->value);
+                _vrg_error_at(&g->diag, k->line, "frames per second of simulated time", "'fps = %s' must be > 0", k->value);
             else
                 g->fps = v;
         } else if (strcmp(k->name, "plugin_path") == 0)
             check_plugin_path(g, k, graph_path);
         else
-            vrg_error_at(&g->diag, k->line, known, "unknown key '%s' in [graph]", k->name);
+            _vrg_error_at(&g->diag, k->line, known, "unknown key '%s' in [graph]", k->name);
     }
 }
 
@@ -287,14 +287,14 @@ static void camera_position(vrg_graph *g, const vrg_key *k, float out[3])
             break;
         }
     if (n != 3) {
-        vrg_error_at(&g->diag, k->line, "three decimal numbers: X Y Z in blocks", "'position = %s' is not a position", k->value);
+        _vrg_error_at(&g->diag, k->line, "three decimal numbers: X Y Z in blocks", "'position = %s' is not a position", k->value);
         return;
     }
     /* checked as doubles: one beyond float's range must not be converted */
     if (!(fabs(d[0]) <= VRG_WORLD_LIMIT && fabs(d[1]) <= VRG_WORLD_LIMIT && fabs(d[2]) <= VRG_WORLD_LIMIT)) {
         char hint[96];
         snprintf(hint, sizeof hint, "X, Y and Z lie in [%g, %g] blocks (VRG_WORLD_LIMIT)", -VRG_WORLD_LIMIT, VRG_WORLD_LIMIT);
-        vrg_error_at(&g->diag, k->line, hint, "'position = %s' is outside the world", k->value);
+        _vrg_error_at(&g->diag, k->line, hint, "'position = %s' is outside the world", k->value);
         return;
     }
     for (int a = 0; a < 3; a++)
@@ -319,9 +319,9 @@ static void camera_section(vrg_graph *g, const vrg_ast *a, int si)
             char hint[64];
             snprintf(hint, sizeof hint, "degrees in [%g, %g]", lo, hi);
             if (parse_double(k->value, &v) != 0)
-                vrg_error_at(&g->diag, k->line, hint, "'%s = %s' is not a number", k->name, k->value);
+                _vrg_error_at(&g->diag, k->line, hint, "'%s = %s' is not a number", k->name, k->value);
             else if (v < lo || v > hi)
-                vrg_error_at(&g->diag, k->line, hint, "'%s = %s' is out of range", k->name, k->value);
+                _vrg_error_at(&g->diag, k->line, hint, "'%s = %s' is out of range", k->name, k->value);
             else if (is_fov)
                 c->fov_y = (float)v;
             else if (is_pitch)
@@ -329,7 +329,7 @@ static void camera_section(vrg_graph *g, const vrg_ast *a, int si)
             else
                 c->yaw = (float)v;
         } else
-            vrg_error_at(&g->diag, k->line, known, "unknown key '%s' in [camera]", k->name);
+            _vrg_error_at(&g->diag, k->line, known, "unknown key '%s' in [camera]", k->name);
     }
 }
 
@@ -353,17 +353,17 @@ static void bind_slot(vrg_graph *g, vrg_pass *p, const vrg_key *k, const char *s
     int s = find_slot(desc, slot_name, dir);
     if (s < 0) {
         param_hint(desc, hint, sizeof hint);
-        vrg_error_at(&g->diag, k->line, hint, "plugin '%s' has no slot '%s'", desc->name, slot_name);
+        _vrg_error_at(&g->diag, k->line, hint, "plugin '%s' has no slot '%s'", desc->name, slot_name);
         return;
     }
     const vrg_slot_desc *sd = &desc->slots[s];
     if (sd->dir != dir) {
-        vrg_error_at(&g->diag, k->line, dir == VRG_IN ? "connect it as out.<slot>" : "connect it as in.<slot>",
+        _vrg_error_at(&g->diag, k->line, dir == VRG_IN ? "connect it as out.<slot>" : "connect it as in.<slot>",
                      "slot '%s' of plugin '%s' is an %s", slot_name, desc->name, sd->dir == VRG_IN ? "input" : "output");
         return;
     }
     if (p->slots[s].line) {
-        vrg_error_at(&g->diag, k->line, NULL, "slot '%s' is connected twice (first at line %d)", slot_name, p->slots[s].line);
+        _vrg_error_at(&g->diag, k->line, NULL, "slot '%s' is connected twice (first at line %d)", slot_name, p->slots[s].line);
         return;
     }
     /* From here on errors concern the value: the slot counts as connected
@@ -378,7 +378,7 @@ static void bind_slot(vrg_graph *g, vrg_pass *p, const vrg_key *k, const char *s
     int prev = 0;
     if (at) {
         if (strcmp(at, "@prev") != 0 || dir == VRG_OUT) {
-            vrg_error_at(&g->diag, k->line, "'@prev' on an input names last frame's value of a resource",
+            _vrg_error_at(&g->diag, k->line, "'@prev' on an input names last frame's value of a resource",
                          "'%s' is not a resource name%s", k->value, dir == VRG_OUT ? " an output can write" : "");
             return;
         }
@@ -386,12 +386,12 @@ static void bind_slot(vrg_graph *g, vrg_pass *p, const vrg_key *k, const char *s
         prev = 1;
     }
     if (!valid_name(name) || strlen(name) >= VRG_NAME_MAX) {
-        vrg_error_at(&g->diag, k->line, "resource names use letters, digits, '_', '-' and '.'", "'%s' is not a valid resource name", k->value);
+        _vrg_error_at(&g->diag, k->line, "resource names use letters, digits, '_', '-' and '.'", "'%s' is not a valid resource name", k->value);
         return;
     }
-    int r = vrg_graph_add_resource(g, name);
+    int r = _vrg_graph_add_resource(g, name);
     if (r < 0) {
-        vrg_error_at(&g->diag, k->line, NULL, "too many resources (at most %d)", VRG_MAX_RESOURCES);
+        _vrg_error_at(&g->diag, k->line, NULL, "too many resources (at most %d)", VRG_MAX_RESOURCES);
         return;
     }
     vrg_resource *res = &g->res[r];
@@ -405,7 +405,7 @@ static void bind_slot(vrg_graph *g, vrg_pass *p, const vrg_key *k, const char *s
             char h[128];
             snprintf(h, sizeof h, "pass '%s' already writes it at line %d; give one of them another name", g->passes[res->writer].name,
                      res->writer_line);
-            vrg_error_at(&g->diag, k->line, h, "resource '%s' has two writers", name);
+            _vrg_error_at(&g->diag, k->line, h, "resource '%s' has two writers", name);
             return;
         }
         res->writer = (int)(p - g->passes);
@@ -430,7 +430,7 @@ static void pass_section(vrg_graph *g, const vrg_ast *a, int si, vrg_pass *p)
             /* Its plugin failed to load (already reported). Remember what it
              * would write so readers get no follow-on "never written". */
             if (strncmp(k->name, "out.", 4) == 0 && valid_name(k->value)) {
-                int r = vrg_graph_add_resource(g, k->value);
+                int r = _vrg_graph_add_resource(g, k->value);
                 if (r >= 0)
                     g->res[r].writer_unknown = 1;
             }
@@ -445,7 +445,7 @@ static void pass_section(vrg_graph *g, const vrg_ast *a, int si, vrg_pass *p)
             int pi = find_param(desc, k->name);
             if (pi < 0) {
                 param_hint(desc, hint, sizeof hint);
-                vrg_error_at(&g->diag, k->line, hint, "unknown key '%s' in [%s]", k->name, a->sections[si].name);
+                _vrg_error_at(&g->diag, k->line, hint, "unknown key '%s' in [%s]", k->name, a->sections[si].name);
             } else
                 set_param(g, p, pi, k->value, k->line, k->name);
         }
@@ -458,7 +458,7 @@ static void resource_section(vrg_graph *g, const vrg_ast *a, int si, const char 
         return;
     int ri = find_resource(g, name);
     if (ri < 0) {
-        vrg_note_at(&g->diag, a->sections[si].line, "[resource %s] is not used by any pass", name);
+        _vrg_note_at(&g->diag, a->sections[si].line, "[resource %s] is not used by any pass", name);
         return;
     }
     vrg_resource *r = &g->res[ri];
@@ -469,16 +469,16 @@ static void resource_section(vrg_graph *g, const vrg_ast *a, int si, const char 
             continue;
         double v;
         if (strcmp(k->name, "format") == 0) {
-            VkFormat f = vrg_format_parse(k->value);
+            VkFormat f = _vrg_format_parse(k->value);
             if (f == VK_FORMAT_UNDEFINED)
-                vrg_error_at(&g->diag, k->line, vrg_format_list(), "unknown format '%s'", k->value);
+                _vrg_error_at(&g->diag, k->line, _vrg_format_list(), "unknown format '%s'", k->value);
             else
                 r->format = f, r->format_line = k->line;
         } else if (strcmp(k->name, "scale") == 0) {
             if (parse_double(k->value, &v) != 0)
-                vrg_error_at(&g->diag, k->line, "a fraction of the graph size, e.g. 0.5", "'scale = %s' is not a number", k->value);
+                _vrg_error_at(&g->diag, k->line, "a fraction of the graph size, e.g. 0.5", "'scale = %s' is not a number", k->value);
             else if (v <= 0 || v > 16)
-                vrg_error_at(&g->diag, k->line, "a fraction of the graph size in (0, 16]", "'scale = %s' must be > 0 (and at most 16)", k->value);
+                _vrg_error_at(&g->diag, k->line, "a fraction of the graph size in (0, 16]", "'scale = %s' must be > 0 (and at most 16)", k->value);
             else
                 r->scale = (float)v, r->size_line = r->extent_line = k->line;
         } else if (strcmp(k->name, "width") == 0) {
@@ -490,16 +490,16 @@ static void resource_section(vrg_graph *g, const vrg_ast *a, int si, const char 
         } else if (strcmp(k->name, "size") == 0) {
             long s;
             if (parse_int(k->value, &s) != 0 || s <= 0)
-                vrg_error_at(&g->diag, k->line, "buffer size in bytes", "'size = %s' must be a positive integer", k->value);
+                _vrg_error_at(&g->diag, k->line, "buffer size in bytes", "'size = %s' must be a positive integer", k->value);
             else
                 r->size = (uint64_t)s, r->size_line = r->bytes_line = k->line;
         } else
-            vrg_error_at(&g->diag, k->line, "format, scale, width, height (images) or size (buffers)", "unknown key '%s' in [resource %s]", k->name, name);
+            _vrg_error_at(&g->diag, k->line, "format, scale, width, height (images) or size (buffers)", "unknown key '%s' in [resource %s]", k->name, name);
     }
     if ((r->abs_width != 0) != (r->abs_height != 0))
-        vrg_error_at(&g->diag, r->line, "give both width and height, or scale", "[resource %s] sets only one of width and height", name);
+        _vrg_error_at(&g->diag, r->line, "give both width and height, or scale", "[resource %s] sets only one of width and height", name);
     if (r->abs_width && r->scale > 0)
-        vrg_error_at(&g->diag, r->line, "give width and height, or scale, not both", "[resource %s] sets both a scale and a size", name);
+        _vrg_error_at(&g->diag, r->line, "give width and height, or scale, not both", "[resource %s] sets both a scale and a size", name);
 }
 
 static int find_pass(const vrg_graph *g, const char *name)
@@ -530,13 +530,13 @@ static void collect_sections(vrg_graph *g, const vrg_ast *a, const char *graph_p
         const char *arg;
         sec_kind kind = section_kind(sec->name, &arg);
         if (kind == SEC_UNKNOWN) {
-            vrg_error_at(&g->diag, sec->line, "sections are [graph], [camera], [scene], [pass NAME] and [resource NAME]", "unknown section '[%s]'",
+            _vrg_error_at(&g->diag, sec->line, "sections are [graph], [camera], [scene], [pass NAME] and [resource NAME]", "unknown section '[%s]'",
                          sec->name);
             continue;
         }
         if (kind == SEC_CAMERA) {
             if (*camera_si >= 0)
-                vrg_error_at(&g->diag, sec->line, NULL, "duplicate section [camera] (first at line %d)", a->sections[*camera_si].line);
+                _vrg_error_at(&g->diag, sec->line, NULL, "duplicate section [camera] (first at line %d)", a->sections[*camera_si].line);
             else
                 *camera_si = si;
             continue;
@@ -544,7 +544,7 @@ static void collect_sections(vrg_graph *g, const vrg_ast *a, const char *graph_p
         if (kind == SEC_GRAPH || kind == SEC_SCENE) {
             int *seen = kind == SEC_GRAPH ? graph_si : &scene_si;
             if (*seen >= 0)
-                vrg_error_at(&g->diag, sec->line, NULL, "duplicate section [%s] (first at line %d)", sec->name, a->sections[*seen].line);
+                _vrg_error_at(&g->diag, sec->line, NULL, "duplicate section [%s] (first at line %d)", sec->name, a->sections[*seen].line);
             else
                 *seen = si;
             if (kind == SEC_GRAPH)
@@ -553,7 +553,7 @@ static void collect_sections(vrg_graph *g, const vrg_ast *a, const char *graph_p
         if (kind == SEC_RESOURCE) {
             for (int o = 0; o < si; o++)
                 if (strcmp(a->sections[o].name, sec->name) == 0) {
-                    vrg_error_at(&g->diag, sec->line, NULL, "duplicate section [%s] (first at line %d)", sec->name, a->sections[o].line);
+                    _vrg_error_at(&g->diag, sec->line, NULL, "duplicate section [%s] (first at line %d)", sec->name, a->sections[o].line);
                     break;
                 }
             continue;
@@ -565,18 +565,18 @@ static void collect_sections(vrg_graph *g, const vrg_ast *a, const char *graph_p
         if (kind == SEC_PASS && name_too_long(g, sec->line, "pass", pname, strlen(pname)))
             continue;
         if (kind == SEC_PASS && !valid_name(pname)) {
-            vrg_error_at(&g->diag, sec->line, "pass names use letters, digits, '_', '-' and '.'", "'%s' is not a valid pass name", pname);
+            _vrg_error_at(&g->diag, sec->line, "pass names use letters, digits, '_', '-' and '.'", "'%s' is not a valid pass name", pname);
             continue;
         }
         if (kind == SEC_PASS && (strcmp(pname, "scene") == 0 || find_pass(g, pname) >= 0)) {
             int first = find_pass(g, pname);
             char h[96];
             snprintf(h, sizeof h, "the first [pass %s] is at line %d; pass names must be unique", pname, first >= 0 ? g->passes[first].line : 0);
-            vrg_error_at(&g->diag, sec->line, h, "duplicate pass name '%s'", pname);
+            _vrg_error_at(&g->diag, sec->line, h, "duplicate pass name '%s'", pname);
             continue;
         }
         if (g->pass_count >= VRG_MAX_PASSES) {
-            vrg_error_at(&g->diag, sec->line, NULL, "too many passes (at most %d)", VRG_MAX_PASSES);
+            _vrg_error_at(&g->diag, sec->line, NULL, "too many passes (at most %d)", VRG_MAX_PASSES);
             continue;
         }
         vrg_pass *p = &g->passes[g->pass_count++];
@@ -592,27 +592,27 @@ static void collect_sections(vrg_graph *g, const vrg_ast *a, const char *graph_p
         for (int i = 0; i < a->key_count; i++)
             if (a->keys[i].section_index == si && strcmp(a->keys[i].name, "plugin") == 0) {
                 if (plugin_key)
-                    vrg_error_at(&g->diag, a->keys[i].line, NULL, "duplicate key 'plugin' in [%s] (first at line %d)", sec->name, plugin_key->line);
+                    _vrg_error_at(&g->diag, a->keys[i].line, NULL, "duplicate key 'plugin' in [%s] (first at line %d)", sec->name, plugin_key->line);
                 else
                     plugin_key = &a->keys[i];
             }
         if (!plugin_key) {
-            vrg_error_at(&g->diag, sec->line, "add 'plugin = NAME' (`voxrg plugins` lists them)", "[%s] has no plugin", sec->name);
+            _vrg_error_at(&g->diag, sec->line, "add 'plugin = NAME' (`voxrg plugins` lists them)", "[%s] has no plugin", sec->name);
             continue;
         }
-        const vrg_plugin *pl = vrg_plugin_load(plugin_key->value, graph_path, graph_plugin_path(a), &g->diag, plugin_key->line);
+        const vrg_plugin *pl = _vrg_plugin_load(plugin_key->value, graph_path, graph_plugin_path(a), &g->diag, plugin_key->line);
         if (!pl)
             continue;
         if (kind == SEC_PASS && pl->desc->kind == VRG_PLUGIN_SCENE) {
-            vrg_error_at(&g->diag, plugin_key->line, "use it in the [scene] section", "plugin '%s' is a scene plugin, not a pass", pl->name);
+            _vrg_error_at(&g->diag, plugin_key->line, "use it in the [scene] section", "plugin '%s' is a scene plugin, not a pass", pl->name);
             continue;
         }
         if (kind == SEC_SCENE && pl->desc->kind != VRG_PLUGIN_SCENE) {
-            vrg_error_at(&g->diag, plugin_key->line, "use it in a [pass NAME] section", "plugin '%s' is a pass plugin, not a scene plugin", pl->name);
+            _vrg_error_at(&g->diag, plugin_key->line, "use it in a [pass NAME] section", "plugin '%s' is a pass plugin, not a scene plugin", pl->name);
             continue;
         }
         p->plugin = pl;
-        vrg_plugin_acquire(pl); /* released by vrg_graph_destroy */
+        _vrg_plugin_acquire(pl); /* released by vrg_graph_destroy */
         for (uint32_t i = 0; i < pl->desc->param_count; i++)
             p->params[i] = pl->desc->params[i].default_value;
     }
@@ -624,7 +624,7 @@ static void apply_overrides(vrg_graph *g, const vrg_graph_desc *desc)
         const char *o = desc->overrides[i];
         const char *dot = strchr(o, '.'), *eq = strchr(o, '=');
         if (!dot || !eq || dot > eq) {
-            vrg_error(&g->diag, "--set '%s': expected PASS.PARAM=VALUE", o);
+            _vrg_error(&g->diag, "--set '%s': expected PASS.PARAM=VALUE", o);
             continue;
         }
         char pass[VRG_NAME_MAX] = {0}, param[VRG_NAME_MAX] = {0};
@@ -632,7 +632,7 @@ static void apply_overrides(vrg_graph *g, const vrg_graph_desc *desc)
         snprintf(param, sizeof param, "%.*s", (int)(eq - dot - 1), dot + 1);
         int pi = find_pass(g, pass);
         if (pi < 0) {
-            vrg_error(&g->diag, "--set '%s': the graph has no pass '%s'", o, pass);
+            _vrg_error(&g->diag, "--set '%s': the graph has no pass '%s'", o, pass);
             continue;
         }
         vrg_pass *p = &g->passes[pi];
@@ -642,7 +642,7 @@ static void apply_overrides(vrg_graph *g, const vrg_graph_desc *desc)
         if (idx < 0) {
             char hint[1024];
             param_hint(p->plugin->desc, hint, sizeof hint);
-            vrg_error(&g->diag, "--set '%s': pass '%s' has no parameter '%s' (%s)", o, pass, param, hint);
+            _vrg_error(&g->diag, "--set '%s': pass '%s' has no parameter '%s' (%s)", o, pass, param, hint);
             continue;
         }
         char what[2 * VRG_NAME_MAX + 2];
@@ -670,7 +670,7 @@ static void check_prev_of_persistent(vrg_graph *g)
             char h[160];
             snprintf(h, sizeof h, "pass '%s' keeps it up to date in place (line %d): read '%s' without @prev", g->passes[r->writer].name,
                      r->writer_line, r->name);
-            vrg_error_at(&g->diag, b->line, h, "'%s@prev': resource '%s' is persistent and has no last frame's copy", r->name, r->name);
+            _vrg_error_at(&g->diag, b->line, h, "'%s@prev': resource '%s' is persistent and has no last frame's copy", r->name, r->name);
         }
     }
 }
@@ -695,33 +695,33 @@ static void resolve_resources(vrg_graph *g)
                 r->size = g->passes[r->writer].buffer_size[r->writer_slot] ? g->passes[r->writer].buffer_size[r->writer_slot] : sd->size;
         }
         if (sd->kind == VRG_ACCEL && (r->format_line || r->extent_line))
-            vrg_error_at(&g->diag, r->format_line ? r->format_line : r->extent_line, "acceleration structures take size = INSTANCES",
+            _vrg_error_at(&g->diag, r->format_line ? r->format_line : r->extent_line, "acceleration structures take size = INSTANCES",
                          "resource '%s' is an acceleration structure", r->name);
         if (sd->kind == VRG_BUFFER && r->size == 0)
-            vrg_error_at(&g->diag, r->writer_line, "give the buffer a size in a [resource] section", "buffer '%s' has size 0", r->name);
-        else if (sd->kind == VRG_BUFFER && r->size % vrg_format_bytes(r->format)) {
+            _vrg_error_at(&g->diag, r->writer_line, "give the buffer a size in a [resource] section", "buffer '%s' has size 0", r->name);
+        else if (sd->kind == VRG_BUFFER && r->size % _vrg_format_bytes(r->format)) {
             char h[160];
-            snprintf(h, sizeof h, "pass '%s' declares %s texels for it (its slot '%s')", g->passes[r->writer].name, vrg_format_name(r->format), sd->name);
-            vrg_error_at(&g->diag, r->size_line ? r->size_line : r->writer_line, h, "buffer '%s' of %llu bytes is not a whole number of %llu-byte texels", r->name,
-                         (unsigned long long)r->size, (unsigned long long)vrg_format_bytes(r->format));
+            snprintf(h, sizeof h, "pass '%s' declares %s texels for it (its slot '%s')", g->passes[r->writer].name, _vrg_format_name(r->format), sd->name);
+            _vrg_error_at(&g->diag, r->size_line ? r->size_line : r->writer_line, h, "buffer '%s' of %llu bytes is not a whole number of %llu-byte texels", r->name,
+                         (unsigned long long)r->size, (unsigned long long)_vrg_format_bytes(r->format));
         }
         /* A shader writes a storage image through a format qualifier: the
          * image must have that format. Sampled and transfer writers adapt. */
         int storage = sd->access == VRG_ACCESS_STORAGE_WRITE || sd->access == VRG_ACCESS_STORAGE_READ_WRITE;
         if (sd->kind == VRG_IMAGE && r->format_line && storage && sd->format && sd->format != r->format) {
             char h[160];
-            snprintf(h, sizeof h, "pass '%s' writes it as a storage image of format %s", g->passes[r->writer].name, vrg_format_name(sd->format));
-            vrg_error_at(&g->diag, r->format_line, h, "format mismatch: resource '%s' cannot be %s", r->name, vrg_format_name(r->format));
+            snprintf(h, sizeof h, "pass '%s' writes it as a storage image of format %s", g->passes[r->writer].name, _vrg_format_name(sd->format));
+            _vrg_error_at(&g->diag, r->format_line, h, "format mismatch: resource '%s' cannot be %s", r->name, _vrg_format_name(r->format));
         }
         if (sd->kind == VRG_BUFFER && r->format_line)
-            vrg_error_at(&g->diag, r->format_line, "format applies to images", "resource '%s' is a buffer", r->name);
+            _vrg_error_at(&g->diag, r->format_line, "format applies to images", "resource '%s' is a buffer", r->name);
         /* an acceleration structure is rebuilt from scene data, never aliased */
         r->persistent = (sd->flags & VRG_SLOT_PERSISTENT) != 0 || sd->kind == VRG_ACCEL;
         r->mip_request = sd->mip_levels;
         if (sd->kind != VRG_BUFFER && sd->kind != VRG_ACCEL && r->bytes_line)
-            vrg_error_at(&g->diag, r->bytes_line, "size = applies to buffers; images take scale or width/height", "resource '%s' is an image", r->name);
+            _vrg_error_at(&g->diag, r->bytes_line, "size = applies to buffers; images take scale or width/height", "resource '%s' is an image", r->name);
         if (sd->kind == VRG_BUFFER && r->extent_line)
-            vrg_error_at(&g->diag, r->extent_line, "buffers take size = BYTES", "resource '%s' is a buffer", r->name);
+            _vrg_error_at(&g->diag, r->extent_line, "buffers take size = BYTES", "resource '%s' is a buffer", r->name);
     }
     for (int pi = 0; pi < g->pass_count; pi++) {
         vrg_pass *p = &g->passes[pi];
@@ -740,7 +740,7 @@ static void resolve_resources(vrg_graph *g)
                 /* Shaders still declare the binding: give them a 1x1 stand-in. */
                 char name[2 * VRG_NAME_MAX + 16];
                 snprintf(name, sizeof name, "%s.%s(unconnected)", p->name, sd->name);
-                int r = vrg_graph_add_resource(g, name);
+                int r = _vrg_graph_add_resource(g, name);
                 if (r >= 0) {
                     vrg_resource *res = &g->res[r];
                     res->kind = sd->kind;
@@ -757,7 +757,7 @@ static void resolve_resources(vrg_graph *g)
                 if (!(sd->flags & VRG_SLOT_OPTIONAL)) {
                     char h[160];
                     snprintf(h, sizeof h, "add 'in.%s = RESOURCE' to [%s%s]", sd->name, p->is_scene ? "scene" : "pass ", p->is_scene ? "" : p->name);
-                    vrg_error_at(&g->diag, p->line, h, "required input '%s' of pass '%s' is not connected", sd->name, p->name);
+                    _vrg_error_at(&g->diag, p->line, h, "required input '%s' of pass '%s' is not connected", sd->name, p->name);
                 }
                 continue;
             }
@@ -765,13 +765,13 @@ static void resolve_resources(vrg_graph *g)
             if (r->writer < 0 && r->writer_unknown)
                 continue;
             if (r->writer < 0) {
-                vrg_error_at(&g->diag, b->line, "some pass must write it (out.SLOT = NAME), or fix the name",
+                _vrg_error_at(&g->diag, b->line, "some pass must write it (out.SLOT = NAME), or fix the name",
                              "resource '%s' is read but never written", r->name);
                 continue;
             }
             if (r->kind != sd->kind) {
                 static const char *kinds[] = {"?", "an image", "a buffer", "an acceleration structure"};
-                vrg_error_at(&g->diag, b->line, NULL, "kind mismatch: resource '%s' is %s, slot '%s' of pass '%s' takes %s", r->name,
+                _vrg_error_at(&g->diag, b->line, NULL, "kind mismatch: resource '%s' is %s, slot '%s' of pass '%s' takes %s", r->name,
                              kinds[r->kind], sd->name, p->name, kinds[sd->kind]);
                 continue;
             }
@@ -779,16 +779,16 @@ static void resolve_resources(vrg_graph *g)
                 char h[256];
                 snprintf(h, sizeof h, "'%s' is written by pass '%s' (line %d)%s", r->name, g->passes[r->writer].name, r->writer_line,
                          r->format_line ? "; see its [resource] format" : "");
-                vrg_error_at(&g->diag, b->line, h, "format mismatch: resource '%s' is %s, slot '%s' of pass '%s' needs %s", r->name,
-                             vrg_format_name(r->format), sd->name, p->name, vrg_format_name(sd->format));
+                _vrg_error_at(&g->diag, b->line, h, "format mismatch: resource '%s' is %s, slot '%s' of pass '%s' needs %s", r->name,
+                             _vrg_format_name(r->format), sd->name, p->name, _vrg_format_name(sd->format));
             }
             if (sd->kind == VRG_BUFFER && sd->format && sd->format != r->format) {
                 const vrg_slot_desc *wd = vrg_slot(&g->passes[r->writer], r->writer_slot);
                 char h[256];
                 snprintf(h, sizeof h, "'%s' is written by pass '%s' (line %d), whose slot '%s' %s", r->name, g->passes[r->writer].name, r->writer_line,
                          wd->name, wd->format ? "names that texel format" : "names no texel format (r32ui)");
-                vrg_error_at(&g->diag, b->line, h, "texel format mismatch: buffer '%s' has %s texels, slot '%s' of pass '%s' reads %s", r->name,
-                             vrg_format_name(r->format), sd->name, p->name, vrg_format_name(sd->format));
+                _vrg_error_at(&g->diag, b->line, h, "texel format mismatch: buffer '%s' has %s texels, slot '%s' of pass '%s' reads %s", r->name,
+                             _vrg_format_name(r->format), sd->name, p->name, _vrg_format_name(sd->format));
             }
             if (sd->kind == VRG_IMAGE && (sd->scale > 0 || sd->width)) {
                 int same = sd->width ? (r->abs_width == sd->width && r->abs_height == sd->height)
@@ -803,12 +803,12 @@ static void resolve_resources(vrg_graph *g)
                         snprintf(need, sizeof need, "%ux%u", sd->width, sd->height);
                     else
                         snprintf(need, sizeof need, "scale %g", sd->scale);
-                    vrg_error_at(&g->diag, b->line, "check the [resource] size or the writer's slot", "size mismatch: resource '%s' is %s, slot '%s' of pass '%s' needs %s",
+                    _vrg_error_at(&g->diag, b->line, "check the [resource] size or the writer's slot", "size mismatch: resource '%s' is %s, slot '%s' of pass '%s' needs %s",
                                  r->name, have, sd->name, p->name, need);
                 }
             }
             if (sd->kind == VRG_BUFFER && sd->size > r->size)
-                vrg_error_at(&g->diag, b->line, NULL, "size mismatch: buffer '%s' has %llu bytes, slot '%s' of pass '%s' needs at least %llu", r->name,
+                _vrg_error_at(&g->diag, b->line, NULL, "size mismatch: buffer '%s' has %llu bytes, slot '%s' of pass '%s' needs at least %llu", r->name,
                              (unsigned long long)r->size, sd->name, p->name, (unsigned long long)sd->size);
         }
     }
@@ -834,10 +834,10 @@ static void default_outputs(vrg_graph *g)
             else
                 snprintf(name, sizeof name, "%s.%s", p->name, sd->name);
             if (find_resource(g, name) >= 0 && g->res[find_resource(g, name)].writer >= 0) {
-                vrg_error_at(&g->diag, p->line, NULL, "resource '%s' (the default for unconnected out.%s) has two writers", name, sd->name);
+                _vrg_error_at(&g->diag, p->line, NULL, "resource '%s' (the default for unconnected out.%s) has two writers", name, sd->name);
                 continue;
             }
-            int r = vrg_graph_add_resource(g, name);
+            int r = _vrg_graph_add_resource(g, name);
             if (r < 0)
                 continue;
             vrg_resource *res = &g->res[r];
@@ -866,13 +866,13 @@ static void check_conflicting_uses(vrg_graph *g)
                 if (x->res < 0 || x->res != y->res || x->prev != y->prev || x->dummy || g->res[x->res].kind != VRG_IMAGE ||
                     vrg_slot(p, a)->dir == VRG_OUT || vrg_slot(p, b)->dir == VRG_OUT) /* read + write: reported as a cycle */
                     continue;
-                vrg_access_info ia = vrg_access_info_of(vrg_slot(p, a)->access, VRG_IMAGE);
-                vrg_access_info ib = vrg_access_info_of(vrg_slot(p, b)->access, VRG_IMAGE);
+                vrg_access_info ia = _vrg_access_info_of(vrg_slot(p, a)->access, VRG_IMAGE);
+                vrg_access_info ib = _vrg_access_info_of(vrg_slot(p, b)->access, VRG_IMAGE);
                 if (ia.layout != ib.layout)
-                    vrg_error_at(&g->diag, y->line, "read it through one slot, or give the plugin matching accesses",
+                    _vrg_error_at(&g->diag, y->line, "read it through one slot, or give the plugin matching accesses",
                                  "resource '%s' is bound to slots '%s' (%s) and '%s' (%s) of pass '%s', which need different layouts",
-                                 g->res[x->res].name, vrg_slot(p, a)->name, vrg_access_name(vrg_slot(p, a)->access), vrg_slot(p, b)->name,
-                                 vrg_access_name(vrg_slot(p, b)->access), p->name);
+                                 g->res[x->res].name, vrg_slot(p, a)->name, _vrg_access_name(vrg_slot(p, a)->access), vrg_slot(p, b)->name,
+                                 _vrg_access_name(vrg_slot(p, b)->access), p->name);
             }
     }
 }
@@ -905,7 +905,7 @@ static int cycle_dfs(vrg_graph *g, int pi, int *state, int *stack, int depth)
             }
             if (path)
                 snprintf(path + used, cap - used, "%s", g->passes[w].name);
-            vrg_error_at(&g->diag, g->passes[first].line, "read last frame's value with NAME@prev to break the cycle",
+            _vrg_error_at(&g->diag, g->passes[first].line, "read last frame's value with NAME@prev to break the cycle",
                          "cycle between passes: %s", path ? path : "(out of memory listing them)");
             free(path);
             return 1;
@@ -925,7 +925,7 @@ static void check_cycles(vrg_graph *g)
             return; /* one cycle report is enough; the rest usually repeat it */
 }
 
-int vrg_validate(vrg_graph *g, const vrg_ast *ast, const vrg_graph_desc *desc)
+int _vrg_validate(vrg_graph *g, const vrg_ast *ast, const vrg_graph_desc *desc)
 {
     int graph_si, camera_si;
     g->fps = 60;
@@ -935,7 +935,7 @@ int vrg_validate(vrg_graph *g, const vrg_ast *ast, const vrg_graph_desc *desc)
     if (graph_si >= 0)
         graph_section(g, ast, graph_si, desc->path);
     else
-        vrg_error_at(&g->diag, 1, "start the file with [graph] and 'output = RESOURCE'", "the graph has no [graph] section, so no output");
+        _vrg_error_at(&g->diag, 1, "start the file with [graph] and 'output = RESOURCE'", "the graph has no [graph] section, so no output");
     for (int si = 0; si < ast->section_count; si++) {
         const char *arg;
         sec_kind kind = section_kind(ast->sections[si].name, &arg);
@@ -951,9 +951,9 @@ int vrg_validate(vrg_graph *g, const vrg_ast *ast, const vrg_graph_desc *desc)
         vrg_pass *p = &g->passes[i];
         if (!p->plugin || !p->plugin->desc->check)
             continue;
-        vrg_running before = vrg_running_enter("check", p->name, p->plugin);
+        vrg_running before = _vrg_running_enter("check", p->name, p->plugin);
         int rc = p->plugin->desc->check(p);
-        vrg_running_leave(before);
+        _vrg_running_leave(before);
         if (rc != 0 && !p->failed)
             vrg_pass_error(p, "its check() failed");
     }
@@ -969,23 +969,23 @@ int vrg_validate(vrg_graph *g, const vrg_ast *ast, const vrg_graph_desc *desc)
     if (graph_si >= 0) {
         if (!g->output_name[0]) {
             if (!g->output_line) /* else given, but not usable: already reported */
-                vrg_error_at(&g->diag, ast->sections[graph_si].line, "add 'output = RESOURCE' to [graph]", "the graph has no output");
+                _vrg_error_at(&g->diag, ast->sections[graph_si].line, "add 'output = RESOURCE' to [graph]", "the graph has no output");
         } else {
             g->output = find_resource(g, g->output_name);
             if (g->output >= 0 && g->res[g->output].writer_unknown)
                 ; /* its writer's plugin failed to load: already reported */
             else if (g->output < 0 || g->res[g->output].writer < 0)
-                vrg_error_at(&g->diag, g->output_line, "name a resource some pass writes", "output resource '%s' is never written",
+                _vrg_error_at(&g->diag, g->output_line, "name a resource some pass writes", "output resource '%s' is never written",
                              g->output_name);
             else if (g->res[g->output].kind != VRG_IMAGE)
-                vrg_error_at(&g->diag, g->output_line, "the output is shown and written as PNG", "output resource '%s' is a buffer, not an image",
+                _vrg_error_at(&g->diag, g->output_line, "the output is shown and written as PNG", "output resource '%s' is a buffer, not an image",
                              g->output_name);
             else
                 g->res[g->output].is_output = 1;
         }
         if (!g->width || !g->height)
             if (!desc->width && !g->diag.errors)
-                vrg_error_at(&g->diag, ast->sections[graph_si].line, "add 'width = ' and 'height = ' to [graph] (or pass --size)",
+                _vrg_error_at(&g->diag, ast->sections[graph_si].line, "add 'width = ' and 'height = ' to [graph] (or pass --size)",
                              "the graph has no size");
     }
     if (desc->width && desc->height)
@@ -993,7 +993,7 @@ int vrg_validate(vrg_graph *g, const vrg_ast *ast, const vrg_graph_desc *desc)
     for (uint32_t i = 0; i < desc->readback_count; i++) {
         int r = find_resource(g, desc->readback[i]);
         if (r < 0 || g->res[r].writer < 0)
-            vrg_error(&g->diag, "--dump %s: the graph writes no resource of that name", desc->readback[i]);
+            _vrg_error(&g->diag, "--dump %s: the graph writes no resource of that name", desc->readback[i]);
         else
             g->res[r].readback = 1;
     }

@@ -25,7 +25,7 @@ struct vrg_watch {
     int count, cap;
 };
 
-vrg_watch *vrg_watch_create(void)
+vrg_watch *_vrg_watch_create(void)
 {
     vrg_watch *w = calloc(1, sizeof *w);
     if (!w)
@@ -38,7 +38,7 @@ vrg_watch *vrg_watch_create(void)
     return w;
 }
 
-void vrg_watch_destroy(vrg_watch *w)
+void _vrg_watch_destroy(vrg_watch *w)
 {
     if (!w)
         return;
@@ -47,7 +47,7 @@ void vrg_watch_destroy(vrg_watch *w)
     free(w);
 }
 
-int vrg_watch_add(vrg_watch *w, const char *path)
+int _vrg_watch_add(vrg_watch *w, const char *path)
 {
     char full[VRG_PATH_MAX];
     if (!w || !realpath(path, full))
@@ -98,7 +98,7 @@ static int add_changed(char (**list)[VRG_PATH_MAX], int n, int *cap, const char 
     return n + 1;
 }
 
-int vrg_watch_poll(vrg_watch *w, char (**changed)[VRG_PATH_MAX])
+int _vrg_watch_poll(vrg_watch *w, char (**changed)[VRG_PATH_MAX])
 {
     int n = 0, cap = 0;
     *changed = NULL;

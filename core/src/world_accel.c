@@ -243,7 +243,7 @@ int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *
             rc = vrg_pass_error(a->pass, "cannot create the BLAS of chunk %d %d %d", c[0], c[1], c[2]);
             break;
         }
-        vrg_name_object(ctx, VK_OBJECT_TYPE_ACCELERATION_STRUCTURE_KHR, (uint64_t)b->as, "%s", name);
+        _vrg_name_object(ctx, VK_OBJECT_TYPE_ACCELERATION_STRUCTURE_KHR, (uint64_t)b->as, "%s", name);
         VkAccelerationStructureDeviceAddressInfoKHR ai = {.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_DEVICE_ADDRESS_INFO_KHR, .accelerationStructure = b->as};
         b->address = ctx->as.address(dev, &ai);
         b->quads = n;

@@ -29,6 +29,9 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+/* Only what these headers declare is exported from libvoxrg (built with
+ * -fvisibility=hidden); the runtime's internals stay hidden. */
+#pragma GCC visibility push(default)
 
 typedef struct vrg_camera {
     float position[3];
@@ -160,6 +163,8 @@ void vrg_sky_eval(const vrg_sky_desc *d, double time_s, vrg_sky *out);
  * directional light with sun_radiance). The formula is in sky.c; a GLSL
  * copy must match it. */
 void vrg_sky_radiance(const vrg_sky *s, const float dir[3], float out[3]);
+
+#pragma GCC visibility pop
 
 #ifdef __cplusplus
 }

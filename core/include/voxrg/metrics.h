@@ -8,6 +8,9 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+/* Only what these headers declare is exported from libvoxrg (built with
+ * -fvisibility=hidden); the runtime's internals stay hidden. */
+#pragma GCC visibility push(default)
 
 /* PSNR over the three channels, peak 1. Identical images have no finite
  * PSNR: the value is capped at VRG_PSNR_MAX_DB. */
@@ -34,6 +37,8 @@ double vrg_metric_temporal(const float *test, const float *test_prev, const floa
 
 /* A colour for an error in [0, 1] (a magma-like ramp, as FLIP's maps use). */
 void vrg_error_color(float e, uint8_t rgb[3]);
+
+#pragma GCC visibility pop
 
 #ifdef __cplusplus
 }

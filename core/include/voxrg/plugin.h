@@ -16,8 +16,14 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+/* Only what these headers declare is exported from libvoxrg (built with
+ * -fvisibility=hidden); the runtime's internals stay hidden. */
+#pragma GCC visibility push(default)
 
-/* Bumped on any incompatible change to the structs or functions below. */
+/* Bumped on any incompatible change to what plugins see: the structs and
+ * functions below and those of voxrg/world.h and voxrg/camera.h, which
+ * scene plugins use (world.h's VRG_SCENE_SLOTS, vrg_scene_gpu, the frame
+ * uniforms). Additions at the end of vrg_plugin_desc are compatible. */
 #define VRG_ABI_VERSION 1u
 #define VRG_PLUGIN_ENTRY_SYMBOL "vrg_plugin_entry"
 #define VRG_EXPORT __attribute__((visibility("default")))
@@ -160,12 +166,20 @@ typedef struct vrg_plugin_desc {
     int (*check)(vrg_pass *pass);
 } vrg_plugin_desc;
 
-/* The one symbol a plugin exports. host_abi is the runtime's VRG_ABI_VERSION. */
+/* What a plugin exports: its entry (host_abi is the runtime's
+ * VRG_ABI_VERSION) and the size of vrg_plugin_desc in the headers it was
+ * built with. Fields are only ever added at the end of vrg_plugin_desc
+ * within one ABI version: the runtime reads an older plugin's shorter
+ * descriptor with the new fields zero (NULL callbacks), and refuses a newer
+ * plugin's longer one only if it sets a field the runtime does not know. */
 typedef const vrg_plugin_desc *(*vrg_plugin_entry_fn)(uint32_t host_abi);
+#define VRG_PLUGIN_DESC_SIZE_SYMBOL "vrg_plugin_desc_size"
 
 /* Every plugin's source defines its entry with this macro. */
 #define VRG_PLUGIN(desc_var) \
-    VRG_EXPORT const vrg_plugin_desc *vrg_plugin_entry(uint32_t host_abi) { (void)host_abi; return &(desc_var); }
+    VRG_EXPORT const vrg_plugin_desc *vrg_plugin_entry(uint32_t host_abi) { (void)host_abi; return &(desc_var); } \
+    VRG_EXPORT extern const uint32_t vrg_plugin_desc_size; \
+    const uint32_t vrg_plugin_desc_size = (uint32_t)sizeof(vrg_plugin_desc);
 
 /* ---- What the runtime gives a pass ------------------------------------- */
 
@@ -354,6 +368,8 @@ typedef struct vrg_dispatch_desc {
  * Returns 0, or -1 after reporting the error (shader compile errors name
  * file:line). */
 int vrg_dispatch(vrg_pass *pass, VkCommandBuffer cmd, const vrg_dispatch_desc *desc);
+
+#pragma GCC visibility pop
 
 #ifdef __cplusplus
 }

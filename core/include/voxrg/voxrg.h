@@ -8,6 +8,9 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+/* Only what these headers declare is exported from libvoxrg (built with
+ * -fvisibility=hidden); the runtime's internals stay hidden. */
+#pragma GCC visibility push(default)
 
 typedef struct vrg_context vrg_context;
 typedef struct vrg_graph vrg_graph;
@@ -251,6 +254,8 @@ int vrg_png_write_rgb8(const char *path, const uint8_t *rgb, uint32_t width, uin
 int vrg_png_encode_rgb8(const uint8_t *rgb, uint32_t width, uint32_t height, void **png, size_t *size);
 /* Any PNG, decoded to 8-bit RGB (*rgb malloc'd). -1 if unreadable. */
 int vrg_png_read_rgb8(const char *path, uint8_t **rgb, uint32_t *width, uint32_t *height);
+
+#pragma GCC visibility pop
 
 #ifdef __cplusplus
 }

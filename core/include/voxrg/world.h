@@ -12,6 +12,9 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+/* Only what these headers declare is exported from libvoxrg (built with
+ * -fvisibility=hidden); the runtime's internals stay hidden. */
+#pragma GCC visibility push(default)
 
 #define VRG_CHUNK_SIZE 16
 #define VRG_CHUNK_VOXELS (VRG_CHUNK_SIZE * VRG_CHUNK_SIZE * VRG_CHUNK_SIZE)
@@ -225,6 +228,8 @@ void vrg_scene_destroy(vrg_pass *pass, vrg_scene_gpu *s);
 
 static inline int vrg_floor_div16(int v) { return v >= 0 ? v / 16 : -((15 - v) / 16); }
 static inline int vrg_chunk_index(int lx, int ly, int lz) { return lx + VRG_CHUNK_SIZE * (lz + VRG_CHUNK_SIZE * ly); }
+
+#pragma GCC visibility pop
 
 #ifdef __cplusplus
 }
