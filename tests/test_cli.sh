@@ -131,6 +131,11 @@ if unshare -rm true 2>/dev/null; then
     has "$out/stderr" "cannot write $out/fullfs/good.dot: No space left on device" "--dot on a full file system names the reason"
     has "$out/stdout" "^same$" "a failed --dot write keeps the old file"
     if grep -qvE "^(rc=1|same|good.dot|filler)$" "$out/stdout"; then bad "temporary files left on the full file system: $(cat "$out/stdout")"; else ok; fi
+    # a noexec $TMPDIR: plugins' private copies go to memory instead
+    mkdir -p "$out/noexec"
+    unshare -rm sh -c 'mount -t tmpfs -o noexec,size=1m voxrg-noexec "$1" && TMPDIR="$1" "$2" plugins pattern' sh "$out/noexec" "$voxrg" \
+        >"$out/stdout" 2>"$out/stderr"
+    has "$out/stdout" "^pattern \(pass plugin" "a plugin loads with a noexec \$TMPDIR"
 else
     echo "note: no mount namespace here (unshare -rm): the full file system case is covered by test_output only"
 fi

@@ -394,7 +394,7 @@ static uint8_t *read_output(vrg_graph *g)
 static int reference_frames(vrg_context *ctx, const options *o, const vrg_camera_path *path, const vrg_camera *fixed, double frame_s,
                             uint8_t **ref, vrg_cmp_result *r, int tty)
 {
-    char cache[1024], file[1200], deps[1200];
+    char cache[VRG_CLI_PATH], file[VRG_CLI_PATH], deps[VRG_CLI_PATH];
     snprintf(cache, sizeof cache, "%s", o->cache ? o->cache : default_cache(file, sizeof file));
     if (vrg_cli_mkdir_p(cache) != 0)
         return -1;
@@ -511,7 +511,7 @@ static int render_candidate(vrg_context *ctx, const options *o, const job *j, vr
             rc = -1;
             break;
         }
-        char file[1400];
+        char file[VRG_CLI_PATH + VRG_CLI_PATH];
         snprintf(file, sizeof file, "%s/%s-%05u.png", frames_dir, c->name, k);
         rc = vrg_png_write_rgb8(file, rgb, r->width, r->height);
         to_float(rgb, n, cur);
@@ -618,7 +618,7 @@ static void csv_field(FILE *f, const char *s)
 
 static int write_csv(const char *dir, const vrg_cmp_result *r)
 {
-    char final[1200];
+    char final[VRG_CLI_PATH];
     snprintf(final, sizeof final, "%s/metrics.csv", dir);
     vrg_output *out = vrg_output_open(final);
     if (!out)
@@ -640,7 +640,7 @@ static int write_csv(const char *dir, const vrg_cmp_result *r)
 
 static int write_json(const char *dir, const vrg_cmp_result *r)
 {
-    char final[1200], e1[2100], e2[2100], e3[2100];
+    char final[VRG_CLI_PATH], e1[2100], e2[2100], e3[2100];
     snprintf(final, sizeof final, "%s/metrics.json", dir);
     vrg_output *out = vrg_output_open(final);
     if (!out)
@@ -732,7 +732,7 @@ int vrg_cli_compare(int argc, char **argv)
     for (int i = 0, n = 0; i < o.ref_set_count; i++)
         n += snprintf(r.reference_overrides + n, sizeof r.reference_overrides - (size_t)n, "%s%s", i ? "," : "", o.ref_sets[i]);
     /* nothing of an earlier report may pass for this run's, failed or not */
-    char frames_dir[1100], file[1200];
+    char frames_dir[VRG_CLI_PATH], file[VRG_CLI_PATH];
     snprintf(frames_dir, sizeof frames_dir, "%s/frames", o.out);
     static const char *outputs[] = {"report.html", "metrics.json", "metrics.csv"};
     for (int i = 0; i < 3; i++) {

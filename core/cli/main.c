@@ -262,7 +262,7 @@ static int cmd_check(int argc, char **argv)
  * polling for a frame never reads half a file. */
 static int write_resource(vrg_graph *g, const char *dir, const char *name, long frame)
 {
-    char path[1200];
+    char path[VRG_CLI_PATH];
     int rc;
     if (vrg_graph_resource_kind(g, name) == VRG_IMAGE) {
         vrg_image_data img;

@@ -750,7 +750,7 @@ int vrg_cli_run(const vrg_run_options *o)
         }
         frames++;
         int last_frame = o->frames && (uint32_t)frames == o->frames;
-        char file[1100] = "";
+        char file[VRG_CLI_PATH] = "";
         if (o->screenshot && last_frame)
             snprintf(file, sizeof file, "%s", o->screenshot);
         else if (w.screenshot_requested)
@@ -821,6 +821,12 @@ int vrg_cli_run(const vrg_run_options *o)
     }
     vrg_camera_path_free(&path);
 out:
+    /* what was flown, a failed run too: written before a busy GPU ends the process */
+    if (record_out && vrg_output_commit(record_out) == 0)
+        fprintf(stderr, "wrote %s\n", o->record);
+    else if (record_out)
+        rc = 1;
+    record_out = NULL;
     vrg_cli_exit_if_gpu_busy(w.ctx, rc);
     if (w.dev) {
         vkDeviceWaitIdle(w.dev->device);
@@ -846,10 +852,6 @@ out:
         if (w.surface)
             vkDestroySurfaceKHR(w.dev->instance, w.surface, NULL);
     }
-    if (record_out && vrg_output_commit(record_out) == 0) /* what was flown, a failed run too */
-        fprintf(stderr, "wrote %s\n", o->record);
-    else if (record_out)
-        rc = 1;
     if (w.screenshot_failed)
         rc = 1;
     if (w.window)

@@ -56,7 +56,11 @@ int vrg_cli_parse_size(const char *s, uint32_t *w, uint32_t *h)
 
 int vrg_cli_mkdir_p(const char *dir)
 {
-    char *buf = strdup(dir); /* any length: a cut path would create another folder */
+    if (strlen(dir) > VRG_CLI_DIR_MAX) { /* the files in it must fit VRG_CLI_PATH */
+        fprintf(stderr, "error: cannot use folder %.80s...: its path is %zu characters, at most %d\n", dir, strlen(dir), VRG_CLI_DIR_MAX);
+        return -1;
+    }
+    char *buf = strdup(dir);
     if (!buf) {
         fprintf(stderr, "error: cannot create directory %s: out of memory\n", dir);
         return -1;

@@ -8,6 +8,10 @@
 double vrg_cli_now_ms(void);
 /* The largest --size side: as a graph file's width and height. */
 #define VRG_CLI_SIZE_MAX 16384
+/* Paths the CLI builds: an output folder of at most VRG_CLI_DIR_MAX
+ * characters (checked when it is created) plus a file name. */
+#define VRG_CLI_DIR_MAX 3839
+#define VRG_CLI_PATH 4352
 #define VRG_CLI_STR_(x) #x
 #define VRG_CLI_STR(x) VRG_CLI_STR_(x)
 #define VRG_CLI_SIZE_RANGE "W and H whole numbers from 1 to " VRG_CLI_STR(VRG_CLI_SIZE_MAX)

@@ -48,7 +48,9 @@ static void temp_name(char *buf, size_t cap, const char *base)
 {
     static unsigned counter;
     unsigned n = __atomic_fetch_add(&counter, 1, __ATOMIC_RELAXED);
-    snprintf(buf, cap, ".%s.%ld.%u.tmp", base, (long)getpid(), n);
+    /* the target's name cut to 200 bytes: with the suffix it stays within
+     * NAME_MAX (255) however long a valid target name is */
+    snprintf(buf, cap, ".%.200s.%ld.%u.tmp", base, (long)getpid(), n);
 }
 
 /* The folder part of path ("." for a bare name) opened as a directory. */
@@ -172,9 +174,13 @@ static int link_unnamed(const vrg_output *out, const char *name)
     snprintf(proc, sizeof proc, "/proc/self/fd/%d", out->fd);
     if (linkat(AT_FDCWD, proc, out->dir_fd, name, AT_SYMLINK_FOLLOW) == 0)
         return 0;
-    if (errno == EEXIST)
+    int err = errno;
+    if (err == EEXIST)
         return -1;
-    return linkat(out->fd, "", out->dir_fd, name, AT_EMPTY_PATH);
+    if (linkat(out->fd, "", out->dir_fd, name, AT_EMPTY_PATH) == 0)
+        return 0;
+    errno = err; /* the first attempt's reason (ENOSPC, EDQUOT...), not the fallback's */
+    return -1;
 }
 
 /* The written file under the target's name. An unnamed file goes straight

@@ -80,6 +80,7 @@ typedef struct vrg_plugin {
     void *handle;
     const vrg_plugin_desc *desc; /* &desc_copy once kept */
     vrg_plugin_desc desc_copy;   /* the plugin's descriptor at this runtime's size */
+    int keep_fd;                 /* its in-memory copy (a noexec $TMPDIR), else -1 */
     unsigned generation; /* load order: the highest of a name is its current version */
     int users;           /* passes of live graphs running it (_vrg_plugin_acquire) */
 } vrg_plugin;

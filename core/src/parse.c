@@ -61,7 +61,7 @@ static int on_key(void *user, const char *section, const char *name, const char 
         return 1;
     }
     if (a->key_count >= VRG_MAX_KEYS) {
-        /* once: the rest of the file is not read (no error per key) */
+        /* once, not per key: keys past the limit are not kept */
         if (!a->fatal)
             _vrg_error_at(r->d, r->line, NULL, "too many keys (at most %d)", VRG_MAX_KEYS);
         a->fatal = 1;

@@ -28,7 +28,9 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 #include "internal.h"
 
@@ -77,6 +79,8 @@ void _vrg_plugin_release(const vrg_plugin *cp)
     if (--p->users > 0 || newest(p->source, 1) == p)
         return; /* in use, or the current version (kept loaded: a cache) */
     dlclose(p->handle);
+    if (p->keep_fd >= 0)
+        close(p->keep_fd);
     memset(p, 0, sizeof *p);
 }
 
@@ -107,7 +111,7 @@ typedef struct search_path {
         char path[VRG_PATH_MAX];
         dir_origin origin;
     } *dirs;
-    int count, cap;
+    int count, cap, failed;
 } search_path;
 
 static void add_dir(search_path *s, dir_origin origin, const char *dir, size_t len)
@@ -118,8 +122,13 @@ static void add_dir(search_path *s, dir_origin origin, const char *dir, size_t l
         if (strlen(s->dirs[i].path) == len && strncmp(s->dirs[i].path, dir, len) == 0)
             return;
     if (s->count == s->cap) {
-        s->cap = s->cap ? 2 * s->cap : 8;
-        s->dirs = realloc(s->dirs, (size_t)s->cap * sizeof *s->dirs);
+        int cap = s->cap ? 2 * s->cap : 8;
+        void *grown = realloc(s->dirs, (size_t)cap * sizeof *s->dirs);
+        if (!grown) {
+            s->failed = 1; /* out of memory: reported by the caller, not a folder dropped */
+            return;
+        }
+        s->dirs = grown, s->cap = cap;
     }
     snprintf(s->dirs[s->count].path, VRG_PATH_MAX, "%.*s", (int)len, dir);
     s->dirs[s->count++].origin = origin;
@@ -162,9 +171,12 @@ static void search_path_build(search_path *s, const char *graph_path, const char
         if (slash)
             *slash = '\0';
         add_dir(s, DIR_BUILTIN, dir, (size_t)snprintf(dir, sizeof dir, "%s/plugins", exe));
-#ifdef VRG_BUILD_PLUGIN_DIR
-        /* tests and fuzzers run from other folders of the build */
-        add_dir(s, DIR_BUILTIN, VRG_BUILD_PLUGIN_DIR, strlen(VRG_BUILD_PLUGIN_DIR));
+#if defined(VRG_BUILD_PLUGIN_DIR) && defined(VRG_BUILD_DIR)
+        /* tests and fuzzers run from other folders of the build; an
+         * installed voxrg never searches the folder it was built in */
+        size_t b = strlen(VRG_BUILD_DIR);
+        if (strncmp(exe, VRG_BUILD_DIR, b) == 0 && (exe[b] == '/' || exe[b] == '\0'))
+            add_dir(s, DIR_BUILTIN, VRG_BUILD_PLUGIN_DIR, strlen(VRG_BUILD_PLUGIN_DIR));
 #endif
         add_dir(s, DIR_INSTALLED, dir, (size_t)snprintf(dir, sizeof dir, "%s/../lib/voxrg/plugins", exe));
     }
@@ -223,16 +235,13 @@ static int read_whole(const char *path, unsigned char **data, size_t *size, char
     *size = (size_t)st.st_size;
     *data = malloc(*size ? *size : 1);
     size_t got = 0;
-    while (*data && got < *size) {
-        ssize_t r = read(fd, *data + got, *size - got);
-        if (r <= 0)
-            break;
+    ssize_t r = 1;
+    while (*data && got < *size && (r = read(fd, *data + got, *size - got)) > 0)
         got += (size_t)r;
-    }
     int err = errno;
     close(fd);
     if (!*data || got != *size) {
-        snprintf(why, cap, "cannot read it: %s", !*data ? "out of memory" : got < *size ? "it shrank while being read" : strerror(err));
+        snprintf(why, cap, "cannot read it: %s", !*data ? "out of memory" : r < 0 ? strerror(err) : "it shrank while being read");
         free(*data);
         *data = NULL;
         return -1;
@@ -279,30 +288,79 @@ static const char *elf_problem(const unsigned char *b, size_t n, char *why, size
         return snprintf(why, cap, "built for another machine (ELF machine %u, this one is %u)", e.e_machine, machine), why;
     if (e.e_phentsize != sizeof(elf_phdr) || e.e_phnum == 0 || e.e_phnum == 0xffff)
         return snprintf(why, cap, "malformed ELF program header table (%u entries of %u bytes)", e.e_phnum, e.e_phentsize), why;
-    uint64_t ph_end = (uint64_t)e.e_phoff + (uint64_t)e.e_phnum * sizeof(elf_phdr);
-    if (ph_end > n)
-        return snprintf(why, cap, "truncated: %zu bytes, its program headers end at byte %llu", n, (unsigned long long)ph_end), why;
-    uint64_t sh_end = (uint64_t)e.e_shoff + (uint64_t)e.e_shnum * e.e_shentsize;
-    if (e.e_shoff && sh_end > n)
-        return snprintf(why, cap, "truncated: %zu bytes, its section headers end at byte %llu", n, (unsigned long long)sh_end), why;
+    /* offsets compared before adding: a huge e_phoff must not wrap around */
+    if (e.e_phoff > n || e.e_phnum > (n - e.e_phoff) / sizeof(elf_phdr))
+        return snprintf(why, cap, "truncated: %zu bytes, its program headers (%u at byte %llu) do not fit", n, e.e_phnum,
+                        (unsigned long long)e.e_phoff), why;
+    if (e.e_shoff && (e.e_shoff > n || (e.e_shentsize && e.e_shnum > (n - e.e_shoff) / e.e_shentsize)))
+        return snprintf(why, cap, "truncated: %zu bytes, its section headers (%u at byte %llu) do not fit", n, e.e_shnum,
+                        (unsigned long long)e.e_shoff), why;
     for (unsigned i = 0; i < e.e_phnum; i++) {
         elf_phdr ph;
         memcpy(&ph, b + e.e_phoff + (size_t)i * sizeof ph, sizeof ph);
         uint64_t end = (uint64_t)ph.p_offset + ph.p_filesz;
-        if (end < ph.p_offset || end > n)
+        if (ph.p_offset > n || ph.p_filesz > n - ph.p_offset)
             return snprintf(why, cap, "truncated: %zu bytes, segment %u (type %u) ends at byte %llu", n, i, ph.p_type, (unsigned long long)end), why;
     }
     return NULL;
 }
 
+static void *dlopen_checked(const vrg_plugin *p, const char *file, char *why, size_t cap)
+{
+    vrg_running before = _vrg_running_enter("loading (dlopen and the plugin's constructors)", NULL, p);
+    void *handle = dlopen(file, RTLD_NOW | RTLD_LOCAL);
+    _vrg_running_leave(before);
+    if (!handle)
+        snprintf(why, cap, "%s", dlerror());
+    return handle;
+}
+
+static int write_all(int fd, const unsigned char *data, size_t size)
+{
+    for (size_t put = 0; put < size;) {
+        ssize_t w = write(fd, data + put, size - put);
+        if (w <= 0)
+            return -1;
+        put += (size_t)w;
+    }
+    return 0;
+}
+
+/* Where $TMPDIR is mounted noexec no copy there can be mapped: the copy is
+ * an anonymous memory file instead, opened through /proc/self/fd. Its
+ * descriptor stays open while the plugin is loaded (*keep_fd), so no other
+ * load gets the same /proc path, which dlopen would take for this one. */
+static void *open_memfd(const vrg_plugin *p, const unsigned char *data, size_t size, int *keep_fd, char *why, size_t cap)
+{
+    int fd = memfd_create(p->name, MFD_CLOEXEC);
+    if (fd < 0 || write_all(fd, data, size) != 0) {
+        snprintf(why, cap, "cannot write its private copy in memory: %s", strerror(errno));
+        if (fd >= 0)
+            close(fd);
+        return NULL;
+    }
+    char file[64];
+    snprintf(file, sizeof file, "/proc/self/fd/%d", fd);
+    void *handle = dlopen_checked(p, file, why, cap);
+    if (handle)
+        *keep_fd = fd;
+    else
+        close(fd);
+    return handle;
+}
+
 /* A private copy of `data`, dlopen'ed; the copy is unlinked right after
  * (the mapping stays), and removed by the crash handler if dlopen or the
  * plugin's constructors die. */
-static void *open_private(const vrg_plugin *p, const unsigned char *data, size_t size, char *why, size_t cap)
+static void *open_private(const vrg_plugin *p, const unsigned char *data, size_t size, int *keep_fd, char *why, size_t cap)
 {
     const char *tmp = getenv("TMPDIR");
+    tmp = tmp && tmp[0] ? tmp : "/tmp";
+    struct statvfs fs;
+    if (statvfs(tmp, &fs) == 0 && (fs.f_flag & ST_NOEXEC))
+        return open_memfd(p, data, size, keep_fd, why, cap);
     char dir[VRG_PATH_MAX], file[VRG_PATH_MAX + VRG_NAME_MAX + 8];
-    snprintf(dir, sizeof dir, "%s/voxrg-plugin-XXXXXX", tmp && tmp[0] ? tmp : "/tmp");
+    snprintf(dir, sizeof dir, "%s/voxrg-plugin-XXXXXX", tmp);
     if (!mkdtemp(dir)) {
         snprintf(why, cap, "cannot make a private folder for its copy (%s): %s", dir, strerror(errno));
         return NULL;
@@ -310,24 +368,13 @@ static void *open_private(const vrg_plugin *p, const unsigned char *data, size_t
     snprintf(file, sizeof file, "%s/%s.so", dir, p->name);
     _vrg_crash_cleanup_set(dir, file);
     int fd = open(file, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0500);
-    size_t put = 0;
-    while (fd >= 0 && put < size) {
-        ssize_t w = write(fd, data + put, size - put);
-        if (w <= 0)
-            break;
-        put += (size_t)w;
-    }
-    int err = errno;
     void *handle = NULL;
-    if (fd < 0 || put != size || close(fd) != 0)
-        snprintf(why, cap, "cannot write its private copy %s: %s", file, strerror(fd < 0 || put != size ? err : errno));
-    else {
-        vrg_running before = _vrg_running_enter("loading (dlopen and the plugin's constructors)", NULL, p);
-        handle = dlopen(file, RTLD_NOW | RTLD_LOCAL);
-        _vrg_running_leave(before);
-        if (!handle)
-            snprintf(why, cap, "%s", dlerror());
-    }
+    if (fd < 0 || write_all(fd, data, size) != 0 || close(fd) != 0) {
+        snprintf(why, cap, "cannot write its private copy %s: %s", file, strerror(errno));
+        if (fd >= 0)
+            close(fd);
+    } else
+        handle = dlopen_checked(p, file, why, cap);
     unlink(file);
     rmdir(dir);
     _vrg_crash_cleanup_set(NULL, NULL);
@@ -371,7 +418,7 @@ static int load_file(vrg_plugin *p, vrg_diag *d, int line)
         problem = why;
     else
         problem = elf_problem(data, size, why, sizeof why);
-    if (!problem && !(p->handle = open_private(p, data, size, why, sizeof why)))
+    if (!problem && !(p->handle = open_private(p, data, size, &p->keep_fd, why, sizeof why)))
         problem = why;
     free(data);
     if (problem) {
@@ -399,6 +446,9 @@ static int load_file(vrg_plugin *p, vrg_diag *d, int line)
             return 0;
     }
     dlclose(p->handle);
+    if (p->keep_fd >= 0)
+        close(p->keep_fd);
+    p->keep_fd = -1;
     p->handle = NULL;
     p->desc = NULL;
     return -1;
@@ -534,6 +584,11 @@ const vrg_plugin *_vrg_plugin_load(const char *name, const char *graph_path, con
     }
     search_path s;
     search_path_build(&s, graph_path, plugin_path);
+    if (s.failed) {
+        fail(d, line, NULL, "cannot load plugin '%s': out of memory for the search path", name);
+        free(s.dirs);
+        return NULL;
+    }
     char file[VRG_PATH_MAX + VRG_NAME_MAX + 8], real[VRG_PATH_MAX];
     int at = search_path_find(&s, name, 0, file, sizeof file);
     const vrg_plugin *result = NULL;
@@ -572,7 +627,7 @@ const vrg_plugin *_vrg_plugin_load(const char *name, const char *graph_path, con
                      "cannot load plugin '%s': %d plugin versions are loaded, the most a process holds", name, VRG_MAX_PLUGINS);
         goto done;
     }
-    vrg_plugin p = {0};
+    vrg_plugin p = {.keep_fd = -1};
     snprintf(p.name, sizeof p.name, "%s", name);
     snprintf(p.source, sizeof p.source, "%s", real);
     snprintf(p.path, sizeof p.path, "%s", real);
@@ -598,7 +653,7 @@ int _vrg_plugin_reload(const char *path, vrg_diag *d)
         _vrg_error(d, "plugin %s: %d plugin versions are loaded, the most a process holds", path, VRG_MAX_PLUGINS);
         return -1;
     }
-    vrg_plugin p = {0};
+    vrg_plugin p = {.keep_fd = -1};
     snprintf(p.name, sizeof p.name, "%s", old->name);
     snprintf(p.source, sizeof p.source, "%s", path);
     snprintf(p.path, sizeof p.path, "%s", path);
@@ -621,6 +676,8 @@ int _vrg_plugin_list(const vrg_plugin **out, int max, FILE *problems)
 {
     search_path s;
     search_path_build(&s, NULL, NULL);
+    if (s.failed)
+        fprintf(problems ? problems : stderr, "error: out of memory for the plugin search path: the listing is incomplete\n");
     FILE *devnull = problems ? NULL : fopen("/dev/null", "w");
     vrg_diag diag = {.out = problems ? problems : devnull ? devnull : stderr, .file = "plugins"};
     for (int i = 0; i < s.count; i++) {

@@ -43,7 +43,7 @@ static int clear_kept(vrg_graph *g, VkCommandBuffer cmd)
 
 static void copy_readbacks(vrg_graph *g, VkCommandBuffer cmd)
 {
-    vrg_barrier_rec b[VRG_MAX_RESOURCES] = {0};
+    vrg_barrier_rec b[VRG_MAX_RESOURCES + 1] = {0}; /* every read-back resource, and the shown one */
     int n = 0, want[VRG_MAX_RESOURCES], nw = 0;
     for (int i = 0; i < g->res_count; i++) {
         vrg_resource *r = &g->res[i];
