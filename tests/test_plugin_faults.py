@@ -128,8 +128,11 @@ def broken_files_case(d):
     graph = os.path.join(d, "paint.ini")
     save(graph, GRAPH % ("", "paint"))
     blob = open(good, "rb").read()
+    # e_phoff (bytes 32-39 of an ELF64 header) near 2^64: the sum with the
+    # table's size wraps; the check must not read before its buffer
+    wrapped = blob[:32] + (2 ** 64 - 16).to_bytes(8, "little") + blob[40:]
     for what, data, want in (("truncated", blob[:3000], "truncated: 3000 bytes"), ("garbage", b"garbage\n" * 100, "not an ELF file"),
-                             ("empty", b"", "not an ELF file")):
+                             ("empty", b"", "not an ELF file"), ("wrapping e_phoff", wrapped, "program headers")):
         with open(os.path.join(lib, "paint.so"), "wb") as f:
             f.write(data)
         for args in (["plugins", "paint"], ["check", graph, "--no-device"], ["render", graph, "--frames", "1", "--out", os.path.join(d, "o")]):
