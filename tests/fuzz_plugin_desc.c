@@ -64,7 +64,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     vrg_plugin_desc desc = {.abi_version = VRG_ABI_VERSION, .name = flags & 1 ? "p" : names[flags % NAMES], .kind = (vrg_plugin_kind)(flags >> 1 & 3),
                             .execute = flags & 8 ? NULL : noop, .params = flags & 16 ? NULL : params, .param_count = np,
                             .slots = flags & 32 ? NULL : slots, .slot_count = ns};
-    vrg_diag d = {.out = devnull, .file = "fuzz.ini"};
+    _vrg_diag d = {.out = devnull, .file = "fuzz.ini"};
     if (_vrg_plugin_check_desc(&desc, "p", "/fuzz/p.so", &d, 1) != 0)
         return 0;
     for (uint32_t i = 0; i < desc.param_count; i++) {

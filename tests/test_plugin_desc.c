@@ -19,7 +19,7 @@ static void expect(const char *what, const vrg_plugin_desc *desc, const char *wa
     char *text = NULL;
     size_t len = 0;
     FILE *mem = open_memstream(&text, &len);
-    vrg_diag d = {.out = mem, .file = "t.ini"};
+    _vrg_diag d = {.out = mem, .file = "t.ini"};
     int rc = _vrg_plugin_check_desc(desc, "p", "/plugins/p.so", &d, 3);
     fclose(mem);
     int ok = want ? rc != 0 && strstr(text, want) && strstr(text, "/plugins/p.so") && strstr(text, "t.ini:3:") : rc == 0 && len == 0;

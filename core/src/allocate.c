@@ -35,7 +35,7 @@ static VkImageUsageFlags usage_for(vrg_access a)
  * for readback and clears. Missing format support is an error, not a crash. */
 static int needed_usage(vrg_graph *g, int ri, VkImageUsageFlags *need)
 {
-    vrg_resource *r = &g->res[ri];
+    _vrg_resource *r = &g->res[ri];
     *need = 0;
     for (int k = 0; k < g->schedule_count; k++) {
         vrg_pass *p = &g->passes[g->schedule[k]];
@@ -54,7 +54,7 @@ static int needed_usage(vrg_graph *g, int ri, VkImageUsageFlags *need)
 
 /* An acceleration structure and its backing buffer, sized for r->size
  * instances. */
-static int create_accel(vrg_graph *g, vrg_resource *r)
+static int create_accel(vrg_graph *g, _vrg_resource *r)
 {
     vrg_context *ctx = g->ctx;
     VkDevice dev = ctx->dev.device;
@@ -113,7 +113,7 @@ static int create_objects(vrg_graph *g, int ri)
 {
     vrg_context *ctx = g->ctx;
     VkDevice dev = ctx->dev.device;
-    vrg_resource *r = &g->res[ri];
+    _vrg_resource *r = &g->res[ri];
     int copies = r->history ? 2 : 1;
     if (r->kind == VRG_ACCEL)
         return create_accel(g, r);
@@ -182,7 +182,7 @@ static int create_objects(vrg_graph *g, int ri)
     return 0;
 }
 
-static int bind_memory(vrg_graph *g, vrg_resource *r, int c, VkDeviceMemory mem, VkDeviceSize offset)
+static int bind_memory(vrg_graph *g, _vrg_resource *r, int c, VkDeviceMemory mem, VkDeviceSize offset)
 {
     VkResult res = r->kind == VRG_IMAGE ? vkBindImageMemory(g->ctx->dev.device, r->image[c], mem, offset)
                                         : vkBindBufferMemory(g->ctx->dev.device, r->buffer[c], mem, offset);
@@ -203,7 +203,7 @@ static int alloc_memory(vrg_graph *g, VkDeviceSize size, uint32_t type_bits, VkD
     return 0;
 }
 
-static void estimate_requirements(vrg_graph *g, vrg_resource *r)
+static void estimate_requirements(vrg_graph *g, _vrg_resource *r)
 {
     _vrg_resource_extent(g, r, &r->width, &r->height);
     uint64_t bytes = r->kind == VRG_IMAGE ? (uint64_t)r->width * r->height * _vrg_format_bytes(r->format)
@@ -215,7 +215,7 @@ static void estimate_requirements(vrg_graph *g, vrg_resource *r)
 int _vrg_allocate(vrg_graph *g)
 {
     for (int i = 0; i < g->res_count; i++) {
-        vrg_resource *r = &g->res[i];
+        _vrg_resource *r = &g->res[i];
         memset(r->sync, 0, sizeof r->sync);
         if (r->first_use < 0)
             continue;
@@ -235,7 +235,7 @@ int _vrg_allocate(vrg_graph *g)
             return -1;
     }
     for (int i = 0; i < g->res_count; i++) {
-        vrg_resource *r = &g->res[i];
+        _vrg_resource *r = &g->res[i];
         if (r->first_use < 0 || r->kind == VRG_ACCEL) /* accel: bound in create_accel */
             continue;
         int copies = r->history ? 2 : 1;
@@ -282,7 +282,7 @@ void _vrg_free_resources(vrg_graph *g)
         return;
     VkDevice dev = g->ctx->dev.device;
     for (int i = 0; i < g->res_count; i++) {
-        vrg_resource *r = &g->res[i];
+        _vrg_resource *r = &g->res[i];
         if (r->accel)
             g->ctx->as.destroy(dev, r->accel, NULL);
         r->accel = VK_NULL_HANDLE;

@@ -5,44 +5,44 @@
 #include <string.h>
 #include "internal.h"
 
-vrg_access_info _vrg_access_info_of(vrg_access a, vrg_resource_kind kind)
+_vrg_access_info _vrg_access_info_of(vrg_access a, vrg_resource_kind kind)
 {
     const VkPipelineStageFlags2 cs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
     const VkPipelineStageFlags2 xfer = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
     int img = kind == VRG_IMAGE;
     switch (a) {
     case VRG_ACCESS_SAMPLED:
-        return (vrg_access_info){cs, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 0};
+        return (_vrg_access_info){cs, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 0};
     case VRG_ACCESS_STORAGE_READ:
-        return (vrg_access_info){cs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT, img ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED, 0};
+        return (_vrg_access_info){cs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT, img ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED, 0};
     case VRG_ACCESS_STORAGE_WRITE:
-        return (vrg_access_info){cs, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, img ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED, 1};
+        return (_vrg_access_info){cs, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, img ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED, 1};
     case VRG_ACCESS_STORAGE_READ_WRITE:
-        return (vrg_access_info){cs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+        return (_vrg_access_info){cs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                                  img ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED, 1};
     case VRG_ACCESS_UNIFORM:
-        return (vrg_access_info){cs, VK_ACCESS_2_UNIFORM_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED, 0};
+        return (_vrg_access_info){cs, VK_ACCESS_2_UNIFORM_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED, 0};
     case VRG_ACCESS_TRANSFER_SRC:
-        return (vrg_access_info){xfer, VK_ACCESS_2_TRANSFER_READ_BIT, img ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED, 0};
+        return (_vrg_access_info){xfer, VK_ACCESS_2_TRANSFER_READ_BIT, img ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED, 0};
     case VRG_ACCESS_TRANSFER_DST:
-        return (vrg_access_info){xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, img ? VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED, 1};
+        return (_vrg_access_info){xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, img ? VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED, 1};
     case VRG_ACCESS_AS_BUILD:
-        return (vrg_access_info){VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+        return (_vrg_access_info){VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
                                  VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR | VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR,
                                  VK_IMAGE_LAYOUT_UNDEFINED, 1};
     case VRG_ACCESS_RAY_QUERY:
-        return (vrg_access_info){cs, VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR, VK_IMAGE_LAYOUT_UNDEFINED, 0};
+        return (_vrg_access_info){cs, VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR, VK_IMAGE_LAYOUT_UNDEFINED, 0};
     case VRG_ACCESS_TEXEL_READ:
-        return (vrg_access_info){cs, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED, 0};
+        return (_vrg_access_info){cs, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED, 0};
     }
-    return (vrg_access_info){cs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_IMAGE_LAYOUT_GENERAL, 0};
+    return (_vrg_access_info){cs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_IMAGE_LAYOUT_GENERAL, 0};
 }
 
 /* Write-after-write and write-after-read need an execution dependency on
  * every earlier access (and the last write made available); read-after-write
  * needs the write made visible to the reading stage; a layout change counts
  * as a write. Reads already made visible need nothing. */
-int _vrg_sync_use(vrg_sync *s, vrg_access_info need, int discard, vrg_barrier_rec *b)
+int _vrg_sync_use(_vrg_sync *s, _vrg_access_info need, int discard, _vrg_barrier_rec *b)
 {
     int is_image = need.layout != VK_IMAGE_LAYOUT_UNDEFINED;
     VkImageLayout old = discard ? VK_IMAGE_LAYOUT_UNDEFINED : s->layout;
@@ -97,19 +97,19 @@ int _vrg_copy_of(const vrg_graph *g, int res, int prev)
 
 /* One use of one resource copy: merges in the accesses of resources that
  * shared its memory before (aliasing) when its contents start anew. */
-static int barrier_for(vrg_graph *g, int ri, int copy, vrg_access access, vrg_barrier_rec *out)
+static int barrier_for(vrg_graph *g, int ri, int copy, vrg_access access, _vrg_barrier_rec *out)
 {
-    vrg_resource *r = &g->res[ri];
+    _vrg_resource *r = &g->res[ri];
     int transient = !r->history && !r->persistent;
     int discard = transient && !r->touched[copy];
-    vrg_sync before = r->sync[copy];
+    _vrg_sync before = r->sync[copy];
     r->touched[copy] = 1;
     int needed = _vrg_sync_use(&r->sync[copy], _vrg_access_info_of(access, r->kind), discard, out);
     out->res = ri;
     out->copy = copy;
     if (discard) {
         for (int i = 0; i < r->overlap_count; i++) {
-            const vrg_sync *o = &g->res[g->overlaps[r->overlap_first + i]].sync[0];
+            const _vrg_sync *o = &g->res[g->overlaps[r->overlap_first + i]].sync[0];
             out->src_stage |= o->write_stages | o->read_stages;
             out->src_access |= o->write_access;
             out->aliasing |= (o->write_stages | o->read_stages) != 0;
@@ -122,11 +122,11 @@ static int barrier_for(vrg_graph *g, int ri, int copy, vrg_access access, vrg_ba
     return needed;
 }
 
-int _vrg_pass_barriers(vrg_graph *g, vrg_pass *p, vrg_barrier_rec *out, int max)
+int _vrg_pass_barriers(vrg_graph *g, vrg_pass *p, _vrg_barrier_rec *out, int max)
 {
     int n = 0;
     for (int s = 0; s < (int)p->plugin->desc->slot_count && n < max; s++) {
-        const vrg_binding_ref *b = &p->slots[s];
+        const _vrg_binding_ref *b = &p->slots[s];
         if (b->res < 0 || (g->res[b->res].kind == VRG_ACCEL && !g->res[b->res].size)) /* an empty TLAS: nothing to order */
             continue;
         int copy = _vrg_copy_of(g, b->res, b->prev);
@@ -136,7 +136,7 @@ int _vrg_pass_barriers(vrg_graph *g, vrg_pass *p, vrg_barrier_rec *out, int max)
     return n;
 }
 
-int _vrg_resource_barrier(vrg_graph *g, int res, int copy, vrg_access access, vrg_barrier_rec *out)
+int _vrg_resource_barrier(vrg_graph *g, int res, int copy, vrg_access access, _vrg_barrier_rec *out)
 {
     return barrier_for(g, res, copy, access, out);
 }
@@ -164,13 +164,13 @@ static void flush_batch(vrg_graph *g, VkCommandBuffer cmd, const VkImageMemoryBa
     vkCmdPipelineBarrier2(cmd, &dep);
 }
 
-void _vrg_emit_barriers(vrg_graph *g, VkCommandBuffer cmd, const vrg_barrier_rec *b, int n)
+void _vrg_emit_barriers(vrg_graph *g, VkCommandBuffer cmd, const _vrg_barrier_rec *b, int n)
 {
     VkImageMemoryBarrier2 img[BARRIER_BATCH];
     VkBufferMemoryBarrier2 buf[BARRIER_BATCH];
     uint32_t ni = 0, nb = 0;
     for (int i = 0; i < n; i++) {
-        const vrg_resource *r = &g->res[b[i].res];
+        const _vrg_resource *r = &g->res[b[i].res];
         VkPipelineStageFlags2 src = b[i].src_stage ? b[i].src_stage : VK_PIPELINE_STAGE_2_NONE;
         if (r->kind == VRG_IMAGE)
             img[ni++] = (VkImageMemoryBarrier2){

@@ -74,7 +74,7 @@ uint32_t _vrg_format_channels(VkFormat f)
     return 4;
 }
 
-void _vrg_resource_extent(const vrg_graph *g, const vrg_resource *r, uint32_t *w, uint32_t *h)
+void _vrg_resource_extent(const vrg_graph *g, const _vrg_resource *r, uint32_t *w, uint32_t *h)
 {
     if (r->abs_width) {
         *w = r->abs_width;
@@ -87,7 +87,7 @@ void _vrg_resource_extent(const vrg_graph *g, const vrg_resource *r, uint32_t *w
 }
 
 /* A kept resource survives the frame: never aliased, never culled away. */
-static int kept(const vrg_resource *r) { return r->history || r->persistent; }
+static int kept(const _vrg_resource *r) { return r->history || r->persistent; }
 
 /* ---- cull ---- */
 
@@ -106,7 +106,7 @@ static void cull(vrg_graph *g)
 {
     int alive[VRG_MAX_PASSES] = {0};
     for (int i = 0; i < g->res_count; i++) {
-        vrg_resource *r = &g->res[i];
+        _vrg_resource *r = &g->res[i];
         if (r->is_output || r->readback || r->history)
             mark_alive(g, r->writer, alive);
     }
@@ -128,7 +128,7 @@ static int schedule(vrg_graph *g)
         if (p->culled)
             continue;
         for (int s = 0; s < (int)p->plugin->desc->slot_count; s++) {
-            vrg_binding_ref *b = &p->slots[s];
+            _vrg_binding_ref *b = &p->slots[s];
             if (vrg_slot(p, s)->dir == VRG_IN && b->res >= 0 && !b->prev && g->res[b->res].writer >= 0)
                 indeg[i]++;
         }
@@ -153,7 +153,7 @@ static int schedule(vrg_graph *g)
             if (p->culled || done[i])
                 continue;
             for (int s = 0; s < (int)p->plugin->desc->slot_count; s++) {
-                vrg_binding_ref *b = &p->slots[s];
+                _vrg_binding_ref *b = &p->slots[s];
                 if (vrg_slot(p, s)->dir == VRG_IN && b->res >= 0 && !b->prev && g->res[b->res].writer == pick)
                     indeg[i]--;
             }
@@ -169,7 +169,7 @@ static int schedule(vrg_graph *g)
 
 /* ---- lifetimes, in schedule order ---- */
 
-static void use_at(vrg_resource *r, int order)
+static void use_at(_vrg_resource *r, int order)
 {
     if (r->first_use < 0 || order < r->first_use)
         r->first_use = order;
@@ -191,7 +191,7 @@ static void lifetimes(vrg_graph *g)
         if (g->res[i].internal_owner >= 0 && g->passes[g->res[i].internal_owner].order >= 0)
             use_at(&g->res[i], g->passes[g->res[i].internal_owner].order);
     for (int i = 0; i < g->res_count; i++) {
-        vrg_resource *r = &g->res[i];
+        _vrg_resource *r = &g->res[i];
         if (r->first_use < 0)
             continue;
         /* read back after the last pass; kept resources live all frame; a
@@ -216,12 +216,12 @@ int _vrg_compile(vrg_graph *g)
 
 /* ---- aliasing: first-fit placement by decreasing size ---- */
 
-static int lifetimes_overlap(const vrg_resource *a, const vrg_resource *b)
+static int lifetimes_overlap(const _vrg_resource *a, const _vrg_resource *b)
 {
     return a->first_use <= b->last_use && b->first_use <= a->last_use;
 }
 
-static int memory_overlap(const vrg_resource *a, const vrg_resource *b)
+static int memory_overlap(const _vrg_resource *a, const _vrg_resource *b)
 {
     return a->block == b->block && a->offset < b->offset + b->req.size && b->offset < a->offset + a->req.size;
 }
@@ -245,7 +245,7 @@ static int by_size_desc(const void *x, const void *y)
  * their bits, so blocks hold disjoint non-empty sets of memory types: there
  * are never more than VK_MAX_MEMORY_TYPES. Vulkan guarantees a resource at
  * least one allowed type; one without any is reported, not guessed at. */
-static int block_for(vrg_graph *g, const vrg_resource *r)
+static int block_for(vrg_graph *g, const _vrg_resource *r)
 {
     if (!r->req.memoryTypeBits) {
         _vrg_error(&g->diag, "resource '%s': the device allows no memory type for it", r->name);
@@ -256,13 +256,13 @@ static int block_for(vrg_graph *g, const vrg_resource *r)
         if (g->blocks[b].type_bits & r->req.memoryTypeBits)
             break;
     if (b == g->block_count)
-        g->blocks[g->block_count++] = (vrg_heap_block){.type_bits = r->req.memoryTypeBits};
+        g->blocks[g->block_count++] = (_vrg_heap_block){.type_bits = r->req.memoryTypeBits};
     g->blocks[b].type_bits &= r->req.memoryTypeBits;
     return b;
 }
 
 /* Lowest offset in block b that clashes with no placed resource alive at the same time. */
-static VkDeviceSize lowest_free_offset(const vrg_graph *g, const vrg_resource *r, int b, const sized_res *placed, int placed_count)
+static VkDeviceSize lowest_free_offset(const vrg_graph *g, const _vrg_resource *r, int b, const sized_res *placed, int placed_count)
 {
     VkDeviceSize align = r->req.alignment ? r->req.alignment : 1;
     VkDeviceSize offset = 0;
@@ -270,7 +270,7 @@ static VkDeviceSize lowest_free_offset(const vrg_graph *g, const vrg_resource *r
         moved = 0;
         offset = (offset + align - 1) / align * align;
         for (int j = 0; j < placed_count; j++) {
-            const vrg_resource *o = &g->res[placed[j].index];
+            const _vrg_resource *o = &g->res[placed[j].index];
             if (o->block != b || !lifetimes_overlap(r, o))
                 continue;
             if (offset < o->offset + o->req.size && o->offset < offset + r->req.size) {
@@ -289,7 +289,7 @@ static int list_overlaps(vrg_graph *g, const sized_res *placed, int placed_count
 {
     g->overlap_used = 0;
     for (int k = 0; k < placed_count; k++) {
-        vrg_resource *r = &g->res[placed[k].index];
+        _vrg_resource *r = &g->res[placed[k].index];
         r->overlap_first = g->overlap_used;
         for (int j = 0; j < placed_count; j++) {
             if (j == k || !memory_overlap(r, &g->res[placed[j].index]))
@@ -319,7 +319,7 @@ int _vrg_plan_aliasing(vrg_graph *g)
     g->overlap_used = 0;
     g->naive_bytes = g->aliased_bytes = g->history_bytes = 0;
     for (int i = 0; i < g->res_count; i++) {
-        vrg_resource *r = &g->res[i];
+        _vrg_resource *r = &g->res[i];
         r->block = -1;
         r->offset = 0;
         r->overlap_first = r->overlap_count = 0;
@@ -334,7 +334,7 @@ int _vrg_plan_aliasing(vrg_graph *g)
     }
     qsort(order, (size_t)n, sizeof order[0], by_size_desc);
     for (int k = 0; k < n; k++) {
-        vrg_resource *r = &g->res[order[k].index];
+        _vrg_resource *r = &g->res[order[k].index];
         int b = block_for(g, r);
         if (b < 0)
             return -1;

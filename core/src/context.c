@@ -380,7 +380,7 @@ static double seconds_now(void)
     return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
-vrg_wait_result _vrg_wait_fence(vrg_context *ctx, VkFence fence, double *waited_s)
+_vrg_wait_result _vrg_wait_fence(vrg_context *ctx, VkFence fence, double *waited_s)
 {
     /* slices short enough that an interrupt is seen at once */
     const uint64_t slice_ns = 50u * 1000u * 1000u;

@@ -17,7 +17,7 @@
 #include <unistd.h>
 #include "internal.h"
 
-static _Thread_local vrg_running running;
+static _Thread_local _vrg_running running;
 static struct sigaction previous[NSIG];
 static const int fatal_signals[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT};
 /* The private folder of a plugin being loaded (plugin_loader.c), removed if
@@ -90,19 +90,19 @@ static void install(void)
         sigaction(fatal_signals[i], &sa, &previous[fatal_signals[i]]);
 }
 
-vrg_running _vrg_running_enter(const char *what, const char *pass, const vrg_plugin *plugin)
+_vrg_running _vrg_running_enter(const char *what, const char *pass, const _vrg_plugin *plugin)
 {
     static int installed;
     if (!installed) {
         installed = 1;
         install();
     }
-    vrg_running before = running;
-    running = (vrg_running){.what = what, .pass = pass, .plugin = plugin->name, .file = plugin->source};
+    _vrg_running before = running;
+    running = (_vrg_running){.what = what, .pass = pass, .plugin = plugin->name, .file = plugin->source};
     return before;
 }
 
-void _vrg_running_leave(vrg_running before) { running = before; }
+void _vrg_running_leave(_vrg_running before) { running = before; }
 
 void _vrg_crash_cleanup_set(const char *dir, const char *file)
 {

@@ -7,9 +7,9 @@
 #include <string.h>
 #include "internal.h"
 
-static FILE *diag_out(vrg_diag *d) { return d->out ? d->out : stderr; }
+static FILE *diag_out(_vrg_diag *d) { return d->out ? d->out : stderr; }
 
-static void add(vrg_diag *d, int line, const char *text)
+static void add(_vrg_diag *d, int line, const char *text)
 {
     if (!d->collect) {
         fputs(text, diag_out(d));
@@ -17,7 +17,7 @@ static void add(vrg_diag *d, int line, const char *text)
     }
     if (d->count == d->cap) {
         int cap = d->cap ? d->cap * 2 : 16;
-        vrg_diag_entry *grown = realloc(d->entries, (size_t)cap * sizeof *grown);
+        _vrg_diag_entry *grown = realloc(d->entries, (size_t)cap * sizeof *grown);
         if (!grown) { /* printed now rather than lost */
             fputs(text, diag_out(d));
             return;
@@ -30,13 +30,13 @@ static void add(vrg_diag *d, int line, const char *text)
         fputs(text, diag_out(d));
         return;
     }
-    d->entries[d->count] = (vrg_diag_entry){line, d->count, copy};
+    d->entries[d->count] = (_vrg_diag_entry){line, d->count, copy};
     d->count++;
 }
 
 /* Messages are as long as they need: a file name of any length, the whole
  * message after it. */
-static void vadd(vrg_diag *d, int line, const char *kind, const char *hint, const char *fmt, va_list ap)
+static void vadd(_vrg_diag *d, int line, const char *kind, const char *hint, const char *fmt, va_list ap)
 {
     char *file = NULL, *body = NULL, *text = NULL;
     size_t fn = 0, bn = 0, tn = 0;
@@ -67,7 +67,7 @@ static void vadd(vrg_diag *d, int line, const char *kind, const char *hint, cons
     free(text);
 }
 
-void _vrg_error_at(vrg_diag *d, int line, const char *hint, const char *fmt, ...)
+void _vrg_error_at(_vrg_diag *d, int line, const char *hint, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
@@ -76,7 +76,7 @@ void _vrg_error_at(vrg_diag *d, int line, const char *hint, const char *fmt, ...
     d->errors++;
 }
 
-void _vrg_error(vrg_diag *d, const char *fmt, ...)
+void _vrg_error(_vrg_diag *d, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
@@ -85,7 +85,7 @@ void _vrg_error(vrg_diag *d, const char *fmt, ...)
     d->errors++;
 }
 
-void _vrg_note_at(vrg_diag *d, int line, const char *fmt, ...)
+void _vrg_note_at(_vrg_diag *d, int line, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
@@ -95,13 +95,13 @@ void _vrg_note_at(vrg_diag *d, int line, const char *fmt, ...)
 
 static int by_line(const void *a, const void *b)
 {
-    const vrg_diag_entry *x = a, *y = b;
+    const _vrg_diag_entry *x = a, *y = b;
     if (x->line != y->line)
         return x->line < y->line ? -1 : 1;
     return x->seq - y->seq;
 }
 
-void _vrg_diag_flush(vrg_diag *d)
+void _vrg_diag_flush(_vrg_diag *d)
 {
     if (d->count)
         qsort(d->entries, (size_t)d->count, sizeof *d->entries, by_line);

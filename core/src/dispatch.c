@@ -7,7 +7,7 @@
 #include <string.h>
 #include "internal.h"
 
-typedef struct vrg_pipeline {
+typedef struct _vrg_pipeline {
     char path[VRG_PATH_MAX];
     char shader[256]; /* as the pass named it */
     char *deps;       /* files it was compiled from (shader.c), for hot reload */
@@ -18,8 +18,8 @@ typedef struct vrg_pipeline {
     VkDescriptorSetLayout set_layout;
     VkPipelineLayout layout;
     VkPipeline pipeline;
-    struct vrg_pipeline *next;
-} vrg_pipeline;
+    struct _vrg_pipeline *next;
+} _vrg_pipeline;
 
 static VkDescriptorType descriptor_type(vrg_resource_kind kind, vrg_access a)
 {
@@ -35,11 +35,11 @@ static VkDescriptorType descriptor_type(vrg_resource_kind kind, vrg_access a)
 /* Compiles pl->path with pl->defines and makes its layouts and pipeline.
  * On failure pl's Vulkan objects stay unset and -1 is returned after the
  * compile errors (FILE:LINE) went to the graph's diagnostics. */
-static int build_pipeline(vrg_pass *p, vrg_pipeline *pl)
+static int build_pipeline(vrg_pass *p, _vrg_pipeline *pl)
 {
     vrg_context *ctx = p->graph->ctx;
     VkDevice dev = ctx->dev.device;
-    vrg_shader_module sm;
+    _vrg_shader_module sm;
     FILE *diag = p->graph->diag.out ? p->graph->diag.out : stderr;
     if (_vrg_shader_compile(ctx, pl->path, pl->defines, &sm, diag) != 0) {
         vrg_pass_error(p, "shader %s failed to compile", pl->path);
@@ -87,7 +87,7 @@ static int build_pipeline(vrg_pass *p, vrg_pipeline *pl)
     return 0;
 }
 
-static void free_pipeline_objects(VkDevice dev, vrg_pipeline *pl)
+static void free_pipeline_objects(VkDevice dev, _vrg_pipeline *pl)
 {
     vkDestroyPipeline(dev, pl->pipeline, NULL);
     vkDestroyPipelineLayout(dev, pl->layout, NULL);
@@ -95,18 +95,18 @@ static void free_pipeline_objects(VkDevice dev, vrg_pipeline *pl)
     free(pl->deps);
 }
 
-static vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *defines, const VkDescriptorType *types, uint32_t count)
+static _vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *defines, const VkDescriptorType *types, uint32_t count)
 {
     if (!defines)
         defines = "";
-    if (strlen(shader) >= sizeof((vrg_pipeline *)0)->shader || strlen(defines) >= sizeof((vrg_pipeline *)0)->defines) {
+    if (strlen(shader) >= sizeof((_vrg_pipeline *)0)->shader || strlen(defines) >= sizeof((_vrg_pipeline *)0)->defines) {
         vrg_pass_error(p, "shader name '%.40s...' or its defines are too long (at most 255 characters each)", shader);
         return NULL;
     }
     /* looked up by the name the pass gave: a shader is resolved to a file
      * once, when its pipeline is built, not with file-system calls on every
      * dispatch of every frame */
-    for (vrg_pipeline *pl = p->pipelines; pl; pl = pl->next)
+    for (_vrg_pipeline *pl = p->pipelines; pl; pl = pl->next)
         if (strcmp(pl->shader, shader) == 0 && strcmp(pl->defines, defines) == 0 && pl->count == count && memcmp(pl->types, types, count * sizeof *types) == 0)
             return pl;
     char path[VRG_PATH_MAX];
@@ -114,7 +114,7 @@ static vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *d
         vrg_pass_error(p, "shader '%s' not found (searched the plugin's folder, $VOXRG_SHADER_PATH, shaders/)", shader);
         return NULL;
     }
-    vrg_pipeline *pl = calloc(1, sizeof *pl);
+    _vrg_pipeline *pl = calloc(1, sizeof *pl);
     snprintf(pl->path, sizeof pl->path, "%s", path);
     snprintf(pl->shader, sizeof pl->shader, "%s", shader);
     snprintf(pl->defines, sizeof pl->defines, "%s", defines);
@@ -147,7 +147,7 @@ int _vrg_pipelines_reload(vrg_pass *p, char (*changed)[VRG_PATH_MAX], int count)
 {
     VkDevice dev = p->graph->ctx->dev.device;
     int swapped = 0, failed = 0;
-    for (vrg_pipeline *pl = p->pipelines; pl; pl = pl->next) {
+    for (_vrg_pipeline *pl = p->pipelines; pl; pl = pl->next) {
         int hit = 0;
         for (int i = 0; i < count && !hit; i++)
             hit = uses_file(pl->deps, changed[i]);
@@ -155,7 +155,7 @@ int _vrg_pipelines_reload(vrg_pass *p, char (*changed)[VRG_PATH_MAX], int count)
             continue;
         /* build the new version beside the old; frames are synchronous, so
          * the old objects are idle by now and can go once it works */
-        vrg_pipeline fresh = *pl;
+        _vrg_pipeline fresh = *pl;
         fresh.deps = NULL;
         fresh.pipeline = VK_NULL_HANDLE;
         fresh.layout = VK_NULL_HANDLE;
@@ -165,7 +165,7 @@ int _vrg_pipelines_reload(vrg_pass *p, char (*changed)[VRG_PATH_MAX], int count)
             continue;
         }
         free_pipeline_objects(dev, pl);
-        vrg_pipeline *next = pl->next;
+        _vrg_pipeline *next = pl->next;
         *pl = fresh;
         pl->next = next;
         _vrg_graph_watch_pipeline(p->graph, pl->deps);
@@ -177,7 +177,7 @@ int _vrg_pipelines_reload(vrg_pass *p, char (*changed)[VRG_PATH_MAX], int count)
 
 void _vrg_pipelines_deps(vrg_pass *p, void (*fn)(void *user, const char *path), void *user)
 {
-    for (vrg_pipeline *pl = p->pipelines; pl; pl = pl->next)
+    for (_vrg_pipeline *pl = p->pipelines; pl; pl = pl->next)
         for (const char *d = pl->deps; d && *d;) {
             const char *end = strchr(d, '\n');
             char path[VRG_PATH_MAX];
@@ -191,7 +191,7 @@ void _vrg_pipelines_destroy(vrg_pass *p)
 {
     VkDevice dev = p->graph->ctx ? p->graph->ctx->dev.device : VK_NULL_HANDLE;
     while (p->pipelines) {
-        vrg_pipeline *pl = p->pipelines;
+        _vrg_pipeline *pl = p->pipelines;
         p->pipelines = pl->next;
         free_pipeline_objects(dev, pl);
         free(pl);
@@ -253,9 +253,9 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
     if (d->push_size > 128)
         return vrg_pass_error(p, "push constants of %u bytes (at most 128)", d->push_size);
     /* A bound acceleration structure selects trace.glsl's ray-query backend. */
-    char defines[sizeof ((vrg_pipeline *)0)->defines];
-    if (d->shader && strlen(d->shader) >= sizeof ((vrg_pipeline *)0)->shader)
-        return vrg_pass_error(p, "shader name of %zu characters (at most %zu)", strlen(d->shader), sizeof ((vrg_pipeline *)0)->shader - 1);
+    char defines[sizeof ((_vrg_pipeline *)0)->defines];
+    if (d->shader && strlen(d->shader) >= sizeof ((_vrg_pipeline *)0)->shader)
+        return vrg_pass_error(p, "shader name of %zu characters (at most %zu)", strlen(d->shader), sizeof ((_vrg_pipeline *)0)->shader - 1);
     /* room for the ray-query backend's defines added below */
     size_t max_defines = sizeof defines - sizeof " TRACE_RAYQUERY TLAS_BINDING=99";
     if (d->defines && strlen(d->defines) > max_defines)
@@ -267,11 +267,11 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
             snprintf(defines + len, sizeof defines - len, " TRACE_RAYQUERY TLAS_BINDING=%d", i);
             break;
         }
-    vrg_pipeline *pl = get_pipeline(p, d->shader, defines, types, (uint32_t)n);
+    _vrg_pipeline *pl = get_pipeline(p, d->shader, defines, types, (uint32_t)n);
     if (!pl)
         return -1;
 
-    vrg_barrier_rec bars[VRG_MAX_BINDINGS];
+    _vrg_barrier_rec bars[VRG_MAX_BINDINGS];
     int nb = 0;
     VkWriteDescriptorSet w[VRG_MAX_BINDINGS];
     VkDescriptorImageInfo ii[VRG_MAX_BINDINGS];
@@ -279,7 +279,7 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
     VkWriteDescriptorSetAccelerationStructureKHR ai[VRG_MAX_BINDINGS];
     VkBufferView tv[VRG_MAX_BINDINGS];
     for (int i = 0; i < n; i++) {
-        vrg_resource *r = &g->res[b[i].res];
+        _vrg_resource *r = &g->res[b[i].res];
         int copy = _vrg_copy_of(g, b[i].res, b[i].prev);
         if (_vrg_resource_barrier(g, b[i].res, copy, b[i].access, &bars[nb]))
             nb++;
@@ -290,7 +290,7 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
                 .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR, .accelerationStructureCount = 1, .pAccelerationStructures = &r->accel};
             w[i].pNext = &ai[i];
         } else if (r->kind == VRG_IMAGE) {
-            vrg_access_info info = _vrg_access_info_of(b[i].access, VRG_IMAGE);
+            _vrg_access_info info = _vrg_access_info_of(b[i].access, VRG_IMAGE);
             VkSampler sampler = r->mips > 1 ? g->ctx->sampler_mips : g->ctx->sampler_linear;
             ii[i] = (VkDescriptorImageInfo){.sampler = sampler, .imageView = r->view[copy], .imageLayout = info.layout};
             w[i].pImageInfo = &ii[i];

@@ -13,7 +13,7 @@ static int create_passes(vrg_graph *g)
 {
     for (int k = 0; k < g->schedule_count; k++) {
         vrg_pass *p = &g->passes[g->schedule[k]];
-        vrg_running before = _vrg_running_enter("create", p->name, p->plugin);
+        _vrg_running before = _vrg_running_enter("create", p->name, p->plugin);
         int rc = p->plugin->desc->create ? p->plugin->desc->create(p) : 0;
         _vrg_running_leave(before);
         if (rc != 0) {
@@ -32,7 +32,7 @@ static int resize_passes(vrg_graph *g)
 {
     for (int k = 0; k < g->schedule_count; k++) {
         vrg_pass *p = &g->passes[g->schedule[k]];
-        vrg_running before = _vrg_running_enter("resize", p->name, p->plugin);
+        _vrg_running before = _vrg_running_enter("resize", p->name, p->plugin);
         int rc = p->plugin->desc->resize ? p->plugin->desc->resize(p) : 0;
         _vrg_running_leave(before);
         if (rc != 0) {
@@ -71,7 +71,7 @@ static int readback_buffer(vrg_graph *g)
     VkDevice dev = g->ctx->dev.device;
     VkDeviceSize size = 0;
     for (int i = 0; i < g->res_count; i++) {
-        vrg_resource *r = &g->res[i];
+        _vrg_resource *r = &g->res[i];
         if (r->first_use < 0 || !(r->is_output || r->readback))
             continue;
         g->readback_offset[i] = size;
@@ -120,13 +120,13 @@ int vrg_graph_load(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph **out
 {
     *out = NULL;
     vrg_graph *g = calloc(1, sizeof *g);
-    vrg_ast *ast = calloc(1, sizeof *ast);
+    _vrg_ast *ast = calloc(1, sizeof *ast);
     g->ctx = ctx;
     snprintf(g->path, sizeof g->path, "%s", desc->path ? desc->path : "<graph>");
     g->desc = *desc;
     g->shown = -1;
     g->loaded_from_file = desc->path && !desc->text;
-    g->diag = (vrg_diag){.out = desc->diag, .file = g->path, .collect = 1};
+    g->diag = (_vrg_diag){.out = desc->diag, .file = g->path, .collect = 1};
     for (int i = 0; i < VRG_MAX_PASSES; i++)
         g->pass_ms[i] = -1;
     g->output = -1;
@@ -183,7 +183,7 @@ void vrg_graph_destroy(vrg_graph *g)
         for (int i = 0; i < g->pass_count; i++) {
             vrg_pass *p = &g->passes[i];
             if (p->created && p->plugin->desc->destroy) {
-                vrg_running before = _vrg_running_enter("destroy", p->name, p->plugin);
+                _vrg_running before = _vrg_running_enter("destroy", p->name, p->plugin);
                 p->plugin->desc->destroy(p);
                 _vrg_running_leave(before);
             }
@@ -474,7 +474,7 @@ static float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : powf(
 
 static int showable(const vrg_graph *g, int i)
 {
-    const vrg_resource *r = &g->res[i];
+    const _vrg_resource *r = &g->res[i];
     return r->kind == VRG_IMAGE && r->first_use >= 0 && r->writer >= 0 && r->internal_owner < 0 && !r->dummy;
 }
 
@@ -519,7 +519,7 @@ int vrg_graph_image(vrg_graph *g, const char *name, VkImage *image, VkExtent2D *
     int i = find_readable(g, name);
     if (i < 0)
         return -1;
-    vrg_resource *r = &g->res[i];
+    _vrg_resource *r = &g->res[i];
     if (r->kind != VRG_IMAGE) {
         _vrg_error(&g->diag, "resource '%s' is not an image", name);
         return -1;
@@ -537,7 +537,7 @@ int vrg_graph_read(vrg_graph *g, const char *name, vrg_image_data *out)
     int i = find_readable(g, name);
     if (i < 0)
         return -1;
-    vrg_resource *r = &g->res[i];
+    _vrg_resource *r = &g->res[i];
     if (r->kind != VRG_IMAGE) {
         _vrg_error(&g->diag, "resource '%s' is a buffer: use vrg_graph_read_buffer", name);
         return -1;
@@ -605,7 +605,7 @@ int vrg_graph_read_buffer(vrg_graph *g, const char *name, void **data, uint64_t 
     int i = find_readable(g, name);
     if (i < 0)
         return -1;
-    vrg_resource *r = &g->res[i];
+    _vrg_resource *r = &g->res[i];
     if (r->kind != VRG_BUFFER) {
         _vrg_error(&g->diag, "resource '%s' is an image: use vrg_graph_read", name);
         return -1;
@@ -676,7 +676,7 @@ vrg_memory_stats vrg_graph_memory(const vrg_graph *g)
 {
     vrg_memory_stats s = {.naive_bytes = g->naive_bytes, .aliased_bytes = g->aliased_bytes, .history_bytes = g->history_bytes};
     for (int i = 0; i < g->res_count; i++) {
-        const vrg_resource *r = &g->res[i];
+        const _vrg_resource *r = &g->res[i];
         if (r->block < 0 || r->first_use < 0)
             continue;
         s.transient_count++;

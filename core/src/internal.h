@@ -19,22 +19,22 @@
 #define VRG_MAX_PLUGINS 128
 
 /* ---- diagnostics (diag.c) ---- */
-typedef struct vrg_diag_entry {
+typedef struct _vrg_diag_entry {
     int line, seq;
     char *text;
-} vrg_diag_entry;
-typedef struct vrg_diag {
+} _vrg_diag_entry;
+typedef struct _vrg_diag {
     FILE *out;
     const char *file;
     int errors;
     int collect; /* hold messages until _vrg_diag_flush, then print sorted by line */
-    vrg_diag_entry *entries;
+    _vrg_diag_entry *entries;
     int count, cap;
-} vrg_diag;
-void _vrg_error_at(vrg_diag *d, int line, const char *hint, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
-void _vrg_error(vrg_diag *d, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-void _vrg_note_at(vrg_diag *d, int line, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-void _vrg_diag_flush(vrg_diag *d);
+} _vrg_diag;
+void _vrg_error_at(_vrg_diag *d, int line, const char *hint, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
+void _vrg_error(_vrg_diag *d, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void _vrg_note_at(_vrg_diag *d, int line, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+void _vrg_diag_flush(_vrg_diag *d);
 
 /* ---- context (context.c) ---- */
 struct vrg_context {
@@ -67,13 +67,13 @@ struct vrg_context {
 /* Waits for fence in short slices, giving up after the context's GPU
  * timeout or an interrupt (vrg_interrupt) plus its grace; either marks the
  * device busy. *waited_s: the seconds waited. */
-typedef enum { VRG_WAIT_DONE, VRG_WAIT_TIMEOUT, VRG_WAIT_INTERRUPTED, VRG_WAIT_FAILED } vrg_wait_result;
-vrg_wait_result _vrg_wait_fence(vrg_context *ctx, VkFence fence, double *waited_s);
+typedef enum { VRG_WAIT_DONE, VRG_WAIT_TIMEOUT, VRG_WAIT_INTERRUPTED, VRG_WAIT_FAILED } _vrg_wait_result;
+_vrg_wait_result _vrg_wait_fence(vrg_context *ctx, VkFence fence, double *waited_s);
 void _vrg_name_object(vrg_context *ctx, VkObjectType type, uint64_t handle, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
 int _vrg_find_memory_type(const vrg_context *ctx, uint32_t bits, VkMemoryPropertyFlags want);
 
 /* ---- plugin loading (plugin_loader.c) ---- */
-typedef struct vrg_plugin {
+typedef struct _vrg_plugin {
     char name[VRG_NAME_MAX];
     char path[VRG_PATH_MAX];   /* the file loaded: the source, or a reload's private copy */
     char source[VRG_PATH_MAX]; /* the file the build writes (hot reload watches it) */
@@ -83,22 +83,22 @@ typedef struct vrg_plugin {
     int keep_fd;                 /* its in-memory copy (a noexec $TMPDIR), else -1 */
     unsigned generation; /* load order: the highest of a name is its current version */
     int users;           /* passes of live graphs running it (_vrg_plugin_acquire) */
-} vrg_plugin;
+} _vrg_plugin;
 /* Finds NAME on the search path (plugin_loader.c's header comment) and loads
  * a private copy of it; NULL after reporting at `line`. A file already loaded
  * is not loaded again. `graph_path` is the graph file (for its plugin_path,
  * ':'-separated folders relative to it, NULL if none). */
-const vrg_plugin *_vrg_plugin_load(const char *name, const char *graph_path, const char *plugin_path, vrg_diag *d, int line);
+const _vrg_plugin *_vrg_plugin_load(const char *name, const char *graph_path, const char *plugin_path, _vrg_diag *d, int line);
 /* The checks a plugin's descriptor must pass (also run by the fuzzer). */
-int _vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const char *path, vrg_diag *d, int line);
+int _vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const char *path, _vrg_diag *d, int line);
 
 /* ---- crash reports (crash.c) ---- */
 /* What plugin code this thread runs now: a fatal signal names it. */
-typedef struct vrg_running {
+typedef struct _vrg_running {
     const char *what, *pass, *plugin, *file;
-} vrg_running;
-vrg_running _vrg_running_enter(const char *what, const char *pass, const vrg_plugin *plugin);
-void _vrg_running_leave(vrg_running before);
+} _vrg_running;
+_vrg_running _vrg_running_enter(const char *what, const char *pass, const _vrg_plugin *plugin);
+void _vrg_running_leave(_vrg_running before);
 /* A plugin copy being loaded, removed if loading dies (NULLs: none). */
 void _vrg_crash_cleanup_set(const char *dir, const char *file);
 /* capture.c: called where the runtime records, while g->capture is set */
@@ -107,49 +107,49 @@ void _vrg_capture_dispatch(struct vrg_capture *c, VkPipeline pipeline, VkPipelin
                           const VkWriteDescriptorSet *writes, const void *push, uint32_t push_size, const uint32_t groups[3]);
 /* A pass runs the plugin / no longer does. A superseded version (a hot
  * reload loaded a newer one) is unloaded when its last user goes. */
-void _vrg_plugin_acquire(const vrg_plugin *p);
-void _vrg_plugin_release(const vrg_plugin *p);
+void _vrg_plugin_acquire(const _vrg_plugin *p);
+void _vrg_plugin_release(const _vrg_plugin *p);
 /* A rebuilt plugin file becomes the newest version of its plugin (hot reload). */
-int _vrg_plugin_reload(const char *source_path, vrg_diag *d);
+int _vrg_plugin_reload(const char *source_path, _vrg_diag *d);
 /* Every plugin on the search path (for `voxrg plugins`), the current
  * version of each file; returns how many there are (more than max: only max
  * filled). Files that fail to load are reported to `problems` (NULL: not). */
-int _vrg_plugin_list(const vrg_plugin **out, int max, FILE *problems);
+int _vrg_plugin_list(const _vrg_plugin **out, int max, FILE *problems);
 
 /* ---- parse (parse.c): the file as written, with line numbers ---- */
-typedef struct vrg_key {
+typedef struct _vrg_key {
     char name[VRG_NAME_MAX];
     char value[256];
     int line;
-    int section_index; /* index into vrg_ast.sections */
-} vrg_key;
-typedef struct vrg_section {
+    int section_index; /* index into _vrg_ast.sections */
+} _vrg_key;
+typedef struct _vrg_section {
     char name[256]; /* longer than any line that can be read */
     int line;
-} vrg_section;
-typedef struct vrg_ast {
-    vrg_section sections[VRG_MAX_PASSES + 64];
+} _vrg_section;
+typedef struct _vrg_ast {
+    _vrg_section sections[VRG_MAX_PASSES + 64];
     int section_count;
-    vrg_key keys[VRG_MAX_KEYS];
+    _vrg_key keys[VRG_MAX_KEYS];
     int key_count;
     int syntax_error_line; /* inih's first error, 0 if none */
     int fatal;             /* a limit or encoding error: the file was not read whole */
-} vrg_ast;
-int _vrg_parse(const char *path, const char *text, vrg_ast *ast, vrg_diag *d);
+} _vrg_ast;
+int _vrg_parse(const char *path, const char *text, _vrg_ast *ast, _vrg_diag *d);
 
 /* ---- the validated graph ---- */
 enum { VRG_RES_GRAPH = 0, VRG_RES_INTERNAL = 1 };
 
-typedef struct vrg_sync {
+typedef struct _vrg_sync {
     VkImageLayout layout;
     VkPipelineStageFlags2 write_stages; /* stages of the last write */
     VkAccessFlags2 write_access;
     VkPipelineStageFlags2 read_stages;  /* stages that read since the last write */
     VkPipelineStageFlags2 visible_stages; /* stages the last write is visible to */
     VkAccessFlags2 visible_access;
-} vrg_sync;
+} _vrg_sync;
 
-typedef struct vrg_resource {
+typedef struct _vrg_resource {
     char name[VRG_NAME_MAX + VRG_NAME_MAX + 2];
     int line;                /* [resource] section or first mention */
     vrg_resource_kind kind;
@@ -188,63 +188,63 @@ typedef struct vrg_resource {
     int block;               /* alias heap index, -1 own memory */
     VkDeviceSize offset;
     int overlap_first, overlap_count; /* resources sharing memory: a run of vrg_graph.overlaps */
-    vrg_sync sync[2];
+    _vrg_sync sync[2];
     int touched[2];          /* used already this frame (else its contents are discarded) */
     int dummy;               /* 1x1 stand-in bound to an unconnected optional input */
-} vrg_resource;
+} _vrg_resource;
 
-typedef struct vrg_binding_ref {
+typedef struct _vrg_binding_ref {
     int bad;       /* the graph tried to connect it and failed: already reported */
     int res;       /* resource index, -1 unconnected (optional inputs get a dummy) */
     int dummy;     /* res is the 1x1 stand-in: the slot reports unconnected */
     int prev;      /* reads last frame's copy (@prev) */
     int line;
-} vrg_binding_ref;
+} _vrg_binding_ref;
 
 struct vrg_pass {
     char name[VRG_NAME_MAX];
     int line;
     int is_scene;
-    const vrg_plugin *plugin;
+    const _vrg_plugin *plugin;
     double params[VRG_MAX_PARAMS];
-    vrg_binding_ref slots[VRG_MAX_SLOTS];
+    _vrg_binding_ref slots[VRG_MAX_SLOTS];
     int culled;
     int order;                /* position in schedule, -1 culled */
     vrg_graph *graph;
     void *user;
     int created;
     /* shader pipelines cached by the dispatch helper */
-    struct vrg_pipeline *pipelines;
+    struct _vrg_pipeline *pipelines;
     int failed;               /* an error during execute: frame fails */
     int plugin_rebuilt;       /* its plugin's file was rebuilt: vrg_graph_reload loads it */
     uint64_t buffer_size[VRG_MAX_SLOTS]; /* vrg_pass_set_buffer_size, 0 if not set */
-    struct vrg_param_value *strings;     /* string parameter values, in file order */
+    struct _vrg_param_value *strings;     /* string parameter values, in file order */
     int string_count;
-    struct vrg_host_buffer *host_buffers;
-    struct vrg_pass_figure *stats; /* vrg_pass_stat: this frame's, grown as named */
+    struct _vrg_host_buffer *host_buffers;
+    struct _vrg_pass_figure *stats; /* vrg_pass_stat: this frame's, grown as named */
     int stat_count, stat_cap;
     VkCommandBuffer cmd;      /* during execute */
 };
 
-typedef struct vrg_pass_figure {
+typedef struct _vrg_pass_figure {
     char *name;
     double value;
-} vrg_pass_figure;
+} _vrg_pass_figure;
 
-typedef struct vrg_param_value {
+typedef struct _vrg_param_value {
     int param; /* index into the plugin's parameter table */
     char *value;
     int line;  /* 0: --set */
-} vrg_param_value;
+} _vrg_param_value;
 
-typedef struct vrg_host_buffer {
+typedef struct _vrg_host_buffer {
     char name[VRG_NAME_MAX];
     int host_visible;
     VkBuffer buffer;
     VkDeviceMemory memory;
     void *map;
-    struct vrg_host_buffer *next;
-} vrg_host_buffer;
+    struct _vrg_host_buffer *next;
+} _vrg_host_buffer;
 
 void _vrg_pass_free_params(vrg_pass *p);
 void _vrg_pass_free_host_buffers(vrg_pass *p);
@@ -252,24 +252,24 @@ void _vrg_pass_free_host_buffers(vrg_pass *p);
 void _vrg_pass_clear_stats(vrg_pass *p, int free_table);
 int _vrg_pass_add_string(vrg_pass *p, int param, const char *value, int line, int replace);
 
-typedef struct vrg_barrier_rec {
+typedef struct _vrg_barrier_rec {
     int res, copy;
     VkPipelineStageFlags2 src_stage, dst_stage;
     VkAccessFlags2 src_access, dst_access;
     VkImageLayout old_layout, new_layout;
     int aliasing;  /* first use of memory another resource used before */
-} vrg_barrier_rec;
+} _vrg_barrier_rec;
 
-typedef struct vrg_heap_block {
+typedef struct _vrg_heap_block {
     VkDeviceMemory memory;
     VkDeviceSize size;
     uint32_t type_bits;
-} vrg_heap_block;
+} _vrg_heap_block;
 
 struct vrg_graph {
     vrg_context *ctx;
     /* hot reload (graph.c: vrg_graph_watch) */
-    struct vrg_watch *watch;
+    struct _vrg_watch *watch;
     char reload_error[4096];   /* the last failed reload's messages; "" after a good one */
     double reload_ms;          /* save-to-frame time of the last reload, -1 if none */
     double pending_since;      /* newest save (epoch seconds) reloaded in this frame, 0: none */
@@ -283,7 +283,7 @@ struct vrg_graph {
     int shown;                 /* vrg_graph_show: a resource left in TRANSFER_SRC after frames, -1 none */
     int loaded_from_file;
     uint32_t subframes; /* graph frames per output frame (vrg_pass_set_subframes), 0 or 1: one */
-    vrg_diag diag;
+    _vrg_diag diag;
     char path[VRG_PATH_MAX];
     char name[VRG_NAME_MAX];
     char output_name[VRG_NAME_MAX];
@@ -292,13 +292,13 @@ struct vrg_graph {
     double fps;
     vrg_pass passes[VRG_MAX_PASSES];
     int pass_count;
-    vrg_resource res[VRG_MAX_RESOURCES];
+    _vrg_resource res[VRG_MAX_RESOURCES];
     int res_count;
     int output;               /* resource index */
     int schedule[VRG_MAX_PASSES];
     int schedule_count;
     /* allocate */
-    vrg_heap_block blocks[VK_MAX_MEMORY_TYPES]; /* disjoint type sets: see compile.c */
+    _vrg_heap_block blocks[VK_MAX_MEMORY_TYPES]; /* disjoint type sets: see compile.c */
     int block_count;
     int *overlaps;            /* every resource's list of those it shares memory with */
     int overlap_used, overlap_cap;
@@ -326,7 +326,7 @@ struct vrg_graph {
 };
 
 /* validate.c: AST → graph (plugins loaded, slots resolved, every check). */
-int _vrg_validate(vrg_graph *g, const vrg_ast *ast, const vrg_graph_desc *desc);
+int _vrg_validate(vrg_graph *g, const _vrg_ast *ast, const vrg_graph_desc *desc);
 /* compile.c: cull, order, lifetimes; alias placement of sized resources. */
 int _vrg_compile(vrg_graph *g);
 /* Add an internal resource for a pass (used by create()). */
@@ -336,7 +336,7 @@ const char *_vrg_format_name(VkFormat f);
 const char *_vrg_format_list(void);
 VkFormat _vrg_format_parse(const char *s);
 uint32_t _vrg_format_channels(VkFormat f);
-void _vrg_resource_extent(const vrg_graph *g, const vrg_resource *r, uint32_t *w, uint32_t *h);
+void _vrg_resource_extent(const vrg_graph *g, const _vrg_resource *r, uint32_t *w, uint32_t *h);
 /* Place resources with the given sizes into heap blocks; fills block/offset/overlaps.
  * Returns 0, or -1 after reporting. */
 int _vrg_plan_aliasing(vrg_graph *g);
@@ -346,28 +346,28 @@ void _vrg_free_resources(vrg_graph *g);
 /* record.c */
 int _vrg_record_frame(vrg_graph *g);
 /* barrier.c: the access a use needs, and the barrier that gets it there. */
-typedef struct vrg_access_info {
+typedef struct _vrg_access_info {
     VkPipelineStageFlags2 stage;
     VkAccessFlags2 access;
     VkImageLayout layout;
     int writes;
-} vrg_access_info;
-vrg_access_info _vrg_access_info_of(vrg_access a, vrg_resource_kind kind);
+} _vrg_access_info;
+_vrg_access_info _vrg_access_info_of(vrg_access a, vrg_resource_kind kind);
 /* Updates *s for a use; returns 1 and fills *b when a barrier is needed. */
-int _vrg_sync_use(vrg_sync *s, vrg_access_info need, int discard, vrg_barrier_rec *b);
+int _vrg_sync_use(_vrg_sync *s, _vrg_access_info need, int discard, _vrg_barrier_rec *b);
 /* Barriers to bring a pass's resources to their declared accesses. */
-int _vrg_pass_barriers(vrg_graph *g, vrg_pass *p, vrg_barrier_rec *out, int max);
-void _vrg_emit_barriers(vrg_graph *g, VkCommandBuffer cmd, const vrg_barrier_rec *b, int n);
+int _vrg_pass_barriers(vrg_graph *g, vrg_pass *p, _vrg_barrier_rec *out, int max);
+void _vrg_emit_barriers(vrg_graph *g, VkCommandBuffer cmd, const _vrg_barrier_rec *b, int n);
 int _vrg_copy_of(const vrg_graph *g, int res, int prev);
 int _vrg_pass_lookup(const vrg_pass *p, const char *name, int *res, int *prev, int *slot);
-int _vrg_resource_barrier(vrg_graph *g, int res, int copy, vrg_access access, vrg_barrier_rec *out);
+int _vrg_resource_barrier(vrg_graph *g, int res, int copy, vrg_access access, _vrg_barrier_rec *out);
 /* shader.c */
-typedef struct vrg_shader_module {
+typedef struct _vrg_shader_module {
     VkShaderModule module;
     uint32_t local_size[3];
     char *deps; /* the file and every file it includes, real paths, one per line (free()) */
-} vrg_shader_module;
-int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, vrg_shader_module *out, FILE *diag);
+} _vrg_shader_module;
+int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, _vrg_shader_module *out, FILE *diag);
 int _vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t cap);
 void _vrg_pipelines_destroy(vrg_pass *p);
 /* Hot reload: recompile this pass's pipelines that use any of the changed
@@ -380,13 +380,13 @@ void _vrg_graph_watch_pipeline(vrg_graph *g, const char *deps);
 void _vrg_pipelines_deps(vrg_pass *p, void (*fn)(void *user, const char *path), void *user);
 
 /* ---- hot reload (watch.c) ---- */
-typedef struct vrg_watch vrg_watch;
-vrg_watch *_vrg_watch_create(void);
-void _vrg_watch_destroy(vrg_watch *w);
-int _vrg_watch_add(vrg_watch *w, const char *path);
+typedef struct _vrg_watch _vrg_watch;
+_vrg_watch *_vrg_watch_create(void);
+void _vrg_watch_destroy(_vrg_watch *w);
+int _vrg_watch_add(_vrg_watch *w, const char *path);
 /* Tracked files whose write completed since the last poll, in *changed
  * (every one; the caller frees it). -1: out of memory. */
-int _vrg_watch_poll(vrg_watch *w, char (**changed)[VRG_PATH_MAX]);
+int _vrg_watch_poll(_vrg_watch *w, char (**changed)[VRG_PATH_MAX]);
 /* report.c */
 const char *_vrg_access_name(vrg_access a);
 

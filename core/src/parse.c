@@ -18,8 +18,8 @@ typedef struct line_reader {
     size_t pos, len;
     int line;         /* line number of the line last handed to inih */
     int next_section; /* index of the next header scan_sections found */
-    vrg_ast *ast;
-    vrg_diag *d;
+    _vrg_ast *ast;
+    _vrg_diag *d;
 } line_reader;
 
 /* A section header goes to inih as "[#INDEX]", INDEX into ast->sections:
@@ -40,7 +40,7 @@ static char *read_line(char *str, int num, void *stream)
         _vrg_error_at(r->d, r->line + 1, "split the value or shorten names", "line is longer than %d characters", num - 2);
         copy = 0; /* hand inih a blank line: no follow-on syntax error */
     }
-    const vrg_ast *a = r->ast;
+    const _vrg_ast *a = r->ast;
     if (r->next_section < a->section_count && a->sections[r->next_section].line == r->line + 1)
         snprintf(str, (size_t)num, "[#%d]", r->next_section++);
     else {
@@ -55,7 +55,7 @@ static char *read_line(char *str, int num, void *stream)
 static int on_key(void *user, const char *section, const char *name, const char *value)
 {
     line_reader *r = user;
-    vrg_ast *a = r->ast;
+    _vrg_ast *a = r->ast;
     if (section[0] != '#') { /* "" before the first header */
         _vrg_error_at(r->d, r->line, "put every key under a [section] header", "key '%s' outside any section", name);
         return 1;
@@ -71,7 +71,7 @@ static int on_key(void *user, const char *section, const char *name, const char 
         _vrg_error_at(r->d, r->line, NULL, "key '%.*s...' is longer than %zu characters", 20, name, sizeof a->keys[0].name - 1);
         return 1;
     }
-    vrg_key *k = &a->keys[a->key_count++];
+    _vrg_key *k = &a->keys[a->key_count++];
     snprintf(k->name, sizeof k->name, "%s", name);
     if (strlen(value) >= sizeof k->value)
         _vrg_error_at(r->d, r->line, NULL, "value of '%s' is too long (at most %zu characters)", name, sizeof k->value - 1);
@@ -91,7 +91,7 @@ static int header_tail_ok(const char *c, const char *end)
 
 /* Section headers are found by a scan of our own: inih does not report empty
  * sections, and a duplicate [pass a] must be seen as a second section. */
-static int scan_sections(const char *text, vrg_ast *a, vrg_diag *d)
+static int scan_sections(const char *text, _vrg_ast *a, _vrg_diag *d)
 {
     int line = 0;
     const char *p = text;
@@ -112,7 +112,7 @@ static int scan_sections(const char *text, vrg_ast *a, vrg_diag *d)
                 }
                 if (!header_tail_ok(close + 1, p + n))
                     _vrg_error_at(d, line, "a header is '[NAME]', optionally followed by a comment", "text after ']' of the section header");
-                vrg_section *sec = &a->sections[a->section_count++];
+                _vrg_section *sec = &a->sections[a->section_count++];
                 size_t len = (size_t)(close - s - 1);
                 /* blanks around the name do not count (as in inih) */
                 const char *b = s + 1;
@@ -156,7 +156,7 @@ static char *normalised(const char *text)
 
 /* The whole file, or NULL after reporting. Only a regular file is read: a
  * FIFO or a device would block or never end. */
-static char *read_graph_file(const char *path, vrg_ast *ast, vrg_diag *d)
+static char *read_graph_file(const char *path, _vrg_ast *ast, _vrg_diag *d)
 {
     int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) {
@@ -199,7 +199,7 @@ static char *read_graph_file(const char *path, vrg_ast *ast, vrg_diag *d)
     return text;
 }
 
-int _vrg_parse(const char *path, const char *text, vrg_ast *ast, vrg_diag *d)
+int _vrg_parse(const char *path, const char *text, _vrg_ast *ast, _vrg_diag *d)
 {
     char *read = NULL;
     memset(ast, 0, sizeof *ast);

@@ -67,7 +67,7 @@ int _vrg_pass_add_string(vrg_pass *p, int param, const char *value, int line, in
         p->string_count = k;
     }
     p->strings = realloc(p->strings, (size_t)(p->string_count + 1) * sizeof *p->strings);
-    p->strings[p->string_count++] = (vrg_param_value){param, strdup(value), line};
+    p->strings[p->string_count++] = (_vrg_param_value){param, strdup(value), line};
     return 0;
 }
 
@@ -171,9 +171,9 @@ int vrg_pass_set_buffer_size(vrg_pass *p, const char *slot, uint64_t bytes)
     return vrg_pass_error(p, "vrg_pass_set_buffer_size: no buffer output '%s'", slot);
 }
 
-static const vrg_resource *res_of(const vrg_pass *p, vrg_res h, int *copy);
+static const _vrg_resource *res_of(const vrg_pass *p, vrg_res h, int *copy);
 
-static void free_one(VkDevice dev, vrg_host_buffer *hb)
+static void free_one(VkDevice dev, _vrg_host_buffer *hb)
 {
     if (hb->map)
         vkUnmapMemory(dev, hb->memory);
@@ -194,7 +194,7 @@ void *vrg_pass_buffer(vrg_pass *p, const vrg_buffer_desc *d, VkBuffer *buffer, V
     }
     VkDevice dev = ctx->dev.device;
     int wants_address = (d->usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) != 0;
-    vrg_host_buffer *hb = calloc(1, sizeof *hb);
+    _vrg_host_buffer *hb = calloc(1, sizeof *hb);
     snprintf(hb->name, sizeof hb->name, "%s", d->name);
     hb->host_visible = d->host_visible;
     VkBufferCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = d->size ? d->size : 16, .usage = d->usage};
@@ -235,9 +235,9 @@ void *vrg_pass_host_buffer(vrg_pass *p, const char *name, uint64_t bytes, VkBuff
 
 void vrg_pass_free_buffer(vrg_pass *p, VkBuffer buffer)
 {
-    for (vrg_host_buffer **at = &p->host_buffers; *at; at = &(*at)->next)
+    for (_vrg_host_buffer **at = &p->host_buffers; *at; at = &(*at)->next)
         if ((*at)->buffer == buffer) {
-            vrg_host_buffer *hb = *at;
+            _vrg_host_buffer *hb = *at;
             *at = hb->next;
             free_one(p->graph->ctx->dev.device, hb);
             return;
@@ -247,14 +247,14 @@ void vrg_pass_free_buffer(vrg_pass *p, VkBuffer buffer)
 VkAccelerationStructureKHR vrg_res_accel(const vrg_pass *p, vrg_res h)
 {
     int c;
-    const vrg_resource *r = res_of(p, h, &c);
+    const _vrg_resource *r = res_of(p, h, &c);
     return r ? r->accel : VK_NULL_HANDLE;
 }
 
 void _vrg_pass_free_host_buffers(vrg_pass *p)
 {
     while (p->host_buffers) {
-        vrg_host_buffer *hb = p->host_buffers;
+        _vrg_host_buffer *hb = p->host_buffers;
         p->host_buffers = hb->next;
         free_one(p->graph->ctx->dev.device, hb);
     }
@@ -302,7 +302,7 @@ static vrg_res request(vrg_pass *p, const char *name, vrg_resource_kind kind)
         vrg_pass_error(p, "cannot add internal resource '%s': too many resources (at most %d in a graph)", name, VRG_MAX_RESOURCES);
         return (vrg_res){-1};
     }
-    vrg_resource *res = &g->res[r];
+    _vrg_resource *res = &g->res[r];
     res->kind = kind;
     res->internal_owner = (int)(p - g->passes);
     res->line = p->line;
@@ -313,7 +313,7 @@ vrg_res vrg_pass_request_image(vrg_pass *p, const char *name, VkFormat format, f
 {
     vrg_res h = request(p, name, VRG_IMAGE);
     if (h.id >= 0) {
-        vrg_resource *r = &p->graph->res[h.id >> 1];
+        _vrg_resource *r = &p->graph->res[h.id >> 1];
         r->format = format ? format : VK_FORMAT_R16G16B16A16_SFLOAT;
         r->scale = scale > 0 ? scale : 1.0f;
         r->internal_first_access = first_access ? first_access : VRG_ACCESS_STORAGE_WRITE;
@@ -325,7 +325,7 @@ vrg_res vrg_pass_request_buffer(vrg_pass *p, const char *name, uint64_t size)
 {
     vrg_res h = request(p, name, VRG_BUFFER);
     if (h.id >= 0) {
-        vrg_resource *r = &p->graph->res[h.id >> 1];
+        _vrg_resource *r = &p->graph->res[h.id >> 1];
         r->size = size ? size : 16;
         r->internal_first_access = VRG_ACCESS_STORAGE_WRITE;
     }
@@ -379,11 +379,11 @@ int vrg_res_history_valid(const vrg_pass *p, vrg_res h)
 {
     if (h.id < 0 || (h.id >> 1) >= p->graph->res_count)
         return 0;
-    const vrg_resource *r = &p->graph->res[h.id >> 1];
+    const _vrg_resource *r = &p->graph->res[h.id >> 1];
     return r->history ? !r->history_cleared : p->graph->frame.history_valid;
 }
 
-static const vrg_resource *res_of(const vrg_pass *p, vrg_res h, int *copy)
+static const _vrg_resource *res_of(const vrg_pass *p, vrg_res h, int *copy)
 {
     if (h.id < 0 || (h.id >> 1) >= p->graph->res_count)
         return NULL;
@@ -394,56 +394,56 @@ static const vrg_resource *res_of(const vrg_pass *p, vrg_res h, int *copy)
 VkImage vrg_res_image(const vrg_pass *p, vrg_res h)
 {
     int c;
-    const vrg_resource *r = res_of(p, h, &c);
+    const _vrg_resource *r = res_of(p, h, &c);
     return r ? r->image[c] : VK_NULL_HANDLE;
 }
 
 VkImageView vrg_res_view(const vrg_pass *p, vrg_res h)
 {
     int c;
-    const vrg_resource *r = res_of(p, h, &c);
+    const _vrg_resource *r = res_of(p, h, &c);
     return r ? r->view[c] : VK_NULL_HANDLE;
 }
 
 VkBuffer vrg_res_buffer(const vrg_pass *p, vrg_res h)
 {
     int c;
-    const vrg_resource *r = res_of(p, h, &c);
+    const _vrg_resource *r = res_of(p, h, &c);
     return r ? r->buffer[c] : VK_NULL_HANDLE;
 }
 
 VkExtent2D vrg_res_extent(const vrg_pass *p, vrg_res h)
 {
     int c;
-    const vrg_resource *r = res_of(p, h, &c);
+    const _vrg_resource *r = res_of(p, h, &c);
     return r ? (VkExtent2D){r->width, r->height} : (VkExtent2D){0, 0};
 }
 
 VkFormat vrg_res_format(const vrg_pass *p, vrg_res h)
 {
     int c;
-    const vrg_resource *r = res_of(p, h, &c);
+    const _vrg_resource *r = res_of(p, h, &c);
     return r ? r->format : VK_FORMAT_UNDEFINED;
 }
 
 uint32_t vrg_res_mips(const vrg_pass *p, vrg_res h)
 {
     int c;
-    const vrg_resource *r = res_of(p, h, &c);
+    const _vrg_resource *r = res_of(p, h, &c);
     return r ? r->mips : 0;
 }
 
 uint64_t vrg_res_size(const vrg_pass *p, vrg_res h)
 {
     int c;
-    const vrg_resource *r = res_of(p, h, &c);
+    const _vrg_resource *r = res_of(p, h, &c);
     return r ? r->size : 0;
 }
 
 void vrg_pass_use(vrg_pass *p, VkCommandBuffer cmd, const vrg_use *uses, uint32_t count)
 {
     /* in batches: a plugin may name any number of resources */
-    vrg_barrier_rec b[64];
+    _vrg_barrier_rec b[64];
     int n = 0;
     for (uint32_t i = 0; i < count; i++) {
         if (uses[i].res.id < 0 || (uses[i].res.id >> 1) >= p->graph->res_count)
@@ -468,7 +468,7 @@ void vrg_pass_stat(vrg_pass *p, const char *name, double value)
         }
     if (p->stat_count == p->stat_cap) {
         int cap = p->stat_cap ? 2 * p->stat_cap : 16;
-        vrg_pass_figure *grown = realloc(p->stats, (size_t)cap * sizeof *grown);
+        _vrg_pass_figure *grown = realloc(p->stats, (size_t)cap * sizeof *grown);
         if (!grown) {
             vrg_pass_error(p, "vrg_pass_stat('%s'): out of memory", name);
             return;
@@ -481,7 +481,7 @@ void vrg_pass_stat(vrg_pass *p, const char *name, double value)
         vrg_pass_error(p, "vrg_pass_stat('%s'): out of memory", name);
         return;
     }
-    p->stats[p->stat_count++] = (vrg_pass_figure){copy, value};
+    p->stats[p->stat_count++] = (_vrg_pass_figure){copy, value};
 }
 
 void _vrg_pass_clear_stats(vrg_pass *p, int free_table)

@@ -45,15 +45,15 @@ typedef Elf32_Phdr elf_phdr;
 
 /* Slots stay put (graphs hold pointers to them); an unloaded version's slot
  * is emptied (name "") and reused. */
-static vrg_plugin loaded[VRG_MAX_PLUGINS];
+static _vrg_plugin loaded[VRG_MAX_PLUGINS];
 static int loaded_count;
 static unsigned last_generation;
 
 /* The current version of the plugin built from `key` (a source file), or of
  * the plugin named `key` when !by_source. */
-static vrg_plugin *newest(const char *key, int by_source)
+static _vrg_plugin *newest(const char *key, int by_source)
 {
-    vrg_plugin *best = NULL;
+    _vrg_plugin *best = NULL;
     for (int i = 0; i < loaded_count; i++)
         if (loaded[i].name[0] && strcmp(by_source ? loaded[i].source : loaded[i].name, key) == 0 &&
             (!best || loaded[i].generation > best->generation))
@@ -61,7 +61,7 @@ static vrg_plugin *newest(const char *key, int by_source)
     return best;
 }
 
-static vrg_plugin *free_slot(int claim)
+static _vrg_plugin *free_slot(int claim)
 {
     for (int i = 0; i < loaded_count; i++)
         if (!loaded[i].name[0])
@@ -71,11 +71,11 @@ static vrg_plugin *free_slot(int claim)
     return claim ? &loaded[loaded_count++] : &loaded[loaded_count];
 }
 
-void _vrg_plugin_acquire(const vrg_plugin *p) { ((vrg_plugin *)p)->users++; }
+void _vrg_plugin_acquire(const _vrg_plugin *p) { ((_vrg_plugin *)p)->users++; }
 
-void _vrg_plugin_release(const vrg_plugin *cp)
+void _vrg_plugin_release(const _vrg_plugin *cp)
 {
-    vrg_plugin *p = (vrg_plugin *)cp;
+    _vrg_plugin *p = (_vrg_plugin *)cp;
     if (--p->users > 0 || newest(p->source, 1) == p)
         return; /* in use, or the current version (kept loaded: a cache) */
     dlclose(p->handle);
@@ -85,8 +85,8 @@ void _vrg_plugin_release(const vrg_plugin *cp)
 }
 
 /* An error at a graph line, or without one (line 0: a reload, a listing). */
-static void fail(vrg_diag *d, int line, const char *hint, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
-static void fail(vrg_diag *d, int line, const char *hint, const char *fmt, ...)
+static void fail(_vrg_diag *d, int line, const char *hint, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
+static void fail(_vrg_diag *d, int line, const char *hint, const char *fmt, ...)
 {
     char msg[2048];
     va_list ap;
@@ -305,9 +305,9 @@ static const char *elf_problem(const unsigned char *b, size_t n, char *why, size
     return NULL;
 }
 
-static void *dlopen_checked(const vrg_plugin *p, const char *file, char *why, size_t cap)
+static void *dlopen_checked(const _vrg_plugin *p, const char *file, char *why, size_t cap)
 {
-    vrg_running before = _vrg_running_enter("loading (dlopen and the plugin's constructors)", NULL, p);
+    _vrg_running before = _vrg_running_enter("loading (dlopen and the plugin's constructors)", NULL, p);
     void *handle = dlopen(file, RTLD_NOW | RTLD_LOCAL);
     _vrg_running_leave(before);
     if (!handle)
@@ -330,7 +330,7 @@ static int write_all(int fd, const unsigned char *data, size_t size)
  * an anonymous memory file instead, opened through /proc/self/fd. Its
  * descriptor stays open while the plugin is loaded (*keep_fd), so no other
  * load gets the same /proc path, which dlopen would take for this one. */
-static void *open_memfd(const vrg_plugin *p, const unsigned char *data, size_t size, int *keep_fd, char *why, size_t cap)
+static void *open_memfd(const _vrg_plugin *p, const unsigned char *data, size_t size, int *keep_fd, char *why, size_t cap)
 {
     int fd = memfd_create(p->name, MFD_CLOEXEC);
     if (fd < 0 || write_all(fd, data, size) != 0) {
@@ -352,7 +352,7 @@ static void *open_memfd(const vrg_plugin *p, const unsigned char *data, size_t s
 /* A private copy of `data`, dlopen'ed; the copy is unlinked right after
  * (the mapping stays), and removed by the crash handler if dlopen or the
  * plugin's constructors die. */
-static void *open_private(const vrg_plugin *p, const unsigned char *data, size_t size, int *keep_fd, char *why, size_t cap)
+static void *open_private(const _vrg_plugin *p, const unsigned char *data, size_t size, int *keep_fd, char *why, size_t cap)
 {
     const char *tmp = getenv("TMPDIR");
     tmp = tmp && tmp[0] ? tmp : "/tmp";
@@ -384,7 +384,7 @@ static void *open_private(const vrg_plugin *p, const unsigned char *data, size_t
 /* The plugin's descriptor at this runtime's size: a shorter one (older
  * headers) gets zeros for the fields it lacks, a longer one (newer
  * headers) is refused if it sets any field this runtime does not know. */
-static int copy_desc(vrg_plugin *p, uint32_t size, vrg_diag *d, int line)
+static int copy_desc(_vrg_plugin *p, uint32_t size, _vrg_diag *d, int line)
 {
     const unsigned char *bytes = (const unsigned char *)p->desc;
     size_t known = sizeof(vrg_plugin_desc);
@@ -408,7 +408,7 @@ static int copy_desc(vrg_plugin *p, uint32_t size, vrg_diag *d, int line)
 /* Loads p->source into *p: read, ELF check, private copy, entry point, ABI
  * and descriptor checks. Reports at `line` (0: none) and returns -1 on any
  * failure, with nothing left loaded. */
-static int load_file(vrg_plugin *p, vrg_diag *d, int line)
+static int load_file(_vrg_plugin *p, _vrg_diag *d, int line)
 {
     char why[1024];
     unsigned char *data = NULL;
@@ -431,7 +431,7 @@ static int load_file(vrg_plugin *p, vrg_diag *d, int line)
         fail(d, line, "a plugin's source ends with VRG_PLUGIN(desc)", "plugin '%s' (%s) does not export %s", p->name, p->source,
                      VRG_PLUGIN_ENTRY_SYMBOL);
     else {
-        vrg_running before = _vrg_running_enter(VRG_PLUGIN_ENTRY_SYMBOL, NULL, p);
+        _vrg_running before = _vrg_running_enter(VRG_PLUGIN_ENTRY_SYMBOL, NULL, p);
         p->desc = entry(VRG_ABI_VERSION);
         _vrg_running_leave(before);
         /* plugins built before the size was exported have this runtime's layout */
@@ -454,9 +454,9 @@ static int load_file(vrg_plugin *p, vrg_diag *d, int line)
     return -1;
 }
 
-static const vrg_plugin *keep(const vrg_plugin *p)
+static const _vrg_plugin *keep(const _vrg_plugin *p)
 {
-    vrg_plugin *slot = free_slot(1);
+    _vrg_plugin *slot = free_slot(1);
     *slot = *p;
     slot->desc = &slot->desc_copy;
     slot->generation = ++last_generation;
@@ -502,7 +502,7 @@ static int valid_name(const char *s)
     return 1;
 }
 
-int _vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const char *path, vrg_diag *d, int line)
+int _vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const char *path, _vrg_diag *d, int line)
 {
     const char *why = NULL;
     char buf[512];
@@ -576,7 +576,7 @@ int _vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const 
 
 /* ---- the entry points ---- */
 
-const vrg_plugin *_vrg_plugin_load(const char *name, const char *graph_path, const char *plugin_path, vrg_diag *d, int line)
+const _vrg_plugin *_vrg_plugin_load(const char *name, const char *graph_path, const char *plugin_path, _vrg_diag *d, int line)
 {
     if (!name[0] || strchr(name, '/') || strlen(name) >= VRG_NAME_MAX) {
         fail(d, line, "a plugin is named by its file name without .so (at most 63 characters)", "unknown plugin '%s'", name);
@@ -591,7 +591,7 @@ const vrg_plugin *_vrg_plugin_load(const char *name, const char *graph_path, con
     }
     char file[VRG_PATH_MAX + VRG_NAME_MAX + 8], real[VRG_PATH_MAX];
     int at = search_path_find(&s, name, 0, file, sizeof file);
-    const vrg_plugin *result = NULL;
+    const _vrg_plugin *result = NULL;
     if (at < 0) {
         char hint[8192];
         search_path_hint(&s, hint, sizeof hint);
@@ -627,7 +627,7 @@ const vrg_plugin *_vrg_plugin_load(const char *name, const char *graph_path, con
                      "cannot load plugin '%s': %d plugin versions are loaded, the most a process holds", name, VRG_MAX_PLUGINS);
         goto done;
     }
-    vrg_plugin p = {.keep_fd = -1};
+    _vrg_plugin p = {.keep_fd = -1};
     snprintf(p.name, sizeof p.name, "%s", name);
     snprintf(p.source, sizeof p.source, "%s", real);
     snprintf(p.path, sizeof p.path, "%s", real);
@@ -642,9 +642,9 @@ done:
  * is loaded like any plugin, from a private copy, and becomes the newest
  * version of that file (graphs loaded from now on use it); the old version
  * stays loaded while graphs still run it, and is unloaded with its last user. */
-int _vrg_plugin_reload(const char *path, vrg_diag *d)
+int _vrg_plugin_reload(const char *path, _vrg_diag *d)
 {
-    vrg_plugin *old = newest(path, 1);
+    _vrg_plugin *old = newest(path, 1);
     if (!old) {
         _vrg_error(d, "plugin %s: not a loaded plugin", path);
         return -1;
@@ -653,7 +653,7 @@ int _vrg_plugin_reload(const char *path, vrg_diag *d)
         _vrg_error(d, "plugin %s: %d plugin versions are loaded, the most a process holds", path, VRG_MAX_PLUGINS);
         return -1;
     }
-    vrg_plugin p = {.keep_fd = -1};
+    _vrg_plugin p = {.keep_fd = -1};
     snprintf(p.name, sizeof p.name, "%s", old->name);
     snprintf(p.source, sizeof p.source, "%s", path);
     snprintf(p.path, sizeof p.path, "%s", path);
@@ -669,17 +669,17 @@ int _vrg_plugin_reload(const char *path, vrg_diag *d)
 
 static int by_name(const void *a, const void *b)
 {
-    return strcmp((*(const vrg_plugin *const *)a)->name, (*(const vrg_plugin *const *)b)->name);
+    return strcmp((*(const _vrg_plugin *const *)a)->name, (*(const _vrg_plugin *const *)b)->name);
 }
 
-int _vrg_plugin_list(const vrg_plugin **out, int max, FILE *problems)
+int _vrg_plugin_list(const _vrg_plugin **out, int max, FILE *problems)
 {
     search_path s;
     search_path_build(&s, NULL, NULL);
     if (s.failed)
         fprintf(problems ? problems : stderr, "error: out of memory for the plugin search path: the listing is incomplete\n");
     FILE *devnull = problems ? NULL : fopen("/dev/null", "w");
-    vrg_diag diag = {.out = problems ? problems : devnull ? devnull : stderr, .file = "plugins"};
+    _vrg_diag diag = {.out = problems ? problems : devnull ? devnull : stderr, .file = "plugins"};
     for (int i = 0; i < s.count; i++) {
         DIR *dir = opendir(s.dirs[i].path);
         struct dirent *e;
@@ -717,7 +717,7 @@ int _vrg_plugin_list(const vrg_plugin **out, int max, FILE *problems)
 
 int vrg_list_plugins(const vrg_plugin_desc **descs, const char **paths, int max, FILE *problems)
 {
-    const vrg_plugin *list[VRG_MAX_PLUGINS];
+    const _vrg_plugin *list[VRG_MAX_PLUGINS];
     int n = _vrg_plugin_list(list, VRG_MAX_PLUGINS, problems);
     for (int i = 0; i < n && i < max && i < VRG_MAX_PLUGINS; i++) {
         descs[i] = list[i]->desc;
@@ -728,10 +728,10 @@ int vrg_list_plugins(const vrg_plugin_desc **descs, const char **paths, int max,
 
 int vrg_find_plugin(const char *name, FILE *diag, const vrg_plugin_desc **desc, const char **path)
 {
-    vrg_diag d = {.out = diag ? diag : stderr, .file = "plugins"};
+    _vrg_diag d = {.out = diag ? diag : stderr, .file = "plugins"};
     /* a graph's own plugin_path is that graph's: this answers for the
      * search path every graph shares */
-    const vrg_plugin *p = _vrg_plugin_load(name, NULL, NULL, &d, 0);
+    const _vrg_plugin *p = _vrg_plugin_load(name, NULL, NULL, &d, 0);
     if (!p)
         return -1;
     *desc = p->desc;

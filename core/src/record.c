@@ -12,10 +12,10 @@
  * were cleared: history is valid this frame when none was. */
 static int clear_kept(vrg_graph *g, VkCommandBuffer cmd)
 {
-    vrg_barrier_rec b[2 * VRG_MAX_RESOURCES] = {0}; /* both copies of every resource */
+    _vrg_barrier_rec b[2 * VRG_MAX_RESOURCES] = {0}; /* both copies of every resource */
     int n = 0, cleared = 0;
     for (int i = 0; i < g->res_count; i++) {
-        vrg_resource *r = &g->res[i];
+        _vrg_resource *r = &g->res[i];
         r->history_cleared = r->history && g->history_reset && !r->history_kept;
         r->history_kept = 0;
         cleared += r->history_cleared && r->first_use >= 0;
@@ -30,7 +30,7 @@ static int clear_kept(vrg_graph *g, VkCommandBuffer cmd)
     }
     _vrg_emit_barriers(g, cmd, b, n);
     for (int k = 0; k < n; k++) {
-        vrg_resource *r = &g->res[b[k].res];
+        _vrg_resource *r = &g->res[b[k].res];
         if (r->kind == VRG_IMAGE) {
             VkClearColorValue zero = {{0}};
             VkImageSubresourceRange range = {VK_IMAGE_ASPECT_COLOR_BIT, 0, VK_REMAINING_MIP_LEVELS, 0, 1};
@@ -43,10 +43,10 @@ static int clear_kept(vrg_graph *g, VkCommandBuffer cmd)
 
 static void copy_readbacks(vrg_graph *g, VkCommandBuffer cmd)
 {
-    vrg_barrier_rec b[VRG_MAX_RESOURCES + 1] = {0}; /* every read-back resource, and the shown one */
+    _vrg_barrier_rec b[VRG_MAX_RESOURCES + 1] = {0}; /* every read-back resource, and the shown one */
     int n = 0, want[VRG_MAX_RESOURCES], nw = 0;
     for (int i = 0; i < g->res_count; i++) {
-        vrg_resource *r = &g->res[i];
+        _vrg_resource *r = &g->res[i];
         if (r->first_use < 0 || !(r->is_output || r->readback))
             continue;
         want[nw++] = i;
@@ -58,7 +58,7 @@ static void copy_readbacks(vrg_graph *g, VkCommandBuffer cmd)
         n++;
     _vrg_emit_barriers(g, cmd, b, n);
     for (int k = 0; k < nw; k++) {
-        vrg_resource *r = &g->res[want[k]];
+        _vrg_resource *r = &g->res[want[k]];
         int c = _vrg_copy_of(g, want[k], 0);
         if (r->kind == VRG_IMAGE) {
             VkBufferImageCopy region = {
@@ -128,7 +128,7 @@ static int running_pass(const vrg_graph *g)
     return -1;
 }
 
-static void report_stuck(vrg_graph *g, vrg_wait_result wr, double waited_s)
+static void report_stuck(vrg_graph *g, _vrg_wait_result wr, double waited_s)
 {
     unsigned long long frame = (unsigned long long)g->frame.frame_index;
     if (wr == VRG_WAIT_FAILED) {
@@ -190,14 +190,14 @@ int _vrg_record_frame(vrg_graph *g)
         vrg_pass *p = &g->passes[g->schedule[k]];
         if (g->queries)
             vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, g->queries, (uint32_t)(2 * k));
-        vrg_barrier_rec b[VRG_MAX_SLOTS];
+        _vrg_barrier_rec b[VRG_MAX_SLOTS];
         int n = _vrg_pass_barriers(g, p, b, VRG_MAX_SLOTS);
         _vrg_emit_barriers(g, cmd, b, n);
         p->failed = 0;
         _vrg_pass_clear_stats(p, 0); /* figures are this frame's */
         p->cmd = cmd;
         double t0 = now_ms();
-        vrg_running before = _vrg_running_enter("execute", p->name, p->plugin);
+        _vrg_running before = _vrg_running_enter("execute", p->name, p->plugin);
         p->plugin->desc->execute(p, cmd);
         _vrg_running_leave(before);
         g->pass_cpu_ms[g->schedule[k]] = now_ms() - t0;
@@ -221,7 +221,7 @@ int _vrg_record_frame(vrg_graph *g)
         return -1;
     }
     double waited;
-    vrg_wait_result wr = _vrg_wait_fence(g->ctx, g->fence, &waited);
+    _vrg_wait_result wr = _vrg_wait_fence(g->ctx, g->fence, &waited);
     if (wr != VRG_WAIT_DONE) {
         report_stuck(g, wr, waited);
         return -1;

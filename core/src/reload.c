@@ -15,7 +15,7 @@
 #include <time.h>
 #include "internal.h"
 
-static int same_resource(const vrg_resource *a, const vrg_resource *b)
+static int same_resource(const _vrg_resource *a, const _vrg_resource *b)
 {
     return strcmp(a->name, b->name) == 0 && a->kind == b->kind && a->format == b->format && a->width == b->width &&
            a->height == b->height && a->size == b->size && a->mips == b->mips && a->history == b->history &&
@@ -46,9 +46,9 @@ static int same_structure(const vrg_graph *a, const vrg_graph *b)
  * kind, format, size and history, or -1. */
 static int matching(const vrg_graph *old, const vrg_graph *g, int i)
 {
-    const vrg_resource *to = &g->res[i];
+    const _vrg_resource *to = &g->res[i];
     for (int j = 0; j < old->res_count; j++) {
-        const vrg_resource *from = &old->res[j];
+        const _vrg_resource *from = &old->res[j];
         if (strcmp(from->name, to->name) == 0)
             return from->kind == to->kind && from->format == to->format && from->width == to->width && from->height == to->height &&
                            from->size == to->size && from->mips == to->mips && from->history == to->history && from->first_use >= 0
@@ -68,14 +68,14 @@ static int copy_history(vrg_graph *old, vrg_graph *g)
     VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
     vkBeginCommandBuffer(cmd, &bi);
     for (int i = 0; i < g->res_count; i++) {
-        vrg_resource *to = &g->res[i];
+        _vrg_resource *to = &g->res[i];
         int j = to->history && to->first_use >= 0 && to->kind != VRG_ACCEL ? matching(old, g, i) : -1;
         if (j < 0)
             continue;
-        vrg_resource *from = &old->res[j];
+        _vrg_resource *from = &old->res[j];
         to->history_kept = 1;
         for (int c = 0; c < 2; c++) {
-            vrg_barrier_rec src, dst;
+            _vrg_barrier_rec src, dst;
             if (_vrg_sync_use(&from->sync[c], _vrg_access_info_of(VRG_ACCESS_TRANSFER_SRC, from->kind), 0, &src)) {
                 src.res = j, src.copy = c;
                 _vrg_emit_barriers(old, cmd, &src, 1);
@@ -122,7 +122,7 @@ static void carry_state(vrg_graph *old, vrg_graph *g)
             if (strcmp(p->name, q->name) != 0 || strcmp(p->plugin->name, q->plugin->name) != 0 || !p->created || !q->created)
                 continue;
             if (p->plugin->desc->save_state && q->plugin->desc->restore_state) {
-                vrg_running before = _vrg_running_enter("save_state", p->name, p->plugin);
+                _vrg_running before = _vrg_running_enter("save_state", p->name, p->plugin);
                 size_t n = p->plugin->desc->save_state(p, state, sizeof state);
                 _vrg_running_enter("restore_state", q->name, q->plugin);
                 int rc = n <= sizeof state ? q->plugin->desc->restore_state(q, state, n) : 0;
@@ -151,7 +151,7 @@ static int reload_plugins(vrg_graph *old)
         char *text = NULL;
         size_t len = 0;
         FILE *mem = open_memstream(&text, &len);
-        vrg_diag pd = {.out = mem ? mem : old->desc.diag, .file = old->path};
+        _vrg_diag pd = {.out = mem ? mem : old->desc.diag, .file = old->path};
         rc = _vrg_plugin_reload(p->plugin->source, &pd);
         if (mem) {
             fclose(mem);

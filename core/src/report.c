@@ -55,9 +55,9 @@ static void access_name(char *out, size_t cap, VkAccessFlags2 a)
     flags_name(out, cap, a, bits, names, 8, "0");
 }
 
-static void print_barrier(const vrg_graph *g, const vrg_barrier_rec *b, FILE *f)
+static void print_barrier(const vrg_graph *g, const _vrg_barrier_rec *b, FILE *f)
 {
-    const vrg_resource *r = &g->res[b->res];
+    const _vrg_resource *r = &g->res[b->res];
     char ss[64], sa[96], ds[64], da[96];
     stage_name(ss, sizeof ss, b->src_stage);
     access_name(sa, sizeof sa, b->src_access);
@@ -77,7 +77,7 @@ static void print_barrier(const vrg_graph *g, const vrg_barrier_rec *b, FILE *f)
 static void simulate_frame(vrg_graph *g, FILE *f)
 {
     /* a pass's slots and any number of internal resources; the readback: any resource */
-    vrg_barrier_rec b[VRG_MAX_SLOTS + VRG_MAX_RESOURCES];
+    _vrg_barrier_rec b[VRG_MAX_SLOTS + VRG_MAX_RESOURCES];
     for (int i = 0; i < g->res_count; i++)
         g->res[i].touched[0] = g->res[i].touched[1] = 0;
     for (int k = 0; k < g->schedule_count; k++) {
@@ -145,7 +145,7 @@ void vrg_graph_report(const vrg_graph *g, FILE *f)
             fprintf(f, "  %-12s (line %d): its outputs reach neither the output nor a history resource\n", g->passes[i].name, g->passes[i].line);
     fprintf(f, "resources:\n");
     for (int i = 0; i < g->res_count; i++) {
-        const vrg_resource *r = &g->res[i];
+        const _vrg_resource *r = &g->res[i];
         if (r->first_use < 0)
             continue;
         char what[64], mem[96], sz[32];
@@ -195,7 +195,7 @@ void vrg_graph_write_dot(const vrg_graph *g, FILE *f)
                 p->culled ? ", style=dashed, color=gray" : "");
     }
     for (int i = 0; i < g->res_count; i++) {
-        const vrg_resource *r = &g->res[i];
+        const _vrg_resource *r = &g->res[i];
         if (r->internal_owner >= 0 || r->dummy)
             continue;
         fprintf(f, "  \"res:%s\" [shape=%s, label=\"%s\\n%s\"%s];\n", r->name, r->kind == VRG_IMAGE ? "ellipse" : "cylinder", r->name,
@@ -206,7 +206,7 @@ void vrg_graph_write_dot(const vrg_graph *g, FILE *f)
     for (int i = 0; i < g->pass_count; i++) {
         const vrg_pass *p = &g->passes[i];
         for (int s = 0; p->plugin && s < (int)p->plugin->desc->slot_count; s++) {
-            const vrg_binding_ref *b = &p->slots[s];
+            const _vrg_binding_ref *b = &p->slots[s];
             if (vrg_slot(p, s)->dir != VRG_IN || b->res < 0 || b->dummy)
                 continue;
             fprintf(f, "  \"res:%s\" -> \"pass:%s\" [label=\"%s%s\"%s];\n", g->res[b->res].name, p->name, vrg_slot(p, s)->name,

@@ -294,14 +294,14 @@ static void local_size_of(const uint32_t *spv, size_t words, uint32_t out[3])
 
 VkShaderModule vrg_compile_compute_shader(vrg_context *ctx, const char *path, const char *defines)
 {
-    vrg_shader_module sm;
+    _vrg_shader_module sm;
     if (_vrg_shader_compile(ctx, path, defines, &sm, stderr) != 0)
         return VK_NULL_HANDLE;
     free(sm.deps);
     return sm.module;
 }
 
-int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, vrg_shader_module *out, FILE *diag)
+int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, _vrg_shader_module *out, FILE *diag)
 {
     pthread_once(&glslang_once, glslang_init);
     size_t len;

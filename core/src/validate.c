@@ -51,7 +51,7 @@ static int parse_bool(const char *s, double *out)
     return -1;
 }
 
-static int positive_int(vrg_diag *d, const vrg_key *k, uint32_t max, uint32_t *out)
+static int positive_int(_vrg_diag *d, const _vrg_key *k, uint32_t max, uint32_t *out)
 {
     long v;
     if (parse_int(k->value, &v) != 0 || v <= 0 || v > (long)max) {
@@ -101,7 +101,7 @@ int _vrg_graph_add_resource(vrg_graph *g, const char *name)
         return i;
     if (g->res_count >= VRG_MAX_RESOURCES)
         return -1;
-    vrg_resource *r = &g->res[g->res_count];
+    _vrg_resource *r = &g->res[g->res_count];
     memset(r, 0, sizeof *r);
     snprintf(r->name, sizeof r->name, "%s", name);
     r->writer = -1;
@@ -179,9 +179,9 @@ static int set_param(vrg_graph *g, vrg_pass *p, int idx, const char *value, int 
 /* ---- sections ---- */
 
 /* A key given twice in one section is a mistake, not an override. */
-static int repeated_key(vrg_graph *g, const vrg_ast *a, int ki)
+static int repeated_key(vrg_graph *g, const _vrg_ast *a, int ki)
 {
-    const vrg_key *k = &a->keys[ki];
+    const _vrg_key *k = &a->keys[ki];
     for (int i = 0; i < ki; i++)
         if (a->keys[i].section_index == k->section_index && strcmp(a->keys[i].name, k->name) == 0) {
             char h[64];
@@ -215,7 +215,7 @@ static sec_kind section_kind(const char *name, const char **arg)
 
 /* Every folder of plugin_path must exist: a typo would otherwise show up
  * only as "unknown plugin" for each pass. */
-static void check_plugin_path(vrg_graph *g, const vrg_key *k, const char *graph_path)
+static void check_plugin_path(vrg_graph *g, const _vrg_key *k, const char *graph_path)
 {
     const char *slash = graph_path ? strrchr(graph_path, '/') : NULL;
     for (const char *p = k->value; *p;) {
@@ -235,11 +235,11 @@ static void check_plugin_path(vrg_graph *g, const vrg_key *k, const char *graph_
     }
 }
 
-static void graph_section(vrg_graph *g, const vrg_ast *a, int si, const char *graph_path)
+static void graph_section(vrg_graph *g, const _vrg_ast *a, int si, const char *graph_path)
 {
     static const char *known = "name, output, width, height, seed, fps, plugin_path";
     for (int i = 0; i < a->key_count; i++) {
-        const vrg_key *k = &a->keys[i];
+        const _vrg_key *k = &a->keys[i];
         if (k->section_index != si || repeated_key(g, a, i))
             continue;
         double v;
@@ -275,7 +275,7 @@ static void graph_section(vrg_graph *g, const vrg_ast *a, int si, const char *gr
 }
 
 /* Three decimal numbers (parse_double's rules) within the world. */
-static void camera_position(vrg_graph *g, const vrg_key *k, float out[3])
+static void camera_position(vrg_graph *g, const _vrg_key *k, float out[3])
 {
     char buf[sizeof k->value], *save = NULL;
     snprintf(buf, sizeof buf, "%s", k->value);
@@ -302,12 +302,12 @@ static void camera_position(vrg_graph *g, const vrg_key *k, float out[3])
 }
 
 /* [camera]: where a still camera stands (--camera PATH or the host moves it). */
-static void camera_section(vrg_graph *g, const vrg_ast *a, int si)
+static void camera_section(vrg_graph *g, const _vrg_ast *a, int si)
 {
     static const char *known = "position = X Y Z, yaw, pitch, fov (degrees)";
     vrg_camera *c = &g->camera;
     for (int i = 0; i < a->key_count; i++) {
-        const vrg_key *k = &a->keys[i];
+        const _vrg_key *k = &a->keys[i];
         if (k->section_index != si || repeated_key(g, a, i))
             continue;
         double v;
@@ -346,7 +346,7 @@ static void param_hint(const vrg_plugin_desc *desc, char *out, size_t cap)
         snprintf(out + n, cap - n, " none");
 }
 
-static void bind_slot(vrg_graph *g, vrg_pass *p, const vrg_key *k, const char *slot_name, vrg_slot_dir dir)
+static void bind_slot(vrg_graph *g, vrg_pass *p, const _vrg_key *k, const char *slot_name, vrg_slot_dir dir)
 {
     const vrg_plugin_desc *desc = p->plugin->desc;
     char hint[1024];
@@ -394,10 +394,10 @@ static void bind_slot(vrg_graph *g, vrg_pass *p, const vrg_key *k, const char *s
         _vrg_error_at(&g->diag, k->line, NULL, "too many resources (at most %d)", VRG_MAX_RESOURCES);
         return;
     }
-    vrg_resource *res = &g->res[r];
+    _vrg_resource *res = &g->res[r];
     if (!res->line)
         res->line = k->line;
-    p->slots[s] = (vrg_binding_ref){.res = r, .prev = prev, .line = k->line};
+    p->slots[s] = (_vrg_binding_ref){.res = r, .prev = prev, .line = k->line};
     if (dir == VRG_OUT && res->writer >= 0)
         p->slots[s].bad = 1;
     if (dir == VRG_OUT) {
@@ -415,11 +415,11 @@ static void bind_slot(vrg_graph *g, vrg_pass *p, const vrg_key *k, const char *s
         res->history = 1;
 }
 
-static void pass_section(vrg_graph *g, const vrg_ast *a, int si, vrg_pass *p)
+static void pass_section(vrg_graph *g, const _vrg_ast *a, int si, vrg_pass *p)
 {
     char hint[1024];
     for (int i = 0; i < a->key_count; i++) {
-        const vrg_key *k = &a->keys[i];
+        const _vrg_key *k = &a->keys[i];
         if (k->section_index != si || strcmp(k->name, "plugin") == 0)
             continue;
         int list = p->plugin && find_param(p->plugin->desc, k->name) >= 0 &&
@@ -452,7 +452,7 @@ static void pass_section(vrg_graph *g, const vrg_ast *a, int si, vrg_pass *p)
     }
 }
 
-static void resource_section(vrg_graph *g, const vrg_ast *a, int si, const char *name)
+static void resource_section(vrg_graph *g, const _vrg_ast *a, int si, const char *name)
 {
     if (name_too_long(g, a->sections[si].line, "resource", name, strlen(name)))
         return;
@@ -461,10 +461,10 @@ static void resource_section(vrg_graph *g, const vrg_ast *a, int si, const char 
         _vrg_note_at(&g->diag, a->sections[si].line, "[resource %s] is not used by any pass", name);
         return;
     }
-    vrg_resource *r = &g->res[ri];
+    _vrg_resource *r = &g->res[ri];
     r->line = a->sections[si].line;
     for (int i = 0; i < a->key_count; i++) {
-        const vrg_key *k = &a->keys[i];
+        const _vrg_key *k = &a->keys[i];
         if (k->section_index != si || repeated_key(g, a, i))
             continue;
         double v;
@@ -511,7 +511,7 @@ static int find_pass(const vrg_graph *g, const char *name)
 }
 
 /* [graph] plugin_path: needed before any plugin loads, so read here. */
-static const char *graph_plugin_path(const vrg_ast *a)
+static const char *graph_plugin_path(const _vrg_ast *a)
 {
     for (int i = 0; i < a->key_count; i++)
         if (strcmp(a->keys[i].name, "plugin_path") == 0 && strcmp(a->sections[a->keys[i].section_index].name, "graph") == 0)
@@ -520,13 +520,13 @@ static const char *graph_plugin_path(const vrg_ast *a)
 }
 
 /* First pass: the sections themselves, plugins, and pass identities. */
-static void collect_sections(vrg_graph *g, const vrg_ast *a, const char *graph_path, int *graph_si, int *camera_si)
+static void collect_sections(vrg_graph *g, const _vrg_ast *a, const char *graph_path, int *graph_si, int *camera_si)
 {
     int scene_si = -1;
     *graph_si = -1;
     *camera_si = -1;
     for (int si = 0; si < a->section_count; si++) {
-        const vrg_section *sec = &a->sections[si];
+        const _vrg_section *sec = &a->sections[si];
         const char *arg;
         sec_kind kind = section_kind(sec->name, &arg);
         if (kind == SEC_UNKNOWN) {
@@ -588,7 +588,7 @@ static void collect_sections(vrg_graph *g, const vrg_ast *a, const char *graph_p
         p->order = -1;
         for (int s = 0; s < VRG_MAX_SLOTS; s++)
             p->slots[s].res = -1;
-        const vrg_key *plugin_key = NULL;
+        const _vrg_key *plugin_key = NULL;
         for (int i = 0; i < a->key_count; i++)
             if (a->keys[i].section_index == si && strcmp(a->keys[i].name, "plugin") == 0) {
                 if (plugin_key)
@@ -600,7 +600,7 @@ static void collect_sections(vrg_graph *g, const vrg_ast *a, const char *graph_p
             _vrg_error_at(&g->diag, sec->line, "add 'plugin = NAME' (`voxrg plugins` lists them)", "[%s] has no plugin", sec->name);
             continue;
         }
-        const vrg_plugin *pl = _vrg_plugin_load(plugin_key->value, graph_path, graph_plugin_path(a), &g->diag, plugin_key->line);
+        const _vrg_plugin *pl = _vrg_plugin_load(plugin_key->value, graph_path, graph_plugin_path(a), &g->diag, plugin_key->line);
         if (!pl)
             continue;
         if (kind == SEC_PASS && pl->desc->kind == VRG_PLUGIN_SCENE) {
@@ -663,10 +663,10 @@ static void check_prev_of_persistent(vrg_graph *g)
     for (int pi = 0; pi < g->pass_count; pi++) {
         const vrg_pass *p = &g->passes[pi];
         for (int s = 0; p->plugin && s < (int)p->plugin->desc->slot_count; s++) {
-            const vrg_binding_ref *b = &p->slots[s];
+            const _vrg_binding_ref *b = &p->slots[s];
             if (b->res < 0 || !b->prev || !g->res[b->res].persistent || g->res[b->res].writer < 0)
                 continue;
-            const vrg_resource *r = &g->res[b->res];
+            const _vrg_resource *r = &g->res[b->res];
             char h[160];
             snprintf(h, sizeof h, "pass '%s' keeps it up to date in place (line %d): read '%s' without @prev", g->passes[r->writer].name,
                      r->writer_line, r->name);
@@ -678,7 +678,7 @@ static void check_prev_of_persistent(vrg_graph *g)
 static void resolve_resources(vrg_graph *g)
 {
     for (int ri = 0; ri < g->res_count; ri++) {
-        vrg_resource *r = &g->res[ri];
+        _vrg_resource *r = &g->res[ri];
         if (r->writer < 0)
             continue;
         const vrg_slot_desc *sd = vrg_slot(&g->passes[r->writer], r->writer_slot);
@@ -729,7 +729,7 @@ static void resolve_resources(vrg_graph *g)
             continue;
         for (uint32_t s = 0; s < p->plugin->desc->slot_count; s++) {
             const vrg_slot_desc *sd = vrg_slot(p, (int)s);
-            vrg_binding_ref *b = &p->slots[s];
+            _vrg_binding_ref *b = &p->slots[s];
             if (sd->dir != VRG_IN)
                 continue;
             if (b->bad && b->res < 0)
@@ -742,14 +742,14 @@ static void resolve_resources(vrg_graph *g)
                 snprintf(name, sizeof name, "%s.%s(unconnected)", p->name, sd->name);
                 int r = _vrg_graph_add_resource(g, name);
                 if (r >= 0) {
-                    vrg_resource *res = &g->res[r];
+                    _vrg_resource *res = &g->res[r];
                     res->kind = sd->kind;
                     res->format = sd->format ? sd->format : sd->kind == VRG_BUFFER ? VK_FORMAT_R32_UINT : VK_FORMAT_R16G16B16A16_SFLOAT;
                     res->abs_width = res->abs_height = 1;
                     res->size = sd->size > 16 ? sd->size : 16;
                     res->persistent = res->dummy = 1;
                     res->line = p->line;
-                    *b = (vrg_binding_ref){.res = r, .dummy = 1, .line = p->line};
+                    *b = (_vrg_binding_ref){.res = r, .dummy = 1, .line = p->line};
                 }
                 continue;
             }
@@ -761,7 +761,7 @@ static void resolve_resources(vrg_graph *g)
                 }
                 continue;
             }
-            vrg_resource *r = &g->res[b->res];
+            _vrg_resource *r = &g->res[b->res];
             if (r->writer < 0 && r->writer_unknown)
                 continue;
             if (r->writer < 0) {
@@ -840,14 +840,14 @@ static void default_outputs(vrg_graph *g)
             int r = _vrg_graph_add_resource(g, name);
             if (r < 0)
                 continue;
-            vrg_resource *res = &g->res[r];
+            _vrg_resource *res = &g->res[r];
             /* a reader may already have asked for it (scene outputs by slot name) */
             if (!res->line)
                 res->line = p->line;
             res->writer = pi;
             res->writer_slot = (int)s;
             res->writer_line = p->line;
-            p->slots[s] = (vrg_binding_ref){.res = r, .prev = 0, .line = p->line};
+            p->slots[s] = (_vrg_binding_ref){.res = r, .prev = 0, .line = p->line};
         }
     }
 }
@@ -862,12 +862,12 @@ static void check_conflicting_uses(vrg_graph *g)
             continue;
         for (int a = 0; a < (int)p->plugin->desc->slot_count; a++)
             for (int b = a + 1; b < (int)p->plugin->desc->slot_count; b++) {
-                const vrg_binding_ref *x = &p->slots[a], *y = &p->slots[b];
+                const _vrg_binding_ref *x = &p->slots[a], *y = &p->slots[b];
                 if (x->res < 0 || x->res != y->res || x->prev != y->prev || x->dummy || g->res[x->res].kind != VRG_IMAGE ||
                     vrg_slot(p, a)->dir == VRG_OUT || vrg_slot(p, b)->dir == VRG_OUT) /* read + write: reported as a cycle */
                     continue;
-                vrg_access_info ia = _vrg_access_info_of(vrg_slot(p, a)->access, VRG_IMAGE);
-                vrg_access_info ib = _vrg_access_info_of(vrg_slot(p, b)->access, VRG_IMAGE);
+                _vrg_access_info ia = _vrg_access_info_of(vrg_slot(p, a)->access, VRG_IMAGE);
+                _vrg_access_info ib = _vrg_access_info_of(vrg_slot(p, b)->access, VRG_IMAGE);
                 if (ia.layout != ib.layout)
                     _vrg_error_at(&g->diag, y->line, "read it through one slot, or give the plugin matching accesses",
                                  "resource '%s' is bound to slots '%s' (%s) and '%s' (%s) of pass '%s', which need different layouts",
@@ -884,7 +884,7 @@ static int cycle_dfs(vrg_graph *g, int pi, int *state, int *stack, int depth)
     stack[depth] = pi;
     vrg_pass *p = &g->passes[pi];
     for (int s = 0; p->plugin && s < (int)p->plugin->desc->slot_count; s++) {
-        vrg_binding_ref *b = &p->slots[s];
+        _vrg_binding_ref *b = &p->slots[s];
         if (vrg_slot(p, s)->dir != VRG_IN || b->res < 0 || b->prev)
             continue;
         int w = g->res[b->res].writer;
@@ -925,7 +925,7 @@ static void check_cycles(vrg_graph *g)
             return; /* one cycle report is enough; the rest usually repeat it */
 }
 
-int _vrg_validate(vrg_graph *g, const vrg_ast *ast, const vrg_graph_desc *desc)
+int _vrg_validate(vrg_graph *g, const _vrg_ast *ast, const vrg_graph_desc *desc)
 {
     int graph_si, camera_si;
     g->fps = 60;
@@ -951,7 +951,7 @@ int _vrg_validate(vrg_graph *g, const vrg_ast *ast, const vrg_graph_desc *desc)
         vrg_pass *p = &g->passes[i];
         if (!p->plugin || !p->plugin->desc->check)
             continue;
-        vrg_running before = _vrg_running_enter("check", p->name, p->plugin);
+        _vrg_running before = _vrg_running_enter("check", p->name, p->plugin);
         int rc = p->plugin->desc->check(p);
         _vrg_running_leave(before);
         if (rc != 0 && !p->failed)

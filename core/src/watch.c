@@ -19,15 +19,15 @@ typedef struct watched_file {
     char name[NAME_MAX + 1];
 } watched_file;
 
-struct vrg_watch {
+struct _vrg_watch {
     int fd;
     watched_file *files;
     int count, cap;
 };
 
-vrg_watch *_vrg_watch_create(void)
+_vrg_watch *_vrg_watch_create(void)
 {
-    vrg_watch *w = calloc(1, sizeof *w);
+    _vrg_watch *w = calloc(1, sizeof *w);
     if (!w)
         return NULL;
     w->fd = inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
@@ -38,7 +38,7 @@ vrg_watch *_vrg_watch_create(void)
     return w;
 }
 
-void _vrg_watch_destroy(vrg_watch *w)
+void _vrg_watch_destroy(_vrg_watch *w)
 {
     if (!w)
         return;
@@ -47,7 +47,7 @@ void _vrg_watch_destroy(vrg_watch *w)
     free(w);
 }
 
-int _vrg_watch_add(vrg_watch *w, const char *path)
+int _vrg_watch_add(_vrg_watch *w, const char *path)
 {
     char full[VRG_PATH_MAX];
     if (!w || !realpath(path, full))
@@ -98,7 +98,7 @@ static int add_changed(char (**list)[VRG_PATH_MAX], int n, int *cap, const char 
     return n + 1;
 }
 
-int _vrg_watch_poll(vrg_watch *w, char (**changed)[VRG_PATH_MAX])
+int _vrg_watch_poll(_vrg_watch *w, char (**changed)[VRG_PATH_MAX])
 {
     int n = 0, cap = 0;
     *changed = NULL;
