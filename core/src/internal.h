@@ -89,6 +89,9 @@ typedef struct _vrg_plugin {
  * is not loaded again. `graph_path` is the graph file (for its plugin_path,
  * ':'-separated folders relative to it, NULL if none). */
 const _vrg_plugin *_vrg_plugin_load(const char *name, const char *graph_path, const char *plugin_path, _vrg_diag *d, int line);
+/* Every folder of a graph's plugin_path exists; errors at `line`. The
+ * same resolution as the search path's (relative to the graph file). */
+int _vrg_plugin_path_check(const char *graph_path, const char *plugin_path, _vrg_diag *d, int line);
 /* The checks a plugin's descriptor must pass (also run by the fuzzer). */
 int _vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const char *path, _vrg_diag *d, int line);
 

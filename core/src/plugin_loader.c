@@ -134,18 +134,23 @@ static void add_dir(search_path *s, dir_origin origin, const char *dir, size_t l
     s->dirs[s->count++].origin = origin;
 }
 
+/* Entry p (len bytes) of a ':'-list as a folder in dir: a relative one
+ * under base (NULL: as written). Its length, or -1 if it does not fit. */
+static int list_entry_dir(const char *base, const char *p, size_t len, char *dir, size_t cap)
+{
+    int n = base && p[0] != '/' ? snprintf(dir, cap, "%s/%.*s", base, (int)len, p) : snprintf(dir, cap, "%.*s", (int)len, p);
+    return n >= 0 && (size_t)n < cap ? n : -1;
+}
+
 static void add_list(search_path *s, dir_origin origin, const char *base, const char *list)
 {
     for (const char *p = list; p && *p;) {
         const char *c = strchr(p, ':');
         size_t len = c ? (size_t)(c - p) : strlen(p);
-        if (len && base && p[0] != '/') {
-            char dir[VRG_PATH_MAX];
-            int n = snprintf(dir, sizeof dir, "%s/%.*s", base, (int)len, p);
-            if (n > 0 && n < (int)sizeof dir)
-                add_dir(s, origin, dir, (size_t)n);
-        } else
-            add_dir(s, origin, p, len);
+        char dir[VRG_PATH_MAX];
+        int n = len ? list_entry_dir(base, p, len, dir, sizeof dir) : -1;
+        if (n > 0)
+            add_dir(s, origin, dir, (size_t)n);
         p = c ? c + 1 : p + len;
     }
 }
@@ -158,6 +163,27 @@ static void graph_folder(const char *graph_path, char *out, size_t cap)
         snprintf(out, cap, ".");
     else
         snprintf(out, cap, "%.*s", slash == graph_path ? 1 : (int)(slash - graph_path), graph_path);
+}
+
+int _vrg_plugin_path_check(const char *graph_path, const char *plugin_path, _vrg_diag *d, int line)
+{
+    static const char *hint = "folders separated by ':', relative to the graph file";
+    char base[VRG_PATH_MAX], dir[VRG_PATH_MAX];
+    graph_folder(graph_path ? graph_path : ".", base, sizeof base);
+    int errors = d->errors;
+    for (const char *p = plugin_path; *p;) {
+        const char *c = strchr(p, ':');
+        size_t len = c ? (size_t)(c - p) : strlen(p);
+        struct stat st;
+        if (len == 0)
+            _vrg_error_at(d, line, hint, "'plugin_path' has an empty entry");
+        else if (list_entry_dir(base, p, len, dir, sizeof dir) < 0)
+            _vrg_error_at(d, line, hint, "plugin_path: '%.*s' is longer than %d characters under the graph's folder", (int)len, p, VRG_PATH_MAX - 1);
+        else if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode))
+            _vrg_error_at(d, line, hint, "plugin_path: '%.*s' (%s) is not a folder", (int)len, p, dir);
+        p = c ? c + 1 : p + len;
+    }
+    return d->errors > errors ? -1 : 0;
 }
 
 static void search_path_build(search_path *s, const char *graph_path, const char *plugin_path)

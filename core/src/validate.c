@@ -2,7 +2,6 @@
 /* Phase 2, validate: give the parsed keys meaning. Loads plugins, resolves
  * slots to resources, and runs every check, collecting all errors (each with
  * file:line and a hint) instead of stopping at the first. */
-#include <sys/stat.h>
 #include <ctype.h>
 #include <math.h>
 #include <stdlib.h>
@@ -213,28 +212,6 @@ static sec_kind section_kind(const char *name, const char **arg)
     return SEC_UNKNOWN;
 }
 
-/* Every folder of plugin_path must exist: a typo would otherwise show up
- * only as "unknown plugin" for each pass. */
-static void check_plugin_path(vrg_graph *g, const _vrg_key *k, const char *graph_path)
-{
-    const char *slash = graph_path ? strrchr(graph_path, '/') : NULL;
-    for (const char *p = k->value; *p;) {
-        const char *c = strchr(p, ':');
-        int len = c ? (int)(c - p) : (int)strlen(p);
-        char dir[VRG_PATH_MAX];
-        if (p[0] == '/' || !slash)
-            snprintf(dir, sizeof dir, "%.*s", len, p);
-        else
-            snprintf(dir, sizeof dir, "%.*s/%.*s", (int)(slash - graph_path), graph_path, len, p);
-        struct stat st;
-        if (len == 0)
-            _vrg_error_at(&g->diag, k->line, "folders separated by ':', relative to the graph file", "'plugin_path' has an empty entry");
-        else if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode))
-            _vrg_error_at(&g->diag, k->line, "folders separated by ':', relative to the graph file", "plugin_path: '%.*s' (%s) is not a folder", len, p, dir);
-        p = c ? c + 1 : p + len;
-    }
-}
-
 static void graph_section(vrg_graph *g, const _vrg_ast *a, int si, const char *graph_path)
 {
     static const char *known = "name, output, width, height, seed, fps, plugin_path";
@@ -268,7 +245,7 @@ static void graph_section(vrg_graph *g, const _vrg_ast *a, int si, const char *g
             else
                 g->fps = v;
         } else if (strcmp(k->name, "plugin_path") == 0)
-            check_plugin_path(g, k, graph_path);
+            _vrg_plugin_path_check(graph_path, k->value, &g->diag, k->line); /* a typo: not "unknown plugin" per pass */
         else
             _vrg_error_at(&g->diag, k->line, known, "unknown key '%s' in [graph]", k->name);
     }
