@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "voxrg/camera.h"
+#include "voxrg/camera_path.h"
 
 static void check_inside(const vrg_camera *c)
 {

@@ -12,7 +12,7 @@ set(VRG_TEST_ENV
   "UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1")
 
 add_executable(test_runtime test_runtime.c)
-target_link_libraries(test_runtime PRIVATE voxrg m)
+target_link_libraries(test_runtime PRIVATE voxrg voxrg_voxel voxrg_tools m)
 vrg_use_fast_malloc(test_runtime)
 target_compile_definitions(test_runtime PRIVATE TEST_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
 set(VRG_LOADER_DIR ${CMAKE_CURRENT_BINARY_DIR}/loader_plugins)
@@ -30,13 +30,13 @@ set_tests_properties(cli PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}" TIMEOUT 600)
 # Hot reload driven from a script: `render --watch --sequence` while the test
 # edits a shader, the graph and a plugin (rebuilt with cc).
 add_test(NAME cli_watch COMMAND python3 ${CMAKE_CURRENT_SOURCE_DIR}/test_watch.py $<TARGET_FILE:voxrg_cli> ${CMAKE_CURRENT_SOURCE_DIR}
-         ${PROJECT_SOURCE_DIR}/core/include ${CMAKE_CURRENT_BINARY_DIR}/watch_out)
+         ${PROJECT_SOURCE_DIR}/core/runtime/include ${CMAKE_CURRENT_BINARY_DIR}/watch_out)
 set_tests_properties(cli_watch PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}" TIMEOUT 600)
 
 # Plugins as found in the wild: impostors beside a graph, truncated builds,
 # garbage, a FIFO, a crashing pass, hot-reload faults under render --watch.
 add_test(NAME plugin_faults COMMAND python3 ${CMAKE_CURRENT_SOURCE_DIR}/test_plugin_faults.py $<TARGET_FILE:voxrg_cli>
-         ${PROJECT_SOURCE_DIR}/core/include ${CMAKE_CURRENT_BINARY_DIR}/plugin_faults_out)
+         ${PROJECT_SOURCE_DIR}/core/runtime/include ${CMAKE_CURRENT_BINARY_DIR}/plugin_faults_out)
 set_tests_properties(plugin_faults PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}" TIMEOUT 600)
 
 # The complete pass of docs/plugin-abi.md builds and renders as the page says.
@@ -66,7 +66,6 @@ if(VOXRG_FUZZ)
   target_compile_options(fuzz_graph PRIVATE -fsanitize=fuzzer)
   target_link_options(fuzz_graph PRIVATE -fsanitize=fuzzer)
   target_link_libraries(fuzz_graph PRIVATE voxrg)
-  target_compile_options(voxrg_objects PRIVATE -fsanitize=fuzzer-no-link)
   set(FUZZ_CORPUS ${CMAKE_CURRENT_BINARY_DIR}/fuzz_corpus)
   add_test(NAME fuzz_graph
            COMMAND ${CMAKE_COMMAND} -E env ${VRG_TEST_ENV}
@@ -83,15 +82,21 @@ if(VOXRG_FUZZ)
   add_executable(fuzz_camera_path fuzz_camera_path.c)
   target_compile_options(fuzz_camera_path PRIVATE -fsanitize=fuzzer)
   target_link_options(fuzz_camera_path PRIVATE -fsanitize=fuzzer)
-  target_link_libraries(fuzz_camera_path PRIVATE voxrg m)
+  target_link_libraries(fuzz_camera_path PRIVATE voxrg_tools m)
   set(FUZZ_PATH_CORPUS ${CMAKE_CURRENT_BINARY_DIR}/fuzz_path_corpus)
   add_test(NAME fuzz_camera_path
            COMMAND sh -c "mkdir -p ${FUZZ_PATH_CORPUS} && cp ${PROJECT_SOURCE_DIR}/graphs/paths/*.path ${FUZZ_PATH_CORPUS}/ && $<TARGET_FILE:fuzz_camera_path> -runs=20000 -max_len=2048 -timeout=10 ${FUZZ_PATH_CORPUS}")
   set_tests_properties(fuzz_camera_path PROPERTIES TIMEOUT 300)
 endif()
 
-# The library exports exactly what its public headers declare.
-add_test(NAME exports COMMAND python3 ${CMAKE_CURRENT_SOURCE_DIR}/check_exports.py $<TARGET_FILE:voxrg> ${PROJECT_SOURCE_DIR}/core/include)
+# Each layer's library exports exactly what its public headers declare.
+add_test(NAME exports COMMAND python3 ${CMAKE_CURRENT_SOURCE_DIR}/check_exports.py
+         $<TARGET_FILE:voxrg> ${PROJECT_SOURCE_DIR}/core/runtime/include
+         $<TARGET_FILE:voxrg_voxel> ${PROJECT_SOURCE_DIR}/core/voxel/include
+         $<TARGET_FILE:voxrg_tools> ${PROJECT_SOURCE_DIR}/core/tools/include)
+# The layers depend one way: runtime <- voxel, runtime <- tools.
+add_test(NAME layers COMMAND python3 ${CMAKE_CURRENT_SOURCE_DIR}/check_layers.py ${PROJECT_SOURCE_DIR}/core
+         $<TARGET_FILE:voxrg> $<TARGET_FILE:voxrg_voxel> $<TARGET_FILE:voxrg_tools>)
 
 # The loader's checks of plugin descriptors, case by case (no device).
 add_executable(test_plugin_desc test_plugin_desc.c)
@@ -101,7 +106,7 @@ set_tests_properties(plugin_desc PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}")
 
 # Image metrics of voxrg compare against hand-computed values (no device).
 add_executable(test_metrics test_metrics.c)
-target_link_libraries(test_metrics PRIVATE voxrg m)
+target_link_libraries(test_metrics PRIVATE voxrg_tools m)
 foreach(case psnr ssim flip temporal colors)
   add_test(NAME metrics_${case} COMMAND test_metrics ${case})
   set_tests_properties(metrics_${case} PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}" LABELS "metrics")
@@ -110,7 +115,7 @@ endforeach()
 # The writer of output files: a failed write keeps the old file, a commit
 # replaces it whole (no device).
 add_executable(test_output test_output.c)
-target_link_libraries(test_output PRIVATE voxrg)
+target_link_libraries(test_output PRIVATE voxrg_tools)
 foreach(case full_disk commit dir_check)
   add_test(NAME output_${case} COMMAND test_output ${case} WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
   set_tests_properties(output_${case} PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}")

@@ -5,7 +5,7 @@ add_executable(test_terrain test_terrain.c
   ${PROJECT_SOURCE_DIR}/plugins/terrain/terrain_gen.c
   ${PROJECT_SOURCE_DIR}/plugins/terrain/stream.c)
 target_include_directories(test_terrain PRIVATE
-  ${PROJECT_SOURCE_DIR}/core/include ${PROJECT_SOURCE_DIR}/plugins/terrain)
+  ${PROJECT_SOURCE_DIR}/core/runtime/include ${PROJECT_SOURCE_DIR}/core/voxel/include ${PROJECT_SOURCE_DIR}/plugins/terrain)
 # world.h pulls in plugin.h, which includes <vulkan/vulkan.h> (headers only).
 if(TARGET Vulkan::Headers)
   target_link_libraries(test_terrain PRIVATE Vulkan::Headers)

@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include "voxrg/camera.h"
+#include "voxrg/sky.h"
+#include "voxrg/camera_path.h"
 
 #ifndef VRG_SOURCE_DIR
 #error "VRG_SOURCE_DIR must name the source tree (for graphs/paths)"

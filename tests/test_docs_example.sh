@@ -22,7 +22,7 @@ for f in invert/invert.c invert/invert.comp invert.ini; do
     [ -s "$out/$f" ] || { echo "FAIL: docs/plugin-abi.md has no $f block"; exit 1; }
 done
 # the page's command, with this build's paths
-if ! gcc -std=c11 -fPIC -shared -I"$src/core/include" -DVRG_PLUGIN_DIR="\"$out/invert\"" \
+if ! gcc -std=c11 -fPIC -shared -I"$src/core/runtime/include" -DVRG_PLUGIN_DIR="\"$out/invert\"" \
     "$out/invert/invert.c" -o "$out/invert.so" -L"$libdir" -lvoxrg 2> "$out/gcc.log"; then
     echo "FAIL: the page's invert.c does not compile:"; cat "$out/gcc.log"; exit 1
 fi

@@ -14,6 +14,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include "voxrg/voxrg.h"
+#include "voxrg/output.h"
+#include "voxrg/png.h"
 
 static int failures;
 #define CHECK(cond, ...)                                                                                                                   \

@@ -9,6 +9,9 @@
 #include <string.h>
 #include <unistd.h>
 #include "voxrg/voxrg.h"
+#include "voxrg/output.h"
+#include "voxrg/png.h"
+#include "voxrg/camera_path.h"
 #include "voxrg/world.h"
 #include "voxrg/camera.h"
 
@@ -2060,7 +2063,7 @@ static int build_plugin_flags(const char *dir, const char *name, int version, co
     snprintf(src, sizeof src, "%s/%s.c", dir, name);
     save_file(src, reloadme_source);
     snprintf(cmd, sizeof cmd,
-             "cc -std=c11 -shared -fPIC -I'%s/../core/include' %s -DNAME='\"%s\"' -DVERSION=%d -DABI=%s -DDIR='\"%s\"' '%s' -o '%s/%s.so.new' && "
+             "cc -std=c11 -shared -fPIC -I'%s/../core/runtime/include' %s -DNAME='\"%s\"' -DVERSION=%d -DABI=%s -DDIR='\"%s\"' '%s' -o '%s/%s.so.new' && "
              "mv '%s/%s.so.new' '%s/%s.so'",
              TEST_DIR, flags, name, version, abi, dir, src, dir, name, dir, name, dir, name);
     return system(cmd);

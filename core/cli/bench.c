@@ -8,6 +8,7 @@
 #include <unistd.h>
 #include "bench.h"
 #include "util.h"
+#include "voxrg/output.h"
 
 static int cmp_double(const void *a, const void *b)
 {

@@ -9,6 +9,7 @@
 #include "bench.h"
 #include "util.h"
 #include "voxrg/camera.h"
+#include "voxrg/camera_path.h"
 
 enum { MAX_PASSES = 64 };
 

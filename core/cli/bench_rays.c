@@ -10,6 +10,7 @@
 #include <string.h>
 #include "bench.h"
 #include "voxrg/camera.h"
+#include "voxrg/world.h"
 
 int vrg_bench_rays(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure *out, int *count)
 {

@@ -182,7 +182,7 @@ int vrg_bench_reload(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure
     g = NULL;
     for (int r = -1; ok && r < runs; r++) {
         snprintf(cmd, sizeof cmd,
-                 "cc -std=c11 -shared -fPIC -I'%s/core/include' -DVALUE=%d -DDIR='\"%s\"' '%s' -o '%s.new' 2>/dev/null && mv '%s.new' '%s'",
+                 "cc -std=c11 -shared -fPIC -I'%s/core/runtime/include' -DVALUE=%d -DDIR='\"%s\"' '%s' -o '%s.new' 2>/dev/null && mv '%s.new' '%s'",
                  vrg_source_dir(), r + 2, dir, plugin_src, so, so, so);
         if (system(cmd) != 0) {
             printf("reload: plugin figure skipped: no working `cc` to rebuild a plugin with\n");

@@ -6,6 +6,7 @@
 #include <string.h>
 #include "bench.h"
 #include "voxrg/camera.h"
+#include "voxrg/camera_path.h"
 
 
 /* A terrain graph with the smallest real pass, so the scene's figures are

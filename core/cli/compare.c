@@ -18,6 +18,9 @@
 #include <unistd.h>
 #include "util.h"
 #include "voxrg/camera.h"
+#include "voxrg/output.h"
+#include "voxrg/png.h"
+#include "voxrg/camera_path.h"
 #include "voxrg/metrics.h"
 #include "voxrg/voxrg.h"
 

@@ -16,6 +16,9 @@
 #include "run.h"
 #include "util.h"
 #include "voxrg/voxrg.h"
+#include "voxrg/output.h"
+#include "voxrg/png.h"
+#include "voxrg/camera_path.h"
 
 #define MAX_SETS 64
 #define MAX_DUMPS 32

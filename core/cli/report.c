@@ -11,6 +11,8 @@
 #include <string.h>
 #include "compare.h"
 #include "voxrg/metrics.h"
+#include "voxrg/output.h"
+#include "voxrg/png.h"
 #include "voxrg/voxrg.h"
 
 /* candidates' colours (plots, legends); passes' colours (bars) */

@@ -15,6 +15,10 @@
 #include "run.h"
 #include "util.h"
 #include "voxrg/camera.h"
+#include "voxrg/world.h"
+#include "voxrg/output.h"
+#include "voxrg/png.h"
+#include "voxrg/camera_path.h"
 #include "voxrg/voxrg.h"
 
 typedef struct swapchain {

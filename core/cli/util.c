@@ -2,6 +2,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "util.h"
 #include "voxrg/voxrg.h"
+#include "voxrg/output.h"
 #include <ctype.h>
 #include <errno.h>
 #include <stdio.h>

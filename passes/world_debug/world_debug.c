@@ -1,7 +1,7 @@
 /* A debug view of the voxel world: one primary ray per pixel through the
  * two-level DDA, shown as shaded albedo (with a hard sun shadow), normals,
  * block ids or distance. Enough to see a scene before the real passes. */
-#include "voxrg/world.h"
+#include "voxrg/plugin.h"
 
 static const vrg_param_desc params[] = {
     {"mode", VRG_PARAM_INT, 0, 0, 3, "0 shaded, 1 normals, 2 block ids, 3 distance"},

@@ -1,5 +1,5 @@
 // Per-frame uniforms written by scene plugins (vrg_frame_uniforms in
-// core/include/voxrg/world.h; std140, same order). Before including, define
+// core/voxel/include/voxrg/world.h; std140, same order). Before including, define
 // FRAME_BINDING to the binding of the pass's `frame` slot.
 #ifndef VOXRG_FRAME_GLSL
 #define VOXRG_FRAME_GLSL
@@ -26,14 +26,14 @@ layout(std140, binding = FRAME_BINDING) uniform FrameUniforms {
 } frame;
 
 // World-space direction of the primary ray through pixel centre p + 0.5
-// (vrg_camera_ray in core/src/camera.c; NDC y points down).
+// (vrg_camera_ray in core/runtime/src/camera.c; NDC y points down).
 vec3 frame_ray_dir(vec2 pixel, vec2 size)
 {
     vec2 ndc = (pixel + 0.5) / size * 2.0 - 1.0;
     return normalize(frame.camera_forward.xyz + ndc.x * frame.camera_right.xyz - ndc.y * frame.camera_up.xyz);
 }
 
-// Sky radiance along a unit direction: vrg_sky_radiance in core/src/sky.c,
+// Sky radiance along a unit direction: vrg_sky_radiance in core/voxel/src/sky.c,
 // the same formula (keep them in step): a horizon-to-zenith gradient by
 // sqrt(dir.y), a darkened horizon below it, and a glow around the sun.
 vec3 frame_sky(vec3 dir)

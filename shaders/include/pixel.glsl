@@ -4,7 +4,7 @@
 //   void shade(ivec2 p) { ... }
 //   void main() { for (uint k = 0u; k < VRG_PIXEL_ROWS; k++) shade(vrg_pixel(k)); }
 // The runtime defines VRG_GROUP_X/Y, VRG_TILE_W/H and VRG_PIXEL_ROWS per
-// device (core/src/context.c): on a CPU device a group is one SIMD row of
+// device (core/runtime/src/context.c): on a CPU device a group is one SIMD row of
 // invocations (8x1) shading a 4x2 tile of pixels, VRG_PIXEL_ROWS tiles per
 // invocation; on a GPU 8x8 groups, 8x8 tiles, one pixel per invocation.
 //

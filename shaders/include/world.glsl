@@ -1,4 +1,4 @@
-// The voxel world buffer a scene plugin writes (layout: core/src/world.c).
+// The voxel world buffer a scene plugin writes (layout: core/voxel/src/world.c).
 // Before including, define WORLD_BINDING to the binding of the pass's
 // `world` slot (a storage buffer).
 #ifndef VOXRG_WORLD_GLSL
@@ -116,7 +116,7 @@ uint material_flags(uint id) { return world_word(uint(WORLD_MATERIALS + id * 8u 
 // Atlas tile of a face: 0 top, 1 side, 2 bottom.
 uint material_tile(uint id, int face) { return world_word(uint(WORLD_MATERIALS + id * 8u + 5u + uint(face))); }
 
-// ---- Block textures (core/src/textures.c: a 4 x 4 atlas of 16x16 tiles) ----
+// ---- Block textures (core/voxel/src/textures.c: a 4 x 4 atlas of 16x16 tiles) ----
 
 // The thesis's LOD rule: the mip whose texel matches the pixel's footprint on
 // the surface at distance t (pixel_angle: radians per pixel; cos_incidence:

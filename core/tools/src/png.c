@@ -8,7 +8,8 @@
 #include <spng.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include "internal.h"
+#include "voxrg/output.h"
+#include "voxrg/png.h"
 
 static float linear_to_srgb(float c)
 {

@@ -1,4 +1,6 @@
-/* The voxel world: block ids, materials, 16^3 chunks, and the GPU layout the
+/* The voxel layer (libvoxrg_voxel), built on the runtime's public API only.
+ *
+ * The voxel world: block ids, materials, 16^3 chunks, and the GPU layout the
  * traversal shaders read (shaders/include/world.glsl mirrors it).
  *
  * Coordinates: y is up. Block (x,y,z) lives in chunk (x>>4, y>>4, z>>4) at
@@ -8,12 +10,14 @@
 
 #include <stdint.h>
 #include "voxrg/plugin.h"
+#include "voxrg/sky.h"
+#include "voxrg/voxrg.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-/* Only what these headers declare is exported from libvoxrg (built with
- * -fvisibility=hidden); the runtime's internals stay hidden. */
+/* Only what these headers declare is exported from libvoxrg_voxel (built
+ * with -fvisibility=hidden); its internals stay hidden. */
 #pragma GCC visibility push(default)
 
 #define VRG_CHUNK_SIZE 16
@@ -225,6 +229,10 @@ int vrg_scene_create(vrg_pass *pass, vrg_scene_gpu *s, vrg_world *world);
 void vrg_scene_record(vrg_pass *pass, vrg_scene_gpu *s, VkCommandBuffer cmd);
 /* destroy(): frees the world too. */
 void vrg_scene_destroy(vrg_pass *pass, vrg_scene_gpu *s);
+/* The name a scene shares its world under (vrg_pass_share). */
+#define VRG_WORLD_SHARED_NAME "vrg_world"
+/* The graph's world (NULL without a scene that shares one): CPU block queries. */
+vrg_world *vrg_graph_world(const vrg_graph *g);
 
 static inline int vrg_floor_div16(int v) { return v >= 0 ? v / 16 : -((15 - v) / 16); }
 static inline int vrg_chunk_index(int lx, int ly, int lz) { return lx + VRG_CHUNK_SIZE * (lz + VRG_CHUNK_SIZE * ly); }

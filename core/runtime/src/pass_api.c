@@ -260,8 +260,6 @@ void _vrg_pass_free_host_buffers(vrg_pass *p)
     }
 }
 
-void vrg_pass_set_world(vrg_pass *p, vrg_world *world) { p->graph->world = world; }
-
 int vrg_pass_require_same_size(vrg_pass *p, const char *ref, const char *const *names, int count)
 {
     VkExtent2D want = vrg_res_extent(p, vrg_pass_res(p, ref));

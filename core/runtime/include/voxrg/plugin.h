@@ -21,10 +21,12 @@ extern "C" {
 #pragma GCC visibility push(default)
 
 /* Bumped on any incompatible change to what plugins see: the structs and
- * functions below and those of voxrg/world.h and voxrg/camera.h, which
- * scene plugins use (world.h's VRG_SCENE_SLOTS, vrg_scene_gpu, the frame
- * uniforms). Additions at the end of vrg_plugin_desc are compatible. */
-#define VRG_ABI_VERSION 1u
+ * functions below, voxrg/camera.h's, and the voxel layer's voxrg/world.h
+ * and voxrg/sky.h, which scene plugins use (VRG_SCENE_SLOTS,
+ * vrg_scene_gpu, the frame uniforms). Additions at the end of
+ * vrg_plugin_desc are compatible. 2: the layers split (the scene glue moved
+ * to libvoxrg_voxel; vrg_pass_set_world became vrg_pass_share). */
+#define VRG_ABI_VERSION 2u
 #define VRG_PLUGIN_ENTRY_SYMBOL "vrg_plugin_entry"
 #define VRG_EXPORT __attribute__((visibility("default")))
 
@@ -286,9 +288,15 @@ VkAccelerationStructureKHR vrg_res_accel(const vrg_pass *pass, vrg_res res);
  * a reference). Hosts read the largest request with vrg_graph_subframes. */
 void vrg_pass_set_subframes(vrg_pass *pass, uint32_t n);
 
-/* A scene plugin hands its world to the runtime so hosts can query it. */
-typedef struct vrg_world vrg_world;
-void vrg_pass_set_world(vrg_pass *pass, vrg_world *world);
+/* An object of the pass's that hosts look up by name with vrg_graph_shared
+ * (a scene shares its voxel world this way: world.h's vrg_graph_world). The
+ * runtime keeps only the pointer, until the pass is destroyed or it is
+ * shared again under the name (NULL: no longer). Returns 0, or -1 after
+ * reporting an error. */
+int vrg_pass_share(vrg_pass *pass, const char *name, void *object);
+/* Names a Vulkan object the pass made itself ("GRAPH/PASS.NAME") for the
+ * validation layer's messages and debuggers; nothing without debug utils. */
+void vrg_pass_name_object(vrg_pass *pass, VkObjectType type, uint64_t handle, const char *name);
 
 /* In create() only: a transient resource private to this pass. It lives for
  * the pass's execution alone, so the runtime aliases its memory with other

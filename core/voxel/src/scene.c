@@ -101,7 +101,7 @@ int vrg_scene_check(vrg_pass *pass, int grid_radius, int height_chunks)
 int vrg_scene_create(vrg_pass *pass, vrg_scene_gpu *s, vrg_world *world)
 {
     s->world = world;
-    vrg_pass_set_world(pass, world);
+    vrg_pass_share(pass, VRG_WORLD_SHARED_NAME, world);
     int dims[3];
     vrg_world_grid(world, dims);
     /* room to upload the whole grid in one frame (the first, or after a
@@ -148,8 +148,10 @@ void vrg_scene_record(vrg_pass *pass, vrg_scene_gpu *s, VkCommandBuffer cmd)
 
 void vrg_scene_destroy(vrg_pass *pass, vrg_scene_gpu *s)
 {
-    vrg_pass_set_world(pass, NULL);
+    vrg_pass_share(pass, VRG_WORLD_SHARED_NAME, NULL);
     vrg_world_accel_destroy(s->accel);
     vrg_world_destroy(s->world);
     memset(s, 0, sizeof *s);
 }
+
+vrg_world *vrg_graph_world(const vrg_graph *g) { return vrg_graph_shared(g, VRG_WORLD_SHARED_NAME); }

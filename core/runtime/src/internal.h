@@ -227,6 +227,7 @@ struct vrg_pass {
     struct _vrg_pass_figure *stats; /* vrg_pass_stat: this frame's, grown as named */
     int stat_count, stat_cap;
     VkCommandBuffer cmd;      /* during execute */
+    struct _vrg_shared *shared; /* vrg_pass_share */
 };
 
 typedef struct _vrg_pass_figure {
@@ -251,6 +252,7 @@ typedef struct _vrg_host_buffer {
 
 void _vrg_pass_free_params(vrg_pass *p);
 void _vrg_pass_free_host_buffers(vrg_pass *p);
+void _vrg_pass_free_shared(vrg_pass *p);
 /* Forgets the figures of vrg_pass_stat (a new frame); free: also the table. */
 void _vrg_pass_clear_stats(vrg_pass *p, int free_table);
 int _vrg_pass_add_string(vrg_pass *p, int param, const char *value, int line, int replace);
@@ -323,7 +325,6 @@ struct vrg_graph {
     VkDeviceSize readback_offset[VRG_MAX_RESOURCES];
     VkDeviceSize progress_offset; /* in the readback buffer: a word per scheduled pass, 1 once it ended */
     int frame_done;
-    vrg_world *world;         /* the scene's, for host queries */
     vrg_camera camera;        /* for the next frame */
     vrg_camera last_camera;   /* the last frame's */
 };

@@ -8,8 +8,8 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
-/* Only what these headers declare is exported from libvoxrg (built with
- * -fvisibility=hidden); the runtime's internals stay hidden. */
+/* Only what these headers declare is exported from libvoxrg_tools (built with
+ * -fvisibility=hidden); its internals stay hidden. */
 #pragma GCC visibility push(default)
 
 /* PSNR over the three channels, peak 1. Identical images have no finite

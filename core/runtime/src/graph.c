@@ -199,6 +199,7 @@ void vrg_graph_destroy(vrg_graph *g)
     }
     for (int i = 0; i < g->pass_count; i++) {
         _vrg_pass_free_params(&g->passes[i]);
+        _vrg_pass_free_shared(&g->passes[i]);
         _vrg_pass_clear_stats(&g->passes[i], 1);
         if (g->passes[i].plugin)
             _vrg_plugin_release(g->passes[i].plugin); /* last: nothing of the plugin's is used after */
@@ -698,7 +699,6 @@ int vrg_graph_placement(const vrg_graph *g, const char *name, int *block, uint64
     return -1;
 }
 
-vrg_world *vrg_graph_world(const vrg_graph *g) { return g->world; }
 int vrg_graph_set_camera(vrg_graph *g, const vrg_camera *c)
 {
     if (!vrg_camera_position_in_world(c->position)) {

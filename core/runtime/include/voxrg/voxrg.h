@@ -207,8 +207,9 @@ typedef struct vrg_memory_stats {
 vrg_memory_stats vrg_graph_memory(const vrg_graph *g);
 /* Memory placement of a resource: block (-1 own memory) and byte offset. */
 int vrg_graph_placement(const vrg_graph *g, const char *resource, int *block, uint64_t *offset, uint64_t *size);
-/* The scene's world (NULL without a scene that sets one): CPU block queries. */
-vrg_world *vrg_graph_world(const vrg_graph *g);
+/* The object a pass shared under name (vrg_pass_share): the first pass in
+ * graph order (a scene comes first) that shared one; NULL if none did. */
+void *vrg_graph_shared(const vrg_graph *g, const char *name);
 /* 1 if the named pass was culled. -1 if no such pass. */
 int vrg_graph_pass_culled(const vrg_graph *g, const char *pass);
 
@@ -223,37 +224,6 @@ int vrg_list_plugins(const vrg_plugin_desc **descs, const char **paths, int max,
 int vrg_find_plugin(const char *name, FILE *diag, const vrg_plugin_desc **desc, const char **path);
 const char *vrg_format_label(VkFormat f);
 const char *vrg_access_label(vrg_access a);
-
-/* Output files written whole or not at all: the data goes to a temporary
- * file in the target's folder (unnamed where the file system allows it, so a
- * killed process leaves nothing behind), is flushed, synced and checked, and
- * then renamed over the target. A failed write leaves the old file as it was.
- * Errors are printed to stderr with the path and the system's reason. */
-typedef struct vrg_output vrg_output;
-/* NULL (after the message) if the folder cannot take a new file. */
-vrg_output *vrg_output_open(const char *path);
-/* Where to write the data. */
-FILE *vrg_output_stream(vrg_output *out);
-/* Puts the file in place: 0, or -1 after the message (the target unchanged,
- * the temporary file gone). Frees out either way. */
-int vrg_output_commit(vrg_output *out);
-/* Drops the temporary file, the target unchanged. Frees out; NULL is fine. */
-void vrg_output_abort(vrg_output *out);
-/* size bytes of data as the whole file at path, as above. */
-int vrg_output_write(const char *path, const void *data, size_t size);
-/* 0 if the existing folder dir can take new files (a temporary file is
- * created and dropped), else -1 after a message naming dir and the reason. */
-int vrg_output_dir_check(const char *dir);
-
-/* PNG of float RGBA data; see docs/graph-format.md for how floats map. */
-int vrg_write_png(const char *path, const vrg_image_data *img);
-/* The 8-bit RGB bytes vrg_write_png would write (malloc'd, width*height*3). */
-uint8_t *vrg_image_rgb8(const vrg_image_data *img);
-int vrg_png_write_rgb8(const char *path, const uint8_t *rgb, uint32_t width, uint32_t height);
-/* A PNG file in memory (*png malloc'd, the caller frees it). */
-int vrg_png_encode_rgb8(const uint8_t *rgb, uint32_t width, uint32_t height, void **png, size_t *size);
-/* Any PNG, decoded to 8-bit RGB (*rgb malloc'd). -1 if unreadable. */
-int vrg_png_read_rgb8(const char *path, uint8_t **rgb, uint32_t *width, uint32_t *height);
 
 #pragma GCC visibility pop
 

@@ -2,7 +2,7 @@
  * (not a scattering simulation). Every constant is here so a GLSL copy of
  * vrg_sky_radiance can match it; units are in voxrg/camera.h. */
 #include <math.h>
-#include "voxrg/camera.h"
+#include "voxrg/sky.h"
 
 #define PI 3.14159265358979323846
 #define DEG (PI / 180.0)

@@ -4,7 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "voxrg/camera.h"
+#include "voxrg/camera_path.h"
 
 #define FIELDS 6
 #define MAX_FILE_BYTES (16u << 20) /* far beyond any hand-written path */

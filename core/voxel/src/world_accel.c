@@ -3,7 +3,6 @@
  * one with an instance per chunk. See voxrg/world.h. */
 #include <stdlib.h>
 #include <string.h>
-#include "internal.h"
 #include "voxrg/world.h"
 
 typedef struct chunk_blas {
@@ -27,9 +26,14 @@ struct vrg_world_accel {
     VkDeviceAddress vertex_address, instance_address, scratch_address;
     uint64_t vertex_bytes, scratch_bytes;
     VkDeviceSize scratch_align;
+    /* VK_KHR_acceleration_structure's commands, from the pass's device */
+    VkDevice device;
+    PFN_vkCreateAccelerationStructureKHR create_as;
+    PFN_vkDestroyAccelerationStructureKHR destroy_as;
+    PFN_vkGetAccelerationStructureBuildSizesKHR build_sizes;
+    PFN_vkCmdBuildAccelerationStructuresKHR cmd_build;
+    PFN_vkGetAccelerationStructureDeviceAddressKHR as_address;
 };
-
-static vrg_context *ctx_of(const vrg_world_accel *a) { return a->pass->graph->ctx; }
 
 static void *buffer(vrg_world_accel *a, const char *name, uint64_t size, VkBufferUsageFlags usage, int host, VkBuffer *b, VkDeviceAddress *addr)
 {
@@ -39,13 +43,19 @@ static void *buffer(vrg_world_accel *a, const char *name, uint64_t size, VkBuffe
 
 vrg_world_accel *vrg_world_accel_create(vrg_pass *pass, vrg_world *world)
 {
-    vrg_context *ctx = pass->graph->ctx;
-    if (!ctx || !ctx->dev.features.acceleration_structure || !ctx->dev.features.ray_query) {
+    const vrg_device *dev = vrg_pass_device(pass);
+    if (!dev || !dev->features.acceleration_structure || !dev->features.ray_query) {
         vrg_pass_error(pass, "the ray-query backend needs VK_KHR_acceleration_structure and VK_KHR_ray_query, which '%s' lacks",
-                       ctx ? ctx->device_name : "(no device)");
+                       dev ? dev->name : "(no device)");
         return NULL;
     }
     vrg_world_accel *a = calloc(1, sizeof *a);
+    a->device = dev->device;
+    a->create_as = (PFN_vkCreateAccelerationStructureKHR)vkGetDeviceProcAddr(dev->device, "vkCreateAccelerationStructureKHR");
+    a->destroy_as = (PFN_vkDestroyAccelerationStructureKHR)vkGetDeviceProcAddr(dev->device, "vkDestroyAccelerationStructureKHR");
+    a->build_sizes = (PFN_vkGetAccelerationStructureBuildSizesKHR)vkGetDeviceProcAddr(dev->device, "vkGetAccelerationStructureBuildSizesKHR");
+    a->cmd_build = (PFN_vkCmdBuildAccelerationStructuresKHR)vkGetDeviceProcAddr(dev->device, "vkCmdBuildAccelerationStructuresKHR");
+    a->as_address = (PFN_vkGetAccelerationStructureDeviceAddressKHR)vkGetDeviceProcAddr(dev->device, "vkGetAccelerationStructureDeviceAddressKHR");
     a->pass = pass;
     a->world = world;
     a->slots = vrg_world_slot_count(world);
@@ -53,7 +63,7 @@ vrg_world_accel *vrg_world_accel_create(vrg_pass *pass, vrg_world *world)
     a->changed = calloc((size_t)a->slots, sizeof *a->changed);
     VkPhysicalDeviceAccelerationStructurePropertiesKHR asp = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
     VkPhysicalDeviceProperties2 p2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &asp};
-    vkGetPhysicalDeviceProperties2(ctx->dev.physical_device, &p2);
+    vkGetPhysicalDeviceProperties2(dev->physical_device, &p2);
     a->scratch_align = asp.minAccelerationStructureScratchOffsetAlignment ? asp.minAccelerationStructureScratchOffsetAlignment : 256;
     a->instance_map = buffer(a, "tlas instances", (uint64_t)a->slots * sizeof(VkAccelerationStructureInstanceKHR),
                              VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR, 1, &a->instances, &a->instance_address);
@@ -68,10 +78,9 @@ void vrg_world_accel_destroy(vrg_world_accel *a)
 {
     if (!a)
         return;
-    vrg_context *ctx = ctx_of(a);
     for (int s = 0; s < a->slots; s++)
         if (a->blas[s].as)
-            ctx->as.destroy(ctx->dev.device, a->blas[s].as, NULL);
+            a->destroy_as(a->device, a->blas[s].as, NULL);
     /* the buffers belong to the pass: the runtime frees them with it */
     free(a->blas);
     free(a->changed);
@@ -154,8 +163,7 @@ int vrg_world_accel_quads(const vrg_world_accel *a, int cx, int cy, int cz)
 
 int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *tlas_slot)
 {
-    vrg_context *ctx = ctx_of(a);
-    VkDevice dev = ctx->dev.device;
+    VkDevice dev = a->device;
     int nchanged = vrg_world_take_mesh_changes(a->world, a->changed, a->slots);
     size_t cap = nchanged > 0 ? (size_t)nchanged : 1;
     uint32_t *keys = malloc(16 * 16 * 16 * 6 * sizeof *keys);
@@ -194,7 +202,7 @@ int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *
         int s = a->changed[i];
         chunk_blas *b = &a->blas[s];
         if (b->as) {
-            ctx->as.destroy(dev, b->as, NULL);
+            a->destroy_as(dev, b->as, NULL);
             vrg_pass_free_buffer(a->pass, b->buffer);
             memset(b, 0, sizeof *b);
         }
@@ -228,7 +236,7 @@ int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *
         };
         uint32_t tris = (uint32_t)(2 * n);
         VkAccelerationStructureBuildSizesInfoKHR sizes = {.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
-        ctx->as.sizes(dev, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, info, &tris, &sizes);
+        a->build_sizes(dev, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, info, &tris, &sizes);
         char name[64];
         snprintf(name, sizeof name, "blas %d %d %d", c[0], c[1], c[2]);
         if (!buffer(a, name, sizes.accelerationStructureSize, VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_STORAGE_BIT_KHR, 0, &b->buffer, NULL)) {
@@ -239,13 +247,13 @@ int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *
                                                    .buffer = b->buffer,
                                                    .size = sizes.accelerationStructureSize,
                                                    .type = VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR};
-        if (ctx->as.create(dev, &ci, NULL, &b->as) != VK_SUCCESS) {
+        if (a->create_as(dev, &ci, NULL, &b->as) != VK_SUCCESS) {
             rc = vrg_pass_error(a->pass, "cannot create the BLAS of chunk %d %d %d", c[0], c[1], c[2]);
             break;
         }
-        _vrg_name_object(ctx, VK_OBJECT_TYPE_ACCELERATION_STRUCTURE_KHR, (uint64_t)b->as, "%s", name);
+        vrg_pass_name_object(a->pass, VK_OBJECT_TYPE_ACCELERATION_STRUCTURE_KHR, (uint64_t)b->as, name);
         VkAccelerationStructureDeviceAddressInfoKHR ai = {.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_DEVICE_ADDRESS_INFO_KHR, .accelerationStructure = b->as};
-        b->address = ctx->as.address(dev, &ai);
+        b->address = a->as_address(dev, &ai);
         b->quads = n;
         memcpy(b->chunk, c, sizeof c);
         info->dstAccelerationStructure = b->as;
@@ -290,7 +298,7 @@ int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *
     };
     VkAccelerationStructureBuildSizesInfoKHR tsizes = {.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
     uint32_t max_inst = (uint32_t)a->slots;
-    ctx->as.sizes(dev, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &tinfo, &max_inst, &tsizes);
+    a->build_sizes(dev, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &tinfo, &max_inst, &tsizes);
     VkDeviceSize tlas_scratch = 0;
     VkDeviceSize need = align_up(scratch_total, a->scratch_align) + tsizes.buildScratchSize + a->scratch_align;
     if (rc == 0 && need > a->scratch_bytes) {
@@ -313,7 +321,7 @@ int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *
         if (nbuild) {
             for (int i = 0; i < nbuild; i++)
                 infos[i].scratchData.deviceAddress = base + scratch_offsets[i];
-            ctx->as.build(cmd, (uint32_t)nbuild, infos, range_ptrs);
+            a->cmd_build(cmd, (uint32_t)nbuild, infos, range_ptrs);
             /* the TLAS build reads the BLASes just written */
             vkCmdPipelineBarrier2(cmd, &dep);
         }
@@ -321,7 +329,7 @@ int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *
         tinfo.scratchData.deviceAddress = base + tlas_scratch;
         VkAccelerationStructureBuildRangeInfoKHR trange = {.primitiveCount = ninst};
         const VkAccelerationStructureBuildRangeInfoKHR *tr = &trange;
-        ctx->as.build(cmd, 1, &tinfo, &tr);
+        a->cmd_build(cmd, 1, &tinfo, &tr);
     }
     free(keys);
     free(quads);

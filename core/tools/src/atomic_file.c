@@ -1,4 +1,4 @@
-/* Output files written whole or not at all (voxrg.h, vrg_output_*).
+/* Output files written whole or not at all (voxrg/output.h).
  *
  * The data goes to a temporary file in the target's folder, so that the
  * final rename stays within one file system. Where the file system allows,
@@ -21,7 +21,9 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#include "internal.h"
+#include "voxrg/output.h"
+
+#define PATH_CAP 4096 /* as PATH_MAX, which <limits.h> defines only for some feature macros */
 
 struct vrg_output {
     FILE *f;
@@ -33,7 +35,7 @@ struct vrg_output {
     char *path; /* the target, as given (for messages) */
     char *real; /* where a symbolic link at path leads; NULL if path is none */
     const char *base; /* the target's name within its folder (points into path) */
-    char tmp[VRG_PATH_MAX];
+    char tmp[PATH_CAP];
 };
 
 static int fail(const char *path, const char *what, int err)
@@ -61,7 +63,7 @@ static int open_dir(const char *path)
         return open(".", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (slash == path)
         return open("/", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    char dir[VRG_PATH_MAX];
+    char dir[PATH_CAP];
     if ((size_t)(slash - path) >= sizeof dir) {
         errno = ENAMETOOLONG;
         return -1;
@@ -255,7 +257,7 @@ int vrg_output_write(const char *path, const void *data, size_t size)
 
 int vrg_output_dir_check(const char *dir)
 {
-    char probe[VRG_PATH_MAX];
+    char probe[PATH_CAP];
     int err = ENAMETOOLONG;
     vrg_output *out = NULL;
     if (snprintf(probe, sizeof probe, "%s/.voxrg-probe", dir) < (int)sizeof probe)
