@@ -1,27 +1,7 @@
-# Tests that drive the runtime (included from tests/CMakeLists.txt).
-# Every test runs with the Khronos validation layer and synchronization
-# validation; a validation message fails it. ASan's quarantine is kept small:
-# lavapipe's JIT makes millions of tiny aligned allocations (a coroutine frame
-# per few shader invocations), and ASan's chunks for them are far larger than
-# the bytes its quarantine counts: svgf_mse peaked at 24 GiB resident with the
-# default 256 MiB quarantine, 8.3 GiB with 64, about 2 GiB with 8.
-
-set(VRG_TEST_ENV
-  "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/lsan.supp:print_suppressions=0"
-  "ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:quarantine_size_mb=8"
-  "UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1")
-
-add_executable(test_runtime test_runtime.c)
-target_link_libraries(test_runtime PRIVATE voxrg m)
-vrg_use_fast_malloc(test_runtime)
-target_compile_definitions(test_runtime PRIVATE TEST_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
-set(VRG_LOADER_DIR ${CMAKE_CURRENT_BINARY_DIR}/loader_plugins)
-file(MAKE_DIRECTORY ${VRG_LOADER_DIR})
-foreach(case chain history history_cleared accumulate accumulate_count pingpong pingpong_alias alias buffer buffer_texels scene loader validation_live blocks_world blocks_trace terrain_world terrain_trace atlas traversal_errors camera_range rayquery gbuffer_normals gbuffer_motion backends_agree light_floor light_wall light_half_res svgf_disocclusion svgf_mse svgf_history_reset svgf_variance svgf_edge accumulate_mean svgf_atrous_options svgf_size_mismatch dispatch_shape hot_reload_shader hot_reload_graph hot_reload_plugin capture_replay soak set_param light_penumbra light_corner light_chain history_many many_uses alias_many hot_reload_many_plugins hot_reload_many_files dispatch_limits hot_reload_state_too_big)
-  add_test(NAME runtime_${case} COMMAND test_runtime ${case})
-  # 77: skipped (e.g. no VK_KHR_ray_query on this device), reported as such
-  set_tests_properties(runtime_${case} PROPERTIES ENVIRONMENT "${VRG_TEST_ENV};VOXRG_PLUGIN_PATH=${VRG_LOADER_DIR}" TIMEOUT 300 SKIP_RETURN_CODE 77)
-endforeach()
+# Cases not yet moved into their layer's folder (included from
+# tests/CMakeLists.txt).
+vrg_case_program(test_runtime test_runtime.c)
+vrg_case_tests(test_runtime "" blocks_world blocks_trace terrain_world terrain_trace atlas traversal_errors camera_range rayquery gbuffer_normals gbuffer_motion backends_agree light_floor light_wall light_half_res svgf_disocclusion svgf_mse svgf_history_reset svgf_variance svgf_edge accumulate_mean svgf_atrous_options svgf_size_mismatch soak light_penumbra light_corner light_chain)
 
 # The CLI: check, render, plugins, help, exit codes.
 add_test(NAME cli COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test_cli.sh $<TARGET_FILE:voxrg_cli> ${CMAKE_CURRENT_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}/cli_out)
@@ -56,29 +36,8 @@ foreach(graph ${shipped_graphs})
   set_tests_properties(graph_${gname} PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}" TIMEOUT 300)
 endforeach()
 
-# libFuzzer: parse + validate + compile + aliasing of graph text, seeded with
-# every good and bad graph; a short run in the suite, longer by hand.
+# libFuzzer (a short run in the suite, longer by hand)
 if(VOXRG_FUZZ)
-  if(NOT CMAKE_C_COMPILER_ID STREQUAL "Clang")
-    message(FATAL_ERROR "VOXRG_FUZZ needs clang (CC=clang)")
-  endif()
-  add_executable(fuzz_graph fuzz_graph.c)
-  target_compile_options(fuzz_graph PRIVATE -fsanitize=fuzzer)
-  target_link_options(fuzz_graph PRIVATE -fsanitize=fuzzer)
-  target_link_libraries(fuzz_graph PRIVATE voxrg)
-  target_compile_options(voxrg_objects PRIVATE -fsanitize=fuzzer-no-link)
-  set(FUZZ_CORPUS ${CMAKE_CURRENT_BINARY_DIR}/fuzz_corpus)
-  add_test(NAME fuzz_graph
-           COMMAND ${CMAKE_COMMAND} -E env ${VRG_TEST_ENV}
-                   sh -c "mkdir -p ${FUZZ_CORPUS} && cp ${CMAKE_CURRENT_SOURCE_DIR}/graphs/*.ini ${CMAKE_CURRENT_SOURCE_DIR}/bad/*.ini ${PROJECT_SOURCE_DIR}/graphs/*.ini ${FUZZ_CORPUS}/ && $<TARGET_FILE:fuzz_graph> -runs=20000 -max_len=4096 -timeout=10 ${FUZZ_CORPUS}")
-  set_tests_properties(fuzz_graph PROPERTIES TIMEOUT 600)
-  # plugin descriptors: from nothing (no seed corpus: the input is a recipe)
-  add_executable(fuzz_plugin_desc fuzz_plugin_desc.c)
-  target_compile_options(fuzz_plugin_desc PRIVATE -fsanitize=fuzzer)
-  target_link_options(fuzz_plugin_desc PRIVATE -fsanitize=fuzzer)
-  target_link_libraries(fuzz_plugin_desc PRIVATE voxrg_internal m)
-  add_test(NAME fuzz_plugin_desc COMMAND ${CMAKE_COMMAND} -E env ${VRG_TEST_ENV} $<TARGET_FILE:fuzz_plugin_desc> -runs=200000 -max_len=2048)
-  set_tests_properties(fuzz_plugin_desc PROPERTIES TIMEOUT 600)
   # camera paths: the parser and the curve, seeded with the shipped paths
   add_executable(fuzz_camera_path fuzz_camera_path.c)
   target_compile_options(fuzz_camera_path PRIVATE -fsanitize=fuzzer)
@@ -89,15 +48,6 @@ if(VOXRG_FUZZ)
            COMMAND sh -c "mkdir -p ${FUZZ_PATH_CORPUS} && cp ${PROJECT_SOURCE_DIR}/graphs/paths/*.path ${FUZZ_PATH_CORPUS}/ && $<TARGET_FILE:fuzz_camera_path> -runs=20000 -max_len=2048 -timeout=10 ${FUZZ_PATH_CORPUS}")
   set_tests_properties(fuzz_camera_path PROPERTIES TIMEOUT 300)
 endif()
-
-# The library exports exactly what its public headers declare.
-add_test(NAME exports COMMAND python3 ${CMAKE_CURRENT_SOURCE_DIR}/check_exports.py $<TARGET_FILE:voxrg> ${PROJECT_SOURCE_DIR}/core/include)
-
-# The loader's checks of plugin descriptors, case by case (no device).
-add_executable(test_plugin_desc test_plugin_desc.c)
-target_link_libraries(test_plugin_desc PRIVATE voxrg_internal m)
-add_test(NAME plugin_desc COMMAND test_plugin_desc)
-set_tests_properties(plugin_desc PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}")
 
 # Image metrics of voxrg compare against hand-computed values (no device).
 add_executable(test_metrics test_metrics.c)
