@@ -1,7 +1,7 @@
 # Cases not yet moved into their layer's folder (included from
 # tests/CMakeLists.txt).
 vrg_case_program(test_runtime test_runtime.c)
-vrg_case_tests(test_runtime "" blocks_world blocks_trace terrain_world terrain_trace atlas traversal_errors camera_range rayquery gbuffer_normals gbuffer_motion backends_agree light_floor light_wall light_half_res svgf_disocclusion svgf_mse svgf_history_reset svgf_variance svgf_edge accumulate_mean svgf_atrous_options svgf_size_mismatch soak light_penumbra light_corner light_chain)
+vrg_case_tests(test_runtime "" gbuffer_normals gbuffer_motion backends_agree light_floor light_wall light_half_res svgf_disocclusion svgf_mse svgf_history_reset svgf_variance svgf_edge accumulate_mean svgf_atrous_options svgf_size_mismatch light_penumbra light_corner light_chain)
 
 # The CLI: check, render, plugins, help, exit codes.
 add_test(NAME cli COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test_cli.sh $<TARGET_FILE:voxrg_cli> ${CMAKE_CURRENT_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}/cli_out)
@@ -35,19 +35,6 @@ foreach(graph ${shipped_graphs})
   add_test(NAME graph_${gname} COMMAND voxrg_cli render ${graph} --validate --frames 3 --size 96x54 ${extra} --out ${CMAKE_CURRENT_BINARY_DIR}/graph_out/${gname})
   set_tests_properties(graph_${gname} PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}" TIMEOUT 300)
 endforeach()
-
-# libFuzzer (a short run in the suite, longer by hand)
-if(VOXRG_FUZZ)
-  # camera paths: the parser and the curve, seeded with the shipped paths
-  add_executable(fuzz_camera_path fuzz_camera_path.c)
-  target_compile_options(fuzz_camera_path PRIVATE -fsanitize=fuzzer)
-  target_link_options(fuzz_camera_path PRIVATE -fsanitize=fuzzer)
-  target_link_libraries(fuzz_camera_path PRIVATE voxrg m)
-  set(FUZZ_PATH_CORPUS ${CMAKE_CURRENT_BINARY_DIR}/fuzz_path_corpus)
-  add_test(NAME fuzz_camera_path
-           COMMAND sh -c "mkdir -p ${FUZZ_PATH_CORPUS} && cp ${PROJECT_SOURCE_DIR}/graphs/paths/*.path ${FUZZ_PATH_CORPUS}/ && $<TARGET_FILE:fuzz_camera_path> -runs=20000 -max_len=2048 -timeout=10 ${FUZZ_PATH_CORPUS}")
-  set_tests_properties(fuzz_camera_path PROPERTIES TIMEOUT 300)
-endif()
 
 # Image metrics of voxrg compare against hand-computed values (no device).
 add_executable(test_metrics test_metrics.c)
