@@ -1,7 +1,4 @@
-# Cases not yet moved into their layer's folder (included from
-# tests/CMakeLists.txt).
-vrg_case_program(test_runtime test_runtime.c)
-vrg_case_tests(test_runtime "" gbuffer_normals gbuffer_motion backends_agree light_floor light_wall light_half_res svgf_disocclusion svgf_mse svgf_history_reset svgf_variance svgf_edge accumulate_mean svgf_atrous_options svgf_size_mismatch light_penumbra light_corner light_chain)
+# The CLI and scripts around it (included from tests/CMakeLists.txt).
 
 # The CLI: check, render, plugins, help, exit codes.
 add_test(NAME cli COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test_cli.sh $<TARGET_FILE:voxrg_cli> ${CMAKE_CURRENT_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}/cli_out)
