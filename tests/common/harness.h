@@ -14,6 +14,7 @@
 #include <string.h>
 #include <unistd.h>
 #include "voxrg/voxrg.h"
+#include "check.h"
 
 #ifndef TEST_DIR
 #define TEST_DIR "."
@@ -27,16 +28,6 @@ extern int failures;
 extern int expect_validation_messages;
 /* the case's context: NULL for cases that need no device */
 extern vrg_context *ctx;
-
-#define CHECK(cond, ...)                                                  \
-    do {                                                                  \
-        if (!(cond)) {                                                    \
-            fprintf(stderr, "%s:%d: check failed: %s: ", __FILE__, __LINE__, #cond); \
-            fprintf(stderr, __VA_ARGS__);                                 \
-            fputc('\n', stderr);                                          \
-            failures++;                                                   \
-        }                                                                 \
-    } while (0)
 
 /* A graph of tests/graphs/, with --set overrides and resources to read back. */
 vrg_graph *load_with(const char *name, const char *const *sets, uint32_t nsets, const char *const *reads, uint32_t nreads);

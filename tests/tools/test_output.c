@@ -14,17 +14,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include "voxrg/voxrg.h"
+#include "check.h"
 
 static int failures;
-#define CHECK(cond, ...)                                                                                                                   \
-    do {                                                                                                                                   \
-        if (!(cond)) {                                                                                                                     \
-            fprintf(stderr, "%s:%d: check failed: %s: ", __FILE__, __LINE__, #cond);                                                       \
-            fprintf(stderr, __VA_ARGS__);                                                                                                  \
-            fprintf(stderr, "\n");                                                                                                         \
-            failures++;                                                                                                                    \
-        }                                                                                                                                  \
-    } while (0)
 
 static char dir[64];
 
