@@ -6,7 +6,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 1, rg32ui) uniform writeonly uimage2D probes;
 layout(push_constant) uniform Params { ivec4 lo; ivec4 extent; } params; // ivec4: std430 aligns ivec3 to 16 bytes
 
-// PCG hash (the same in tests/test_runtime.c).
+// PCG hash (the same in tests/voxel/world.c).
 uint pcg(uint v)
 {
     uint s = v * 747796405u + 2891336453u;

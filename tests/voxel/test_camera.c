@@ -9,22 +9,13 @@
 #include "voxrg/camera.h"
 #include "voxrg/sky.h"
 #include "voxrg/camera_path.h"
+#include "check.h"
 
 #ifndef VRG_SOURCE_DIR
 #error "VRG_SOURCE_DIR must name the source tree (for graphs/paths)"
 #endif
 
 static int failures;
-
-#define CHECK(cond, ...)                                                          \
-    do {                                                                          \
-        if (!(cond)) {                                                            \
-            failures++;                                                           \
-            fprintf(stderr, "%s:%d: check failed: %s: ", __FILE__, __LINE__, #cond); \
-            fprintf(stderr, __VA_ARGS__);                                         \
-            fputc('\n', stderr);                                                  \
-        }                                                                         \
-    } while (0)
 
 /* clip = m * (x, y, z, 1) */
 static void transform(const float m[16], const double p[3], double clip[4])

@@ -264,7 +264,7 @@ has "$out/stderr" "matches no device" "unknown device message"
 has "$out/stderr" "0: " "device list"
 
 # a plugin beside the graph never shadows a built-in one (issue 15's policy;
-# tests/test_plugin_faults.py has the rest): the build's pattern is used, and
+# tests/cli/test_plugin_faults.py has the rest): the build's pattern is used, and
 # a note says the graph's copy is not
 mkdir -p "$out/rel/plugins"
 sed 's/^\[graph\]$/[graph]\nplugin_path = plugins/' "$tests/graphs/chain.ini" > "$out/rel/chain.ini"
@@ -361,7 +361,7 @@ if [ -n "$xvfb_pid" ]; then
     export DISPLAY=":$(head -1 "$out/xvfb.display")"
     expect_rc 0 "run under Xvfb" "$voxrg" run "$tests/graphs/blocks_wall.ini" --validate --size 192x128 --frames 4 \
         --screenshot "$out/window.png"
-    if python3 - "$out/window.png" "$tests" <<'PY'
+    if python3 - "$out/window.png" "$tests/cli" <<'PY'
 import sys
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, sys.argv[2])
@@ -379,7 +379,7 @@ PY
     # another image than the output, through the display stage: normals as colours
     expect_rc 0 "run --show gbuffer.normal" "$voxrg" run "$tests/graphs/gbuffer_blocks.ini" --show gbuffer.normal --validate \
         --size 192x128 --frames 3 --screenshot "$out/normals.png"
-    if python3 - "$out/normals.png" "$tests" <<'PY'
+    if python3 - "$out/normals.png" "$tests/cli" <<'PY'
 import sys
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, sys.argv[2])
@@ -428,7 +428,7 @@ xdotool key Escape
 wait $pid || { rc=$?; tail -20 drive.stderr >&2; exit $rc; }
 SH
         expect_rc 0 "the window driven by xdotool" timeout 300 bash "$out/drive.sh" "$voxrg" "$tests/graphs/blocks_wall.ini" "$out"
-        if python3 - "$out" "$tests" <<'PY'
+        if python3 - "$out" "$tests/cli" <<'PY'
 import math, sys
 sys.dont_write_bytecode = True
 sys.path.insert(0, sys.argv[2])

@@ -14,17 +14,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include "voxrg/metrics.h"
+#include "check.h"
 
 static int failures;
-#define CHECK(cond, ...)                                                                                                                   \
-    do {                                                                                                                                   \
-        if (!(cond)) {                                                                                                                     \
-            fprintf(stderr, "%s:%d: check failed: %s: ", __FILE__, __LINE__, #cond);                                                       \
-            fprintf(stderr, __VA_ARGS__);                                                                                                  \
-            fprintf(stderr, "\n");                                                                                                         \
-            failures++;                                                                                                                    \
-        }                                                                                                                                  \
-    } while (0)
 
 enum { W = 48, H = 32, N = W * H * 3 };
 

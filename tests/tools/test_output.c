@@ -16,17 +16,9 @@
 #include "voxrg/voxrg.h"
 #include "voxrg/output.h"
 #include "voxrg/png.h"
+#include "check.h"
 
 static int failures;
-#define CHECK(cond, ...)                                                                                                                   \
-    do {                                                                                                                                   \
-        if (!(cond)) {                                                                                                                     \
-            fprintf(stderr, "%s:%d: check failed: %s: ", __FILE__, __LINE__, #cond);                                                       \
-            fprintf(stderr, __VA_ARGS__);                                                                                                  \
-            fprintf(stderr, "\n");                                                                                                         \
-            failures++;                                                                                                                    \
-        }                                                                                                                                  \
-    } while (0)
 
 static char dir[64];
 

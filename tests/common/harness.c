@@ -1,0 +1,106 @@
+#define _POSIX_C_SOURCE 200809L
+#include "harness.h"
+
+int failures;
+int expect_validation_messages;
+vrg_context *ctx;
+
+vrg_graph *load_with(const char *name, const char *const *sets, uint32_t nsets, const char *const *reads, uint32_t nreads)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/graphs/%s", TEST_DIR, name);
+    vrg_graph_desc d = {.path = path, .overrides = sets, .override_count = nsets, .readback = reads, .readback_count = nreads};
+    vrg_graph *g = NULL;
+    if (vrg_graph_load(ctx, &d, &g) != 0) {
+        fprintf(stderr, "cannot load %s\n", path);
+        failures++;
+        return NULL;
+    }
+    return g;
+}
+
+vrg_graph *load(const char *name) { return load_with(name, NULL, 0, NULL, 0); }
+
+float px(const vrg_image_data *img, uint32_t x, uint32_t y, int c) { return img->pixels[((size_t)y * img->width + x) * 4 + c]; }
+
+double max_diff(const vrg_image_data *img, const float *want, int channels)
+{
+    double worst = 0;
+    for (size_t p = 0; p < (size_t)img->width * img->height; p++)
+        for (int c = 0; c < channels; c++)
+            worst = fmax(worst, fabs(img->pixels[p * 4 + c] - want[p * 4 + c]));
+    return worst;
+}
+
+vrg_graph *load_text(const char *text, const char *const *reads, uint32_t nreads)
+{
+    vrg_graph_desc d = {.path = "generated.ini", .text = text, .readback = reads, .readback_count = nreads};
+    vrg_graph *g = NULL;
+    if (vrg_graph_load(ctx, &d, &g) != 0) {
+        fprintf(stderr, "cannot load the generated graph\n");
+        failures++;
+        return NULL;
+    }
+    return g;
+}
+
+void append(char **text, size_t *len, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(NULL, 0, fmt, ap);
+    va_end(ap);
+    *text = realloc(*text, *len + (size_t)n + 1);
+    va_start(ap, fmt);
+    vsnprintf(*text + *len, (size_t)n + 1, fmt, ap);
+    va_end(ap);
+    *len += (size_t)n;
+}
+
+void save_file(const char *path, const char *text)
+{
+    char tmp[1100];
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    FILE *f = fopen(tmp, "w");
+    if (!f)
+        return;
+    fputs(text, f);
+    fclose(f);
+    rename(tmp, path);
+}
+
+static int run_one(const char *name, const test_case *c)
+{
+    if (c->device) {
+        vrg_context_desc cd = {.validate = 1, .quiet = 1};
+        if (vrg_context_create(&cd, &ctx) != 0)
+            return 1;
+    }
+    int rc = 0;
+    if (c->run_or_skip)
+        rc = c->run_or_skip();
+    else
+        c->run();
+    if (ctx) {
+        uint32_t v = vrg_context_validation_errors(ctx);
+        CHECK(v == 0 || expect_validation_messages, "%u validation messages", v);
+        vrg_context_destroy(ctx);
+    }
+    if (rc == SKIP && !failures)
+        return SKIP;
+    printf("%s: %s\n", name, failures ? "FAILED" : "ok");
+    return failures ? 1 : 0;
+}
+
+int run_case(int argc, char **argv, const test_case *cases, size_t count)
+{
+    if (argc != 2) {
+        fprintf(stderr, "usage: %s CASE\n", argv[0]);
+        return 2;
+    }
+    for (size_t i = 0; i < count; i++)
+        if (strcmp(cases[i].name, argv[1]) == 0)
+            return run_one(argv[1], &cases[i]);
+    fprintf(stderr, "unknown case '%s'\n", argv[1]);
+    return 2;
+}

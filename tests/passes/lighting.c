@@ -1,0 +1,236 @@
+#define _POSIX_C_SOURCE 200809L
+/* The lighting pass: sun and sky on floors and walls, penumbrae, corners, half
+ * resolution, and lighting chained after another pass.
+ * Usage: PROGRAM CASE (ctest registers one test per case). */
+#include "harness.h"
+#include "voxrg/world.h"
+#include "voxrg/camera.h"
+
+/* Mean of channel c of img over floor pixels (top faces at y = 1) within
+ * r blocks of (x, z) in the plane; -1 when none is visible. */
+static float floor_mean(const vrg_image_data *pos, const vrg_image_data *img, int c, float x, float z, float r, float *ratio_rg)
+{
+    double sum = 0, r_sum = 0, g_sum = 0;
+    int n = 0;
+    for (uint32_t i = 0; i < pos->width * pos->height; i++) {
+        const float *p = pos->pixels + 4 * i;
+        if (p[3] == 0 || fabsf(p[1] - 1.0f) > 1e-3f || fabsf(p[0] - x) > r || fabsf(p[2] - z) > r)
+            continue;
+        sum += img->pixels[4 * i + c];
+        r_sum += img->pixels[4 * i];
+        g_sum += img->pixels[4 * i + 1];
+        n++;
+    }
+    if (ratio_rg)
+        *ratio_rg = g_sum > 0 ? (float)(r_sum / g_sum) : 0;
+    return n ? (float)(sum / n) : -1.0f;
+}
+
+/* Open flat floor: AO = 1 and sun visibility = 1 everywhere on it. */
+static void test_light_floor(void)
+{
+    static const char *reads[] = {"gbuffer.position", "shadow.visibility", "ao.ao"};
+    vrg_graph *g = load_with("light_floor.ini", NULL, 0, reads, 3);
+    if (!g)
+        return;
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_image_data pos, vis, ao;
+    CHECK(vrg_graph_read(g, "gbuffer.position", &pos) == 0 && vrg_graph_read(g, "shadow.visibility", &vis) == 0 &&
+              vrg_graph_read(g, "ao.ao", &ao) == 0,
+          "readback failed");
+    int floor = 0, dark = 0, occluded = 0;
+    for (uint32_t i = 0; i < pos.width * pos.height; i++) {
+        if (pos.pixels[4 * i + 3] == 0)
+            continue;
+        floor++;
+        dark += vis.pixels[4 * i] != 1.0f;
+        occluded += ao.pixels[4 * i] != 1.0f;
+    }
+    CHECK(floor > (int)(pos.width * pos.height) / 2, "only %d floor pixels", floor);
+    CHECK(dark == 0 && occluded == 0, "open floor: %d pixels with sun visibility < 1, %d with AO < 1", dark, occluded);
+    free(pos.pixels), free(vis.pixels), free(ao.pixels);
+    vrg_graph_destroy(g);
+}
+
+/* Hard shadow of a wall of height 6: every floor pixel's visibility equals
+ * the CPU pick ray toward the sun, and the shadow ends h * cot(elevation)
+ * from the wall. */
+static void test_light_wall(void)
+{
+    static const char *reads[] = {"gbuffer.position", "gbuffer.normal", "shadow.visibility"};
+    vrg_graph *g = load_with("light_wall.ini", NULL, 0, reads, 3);
+    if (!g)
+        return;
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_image_data pos, nrm, vis;
+    CHECK(vrg_graph_read(g, "gbuffer.position", &pos) == 0 && vrg_graph_read(g, "gbuffer.normal", &nrm) == 0 &&
+              vrg_graph_read(g, "shadow.visibility", &vis) == 0,
+          "readback failed");
+    vrg_sky_desc sd;
+    vrg_sky_default(&sd);
+    sd.time_of_day = 13;
+    vrg_sky sky;
+    vrg_sky_eval(&sd, 0, &sky);
+    const vrg_world *w = vrg_graph_world(g);
+    int differ = 0, shadowed = 0, lit = 0;
+    float edge_z = 1e9f;
+    for (uint32_t i = 0; i < pos.width * pos.height; i++) {
+        const float *p = pos.pixels + 4 * i, *n = nrm.pixels + 4 * i;
+        if (p[3] == 0 || n[1] != 1.0f)
+            continue;
+        float o[3] = {p[0] + n[0] * 1e-3f, p[1] + n[1] * 1e-3f, p[2] + n[2] * 1e-3f};
+        vrg_world_hit hit;
+        int blocked = vrg_world_pick(w, o, sky.sun_dir, 256, &hit);
+        float v = vis.pixels[4 * i];
+        differ += (v == 0.0f) != blocked;
+        if (v == 0.0f && p[0] > 12 && p[0] < 35) {
+            shadowed++;
+            edge_z = fminf(edge_z, p[2]);
+        }
+        lit += v == 1.0f;
+    }
+    CHECK(differ <= (int)(pos.width * pos.height) / 200, "%d floor pixels disagree with the CPU shadow ray", differ);
+    CHECK(shadowed > 50 && lit > 500, "shadow not in view (%d shadowed, %d lit pixels)", shadowed, lit);
+    /* the wall's near face is z = 30, height 6 above the floor top (y = 1 .. 7) */
+    float want = 30.0f - 6.0f * sky.sun_dir[2] / sky.sun_dir[1];
+    CHECK(fabsf(edge_z - want) < 0.5f, "shadow edge at z = %.2f, want %.2f (h cot e along the sun's azimuth)", edge_z, want);
+    free(pos.pixels), free(nrm.pixels), free(vis.pixels);
+    vrg_graph_destroy(g);
+}
+
+/* A ray pass at half the G-buffer's resolution reads the G-buffer pixel
+ * under each of its pixels' centres: with hard shadows (deterministic), half
+ * pixel (x, y) equals full pixel (2x + 1, 2y + 1), shadow edge included. */
+static void test_light_half_res(void)
+{
+    static const char *reads[] = {"shadow.visibility", "half"};
+    vrg_graph *g = load_with("light_half.ini", NULL, 0, reads, 2);
+    if (!g)
+        return;
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_image_data full, half;
+    CHECK(vrg_graph_read(g, "shadow.visibility", &full) == 0 && vrg_graph_read(g, "half", &half) == 0, "readback failed");
+    CHECK(half.width * 2 == full.width && half.height * 2 == full.height, "half is %ux%u, full %ux%u", half.width, half.height, full.width,
+          full.height);
+    int differ = 0, shadowed = 0, lit = 0;
+    for (uint32_t y = 0; y < half.height; y++)
+        for (uint32_t x = 0; x < half.width; x++) {
+            float v = px(&half, x, y, 0);
+            differ += v != px(&full, 2 * x + 1, 2 * y + 1, 0);
+            shadowed += v == 0.0f;
+            lit += v == 1.0f;
+        }
+    CHECK(differ == 0, "%d half-resolution pixels differ from the full-resolution pixel under them", differ);
+    CHECK(shadowed > 20 && lit > 100, "shadow not in view (%d shadowed, %d lit)", shadowed, lit);
+    free(full.pixels), free(half.pixels);
+    vrg_graph_destroy(g);
+}
+
+/* ---- SVGF ---- */
+
+/* With a sun radius > 0 the penumbra widens with the occluder's distance:
+ * the 12-high wall's is wider than the 4-high wall's. */
+static void test_light_penumbra(void)
+{
+    static const char *reads[] = {"gbuffer.position", "shadow.visibility"};
+    vrg_graph *g = load_with("light_penumbra.ini", NULL, 0, reads, 2);
+    if (!g)
+        return;
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_image_data pos, vis;
+    CHECK(vrg_graph_read(g, "gbuffer.position", &pos) == 0 && vrg_graph_read(g, "shadow.visibility", &vis) == 0, "readback failed");
+    /* penumbra extent along z, per wall (x 4..20 low, 28..44 high), middles only */
+    float lo[2] = {1e9f, 1e9f}, hi[2] = {-1e9f, -1e9f};
+    int count[2] = {0, 0};
+    for (uint32_t i = 0; i < pos.width * pos.height; i++) {
+        const float *p = pos.pixels + 4 * i;
+        float v = vis.pixels[4 * i];
+        if (p[3] == 0 || fabsf(p[1] - 1.0f) > 1e-3f || v <= 0.02f || v >= 0.98f)
+            continue;
+        int k = p[0] > 8 && p[0] < 16 ? 0 : p[0] > 32 && p[0] < 40 ? 1 : -1;
+        if (k < 0 || p[2] > 34)
+            continue;
+        lo[k] = fminf(lo[k], p[2]);
+        hi[k] = fmaxf(hi[k], p[2]);
+        count[k]++;
+    }
+    float w0 = hi[0] - lo[0], w1 = hi[1] - lo[1];
+    CHECK(count[0] > 5 && count[1] > 5, "penumbrae not in view (%d, %d pixels)", count[0], count[1]);
+    CHECK(w1 > 1.8f * w0, "penumbra of the tall wall %.2f blocks, of the low wall %.2f: not wider with distance", w1, w0);
+    free(pos.pixels), free(vis.pixels);
+    vrg_graph_destroy(g);
+}
+
+/* AO in an inner corner < along one wall < on the open floor; indirect light
+ * on the white floor next to the red wall is reddish. */
+static void test_light_corner(void)
+{
+    static const char *reads[] = {"gbuffer.position", "ao.ao", "indirect.irradiance"};
+    vrg_graph *g = load_with("light_corner.ini", NULL, 0, reads, 3);
+    if (!g)
+        return;
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_image_data pos, ao, ind;
+    CHECK(vrg_graph_read(g, "gbuffer.position", &pos) == 0 && vrg_graph_read(g, "ao.ao", &ao) == 0 &&
+              vrg_graph_read(g, "indirect.irradiance", &ind) == 0,
+          "readback failed");
+    float corner = floor_mean(&pos, &ao, 0, 1.5f, 1.5f, 0.5f, NULL), edge = floor_mean(&pos, &ao, 0, 16.0f, 1.5f, 0.5f, NULL),
+          open = floor_mean(&pos, &ao, 0, 16.0f, 16.0f, 0.5f, NULL);
+    CHECK(corner >= 0 && edge >= 0 && open >= 0, "sample points not visible (%g %g %g)", corner, edge, open);
+    CHECK(corner < edge && edge < open && open > 0.97f, "AO corner %.3f, edge %.3f, open %.3f: want corner < edge < open", corner, edge, open);
+    float near_ratio, far_ratio;
+    floor_mean(&pos, &ind, 0, 16.0f, 1.5f, 1.0f, &near_ratio);
+    floor_mean(&pos, &ind, 0, 16.0f, 20.0f, 1.0f, &far_ratio);
+    CHECK(near_ratio > 1.3f * far_ratio && near_ratio > 1.0f, "indirect r/g next to the red wall %.3f, far from it %.3f: not reddish", near_ratio,
+          far_ratio);
+    free(pos.pixels), free(ao.pixels), free(ind.pixels);
+    vrg_graph_destroy(g);
+}
+
+/* combine → modulate → tonemap on a lit white floor: the pixel equals
+ * exposure * albedo * (sun_radiance * N.L + ambient), sRGB-encoded; with
+ * mode = thesis it is exposure * albedo * (2 * ambient + sun * N.L / pi). */
+static void test_light_chain(void)
+{
+    vrg_sky_desc sd;
+    vrg_sky_default(&sd);
+    sd.time_of_day = 12;
+    vrg_sky sky;
+    vrg_sky_eval(&sd, 0, &sky);
+    const float *albedo = vrg_materials()[VRG_BLOCK_WHITE].albedo;
+    for (int thesis = 0; thesis < 2; thesis++) {
+        static const char *sets[] = {"combine.mode=thesis"};
+        vrg_graph *g = load_with("light_chain.ini", sets, (uint32_t)thesis, NULL, 0);
+        if (!g)
+            return;
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+        vrg_image_data img;
+        CHECK(vrg_graph_read(g, "ldr", &img) == 0, "readback failed");
+        float got[3], want[3];
+        for (int c = 0; c < 3; c++) {
+            float sun = sky.sun_radiance[c] * sky.sun_dir[1]; /* floor normal is +y */
+            float l = thesis ? 2.0f * sky.ambient[c] + sun / 3.14159265f : sun + sky.ambient[c];
+            float lin = fminf(0.25f * albedo[c] * l, 1.0f);
+            /* the readback decodes nothing for UNORM: compare in the encoded domain */
+            want[c] = lin <= 0.0031308f ? lin * 12.92f : 1.055f * powf(lin, 1.0f / 2.4f) - 0.055f;
+            got[c] = px(&img, img.width / 2, img.height / 2, c);
+        }
+        CHECK(fabsf(got[0] - want[0]) < 3.0f / 255 && fabsf(got[1] - want[1]) < 3.0f / 255 && fabsf(got[2] - want[2]) < 3.0f / 255,
+              "%s: pixel (%.3f %.3f %.3f), want (%.3f %.3f %.3f)", thesis ? "thesis" : "physical", got[0], got[1], got[2], want[0], want[1], want[2]);
+        free(img.pixels);
+        vrg_graph_destroy(g);
+    }
+}
+
+int main(int argc, char **argv)
+{
+    static const test_case cases[] = {
+        {"light_floor", test_light_floor, 1},
+        {"light_wall", test_light_wall, 1},
+        {"light_half_res", test_light_half_res, 1},
+        {"light_penumbra", test_light_penumbra, 1},
+        {"light_corner", test_light_corner, 1},
+        {"light_chain", test_light_chain, 1},
+    };
+    return run_case(argc, argv, cases, sizeof cases / sizeof cases[0]);
+}
