@@ -10,7 +10,7 @@
 #include <string.h>
 #include "internal.h"
 
-#define VRG_DIAG_INFO(name, code, short_name, meaning) [name] = {code, short_name, meaning},
+#define VRG_DIAG_INFO(name, code, short_name, meaning) [name] = {#name, code, short_name, meaning},
 static const _vrg_diag_info catalogue[VRG_DIAG_CODE_COUNT] = {VRG_DIAG_CODES(VRG_DIAG_INFO)};
 #undef VRG_DIAG_INFO
 

@@ -38,6 +38,7 @@ typedef struct _vrg_diag {
 typedef enum { VRG_DIAG_CODES(VRG_DIAG_ENUM) VRG_DIAG_CODE_COUNT } _vrg_diag_code;
 #undef VRG_DIAG_ENUM
 typedef struct _vrg_diag_info {
+    const char *enum_name;  /* "VRG_E_UNKNOWN_KEY": a test checks it agrees with the code */
     const char *code;       /* "VRG-E012" */
     const char *short_name; /* "unknown-key" */
     const char *meaning;
