@@ -66,6 +66,8 @@ if(VOXRG_FUZZ)
   target_compile_options(fuzz_graph PRIVATE -fsanitize=fuzzer)
   target_link_options(fuzz_graph PRIVATE -fsanitize=fuzzer)
   target_link_libraries(fuzz_graph PRIVATE voxrg)
+  # the catalogue of codes: a header of macros only, no internal symbols
+  target_include_directories(fuzz_graph PRIVATE ${PROJECT_SOURCE_DIR}/core/src)
   target_compile_options(voxrg_objects PRIVATE -fsanitize=fuzzer-no-link)
   set(FUZZ_CORPUS ${CMAKE_CURRENT_BINARY_DIR}/fuzz_corpus)
   add_test(NAME fuzz_graph
