@@ -316,7 +316,8 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
     }
     _vrg_emit_barriers(g, cmd, bars, nb);
 
-    uint32_t gx = d->groups_x, gy = d->groups_y ? d->groups_y : 1, gz = d->groups_z ? d->groups_z : 1;
+    const vrg_dispatch_desc groups = _vrg_dispatch_desc_defaults(d);
+    uint32_t gx = groups.groups_x, gy = groups.groups_y, gz = groups.groups_z;
     if (!gx) {
         int dom = -1;
         if (d->domain) {

@@ -51,6 +51,10 @@ void _vrg_diag_flush(_vrg_diag *d);
 /* vrg_pass_error with the code of a problem the runtime finds (pass_api.c) */
 int _vrg_pass_fail(vrg_pass *p, _vrg_diag_code code, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 
+/* ---- defaults (defaults.c): one function per descriptor kind ---- */
+vrg_slot_desc _vrg_slot_desc_defaults(const vrg_slot_desc *sd);
+vrg_dispatch_desc _vrg_dispatch_desc_defaults(const vrg_dispatch_desc *desc);
+
 /* ---- context (context.c) ---- */
 struct vrg_context {
     vrg_device dev;

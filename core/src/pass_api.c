@@ -347,8 +347,9 @@ vrg_res vrg_pass_request_image(vrg_pass *p, const char *name, VkFormat format, f
     vrg_res h = request(p, name, VRG_IMAGE);
     if (h.id >= 0) {
         _vrg_resource *r = &p->graph->res[h.id >> 1];
-        r->format = format ? format : VK_FORMAT_R16G16B16A16_SFLOAT;
-        r->scale = scale > 0 ? scale : 1.0f;
+        const vrg_slot_desc def = _vrg_slot_desc_defaults(&(vrg_slot_desc){.kind = VRG_IMAGE, .format = format, .scale = scale});
+        r->format = def.format;
+        r->scale = def.scale;
         r->internal_first_access = first_access ? first_access : VRG_ACCESS_STORAGE_WRITE;
     }
     return h;

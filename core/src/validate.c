@@ -659,13 +659,12 @@ static void resolve_resources(vrg_graph *g)
         if (r->writer < 0)
             continue;
         const vrg_slot_desc *sd = vrg_slot(&g->passes[r->writer], r->writer_slot);
+        const vrg_slot_desc def = _vrg_slot_desc_defaults(sd);
         r->kind = sd->kind;
-        if (sd->kind == VRG_BUFFER)
-            r->format = sd->format ? sd->format : VK_FORMAT_R32_UINT; /* the texel format of TEXEL_READ views */
-        else if (!r->format_line)
-            r->format = sd->format ? sd->format : VK_FORMAT_R16G16B16A16_SFLOAT;
+        if (sd->kind == VRG_BUFFER || !r->format_line)
+            r->format = def.format;
         if (!r->size_line) {
-            r->scale = sd->scale > 0 ? sd->scale : 1.0f;
+            r->scale = def.scale;
             r->abs_width = sd->width;
             r->abs_height = sd->height;
             if (sd->kind != VRG_IMAGE)
@@ -721,7 +720,7 @@ static void resolve_resources(vrg_graph *g)
                 if (r >= 0) {
                     _vrg_resource *res = &g->res[r];
                     res->kind = sd->kind;
-                    res->format = sd->format ? sd->format : sd->kind == VRG_BUFFER ? VK_FORMAT_R32_UINT : VK_FORMAT_R16G16B16A16_SFLOAT;
+                    res->format = _vrg_slot_desc_defaults(sd).format;
                     res->abs_width = res->abs_height = 1;
                     res->size = sd->size > 16 ? sd->size : 16;
                     res->persistent = res->dummy = 1;
