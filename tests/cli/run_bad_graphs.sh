@@ -1,8 +1,10 @@
 #!/bin/sh
 # Runs `voxrg check FILE --validate` on every graph of the bad-graph corpus.
 # Each must be rejected cleanly (exit status exactly 1: not accepted, not a
-# crash, not a usage error) with every error its `; expect: LINE SUBSTRING`
-# lines name: an output line starting with FILE:LINE: that contains SUBSTRING.
+# crash, not a usage error) with every error its `; expect: LINE CODE SUBSTRING`
+# lines name: an output line starting with FILE:LINE: that carries the code
+# (error[CODE]: or warning[CODE]:, docs/graph-format.md) and contains SUBSTRING.
+# An expectation without a code fails the file: codes are what users look up.
 #
 # usage: run_bad_graphs.sh VOXRG_BINARY BAD_DIR
 set -u
@@ -30,11 +32,18 @@ run_check() {
     fi
 }
 
-# Succeeds if a line of $out starts with $1 and contains $2. awk reads both
-# from the environment: no regex or escape meaning for dots, slashes, quotes.
+# Succeeds if a line of $out starts with $1, carries the code $2 right after
+# the file and line, and contains $3. awk reads them from the environment: no
+# regex or escape meaning for dots, slashes, quotes.
 has_line() {
-    PREFIX=$1 SUB=$2 awk 'index($0, ENVIRON["PREFIX"]) == 1 && index($0, ENVIRON["SUB"]) > 0 { found = 1 }
-                          END { exit !found }' "$out"
+    PREFIX=$1 CODE=$2 SUB=$3 awk '
+        index($0, ENVIRON["PREFIX"]) == 1 {
+            rest = substr($0, length(ENVIRON["PREFIX"]) + 1)
+            if ((index(rest, " error[" ENVIRON["CODE"] "]: ") == 1 || index(rest, " warning[" ENVIRON["CODE"] "]: ") == 1) &&
+                index(rest, ENVIRON["SUB"]) > 0)
+                found = 1
+        }
+        END { exit !found }' "$out"
 }
 
 passed=0
@@ -45,7 +54,7 @@ for f in "$dir"/*.ini; do
     # a file of CR-only line ends has its expectations on CR-ended lines
     expects=$(tr '\r' '\n' <"$f" | sed -n 's/^; expect: *//p')
     if [ -z "$expects" ]; then
-        problems="  no '; expect: LINE SUBSTRING' line in the file"
+        problems="  no '; expect: LINE CODE SUBSTRING' line in the file"
     fi
 
     run_check "$f"
@@ -62,19 +71,27 @@ for f in "$dir"/*.ini; do
     fi
 
     # read from a here-document, not a pipe, so the loop runs in this shell
-    while read -r line sub; do
+    while read -r line code sub; do
         [ -n "$line" ] || continue
-        if ! has_line "$f:$line:" "$sub"; then
+        case $code in
+        VRG-[EW][0-9][0-9][0-9]) ;;
+        *)
             problems="$problems
-  missing: $f:$line: ... $sub"
+  expectation '$line $code $sub' names no code (VRG-E0xx or VRG-W0xx) after the line"
+            continue ;;
+        esac
+        if ! has_line "$f:$line:" "$code" "$sub"; then
+            problems="$problems
+  missing: $f:$line: ...[$code]: ... $sub"
         fi
     done <<EOF
 $expects
 EOF
 
     # and nothing else: one error per expectation, no follow-on noise
-    want=$(printf '%s\n' "$expects" | awk 'NF { print $1 }' | sort -u | wc -l)
-    got=$(grep -o -- "^$f:[0-9]*: error:" "$out" | sort -u | wc -l)
+    # (warnings, VRG-W codes, are expected where named but are not errors)
+    want=$(printf '%s\n' "$expects" | awk 'NF && $2 !~ /^VRG-W/ { print $1 }' | sort -u | wc -l)
+    got=$(grep -o -- "^$f:[0-9]*: error\[" "$out" | sort -u | wc -l)
     if [ "$got" -ne "$want" ]; then
         problems="$problems
   errors on $got lines, expected on $want"

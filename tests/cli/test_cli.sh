@@ -52,7 +52,7 @@ mkdir -p "$deep" && cp "$tests/graphs/chain.ini" "$deep/chain.ini"
 expect_rc 0 "graph path over 1023 characters" "$voxrg" check "$deep/chain.ini" --no-device
 cp "$tests/bad/unknown_key.ini" "$deep/unknown_key.ini"
 expect_rc 1 "errors of a graph path over 1023 characters" "$voxrg" check "$deep/unknown_key.ini" --no-device
-has "$out/stderr" "^$deep/unknown_key.ini:[0-9]+: error: unknown key" "the whole path and the message"
+has "$out/stderr" "^$deep/unknown_key.ini:[0-9]+: error\[VRG-E012\]: unknown key" "the whole path and the message"
 long=$(printf '%04100d' 0)
 expect_rc 1 "graph path over 4095 characters" "$voxrg" check "$out/$long.ini" --no-device
 has "$out/stderr" "graph path is longer than 4095 characters" "long path message"
@@ -224,7 +224,7 @@ has "$out/stderr" "^$out/sh/inc.glsl:2: error:" "include error names the include
 printf '#version 450\nlayout(local_size_x = 8) in;\nvoid main() { undefined_call(); }\n' >"$out/sh/user.comp"
 expect_rc 1 "shader error in the main file" env VOXRG_SHADER_PATH="$out/sh" "$voxrg" render "$tests/graphs/shader_file.ini" --out "$out/sh_bad2"
 has "$out/stderr" "^$out/sh/user.comp:3: error:.*undefined_call" "main-file error names file and line"
-has "$out/stderr" "shader_file.ini:8: error: pass 'user'" "the failing pass is named at its line"
+has "$out/stderr" "shader_file.ini:8: error\[VRG-E060\]: pass 'user'" "the failing pass is named at its line"
 
 # --camera: a path moves the camera; a bad path names FILE:LINE
 expect_rc 0 "render still" "$voxrg" render "$tests/graphs/blocks_wall.ini" --validate --out "$out/still"

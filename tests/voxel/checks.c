@@ -17,7 +17,7 @@ static void test_traversal_errors(void)
     vrg_graph *g = NULL;
     int rc = vrg_graph_load(NULL, &d, &g);
     fclose(diag);
-    CHECK(rc != 0 && strstr(buf, "traversal.ini:7: error: traversal = 'rtx': expected dda or rayquery"), "bad traversal message:\n%s", buf);
+    CHECK(rc != 0 && strstr(buf, "traversal.ini:7: error[VRG-E047]: traversal = 'rtx': expected dda or rayquery"), "bad traversal message:\n%s", buf);
     free(buf);
     vrg_graph_destroy(g);
 }

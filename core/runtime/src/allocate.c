@@ -61,7 +61,7 @@ static int create_accel(vrg_graph *g, _vrg_resource *r)
     if (!r->size)
         return 0;
     if (!ctx->dev.features.acceleration_structure) {
-        _vrg_error_at(&g->diag, r->writer_line, "use the DDA traversal on this device", "resource '%s' needs VK_KHR_acceleration_structure, which '%s' lacks",
+        _vrg_error_at(&g->diag, r->writer_line, VRG_E_DEVICE_UNSUPPORTED, "use the DDA traversal on this device", "resource '%s' needs VK_KHR_acceleration_structure, which '%s' lacks",
                      r->name, ctx->device_name);
         return -1;
     }
@@ -93,7 +93,7 @@ static int create_accel(vrg_graph *g, _vrg_resource *r)
                                .memoryTypeIndex = (uint32_t)type};
     if (type < 0 || vkAllocateMemory(dev, &ai, NULL, &r->own_memory[0]) != VK_SUCCESS ||
         vkBindBufferMemory(dev, r->buffer[0], r->own_memory[0], 0) != VK_SUCCESS) {
-        _vrg_error(&g->diag, "out of device memory for acceleration structure '%s'", r->name);
+        _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "out of device memory for acceleration structure '%s'", r->name);
         return -1;
     }
     VkAccelerationStructureCreateInfoKHR ci = {.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_CREATE_INFO_KHR,
@@ -101,7 +101,7 @@ static int create_accel(vrg_graph *g, _vrg_resource *r)
                                                .size = sizes.accelerationStructureSize,
                                                .type = VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR};
     if (ctx->as.create(dev, &ci, NULL, &r->accel) != VK_SUCCESS) {
-        _vrg_error(&g->diag, "cannot create acceleration structure '%s'", r->name);
+        _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "cannot create acceleration structure '%s'", r->name);
         return -1;
     }
     _vrg_name_object(ctx, VK_OBJECT_TYPE_ACCELERATION_STRUCTURE_KHR, (uint64_t)r->accel, "%s/%s", g->name, r->name);
@@ -127,7 +127,7 @@ static int create_objects(vrg_graph *g, int ri)
     }
     uint32_t max_dim = ctx->props.limits.maxImageDimension2D;
     if (r->kind == VRG_IMAGE && (r->width > max_dim || r->height > max_dim)) {
-        _vrg_error_at(&g->diag, r->line, "lower its scale or the graph size", "resource '%s' would be %ux%u, larger than '%s' allows (%u)", r->name,
+        _vrg_error_at(&g->diag, r->line, VRG_E_DEVICE_UNSUPPORTED, "lower its scale or the graph size", "resource '%s' would be %ux%u, larger than '%s' allows (%u)", r->name,
                      r->width, r->height, ctx->device_name, max_dim);
         return -1;
     }
@@ -137,7 +137,7 @@ static int create_objects(vrg_graph *g, int ri)
             needed_usage(g, ri, &need);
             VkImageUsageFlags have = image_usage(ctx, r->format);
             if ((need & have) != need) {
-                _vrg_error_at(&g->diag, r->line, "choose another format in its [resource] section",
+                _vrg_error_at(&g->diag, r->line, VRG_E_DEVICE_UNSUPPORTED, "choose another format in its [resource] section",
                              "resource '%s': format %s does not support the uses the graph makes of it on this device", r->name,
                              _vrg_format_name(r->format));
                 return -1;
@@ -157,7 +157,7 @@ static int create_objects(vrg_graph *g, int ri)
                 .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED,
             };
             if (vkCreateImage(dev, &ci, NULL, &r->image[c]) != VK_SUCCESS) {
-                _vrg_error_at(&g->diag, r->line, NULL, "resource '%s': vkCreateImage failed (%ux%u %s)", r->name, r->width, r->height,
+                _vrg_error_at(&g->diag, r->line, VRG_E_VULKAN_FAILED, NULL, "resource '%s': vkCreateImage failed (%ux%u %s)", r->name, r->width, r->height,
                              _vrg_format_name(r->format));
                 return -1;
             }
@@ -168,7 +168,7 @@ static int create_objects(vrg_graph *g, int ri)
                               VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
             VkBufferCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = r->size, .usage = r->buffer_usage};
             if (vkCreateBuffer(dev, &ci, NULL, &r->buffer[c]) != VK_SUCCESS) {
-                _vrg_error_at(&g->diag, r->line, NULL, "resource '%s': vkCreateBuffer failed (%llu bytes)", r->name, (unsigned long long)r->size);
+                _vrg_error_at(&g->diag, r->line, VRG_E_VULKAN_FAILED, NULL, "resource '%s': vkCreateBuffer failed (%llu bytes)", r->name, (unsigned long long)r->size);
                 return -1;
             }
             _vrg_name_object(ctx, VK_OBJECT_TYPE_BUFFER, (uint64_t)r->buffer[c], "%s/%s%s", g->name, r->name, c ? " (copy 1)" : "");
@@ -196,7 +196,7 @@ static int alloc_memory(vrg_graph *g, VkDeviceSize size, uint32_t type_bits, VkD
         type = _vrg_find_memory_type(g->ctx, type_bits, 0);
     VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = size, .memoryTypeIndex = (uint32_t)type};
     if (type < 0 || vkAllocateMemory(g->ctx->dev.device, &ai, NULL, out) != VK_SUCCESS) {
-        _vrg_error(&g->diag, "out of device memory allocating %llu bytes for %s", (unsigned long long)size, what);
+        _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "out of device memory allocating %llu bytes for %s", (unsigned long long)size, what);
         return -1;
     }
     _vrg_name_object(g->ctx, VK_OBJECT_TYPE_DEVICE_MEMORY, (uint64_t)*out, "%s/%s", g->name, what);
@@ -251,7 +251,7 @@ int _vrg_allocate(vrg_graph *g)
                 mem = r->own_memory[c];
             }
             if (bind_memory(g, r, c, mem, offset) != 0) {
-                _vrg_error(&g->diag, "binding memory for resource '%s' failed", r->name);
+                _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "binding memory for resource '%s' failed", r->name);
                 return -1;
             }
             if (r->kind == VRG_IMAGE) {
@@ -263,7 +263,7 @@ int _vrg_allocate(vrg_graph *g)
                     .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, VK_REMAINING_MIP_LEVELS, 0, 1},
                 };
                 if (vkCreateImageView(g->ctx->dev.device, &vi, NULL, &r->view[c]) != VK_SUCCESS) {
-                    _vrg_error(&g->diag, "cannot create a view of resource '%s'", r->name);
+                    _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "cannot create a view of resource '%s'", r->name);
                     return -1;
                 }
                 _vrg_name_object(g->ctx, VK_OBJECT_TYPE_IMAGE_VIEW, (uint64_t)r->view[c], "%s/%s%s", g->name, r->name, c ? " (copy 1)" : "");

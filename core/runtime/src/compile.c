@@ -161,7 +161,7 @@ static int schedule(vrg_graph *g)
     }
     for (int i = 0; i < g->pass_count; i++)
         if (!g->passes[i].culled && !done[i]) {
-            _vrg_error_at(&g->diag, g->passes[i].line, NULL, "pass '%s' cannot be scheduled (cycle)", g->passes[i].name);
+            _vrg_error_at(&g->diag, g->passes[i].line, VRG_E_CYCLE, NULL, "pass '%s' cannot be scheduled (cycle)", g->passes[i].name);
             return -1;
         }
     return 0;
@@ -248,7 +248,7 @@ static int by_size_desc(const void *x, const void *y)
 static int block_for(vrg_graph *g, const _vrg_resource *r)
 {
     if (!r->req.memoryTypeBits) {
-        _vrg_error(&g->diag, "resource '%s': the device allows no memory type for it", r->name);
+        _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "resource '%s': the device allows no memory type for it", r->name);
         return -1;
     }
     int b;
@@ -298,7 +298,7 @@ static int list_overlaps(vrg_graph *g, const sized_res *placed, int placed_count
                 int cap = g->overlap_cap ? 2 * g->overlap_cap : 256;
                 int *grown = realloc(g->overlaps, (size_t)cap * sizeof *grown);
                 if (!grown) {
-                    _vrg_error(&g->diag, "out of memory planning aliased memory");
+                    _vrg_error(&g->diag, VRG_E_OUT_OF_MEMORY, "out of memory planning aliased memory");
                     return -1;
                 }
                 g->overlaps = grown;

@@ -1,11 +1,23 @@
 #define _DEFAULT_SOURCE
-/* Diagnostics: every error names file:line where there is one, plus a hint.
- * While a graph loads they are collected and printed sorted by line, so one
- * run lists every problem in file order; afterwards they print at once. */
+/* Diagnostics: every error names file:line where there is one, its code of
+ * the catalogue (diag_codes.h) and a hint, as compilers do:
+ *   graph.ini:12: error[VRG-E012]: unknown key 'foo' in [graph]
+ * file:line comes first so that editors jump to it. While a graph loads they
+ * are collected and printed sorted by line, so one run lists every problem in
+ * file order; afterwards they print at once. */
 #include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 #include "internal.h"
+
+#define VRG_DIAG_INFO(name, code, short_name, meaning) [name] = {#name, code, short_name, meaning},
+static const _vrg_diag_info catalogue[VRG_DIAG_CODE_COUNT] = {VRG_DIAG_CODES(VRG_DIAG_INFO)};
+#undef VRG_DIAG_INFO
+
+const _vrg_diag_info *_vrg_diag_info_of(_vrg_diag_code code)
+{
+    return (unsigned)code < VRG_DIAG_CODE_COUNT ? &catalogue[code] : NULL;
+}
 
 static FILE *diag_out(_vrg_diag *d) { return d->out ? d->out : stderr; }
 
@@ -36,16 +48,18 @@ static void add(_vrg_diag *d, int line, const char *text)
 
 /* Messages are as long as they need: a file name of any length, the whole
  * message after it. */
-static void vadd(_vrg_diag *d, int line, const char *kind, const char *hint, const char *fmt, va_list ap)
+static void vadd(_vrg_diag *d, int line, const char *kind, _vrg_diag_code code, const char *hint, const char *fmt, va_list ap)
 {
     char *file = NULL, *body = NULL, *text = NULL;
     size_t fn = 0, bn = 0, tn = 0;
     FILE *f = open_memstream(&file, &fn), *b = open_memstream(&body, &bn), *t = open_memstream(&text, &tn);
     if (f && b && t) {
+        const _vrg_diag_info *info = _vrg_diag_info_of(code);
+        const char *id = info ? info->code : "VRG-E000";
         if (line == INT_MAX)
-            fprintf(f, "%s: ", kind);
+            fprintf(f, "%s[%s]: ", kind, id);
         else
-            fprintf(f, "%s:%d: %s: ", d->file ? d->file : "<graph>", line, kind);
+            fprintf(f, "%s:%d: %s[%s]: ", d->file ? d->file : "<graph>", line, kind, id);
         vfprintf(b, fmt, ap);
         fclose(f), f = NULL;
         fclose(b), b = NULL;
@@ -67,29 +81,29 @@ static void vadd(_vrg_diag *d, int line, const char *kind, const char *hint, con
     free(text);
 }
 
-void _vrg_error_at(_vrg_diag *d, int line, const char *hint, const char *fmt, ...)
+void _vrg_error_at(_vrg_diag *d, int line, _vrg_diag_code code, const char *hint, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    vadd(d, line > 0 ? line : 1, "error", hint, fmt, ap);
+    vadd(d, line > 0 ? line : 1, "error", code, hint, fmt, ap);
     va_end(ap);
     d->errors++;
 }
 
-void _vrg_error(_vrg_diag *d, const char *fmt, ...)
+void _vrg_error(_vrg_diag *d, _vrg_diag_code code, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    vadd(d, INT_MAX, "error", NULL, fmt, ap);
+    vadd(d, INT_MAX, "error", code, NULL, fmt, ap);
     va_end(ap);
     d->errors++;
 }
 
-void _vrg_note_at(_vrg_diag *d, int line, const char *fmt, ...)
+void _vrg_warning_at(_vrg_diag *d, int line, _vrg_diag_code code, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    vadd(d, line, "note", NULL, fmt, ap);
+    vadd(d, line, "warning", code, NULL, fmt, ap);
     va_end(ap);
 }
 

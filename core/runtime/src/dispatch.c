@@ -42,7 +42,7 @@ static int build_pipeline(vrg_pass *p, _vrg_pipeline *pl)
     _vrg_shader_module sm;
     FILE *diag = p->graph->diag.out ? p->graph->diag.out : stderr;
     if (_vrg_shader_compile(ctx, pl->path, pl->defines, &sm, diag) != 0) {
-        vrg_pass_error(p, "shader %s failed to compile", pl->path);
+        _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "shader %s failed to compile", pl->path);
         return -1;
     }
     pl->deps = sm.deps;
@@ -80,7 +80,7 @@ static int build_pipeline(vrg_pass *p, _vrg_pipeline *pl)
         pl->deps = NULL;
         pl->layout = VK_NULL_HANDLE;
         pl->set_layout = VK_NULL_HANDLE;
-        vrg_pass_error(p, "vkCreateComputePipelines failed for %s (%d)", pl->path, res);
+        _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "vkCreateComputePipelines failed for %s (%d)", pl->path, res);
         return -1;
     }
     _vrg_name_object(ctx, VK_OBJECT_TYPE_PIPELINE, (uint64_t)pl->pipeline, "%s/%s: %s", p->graph->name, p->name, pl->shader);
@@ -100,7 +100,7 @@ static _vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *
     if (!defines)
         defines = "";
     if (strlen(shader) >= sizeof((_vrg_pipeline *)0)->shader || strlen(defines) >= sizeof((_vrg_pipeline *)0)->defines) {
-        vrg_pass_error(p, "shader name '%.40s...' or its defines are too long (at most 255 characters each)", shader);
+        _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "shader name '%.40s...' or its defines are too long (at most 255 characters each)", shader);
         return NULL;
     }
     /* looked up by the name the pass gave: a shader is resolved to a file
@@ -111,7 +111,7 @@ static _vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *
             return pl;
     char path[VRG_PATH_MAX];
     if (_vrg_shader_resolve(p, shader, path, sizeof path) != 0) {
-        vrg_pass_error(p, "shader '%s' not found (searched the plugin's folder, $VOXRG_SHADER_PATH, shaders/)", shader);
+        _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "shader '%s' not found (searched the plugin's folder, $VOXRG_SHADER_PATH, shaders/)", shader);
         return NULL;
     }
     _vrg_pipeline *pl = calloc(1, sizeof *pl);
@@ -215,7 +215,7 @@ static int resolve_bindings(vrg_pass *p, const vrg_dispatch_desc *d, bound *out)
             if (r < 0 || (p->graph->res[r].kind == VRG_ACCEL && !p->graph->res[r].accel))
                 continue;
             if (n == VRG_MAX_BINDINGS)
-                return vrg_pass_error(p, "its slots need more than the %d bindings of a dispatch: name the ones the shader uses in bindings[]",
+                return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "its slots need more than the %d bindings of a dispatch: name the ones the shader uses in bindings[]",
                                       VRG_MAX_BINDINGS);
             out[n++] = (bound){r, p->slots[s].prev, pd->slots[s].access};
         }
@@ -224,7 +224,7 @@ static int resolve_bindings(vrg_pass *p, const vrg_dispatch_desc *d, bound *out)
     for (; n < VRG_MAX_BINDINGS && d->bindings[n].res; n++) {
         int res, prev, slot;
         if (_vrg_pass_lookup(p, d->bindings[n].res, &res, &prev, &slot) != 0)
-            return vrg_pass_error(p, "binding %d names '%s', which is neither a slot nor an internal resource of this pass", n,
+            return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "binding %d names '%s', which is neither a slot nor an internal resource of this pass", n,
                                   d->bindings[n].res);
         vrg_access a = d->bindings[n].access;
         if (!a)
@@ -244,22 +244,22 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
     VkDescriptorType types[VRG_MAX_BINDINGS];
     for (int i = 0; i < n; i++) {
         if (b[i].access == VRG_ACCESS_TRANSFER_SRC || b[i].access == VRG_ACCESS_TRANSFER_DST || b[i].access == VRG_ACCESS_AS_BUILD)
-            return vrg_pass_error(p, "binding %d: %s access cannot be bound to a shader", i, _vrg_access_name(b[i].access));
+            return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "binding %d: %s access cannot be bound to a shader", i, _vrg_access_name(b[i].access));
         if (g->res[b[i].res].kind == VRG_ACCEL && !g->res[b[i].res].accel)
-            return vrg_pass_error(p, "binding %d: acceleration structure '%s' was not built (its scene uses no ray-query backend)", i,
+            return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "binding %d: acceleration structure '%s' was not built (its scene uses no ray-query backend)", i,
                                   g->res[b[i].res].name);
         types[i] = descriptor_type(g->res[b[i].res].kind, b[i].access);
     }
     if (d->push_size > 128)
-        return vrg_pass_error(p, "push constants of %u bytes (at most 128)", d->push_size);
+        return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "push constants of %u bytes (at most 128)", d->push_size);
     /* A bound acceleration structure selects trace.glsl's ray-query backend. */
     char defines[sizeof ((_vrg_pipeline *)0)->defines];
     if (d->shader && strlen(d->shader) >= sizeof ((_vrg_pipeline *)0)->shader)
-        return vrg_pass_error(p, "shader name of %zu characters (at most %zu)", strlen(d->shader), sizeof ((_vrg_pipeline *)0)->shader - 1);
+        return _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "shader name of %zu characters (at most %zu)", strlen(d->shader), sizeof ((_vrg_pipeline *)0)->shader - 1);
     /* room for the ray-query backend's defines added below */
     size_t max_defines = sizeof defines - sizeof " TRACE_RAYQUERY TLAS_BINDING=99";
     if (d->defines && strlen(d->defines) > max_defines)
-        return vrg_pass_error(p, "defines of %zu characters (at most %zu)", strlen(d->defines), max_defines);
+        return _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "defines of %zu characters (at most %zu)", strlen(d->defines), max_defines);
     snprintf(defines, sizeof defines, "%s", d->defines ? d->defines : "");
     for (int i = 0; i < n; i++)
         if (g->res[b[i].res].kind == VRG_ACCEL) {
@@ -299,13 +299,13 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
             VkFormat texel = r->format ? r->format : VK_FORMAT_R32_UINT;
             uint64_t texels = r->size / _vrg_format_bytes(texel), max = g->ctx->dev.features.max_texel_buffer_texels;
             if (texels > max)
-                return vrg_pass_error(p, "binding %d: buffer '%s' holds %llu %s texels, more than this device's texel buffers can (%llu)", i, r->name,
+                return _vrg_pass_fail(p, VRG_E_DEVICE_UNSUPPORTED, "binding %d: buffer '%s' holds %llu %s texels, more than this device's texel buffers can (%llu)", i, r->name,
                                       (unsigned long long)texels, _vrg_format_name(texel), (unsigned long long)max);
             if (!r->texel_view[copy]) {
                 VkBufferViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO, .buffer = r->buffer[copy],
                                              .format = texel, .range = VK_WHOLE_SIZE};
                 if (vkCreateBufferView(g->ctx->dev.device, &vi, NULL, &r->texel_view[copy]) != VK_SUCCESS)
-                    return vrg_pass_error(p, "binding %d: cannot create a texel view of buffer '%s'", i, r->name);
+                    return _vrg_pass_fail(p, VRG_E_VULKAN_FAILED, "binding %d: cannot create a texel view of buffer '%s'", i, r->name);
             }
             tv[i] = r->texel_view[copy];
             w[i].pTexelBufferView = &tv[i];
@@ -316,25 +316,26 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
     }
     _vrg_emit_barriers(g, cmd, bars, nb);
 
-    uint32_t gx = d->groups_x, gy = d->groups_y ? d->groups_y : 1, gz = d->groups_z ? d->groups_z : 1;
+    const vrg_dispatch_desc groups = _vrg_dispatch_desc_defaults(d);
+    uint32_t gx = groups.groups_x, gy = groups.groups_y, gz = groups.groups_z;
     if (!gx) {
         int dom = -1;
         if (d->domain) {
             int prev, slot;
             if (_vrg_pass_lookup(p, d->domain, &dom, &prev, &slot) != 0)
-                return vrg_pass_error(p, "dispatch domain '%s' is not a resource of this pass", d->domain);
+                return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "dispatch domain '%s' is not a resource of this pass", d->domain);
         } else {
             for (uint32_t s = 0; s < p->plugin->desc->slot_count && dom < 0; s++)
                 if (vrg_slot(p, (int)s)->dir == VRG_OUT && vrg_slot(p, (int)s)->kind == VRG_IMAGE)
                     dom = p->slots[s].res;
             if (dom < 0)
-                return vrg_pass_error(p, "dispatch has no domain: no image output; set domain or groups_x");
+                return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "dispatch has no domain: no image output; set domain or groups_x");
         }
         uint32_t tile[2] = {pl->local[0], pl->local[1]};
         if (d->pixel_loop) {
             /* pixel.glsl's vrg_pixel: a group shades a tile of the device's shape */
             if (pl->local[0] != g->ctx->group_size[0] || pl->local[1] != g->ctx->group_size[1] || pl->local[2] != 1)
-                return vrg_pass_error(p, "pixel_loop dispatch of %s: local size %ux%ux%u, a pixel loop needs VRG_GROUP_X x VRG_GROUP_Y (%ux%u)",
+                return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "pixel_loop dispatch of %s: local size %ux%ux%u, a pixel loop needs VRG_GROUP_X x VRG_GROUP_Y (%ux%u)",
                                       d->shader, pl->local[0], pl->local[1], pl->local[2], g->ctx->group_size[0], g->ctx->group_size[1]);
             tile[0] = g->ctx->pixel_tile[0], tile[1] = g->ctx->pixel_tile[1];
         }

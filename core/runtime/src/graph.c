@@ -18,7 +18,7 @@ static int create_passes(vrg_graph *g)
         _vrg_running_leave(before);
         if (rc != 0) {
             if (!p->failed)
-                vrg_pass_error(p, "create() failed");
+                _vrg_pass_fail(p, VRG_E_CALLBACK_FAILED, "create() failed");
             return -1;
         }
         if (p->failed)
@@ -37,7 +37,7 @@ static int resize_passes(vrg_graph *g)
         _vrg_running_leave(before);
         if (rc != 0) {
             if (!p->failed)
-                vrg_pass_error(p, "resize() failed");
+                _vrg_pass_fail(p, VRG_E_CALLBACK_FAILED, "resize() failed");
             return -1;
         }
     }
@@ -52,7 +52,7 @@ static int frame_objects(vrg_graph *g)
         .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, .commandPool = ctx->cmd_pool, .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY, .commandBufferCount = 1};
     VkFenceCreateInfo fi = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     if (vkAllocateCommandBuffers(dev, &ai, &g->cmd) != VK_SUCCESS || vkCreateFence(dev, &fi, NULL, &g->fence) != VK_SUCCESS) {
-        _vrg_error(&g->diag, "cannot create the frame's command buffer and fence");
+        _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "cannot create the frame's command buffer and fence");
         return -1;
     }
     if (ctx->dev.features.timestamps && g->schedule_count) {
@@ -93,7 +93,7 @@ static int readback_buffer(vrg_graph *g)
     if (type < 0 || vkAllocateMemory(dev, &ai, NULL, &g->readback_memory) != VK_SUCCESS ||
         vkBindBufferMemory(dev, g->readback_buffer, g->readback_memory, 0) != VK_SUCCESS ||
         vkMapMemory(dev, g->readback_memory, 0, VK_WHOLE_SIZE, 0, &g->readback_map) != VK_SUCCESS) {
-        _vrg_error(&g->diag, "cannot allocate %llu bytes of host-visible memory for readback", (unsigned long long)size);
+        _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "cannot allocate %llu bytes of host-visible memory for readback", (unsigned long long)size);
         return -1;
     }
     g->readback_size = size;
@@ -134,7 +134,7 @@ int vrg_graph_load(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph **out
     snprintf(g->name, sizeof g->name, "graph");
     int rc;
     if (desc->path && strlen(desc->path) >= sizeof g->path) {
-        _vrg_error(&g->diag, "graph path is longer than %zu characters", sizeof g->path - 1);
+        _vrg_error(&g->diag, VRG_E_GRAPH_PATH_TOO_LONG, "graph path is longer than %zu characters", sizeof g->path - 1);
         rc = -1;
         ast->fatal = 1;
     } else
@@ -236,7 +236,7 @@ int vrg_graph_watch(vrg_graph *g, int on)
         return 0;
     g->watch = _vrg_watch_create();
     if (!g->watch) {
-        _vrg_error(&g->diag, "hot reload: cannot watch files (inotify: %s)", strerror(errno));
+        _vrg_error(&g->diag, VRG_E_WATCH_FAILED, "hot reload: cannot watch files (inotify: %s)", strerror(errno));
         return -1;
     }
     g->reload_ms = -1;
@@ -270,7 +270,7 @@ static void apply_reloads(vrg_graph *g)
     char (*changed)[VRG_PATH_MAX], self[VRG_PATH_MAX];
     int n = _vrg_watch_poll(g->watch, &changed);
     if (n < 0)
-        _vrg_error(&g->diag, "hot reload: out of memory listing the changed files");
+        _vrg_error(&g->diag, VRG_E_OUT_OF_MEMORY, "hot reload: out of memory listing the changed files");
     if (n <= 0)
         return;
     /* the graph file itself: the host reloads it (vrg_graph_reload) */
@@ -322,11 +322,11 @@ static void apply_reloads(vrg_graph *g)
 int vrg_graph_frame(vrg_graph *g)
 {
     if (!g->ctx || !g->allocated) {
-        _vrg_error(&g->diag, "graph '%s' has no device resources (loaded without a context)", g->name);
+        _vrg_error(&g->diag, VRG_E_NO_DEVICE, "graph '%s' has no device resources (loaded without a context)", g->name);
         return -1;
     }
     if (g->ctx->gpu_busy) { /* the command buffer may still be executing */
-        _vrg_error(&g->diag, "graph '%s': the GPU is still busy with a frame that timed out or was interrupted", g->name);
+        _vrg_error(&g->diag, VRG_E_GPU_BUSY, "graph '%s': the GPU is still busy with a frame that timed out or was interrupted", g->name);
         return -1;
     }
     if (g->watch)
@@ -350,7 +350,7 @@ static int find_param(vrg_graph *g, const char *pass_param, vrg_pass **out)
         if (strlen(g->passes[i].name) == (size_t)(dot - pass_param) && strncmp(g->passes[i].name, pass_param, (size_t)(dot - pass_param)) == 0)
             p = &g->passes[i];
     if (!p) {
-        _vrg_error(&g->diag, "%s: no pass of that name (PASS.PARAM)", pass_param);
+        _vrg_error(&g->diag, VRG_E_UNKNOWN_PARAMETER, "%s: no pass of that name (PASS.PARAM)", pass_param);
         return -1;
     }
     *out = p;
@@ -358,7 +358,7 @@ static int find_param(vrg_graph *g, const char *pass_param, vrg_pass **out)
     for (uint32_t i = 0; i < d->param_count; i++)
         if (strcmp(d->params[i].name, dot + 1) == 0)
             return (int)i;
-    _vrg_error(&g->diag, "%s: pass '%s' (plugin %s) has no parameter '%s'", pass_param, p->name, p->plugin->name, dot + 1);
+    _vrg_error(&g->diag, VRG_E_UNKNOWN_PARAMETER, "%s: pass '%s' (plugin %s) has no parameter '%s'", pass_param, p->name, p->plugin->name, dot + 1);
     return -1;
 }
 
@@ -379,11 +379,11 @@ int vrg_graph_set_param(vrg_graph *g, const char *pass_param, double value)
     if (i >= 0) {
         const vrg_param_desc *pd = &p->plugin->desc->params[i];
         if (pd->type == VRG_PARAM_STRING) {
-            _vrg_error(&g->diag, "set %s: a string parameter; edit the graph file (it reloads)", pass_param);
+            _vrg_error(&g->diag, VRG_E_PARAM_NOT_SETTABLE, "set %s: a string parameter; edit the graph file (it reloads)", pass_param);
             return -1;
         }
         if (value != value || (pd->type != VRG_PARAM_FLOAT && value != floor(value)) || ((pd->min != 0 || pd->max != 0) && (value < pd->min || value > pd->max))) {
-            _vrg_error(&g->diag, "set %s = %g: %s takes %s in [%g, %g]", pass_param, value, pd->name, pd->type == VRG_PARAM_FLOAT ? "a number" : "an integer",
+            _vrg_error(&g->diag, VRG_E_OUT_OF_RANGE, "set %s = %g: %s takes %s in [%g, %g]", pass_param, value, pd->name, pd->type == VRG_PARAM_FLOAT ? "a number" : "an integer",
                       pd->min, pd->max);
             return -1;
         }
@@ -402,11 +402,11 @@ double vrg_graph_reload_ms(const vrg_graph *g) { return g->watch ? g->reload_ms 
 int vrg_graph_resize(vrg_graph *g, uint32_t width, uint32_t height)
 {
     if (!width || !height || width > 16384 || height > 16384) {
-        _vrg_error(&g->diag, "resize to %ux%u: sizes are 1..16384", width, height);
+        _vrg_error(&g->diag, VRG_E_OUT_OF_RANGE, "resize to %ux%u: sizes are 1..16384", width, height);
         return -1;
     }
     if (g->ctx && g->ctx->gpu_busy) {
-        _vrg_error(&g->diag, "resize: the GPU is still busy with a frame that timed out or was interrupted");
+        _vrg_error(&g->diag, VRG_E_GPU_BUSY, "resize: the GPU is still busy with a frame that timed out or was interrupted");
         return -1;
     }
     if (g->ctx)
@@ -435,16 +435,16 @@ static int find_readable(vrg_graph *g, const char *name)
     for (int i = 0; i < g->res_count; i++)
         if (strcmp(g->res[i].name, name) == 0) {
             if (!(g->res[i].is_output || g->res[i].readback || i == g->shown) || g->res[i].first_use < 0) {
-                _vrg_error(&g->diag, "resource '%s' is not read back (ask for it in vrg_graph_desc.readback / --dump)", name);
+                _vrg_error(&g->diag, VRG_E_NOT_READ_BACK, "resource '%s' is not read back (ask for it in vrg_graph_desc.readback / --dump)", name);
                 return -1;
             }
             if (!g->frame_done) {
-                _vrg_error(&g->diag, "resource '%s': no frame rendered yet", name);
+                _vrg_error(&g->diag, VRG_E_NOT_READ_BACK, "resource '%s': no frame rendered yet", name);
                 return -1;
             }
             return i;
         }
-    _vrg_error(&g->diag, "the graph has no resource '%s'", name);
+    _vrg_error(&g->diag, VRG_E_UNKNOWN_RESOURCE, "the graph has no resource '%s'", name);
     return -1;
 }
 
@@ -505,7 +505,7 @@ int vrg_graph_show(vrg_graph *g, const char *name)
             g->shown = i;
             return 0;
         }
-    _vrg_error(&g->diag, "show %s: not an image this graph keeps for viewing (load it with keep_images)", name);
+    _vrg_error(&g->diag, VRG_E_NOT_READ_BACK, "show %s: not an image this graph keeps for viewing (load it with keep_images)", name);
     return -1;
 }
 
@@ -522,7 +522,7 @@ int vrg_graph_image(vrg_graph *g, const char *name, VkImage *image, VkExtent2D *
         return -1;
     _vrg_resource *r = &g->res[i];
     if (r->kind != VRG_IMAGE) {
-        _vrg_error(&g->diag, "resource '%s' is not an image", name);
+        _vrg_error(&g->diag, VRG_E_WRONG_READ, "resource '%s' is not an image", name);
         return -1;
     }
     /* the frame counter moved on: last frame's copy is now the "previous" one */
@@ -540,7 +540,7 @@ int vrg_graph_read(vrg_graph *g, const char *name, vrg_image_data *out)
         return -1;
     _vrg_resource *r = &g->res[i];
     if (r->kind != VRG_IMAGE) {
-        _vrg_error(&g->diag, "resource '%s' is a buffer: use vrg_graph_read_buffer", name);
+        _vrg_error(&g->diag, VRG_E_WRONG_READ, "resource '%s' is a buffer: use vrg_graph_read_buffer", name);
         return -1;
     }
     const uint8_t *src = (const uint8_t *)g->readback_map + g->readback_offset[i];
@@ -608,7 +608,7 @@ int vrg_graph_read_buffer(vrg_graph *g, const char *name, void **data, uint64_t 
         return -1;
     _vrg_resource *r = &g->res[i];
     if (r->kind != VRG_BUFFER) {
-        _vrg_error(&g->diag, "resource '%s' is an image: use vrg_graph_read", name);
+        _vrg_error(&g->diag, VRG_E_WRONG_READ, "resource '%s' is an image: use vrg_graph_read", name);
         return -1;
     }
     *data = malloc(r->size);
@@ -702,7 +702,7 @@ int vrg_graph_placement(const vrg_graph *g, const char *name, int *block, uint64
 int vrg_graph_set_camera(vrg_graph *g, const vrg_camera *c)
 {
     if (!vrg_camera_position_in_world(c->position)) {
-        _vrg_error(&g->diag, "vrg_graph_set_camera: camera->position (%g, %g, %g) is outside the world: each coordinate lies in [%g, %g] (VRG_WORLD_LIMIT)",
+        _vrg_error(&g->diag, VRG_E_OUT_OF_RANGE, "vrg_graph_set_camera: camera->position (%g, %g, %g) is outside the world: each coordinate lies in [%g, %g] (VRG_WORLD_LIMIT)",
                   c->position[0], c->position[1], c->position[2], -VRG_WORLD_LIMIT, VRG_WORLD_LIMIT);
         return -1;
     }

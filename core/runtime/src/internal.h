@@ -9,6 +9,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include "voxrg/voxrg.h"
+#include "diag_codes.h"
 
 #define VRG_NAME_MAX 64
 #define VRG_MAX_PASSES 128
@@ -31,10 +32,28 @@ typedef struct _vrg_diag {
     _vrg_diag_entry *entries;
     int count, cap;
 } _vrg_diag;
-void _vrg_error_at(_vrg_diag *d, int line, const char *hint, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
-void _vrg_error(_vrg_diag *d, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-void _vrg_note_at(_vrg_diag *d, int line, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+/* Every message carries a code of the catalogue (diag_codes.h): errors a
+ * VRG_E_ one, warnings a VRG_W_ one. */
+#define VRG_DIAG_ENUM(name, code, short_name, meaning) name,
+typedef enum { VRG_DIAG_CODES(VRG_DIAG_ENUM) VRG_DIAG_CODE_COUNT } _vrg_diag_code;
+#undef VRG_DIAG_ENUM
+typedef struct _vrg_diag_info {
+    const char *enum_name;  /* "VRG_E_UNKNOWN_KEY": a test checks it agrees with the code */
+    const char *code;       /* "VRG-E012" */
+    const char *short_name; /* "unknown-key" */
+    const char *meaning;
+} _vrg_diag_info;
+const _vrg_diag_info *_vrg_diag_info_of(_vrg_diag_code code);
+void _vrg_error_at(_vrg_diag *d, int line, _vrg_diag_code code, const char *hint, const char *fmt, ...) __attribute__((format(printf, 5, 6)));
+void _vrg_error(_vrg_diag *d, _vrg_diag_code code, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+void _vrg_warning_at(_vrg_diag *d, int line, _vrg_diag_code code, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
 void _vrg_diag_flush(_vrg_diag *d);
+/* vrg_pass_error with the code of a problem the runtime finds (pass_api.c) */
+int _vrg_pass_fail(vrg_pass *p, _vrg_diag_code code, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
+/* ---- defaults (defaults.c): one function per descriptor kind ---- */
+vrg_slot_desc _vrg_slot_desc_defaults(const vrg_slot_desc *sd);
+vrg_dispatch_desc _vrg_dispatch_desc_defaults(const vrg_dispatch_desc *desc);
 
 /* ---- context (context.c) ---- */
 struct vrg_context {

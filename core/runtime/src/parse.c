@@ -37,7 +37,7 @@ static char *read_line(char *str, int num, void *stream)
         n++;
     size_t copy = n < (size_t)(num - 1) ? n : (size_t)(num - 1);
     if (n > copy) {
-        _vrg_error_at(r->d, r->line + 1, "split the value or shorten names", "line is longer than %d characters", num - 2);
+        _vrg_error_at(r->d, r->line + 1, VRG_E_LINE_TOO_LONG, "split the value or shorten names", "line is longer than %d characters", num - 2);
         copy = 0; /* hand inih a blank line: no follow-on syntax error */
     }
     const _vrg_ast *a = r->ast;
@@ -57,24 +57,24 @@ static int on_key(void *user, const char *section, const char *name, const char 
     line_reader *r = user;
     _vrg_ast *a = r->ast;
     if (section[0] != '#') { /* "" before the first header */
-        _vrg_error_at(r->d, r->line, "put every key under a [section] header", "key '%s' outside any section", name);
+        _vrg_error_at(r->d, r->line, VRG_E_KEY_OUTSIDE_SECTION, "put every key under a [section] header", "key '%s' outside any section", name);
         return 1;
     }
     if (a->key_count >= VRG_MAX_KEYS) {
         /* once, not per key: keys past the limit are not kept */
         if (!a->fatal)
-            _vrg_error_at(r->d, r->line, NULL, "too many keys (at most %d)", VRG_MAX_KEYS);
+            _vrg_error_at(r->d, r->line, VRG_E_TOO_MANY, NULL, "too many keys (at most %d)", VRG_MAX_KEYS);
         a->fatal = 1;
         return 1;
     }
     if (strlen(name) >= sizeof a->keys[0].name) { /* reported, not kept cut short: no follow-on errors */
-        _vrg_error_at(r->d, r->line, NULL, "key '%.*s...' is longer than %zu characters", 20, name, sizeof a->keys[0].name - 1);
+        _vrg_error_at(r->d, r->line, VRG_E_TOO_LONG, NULL, "key '%.*s...' is longer than %zu characters", 20, name, sizeof a->keys[0].name - 1);
         return 1;
     }
     _vrg_key *k = &a->keys[a->key_count++];
     snprintf(k->name, sizeof k->name, "%s", name);
     if (strlen(value) >= sizeof k->value)
-        _vrg_error_at(r->d, r->line, NULL, "value of '%s' is too long (at most %zu characters)", name, sizeof k->value - 1);
+        _vrg_error_at(r->d, r->line, VRG_E_TOO_LONG, NULL, "value of '%s' is too long (at most %zu characters)", name, sizeof k->value - 1);
     snprintf(k->value, sizeof k->value, "%s", value);
     k->line = r->line;
     k->section_index = atoi(section + 1);
@@ -106,12 +106,12 @@ static int scan_sections(const char *text, _vrg_ast *a, _vrg_diag *d)
             const char *close = memchr(s, ']', (size_t)(p + n - s));
             if (close) {
                 if (a->section_count >= (int)(sizeof a->sections / sizeof a->sections[0])) {
-                    _vrg_error_at(d, line, NULL, "too many sections (at most %d)", (int)(sizeof a->sections / sizeof a->sections[0]));
+                    _vrg_error_at(d, line, VRG_E_TOO_MANY, NULL, "too many sections (at most %d)", (int)(sizeof a->sections / sizeof a->sections[0]));
                     a->fatal = 1; /* the rest of the file was not read: checking it would only mislead */
                     return -1;
                 }
                 if (!header_tail_ok(close + 1, p + n))
-                    _vrg_error_at(d, line, "a header is '[NAME]', optionally followed by a comment", "text after ']' of the section header");
+                    _vrg_error_at(d, line, VRG_E_SYNTAX, "a header is '[NAME]', optionally followed by a comment", "text after ']' of the section header");
                 _vrg_section *sec = &a->sections[a->section_count++];
                 size_t len = (size_t)(close - s - 1);
                 /* blanks around the name do not count (as in inih) */
@@ -160,18 +160,18 @@ static char *read_graph_file(const char *path, _vrg_ast *ast, _vrg_diag *d)
 {
     int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) {
-        _vrg_error(d, "cannot open graph file '%s': %s", path, strerror(errno));
+        _vrg_error(d, VRG_E_GRAPH_UNREADABLE, "cannot open graph file '%s': %s", path, strerror(errno));
         return NULL;
     }
     struct stat st;
     if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
         close(fd);
-        _vrg_error(d, "graph file '%s' is not a regular file", path);
+        _vrg_error(d, VRG_E_GRAPH_UNREADABLE, "graph file '%s' is not a regular file", path);
         return NULL;
     }
     if (st.st_size > (1 << 20)) {
         close(fd);
-        _vrg_error(d, "graph file '%s' is not a readable text file under 1 MiB", path);
+        _vrg_error(d, VRG_E_GRAPH_UNREADABLE, "graph file '%s' is not a readable text file under 1 MiB", path);
         return NULL;
     }
     char *text = malloc((size_t)st.st_size + 1);
@@ -182,7 +182,7 @@ static char *read_graph_file(const char *path, _vrg_ast *ast, _vrg_diag *d)
     close(fd);
     if (!text || n < 0) {
         free(text);
-        _vrg_error(d, "graph file '%s' is not a readable text file under 1 MiB", path);
+        _vrg_error(d, VRG_E_GRAPH_UNREADABLE, "graph file '%s' is not a readable text file under 1 MiB", path);
         return NULL;
     }
     text[got] = '\0';
@@ -191,7 +191,7 @@ static char *read_graph_file(const char *path, _vrg_ast *ast, _vrg_diag *d)
         int line = 1;
         for (const char *c = text; *c; c++)
             line += *c == '\n';
-        _vrg_error_at(d, line, "graph files are text", "NUL byte in the file");
+        _vrg_error_at(d, line, VRG_E_NOT_TEXT, "graph files are text", "NUL byte in the file");
         ast->fatal = 1;
         free(text);
         return NULL;
@@ -212,7 +212,7 @@ int _vrg_parse(const char *path, const char *text, _vrg_ast *ast, _vrg_diag *d)
     char *owned = normalised(text);
     free(read);
     if (!owned) {
-        _vrg_error(d, "graph file '%s': out of memory", path);
+        _vrg_error(d, VRG_E_OUT_OF_MEMORY, "graph file '%s': out of memory", path);
         return -1;
     }
     text = owned;
@@ -229,9 +229,9 @@ int _vrg_parse(const char *path, const char *text, _vrg_ast *ast, _vrg_diag *d)
     int err = ini_parse_stream(read_line, &r, on_key, &r);
     if (err > 0) {
         ast->syntax_error_line = err;
-        _vrg_error_at(d, err, "lines are '[section]', 'key = value' or comments starting with ';'", "syntax error");
+        _vrg_error_at(d, err, VRG_E_SYNTAX, "lines are '[section]', 'key = value' or comments starting with ';'", "syntax error");
     } else if (err < 0) {
-        _vrg_error(d, "graph file '%s' could not be read", path);
+        _vrg_error(d, VRG_E_GRAPH_UNREADABLE, "graph file '%s' could not be read", path);
     }
     free(owned);
     return d->errors > errors_before ? -1 : 0;

@@ -10,16 +10,55 @@ const char *vrg_pass_name(const vrg_pass *p) { return p->name; }
 void *vrg_pass_user(const vrg_pass *p) { return p->user; }
 void vrg_pass_set_user(vrg_pass *p, void *user) { p->user = user; }
 
-int vrg_pass_error(vrg_pass *p, const char *fmt, ...)
+static int pass_vfail(vrg_pass *p, _vrg_diag_code code, const char *fmt, va_list ap)
 {
     char msg[1536];
-    va_list ap;
-    va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    _vrg_error_at(&p->graph->diag, p->line, NULL, "pass '%s' (plugin %s): %s", p->name, p->plugin ? p->plugin->path : "?", msg);
+    _vrg_error_at(&p->graph->diag, p->line, code, NULL, "pass '%s' (plugin %s): %s", p->name, p->plugin ? p->plugin->path : "?", msg);
     p->failed = 1;
     return -1;
+}
+
+static int pass_vfail_at(vrg_pass *p, int line, _vrg_diag_code code, const char *fmt, va_list ap)
+{
+    char msg[1536];
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    if (line > 0)
+        _vrg_error_at(&p->graph->diag, line, code, NULL, "%s", msg);
+    else
+        _vrg_error(&p->graph->diag, code, "pass '%s': %s", p->name, msg);
+    p->failed = 1;
+    return -1;
+}
+
+static int pass_fail_at(vrg_pass *p, int line, _vrg_diag_code code, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
+static int pass_fail_at(vrg_pass *p, int line, _vrg_diag_code code, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    int rc = pass_vfail_at(p, line, code, fmt, ap);
+    va_end(ap);
+    return rc;
+}
+
+/* What a plugin reports: its own words under one code. */
+int vrg_pass_error(vrg_pass *p, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    int rc = pass_vfail(p, VRG_E_PASS_FAILED, fmt, ap);
+    va_end(ap);
+    return rc;
+}
+
+/* What the runtime finds wrong with a pass: the code names the problem. */
+int _vrg_pass_fail(vrg_pass *p, _vrg_diag_code code, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    int rc = pass_vfail(p, code, fmt, ap);
+    va_end(ap);
+    return rc;
 }
 
 double vrg_pass_gpu_ms(const vrg_pass *p, const char *other)
@@ -137,23 +176,17 @@ int vrg_param_choice(vrg_pass *p, const char *name, const char *const *choices, 
     char list[256] = "";
     for (int i = 0; i < count; i++)
         snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i == 0 ? "" : i == count - 1 ? " or " : ", ", choices[i]);
-    vrg_pass_error_at(p, vrg_param_line(p, name), "%s = '%s': expected %s", name, v, list);
+    pass_fail_at(p, vrg_param_line(p, name), VRG_E_NOT_A_CHOICE, "%s = '%s': expected %s", name, v, list);
     return -1;
 }
 
 int vrg_pass_error_at(vrg_pass *p, int line, const char *fmt, ...)
 {
-    char msg[1536];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    int rc = pass_vfail_at(p, line, VRG_E_PASS_FAILED, fmt, ap);
     va_end(ap);
-    if (line > 0)
-        _vrg_error_at(&p->graph->diag, line, NULL, "%s", msg);
-    else
-        _vrg_error(&p->graph->diag, "pass '%s': %s", p->name, msg);
-    p->failed = 1;
-    return -1;
+    return rc;
 }
 
 int vrg_pass_set_buffer_size(vrg_pass *p, const char *slot, uint64_t bytes)
@@ -162,13 +195,13 @@ int vrg_pass_set_buffer_size(vrg_pass *p, const char *slot, uint64_t bytes)
     for (uint32_t s = 0; s < d->slot_count; s++)
         if (d->slots[s].dir == VRG_OUT && d->slots[s].kind != VRG_IMAGE && strcmp(d->slots[s].name, slot) == 0) {
             if (p->graph->allocated)
-                return vrg_pass_error(p, "buffer size of '%s' set after allocation", slot);
+                return _vrg_pass_fail(p, VRG_E_PASS_API_MISUSE, "buffer size of '%s' set after allocation", slot);
             p->buffer_size[s] = bytes;
             if (p->slots[s].res >= 0)
                 p->graph->res[p->slots[s].res].size = bytes;
             return 0;
         }
-    return vrg_pass_error(p, "vrg_pass_set_buffer_size: no buffer output '%s'", slot);
+    return _vrg_pass_fail(p, VRG_E_PASS_API_MISUSE, "vrg_pass_set_buffer_size: no buffer output '%s'", slot);
 }
 
 static const _vrg_resource *res_of(const vrg_pass *p, vrg_res h, int *copy);
@@ -189,7 +222,7 @@ void *vrg_pass_buffer(vrg_pass *p, const vrg_buffer_desc *d, VkBuffer *buffer, V
     if (address)
         *address = 0;
     if (!ctx) {
-        vrg_pass_error(p, "buffer '%s' needs a device", d->name);
+        _vrg_pass_fail(p, VRG_E_NO_DEVICE, "buffer '%s' needs a device", d->name);
         return NULL;
     }
     VkDevice dev = ctx->dev.device;
@@ -212,7 +245,7 @@ void *vrg_pass_buffer(vrg_pass *p, const vrg_buffer_desc *d, VkBuffer *buffer, V
     if (type < 0 || vkAllocateMemory(dev, &ai, NULL, &hb->memory) != VK_SUCCESS || vkBindBufferMemory(dev, hb->buffer, hb->memory, 0) != VK_SUCCESS ||
         (d->host_visible && vkMapMemory(dev, hb->memory, 0, VK_WHOLE_SIZE, 0, &hb->map) != VK_SUCCESS)) {
         free_one(dev, hb);
-        vrg_pass_error(p, "cannot allocate %llu bytes of %s memory for '%s'", (unsigned long long)d->size, d->host_visible ? "host-visible" : "device",
+        _vrg_pass_fail(p, VRG_E_VULKAN_FAILED, "cannot allocate %llu bytes of %s memory for '%s'", (unsigned long long)d->size, d->host_visible ? "host-visible" : "device",
                        d->name);
         return NULL;
     }
@@ -266,7 +299,7 @@ int vrg_pass_require_same_size(vrg_pass *p, const char *ref, const char *const *
     for (int i = 0; i < count; i++) {
         VkExtent2D e = vrg_res_extent(p, vrg_pass_res(p, names[i]));
         if (e.width != want.width || e.height != want.height)
-            return vrg_pass_error(p, "input '%s' is %ux%u, '%s' %ux%u: this pass needs them at one size", names[i], e.width, e.height, ref,
+            return _vrg_pass_fail(p, VRG_E_SIZE_MISMATCH, "input '%s' is %ux%u, '%s' %ux%u: this pass needs them at one size", names[i], e.width, e.height, ref,
                                   want.width, want.height);
     }
     return 0;
@@ -284,20 +317,20 @@ static vrg_res request(vrg_pass *p, const char *name, vrg_resource_kind kind)
     char full[2 * VRG_NAME_MAX + 2];
     snprintf(full, sizeof full, "%s.%s", p->name, name);
     if (p->created) {
-        vrg_pass_error(p, "internal resource '%s' requested outside create()", name);
+        _vrg_pass_fail(p, VRG_E_PASS_API_MISUSE, "internal resource '%s' requested outside create()", name);
         return (vrg_res){-1};
     }
     int before = g->res_count;
     int r = _vrg_graph_add_resource(g, full);
     if (r >= 0 && r < before) {
         if (g->res[r].internal_owner == (int)(p - g->passes))
-            vrg_pass_error(p, "internal resource '%s' requested twice", name);
+            _vrg_pass_fail(p, VRG_E_PASS_API_MISUSE, "internal resource '%s' requested twice", name);
         else
-            vrg_pass_error(p, "cannot add internal resource '%s': the graph has a resource named '%s'", name, full);
+            _vrg_pass_fail(p, VRG_E_PASS_API_MISUSE, "cannot add internal resource '%s': the graph has a resource named '%s'", name, full);
         return (vrg_res){-1};
     }
     if (r < 0) {
-        vrg_pass_error(p, "cannot add internal resource '%s': too many resources (at most %d in a graph)", name, VRG_MAX_RESOURCES);
+        _vrg_pass_fail(p, VRG_E_TOO_MANY, "cannot add internal resource '%s': too many resources (at most %d in a graph)", name, VRG_MAX_RESOURCES);
         return (vrg_res){-1};
     }
     _vrg_resource *res = &g->res[r];
@@ -312,8 +345,9 @@ vrg_res vrg_pass_request_image(vrg_pass *p, const char *name, VkFormat format, f
     vrg_res h = request(p, name, VRG_IMAGE);
     if (h.id >= 0) {
         _vrg_resource *r = &p->graph->res[h.id >> 1];
-        r->format = format ? format : VK_FORMAT_R16G16B16A16_SFLOAT;
-        r->scale = scale > 0 ? scale : 1.0f;
+        const vrg_slot_desc def = _vrg_slot_desc_defaults(&(vrg_slot_desc){.kind = VRG_IMAGE, .format = format, .scale = scale});
+        r->format = def.format;
+        r->scale = def.scale;
         r->internal_first_access = first_access ? first_access : VRG_ACCESS_STORAGE_WRITE;
     }
     return h;
@@ -468,7 +502,7 @@ void vrg_pass_stat(vrg_pass *p, const char *name, double value)
         int cap = p->stat_cap ? 2 * p->stat_cap : 16;
         _vrg_pass_figure *grown = realloc(p->stats, (size_t)cap * sizeof *grown);
         if (!grown) {
-            vrg_pass_error(p, "vrg_pass_stat('%s'): out of memory", name);
+            _vrg_pass_fail(p, VRG_E_OUT_OF_MEMORY, "vrg_pass_stat('%s'): out of memory", name);
             return;
         }
         p->stats = grown;
@@ -476,7 +510,7 @@ void vrg_pass_stat(vrg_pass *p, const char *name, double value)
     }
     char *copy = strdup(name);
     if (!copy) {
-        vrg_pass_error(p, "vrg_pass_stat('%s'): out of memory", name);
+        _vrg_pass_fail(p, VRG_E_OUT_OF_MEMORY, "vrg_pass_stat('%s'): out of memory", name);
         return;
     }
     p->stats[p->stat_count++] = (_vrg_pass_figure){copy, value};

@@ -85,8 +85,8 @@ void _vrg_plugin_release(const _vrg_plugin *cp)
 }
 
 /* An error at a graph line, or without one (line 0: a reload, a listing). */
-static void fail(_vrg_diag *d, int line, const char *hint, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
-static void fail(_vrg_diag *d, int line, const char *hint, const char *fmt, ...)
+static void fail(_vrg_diag *d, int line, _vrg_diag_code code, const char *hint, const char *fmt, ...) __attribute__((format(printf, 5, 6)));
+static void fail(_vrg_diag *d, int line, _vrg_diag_code code, const char *hint, const char *fmt, ...)
 {
     char msg[2048];
     va_list ap;
@@ -94,11 +94,11 @@ static void fail(_vrg_diag *d, int line, const char *hint, const char *fmt, ...)
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
     if (line > 0)
-        _vrg_error_at(d, line, hint, "%s", msg);
+        _vrg_error_at(d, line, code, hint, "%s", msg);
     else if (hint)
-        _vrg_error(d, "%s\n  hint: %s", msg, hint);
+        _vrg_error(d, code, "%s\n  hint: %s", msg, hint);
     else
-        _vrg_error(d, "%s", msg);
+        _vrg_error(d, code, "%s", msg);
 }
 
 /* ---- the search path ---- */
@@ -176,11 +176,11 @@ int _vrg_plugin_path_check(const char *graph_path, const char *plugin_path, _vrg
         size_t len = c ? (size_t)(c - p) : strlen(p);
         struct stat st;
         if (len == 0)
-            _vrg_error_at(d, line, hint, "'plugin_path' has an empty entry");
+            _vrg_error_at(d, line, VRG_E_BAD_PLUGIN_PATH, hint, "'plugin_path' has an empty entry");
         else if (list_entry_dir(base, p, len, dir, sizeof dir) < 0)
-            _vrg_error_at(d, line, hint, "plugin_path: '%.*s' is longer than %d characters under the graph's folder", (int)len, p, VRG_PATH_MAX - 1);
+            _vrg_error_at(d, line, VRG_E_BAD_PLUGIN_PATH, hint, "plugin_path: '%.*s' is longer than %d characters under the graph's folder", (int)len, p, VRG_PATH_MAX - 1);
         else if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode))
-            _vrg_error_at(d, line, hint, "plugin_path: '%.*s' (%s) is not a folder", (int)len, p, dir);
+            _vrg_error_at(d, line, VRG_E_BAD_PLUGIN_PATH, hint, "plugin_path: '%.*s' (%s) is not a folder", (int)len, p, dir);
         p = c ? c + 1 : p + len;
     }
     return d->errors > errors ? -1 : 0;
@@ -415,13 +415,13 @@ static int copy_desc(_vrg_plugin *p, uint32_t size, _vrg_diag *d, int line)
     const unsigned char *bytes = (const unsigned char *)p->desc;
     size_t known = sizeof(vrg_plugin_desc);
     if (size < offsetof(vrg_plugin_desc, execute) + sizeof p->desc->execute) {
-        fail(d, line, "rebuild the plugin against this voxrg's headers", "plugin '%s' (%s): its descriptor is %u bytes, too short to hold execute",
+        fail(d, line, VRG_E_PLUGIN_ABI, "rebuild the plugin against this voxrg's headers", "plugin '%s' (%s): its descriptor is %u bytes, too short to hold execute",
              p->name, p->source, size);
         return 0;
     }
     for (size_t i = known; i < size; i++)
         if (bytes[i]) {
-            fail(d, line, "update voxrg, or rebuild the plugin against this voxrg's headers",
+            fail(d, line, VRG_E_PLUGIN_ABI, "update voxrg, or rebuild the plugin against this voxrg's headers",
                  "plugin '%s' (%s): its descriptor (%u bytes) sets fields this voxrg (%zu bytes) does not know", p->name, p->source, size, known);
             return 0;
         }
@@ -448,13 +448,13 @@ static int load_file(_vrg_plugin *p, _vrg_diag *d, int line)
         problem = why;
     free(data);
     if (problem) {
-        fail(d, line, "is it a plugin built for this machine? a build still writing it is picked up when it finishes",
+        fail(d, line, VRG_E_PLUGIN_LOAD_FAILED, "is it a plugin built for this machine? a build still writing it is picked up when it finishes",
                      "cannot load plugin '%s' from %s: %s", p->name, p->source, problem);
         return -1;
     }
     vrg_plugin_entry_fn entry = (vrg_plugin_entry_fn)dlsym(p->handle, VRG_PLUGIN_ENTRY_SYMBOL);
     if (!entry)
-        fail(d, line, "a plugin's source ends with VRG_PLUGIN(desc)", "plugin '%s' (%s) does not export %s", p->name, p->source,
+        fail(d, line, VRG_E_PLUGIN_NO_ENTRY, "a plugin's source ends with VRG_PLUGIN(desc)", "plugin '%s' (%s) does not export %s", p->name, p->source,
                      VRG_PLUGIN_ENTRY_SYMBOL);
     else {
         _vrg_running before = _vrg_running_enter(VRG_PLUGIN_ENTRY_SYMBOL, NULL, p);
@@ -463,9 +463,9 @@ static int load_file(_vrg_plugin *p, _vrg_diag *d, int line)
         /* plugins built before the size was exported have this runtime's layout */
         const uint32_t *size = (const uint32_t *)dlsym(p->handle, VRG_PLUGIN_DESC_SIZE_SYMBOL);
         if (!p->desc)
-            fail(d, line, NULL, "plugin '%s' (%s): %s returned NULL", p->name, p->source, VRG_PLUGIN_ENTRY_SYMBOL);
+            fail(d, line, VRG_E_PLUGIN_NO_ENTRY, NULL, "plugin '%s' (%s): %s returned NULL", p->name, p->source, VRG_PLUGIN_ENTRY_SYMBOL);
         else if (p->desc->abi_version != VRG_ABI_VERSION)
-            fail(d, line, "rebuild the plugin against this voxrg's headers", "plugin '%s' (%s) has ABI version %u, this voxrg expects ABI version %u",
+            fail(d, line, VRG_E_PLUGIN_ABI, "rebuild the plugin against this voxrg's headers", "plugin '%s' (%s) has ABI version %u, this voxrg expects ABI version %u",
                          p->name, p->source, p->desc->abi_version, VRG_ABI_VERSION);
         else if (copy_desc(p, size ? *size : (uint32_t)sizeof(vrg_plugin_desc), d, line) &&
                  _vrg_plugin_check_desc(p->desc, p->name, p->source, d, line) == 0)
@@ -545,23 +545,23 @@ int _vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const 
         why = desc->param_count > VRG_MAX_PARAMS ? (snprintf(buf, sizeof buf, "%u parameters, more than the %d a plugin may have", desc->param_count, VRG_MAX_PARAMS), buf)
                                                  : "param_count is set but params is NULL";
     if (why) {
-        fail(d, line, NULL, "plugin '%s' (%s): %s", name, path, why);
+        fail(d, line, VRG_E_PLUGIN_BAD_DESC, NULL, "plugin '%s' (%s): %s", name, path, why);
         return -1;
     }
     for (uint32_t i = 0; i < desc->param_count; i++) {
         const vrg_param_desc *pd = &desc->params[i];
         if (!valid_name(pd->name)) {
-            fail(d, line, "names are 1-63 characters without spaces, '=', ';', '#', '[' or ']'",
+            fail(d, line, VRG_E_PLUGIN_BAD_DESC, "names are 1-63 characters without spaces, '=', ';', '#', '[' or ']'",
                          "plugin '%s' (%s): parameter %u has %s name", name, path, i, pd->name ? "an invalid" : "a NULL");
             return -1;
         }
         for (uint32_t j = 0; j < i; j++)
             if (strcmp(desc->params[j].name, pd->name) == 0) {
-                fail(d, line, NULL, "plugin '%s' (%s): two parameters named '%s' (%u and %u)", name, path, pd->name, j, i);
+                fail(d, line, VRG_E_PLUGIN_BAD_DESC, NULL, "plugin '%s' (%s): two parameters named '%s' (%u and %u)", name, path, pd->name, j, i);
                 return -1;
             }
         if ((why = param_problem(pd, buf, sizeof buf))) {
-            fail(d, line, NULL, "plugin '%s' (%s): parameter '%s' %s", name, path, pd->name, why);
+            fail(d, line, VRG_E_PLUGIN_BAD_DESC, NULL, "plugin '%s' (%s): parameter '%s' %s", name, path, pd->name, why);
             return -1;
         }
     }
@@ -569,31 +569,31 @@ int _vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const 
         const vrg_slot_desc *s = &desc->slots[i];
         if (!valid_name(s->name) || (s->dir != VRG_IN && s->dir != VRG_OUT) || s->kind < VRG_IMAGE || s->kind > VRG_ACCEL ||
             s->access < VRG_ACCESS_SAMPLED || s->access > VRG_ACCESS_TEXEL_READ) {
-            fail(d, line, NULL, "plugin '%s' (%s): slot %u is malformed (name, dir, kind, access)", name, path, i);
+            fail(d, line, VRG_E_PLUGIN_BAD_DESC, NULL, "plugin '%s' (%s): slot %u is malformed (name, dir, kind, access)", name, path, i);
             return -1;
         }
         int as_access = s->access == VRG_ACCESS_AS_BUILD || s->access == VRG_ACCESS_RAY_QUERY;
         if ((s->access == VRG_ACCESS_SAMPLED && s->kind != VRG_IMAGE) || ((s->access == VRG_ACCESS_UNIFORM || s->access == VRG_ACCESS_TEXEL_READ) && s->kind != VRG_BUFFER) ||
             as_access != (s->kind == VRG_ACCEL)) {
-            fail(d, line, NULL, "plugin '%s' (%s): slot '%s': %s access does not fit a%s", name, path, s->name, _vrg_access_name(s->access),
+            fail(d, line, VRG_E_PLUGIN_BAD_DESC, NULL, "plugin '%s' (%s): slot '%s': %s access does not fit a%s", name, path, s->name, _vrg_access_name(s->access),
                          s->kind == VRG_IMAGE ? "n image" : s->kind == VRG_BUFFER ? " buffer" : "n acceleration structure");
             return -1;
         }
         /* a buffer's format is the texel format of its TEXEL_READ views */
         int texel_format = s->format == VK_FORMAT_R32_UINT || s->format == VK_FORMAT_R32G32_UINT || s->format == VK_FORMAT_R32G32B32A32_UINT;
         if (s->kind == VRG_BUFFER && s->format && !texel_format) {
-            fail(d, line, NULL, "plugin '%s' (%s): slot '%s': a buffer's format is the texel format of its TEXEL_READ views: r32ui, rg32ui or rgba32ui, not %s",
+            fail(d, line, VRG_E_PLUGIN_BAD_DESC, NULL, "plugin '%s' (%s): slot '%s': a buffer's format is the texel format of its TEXEL_READ views: r32ui, rg32ui or rgba32ui, not %s",
                          name, path, s->name, _vrg_format_name(s->format));
             return -1;
         }
         if (s->kind == VRG_BUFFER && s->format && s->dir == VRG_IN && s->access != VRG_ACCESS_TEXEL_READ) {
-            fail(d, line, NULL, "plugin '%s' (%s): slot '%s': a %s input names a texel format; only texel-read inputs (VRG_ACCESS_TEXEL_READ) and outputs do",
+            fail(d, line, VRG_E_PLUGIN_BAD_DESC, NULL, "plugin '%s' (%s): slot '%s': a %s input names a texel format; only texel-read inputs (VRG_ACCESS_TEXEL_READ) and outputs do",
                          name, path, s->name, _vrg_access_name(s->access));
             return -1;
         }
         for (uint32_t j = 0; j < i; j++)
             if (strcmp(desc->slots[j].name, s->name) == 0 && desc->slots[j].dir == s->dir) {
-                fail(d, line, NULL, "plugin '%s' (%s): two %s slots named '%s'", name, path, s->dir == VRG_IN ? "input" : "output", s->name);
+                fail(d, line, VRG_E_PLUGIN_BAD_DESC, NULL, "plugin '%s' (%s): two %s slots named '%s'", name, path, s->dir == VRG_IN ? "input" : "output", s->name);
                 return -1;
             }
     }
@@ -605,13 +605,13 @@ int _vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const 
 const _vrg_plugin *_vrg_plugin_load(const char *name, const char *graph_path, const char *plugin_path, _vrg_diag *d, int line)
 {
     if (!name[0] || strchr(name, '/') || strlen(name) >= VRG_NAME_MAX) {
-        fail(d, line, "a plugin is named by its file name without .so (at most 63 characters)", "unknown plugin '%s'", name);
+        fail(d, line, VRG_E_UNKNOWN_PLUGIN, "a plugin is named by its file name without .so (at most 63 characters)", "unknown plugin '%s'", name);
         return NULL;
     }
     search_path s;
     search_path_build(&s, graph_path, plugin_path);
     if (s.failed) {
-        fail(d, line, NULL, "cannot load plugin '%s': out of memory for the search path", name);
+        fail(d, line, VRG_E_OUT_OF_MEMORY, NULL, "cannot load plugin '%s': out of memory for the search path", name);
         free(s.dirs);
         return NULL;
     }
@@ -631,7 +631,7 @@ const _vrg_plugin *_vrg_plugin_load(const char *name, const char *graph_path, co
                              "'plugin_path = %s' to [graph]", beside, k ? "plugins" : ".");
             }
         }
-        fail(d, line, hint, "unknown plugin '%s'", name);
+        fail(d, line, VRG_E_UNKNOWN_PLUGIN, hint, "unknown plugin '%s'", name);
         goto done;
     }
     if (!realpath(file, real))
@@ -640,16 +640,16 @@ const _vrg_plugin *_vrg_plugin_load(const char *name, const char *graph_path, co
     char other[sizeof file];
     for (int k = at + 1; s.dirs[at].origin <= DIR_INSTALLED && (k = search_path_find(&s, name, k, other, sizeof other)) >= 0; k++)
         if (s.dirs[k].origin > DIR_INSTALLED)
-            _vrg_note_at(d, line, "%s (%s) is not used: the %s plugin %s comes first; built-in and installed plugins are never shadowed, "
+            _vrg_warning_at(d, line, VRG_W_PLUGIN_SHADOWED, "%s (%s) is not used: the %s plugin %s comes first; built-in and installed plugins are never shadowed, "
                         "so give yours another name", other, origin_names[s.dirs[k].origin], origin_names[s.dirs[at].origin], real);
     if ((result = newest(real, 1)))
         goto done; /* this file is loaded already: the newest version of it */
     if (!is_regular(real)) {
-        fail(d, line, NULL, "cannot load plugin '%s' from %s: it is not a regular file", name, real);
+        fail(d, line, VRG_E_PLUGIN_LOAD_FAILED, NULL, "cannot load plugin '%s' from %s: it is not a regular file", name, real);
         goto done;
     }
     if (!free_slot(0)) {
-        fail(d, line, "fewer plugins per process, or fewer rebuilds kept alive by running graphs",
+        fail(d, line, VRG_E_TOO_MANY_PLUGINS, "fewer plugins per process, or fewer rebuilds kept alive by running graphs",
                      "cannot load plugin '%s': %d plugin versions are loaded, the most a process holds", name, VRG_MAX_PLUGINS);
         goto done;
     }
@@ -672,11 +672,11 @@ int _vrg_plugin_reload(const char *path, _vrg_diag *d)
 {
     _vrg_plugin *old = newest(path, 1);
     if (!old) {
-        _vrg_error(d, "plugin %s: not a loaded plugin", path);
+        _vrg_error(d, VRG_E_NOT_A_LOADED_PLUGIN, "plugin %s: not a loaded plugin", path);
         return -1;
     }
     if (!free_slot(0)) {
-        _vrg_error(d, "plugin %s: %d plugin versions are loaded, the most a process holds", path, VRG_MAX_PLUGINS);
+        _vrg_error(d, VRG_E_TOO_MANY_PLUGINS, "plugin %s: %d plugin versions are loaded, the most a process holds", path, VRG_MAX_PLUGINS);
         return -1;
     }
     _vrg_plugin p = {.keep_fd = -1};
@@ -702,8 +702,10 @@ int _vrg_plugin_list(const _vrg_plugin **out, int max, FILE *problems)
 {
     search_path s;
     search_path_build(&s, NULL, NULL);
-    if (s.failed)
-        fprintf(problems ? problems : stderr, "error: out of memory for the plugin search path: the listing is incomplete\n");
+    if (s.failed) {
+        _vrg_diag shown = {.out = problems ? problems : stderr, .file = "plugins"};
+        _vrg_error(&shown, VRG_E_OUT_OF_MEMORY, "out of memory for the plugin search path: the listing is incomplete");
+    }
     FILE *devnull = problems ? NULL : fopen("/dev/null", "w");
     _vrg_diag diag = {.out = problems ? problems : devnull ? devnull : stderr, .file = "plugins"};
     for (int i = 0; i < s.count; i++) {
@@ -715,7 +717,7 @@ int _vrg_plugin_list(const _vrg_plugin **out, int max, FILE *problems)
                 continue;
             char name[VRG_NAME_MAX];
             if (len - 3 >= VRG_NAME_MAX) {
-                _vrg_error(&diag, "%s/%s: the name is longer than %d characters, so no graph can name it", s.dirs[i].path, e->d_name, VRG_NAME_MAX - 1);
+                _vrg_error(&diag, VRG_E_PLUGIN_NAME_TOO_LONG, "%s/%s: the name is longer than %d characters, so no graph can name it", s.dirs[i].path, e->d_name, VRG_NAME_MAX - 1);
                 continue;
             }
             snprintf(name, sizeof name, "%.*s", (int)(len - 3), e->d_name);

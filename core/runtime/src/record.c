@@ -132,7 +132,7 @@ static void report_stuck(vrg_graph *g, _vrg_wait_result wr, double waited_s)
 {
     unsigned long long frame = (unsigned long long)g->frame.frame_index;
     if (wr == VRG_WAIT_FAILED) {
-        _vrg_error(&g->diag, "frame %llu: waiting for the GPU failed (device lost?)", frame);
+        _vrg_error(&g->diag, VRG_E_DEVICE_LOST, "frame %llu: waiting for the GPU failed (device lost?)", frame);
         return;
     }
     int k = running_pass(g);
@@ -142,10 +142,10 @@ static void report_stuck(vrg_graph *g, _vrg_wait_result wr, double waited_s)
     else
         snprintf(what, sizeof what, "%s", "the frame's final copies");
     if (wr == VRG_WAIT_TIMEOUT)
-        _vrg_error(&g->diag, "frame %llu: %s has run for more than %g s on the GPU (the limit: --gpu-timeout or $VOXRG_GPU_TIMEOUT)", frame, what,
+        _vrg_error(&g->diag, VRG_E_GPU_TIMEOUT, "frame %llu: %s has run for more than %g s on the GPU (the limit: --gpu-timeout or $VOXRG_GPU_TIMEOUT)", frame, what,
                   g->ctx->gpu_timeout_s);
     else
-        _vrg_error(&g->diag, "frame %llu: interrupted after %.1f s on the GPU, %s still running", frame, waited_s, what);
+        _vrg_error(&g->diag, VRG_E_GPU_TIMEOUT, "frame %llu: interrupted after %.1f s on the GPU, %s still running", frame, waited_s, what);
 }
 
 static double now_ms(void)
@@ -217,7 +217,7 @@ int _vrg_record_frame(vrg_graph *g)
     VkResult res = vkQueueSubmit2(g->ctx->dev.queue, 1, &si, g->fence);
     g->cpu_ms = now_ms() - start;
     if (res != VK_SUCCESS) {
-        _vrg_error(&g->diag, "frame %llu: queue submission failed (%d)", (unsigned long long)g->frame.frame_index, res);
+        _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "frame %llu: queue submission failed (%d)", (unsigned long long)g->frame.frame_index, res);
         return -1;
     }
     double waited;

@@ -104,7 +104,7 @@ static int copy_history(vrg_graph *old, vrg_graph *g)
     vkResetFences(dev, 1, &g->fence);
     double waited;
     if (vkQueueSubmit2(g->ctx->dev.queue, 1, &si, g->fence) != VK_SUCCESS || _vrg_wait_fence(g->ctx, g->fence, &waited) != VRG_WAIT_DONE) {
-        _vrg_error(&g->diag, "reload: copying history failed (or was interrupted)");
+        _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "reload: copying history failed (or was interrupted)");
         return -1;
     }
     return 0;
@@ -128,9 +128,9 @@ static void carry_state(vrg_graph *old, vrg_graph *g)
                 int rc = n <= sizeof state ? q->plugin->desc->restore_state(q, state, n) : 0;
                 _vrg_running_leave(before);
                 if (n > sizeof state)
-                    vrg_pass_error(q, "save_state() returned %zu bytes, more than the %zu it may write: the pass starts afresh", n, sizeof state);
+                    _vrg_pass_fail(q, VRG_E_CALLBACK_FAILED, "save_state() returned %zu bytes, more than the %zu it may write: the pass starts afresh", n, sizeof state);
                 else if (rc != 0)
-                    vrg_pass_error(q, "restore_state() failed: the pass starts afresh");
+                    _vrg_pass_fail(q, VRG_E_CALLBACK_FAILED, "restore_state() failed: the pass starts afresh");
             }
         }
     }
@@ -171,7 +171,7 @@ int vrg_graph_reload(vrg_graph **pg)
 {
     vrg_graph *old = *pg;
     if (!old->ctx || !old->loaded_from_file) {
-        _vrg_error(&old->diag, "reload: the graph was not loaded from a file with a device");
+        _vrg_error(&old->diag, VRG_E_NO_DEVICE, "reload: the graph was not loaded from a file with a device");
         return -1;
     }
     /* rebuilt plugins first: the new graph picks up their newest versions */

@@ -56,7 +56,7 @@ static int positive_int(_vrg_diag *d, const _vrg_key *k, uint32_t max, uint32_t 
     if (parse_int(k->value, &v) != 0 || v <= 0 || v > (long)max) {
         char hint[96];
         snprintf(hint, sizeof hint, "a whole number from 1 to %u", max);
-        _vrg_error_at(d, k->line, hint, "'%s = %s' must be a positive integer", k->name, k->value);
+        _vrg_error_at(d, k->line, VRG_E_NOT_A_NUMBER, hint, "'%s = %s' must be a positive integer", k->name, k->value);
         return -1;
     }
     *out = (uint32_t)v;
@@ -81,7 +81,7 @@ static int name_too_long(vrg_graph *g, int line, const char *what, const char *n
 {
     if (len < VRG_NAME_MAX)
         return 0;
-    _vrg_error_at(&g->diag, line, NULL, "%s name '%.*s' is longer than %d characters", what, (int)len, name, VRG_NAME_MAX - 1);
+    _vrg_error_at(&g->diag, line, VRG_E_TOO_LONG, NULL, "%s name '%.*s' is longer than %d characters", what, (int)len, name, VRG_NAME_MAX - 1);
     return 1;
 }
 
@@ -157,18 +157,18 @@ static int set_param(vrg_graph *g, vrg_pass *p, int idx, const char *value, int 
     if (bad) {
         const char *kind = pd->type == VRG_PARAM_BOOL ? "true or false" : pd->type == VRG_PARAM_INT ? "an integer" : "a finite number";
         if (line)
-            _vrg_error_at(&g->diag, line, hint, "%s = '%s' is not a number of the right kind: %s expects %s", what, value, pd->name, kind);
+            _vrg_error_at(&g->diag, line, VRG_E_NOT_A_NUMBER, hint, "%s = '%s' is not a number of the right kind: %s expects %s", what, value, pd->name, kind);
         else
-            _vrg_error(&g->diag, "--set %s=%s: not a number of the right kind (%s expects %s)", what, value, pd->name, kind);
+            _vrg_error(&g->diag, VRG_E_NOT_A_NUMBER, "--set %s=%s: not a number of the right kind (%s expects %s)", what, value, pd->name, kind);
         return -1;
     }
     if ((pd->min != 0 || pd->max != 0) && (v < pd->min || v > pd->max)) {
         char h[256];
         snprintf(h, sizeof h, "%s lies in [%g, %g]%s%s", pd->name, pd->min, pd->max, hint ? ": " : "", hint ? hint : "");
         if (line)
-            _vrg_error_at(&g->diag, line, h, "%s = %s is out of range", what, value);
+            _vrg_error_at(&g->diag, line, VRG_E_OUT_OF_RANGE, h, "%s = %s is out of range", what, value);
         else
-            _vrg_error(&g->diag, "--set %s=%s is out of range (%s)", what, value, h);
+            _vrg_error(&g->diag, VRG_E_OUT_OF_RANGE, "--set %s=%s is out of range (%s)", what, value, h);
         return -1;
     }
     p->params[idx] = v;
@@ -185,7 +185,7 @@ static int repeated_key(vrg_graph *g, const _vrg_ast *a, int ki)
         if (a->keys[i].section_index == k->section_index && strcmp(a->keys[i].name, k->name) == 0) {
             char h[64];
             snprintf(h, sizeof h, "first given at line %d", a->keys[i].line);
-            _vrg_error_at(&g->diag, k->line, h, "duplicate key '%s' in [%s]", k->name, a->sections[k->section_index].name);
+            _vrg_error_at(&g->diag, k->line, VRG_E_DUPLICATE_KEY, h, "duplicate key '%s' in [%s]", k->name, a->sections[k->section_index].name);
             return 1;
         }
     return 0;
@@ -234,20 +234,20 @@ static void graph_section(vrg_graph *g, const _vrg_ast *a, int si, const char *g
         else if (strcmp(k->name, "seed") == 0) {
             double d;
             if (parse_double(k->value, &d) != 0 || d < 0 || d > 4294967295.0 || d != floor(d))
-                _vrg_error_at(&g->diag, k->line, "a whole number from 0 to 4294967295", "'seed = %s' must be a non-negative integer", k->value);
+                _vrg_error_at(&g->diag, k->line, VRG_E_NOT_A_NUMBER, "a whole number from 0 to 4294967295", "'seed = %s' must be a non-negative integer", k->value);
             else
                 g->seed = (uint32_t)d;
         } else if (strcmp(k->name, "fps") == 0) {
             if (parse_double(k->value, &v) != 0)
-                _vrg_error_at(&g->diag, k->line, "frames per second of simulated time", "'fps = %s' is not a number", k->value);
+                _vrg_error_at(&g->diag, k->line, VRG_E_NOT_A_NUMBER, "frames per second of simulated time", "'fps = %s' is not a number", k->value);
             else if (v <= 0)
-                _vrg_error_at(&g->diag, k->line, "frames per second of simulated time", "'fps = %s' must be > 0", k->value);
+                _vrg_error_at(&g->diag, k->line, VRG_E_OUT_OF_RANGE, "frames per second of simulated time", "'fps = %s' must be > 0", k->value);
             else
                 g->fps = v;
         } else if (strcmp(k->name, "plugin_path") == 0)
             _vrg_plugin_path_check(graph_path, k->value, &g->diag, k->line); /* a typo: not "unknown plugin" per pass */
         else
-            _vrg_error_at(&g->diag, k->line, known, "unknown key '%s' in [graph]", k->name);
+            _vrg_error_at(&g->diag, k->line, VRG_E_UNKNOWN_KEY, known, "unknown key '%s' in [graph]", k->name);
     }
 }
 
@@ -264,14 +264,14 @@ static void camera_position(vrg_graph *g, const _vrg_key *k, float out[3])
             break;
         }
     if (n != 3) {
-        _vrg_error_at(&g->diag, k->line, "three decimal numbers: X Y Z in blocks", "'position = %s' is not a position", k->value);
+        _vrg_error_at(&g->diag, k->line, VRG_E_NOT_A_NUMBER, "three decimal numbers: X Y Z in blocks", "'position = %s' is not a position", k->value);
         return;
     }
     /* checked as doubles: one beyond float's range must not be converted */
     if (!(fabs(d[0]) <= VRG_WORLD_LIMIT && fabs(d[1]) <= VRG_WORLD_LIMIT && fabs(d[2]) <= VRG_WORLD_LIMIT)) {
         char hint[96];
         snprintf(hint, sizeof hint, "X, Y and Z lie in [%g, %g] blocks (VRG_WORLD_LIMIT)", -VRG_WORLD_LIMIT, VRG_WORLD_LIMIT);
-        _vrg_error_at(&g->diag, k->line, hint, "'position = %s' is outside the world", k->value);
+        _vrg_error_at(&g->diag, k->line, VRG_E_OUT_OF_RANGE, hint, "'position = %s' is outside the world", k->value);
         return;
     }
     for (int a = 0; a < 3; a++)
@@ -296,9 +296,9 @@ static void camera_section(vrg_graph *g, const _vrg_ast *a, int si)
             char hint[64];
             snprintf(hint, sizeof hint, "degrees in [%g, %g]", lo, hi);
             if (parse_double(k->value, &v) != 0)
-                _vrg_error_at(&g->diag, k->line, hint, "'%s = %s' is not a number", k->name, k->value);
+                _vrg_error_at(&g->diag, k->line, VRG_E_NOT_A_NUMBER, hint, "'%s = %s' is not a number", k->name, k->value);
             else if (v < lo || v > hi)
-                _vrg_error_at(&g->diag, k->line, hint, "'%s = %s' is out of range", k->name, k->value);
+                _vrg_error_at(&g->diag, k->line, VRG_E_OUT_OF_RANGE, hint, "'%s = %s' is out of range", k->name, k->value);
             else if (is_fov)
                 c->fov_y = (float)v;
             else if (is_pitch)
@@ -306,7 +306,7 @@ static void camera_section(vrg_graph *g, const _vrg_ast *a, int si)
             else
                 c->yaw = (float)v;
         } else
-            _vrg_error_at(&g->diag, k->line, known, "unknown key '%s' in [camera]", k->name);
+            _vrg_error_at(&g->diag, k->line, VRG_E_UNKNOWN_KEY, known, "unknown key '%s' in [camera]", k->name);
     }
 }
 
@@ -330,17 +330,17 @@ static void bind_slot(vrg_graph *g, vrg_pass *p, const _vrg_key *k, const char *
     int s = find_slot(desc, slot_name, dir);
     if (s < 0) {
         param_hint(desc, hint, sizeof hint);
-        _vrg_error_at(&g->diag, k->line, hint, "plugin '%s' has no slot '%s'", desc->name, slot_name);
+        _vrg_error_at(&g->diag, k->line, VRG_E_UNKNOWN_SLOT, hint, "plugin '%s' has no slot '%s'", desc->name, slot_name);
         return;
     }
     const vrg_slot_desc *sd = &desc->slots[s];
     if (sd->dir != dir) {
-        _vrg_error_at(&g->diag, k->line, dir == VRG_IN ? "connect it as out.<slot>" : "connect it as in.<slot>",
+        _vrg_error_at(&g->diag, k->line, VRG_E_SLOT_DIRECTION, dir == VRG_IN ? "connect it as out.<slot>" : "connect it as in.<slot>",
                      "slot '%s' of plugin '%s' is an %s", slot_name, desc->name, sd->dir == VRG_IN ? "input" : "output");
         return;
     }
     if (p->slots[s].line) {
-        _vrg_error_at(&g->diag, k->line, NULL, "slot '%s' is connected twice (first at line %d)", slot_name, p->slots[s].line);
+        _vrg_error_at(&g->diag, k->line, VRG_E_SLOT_CONNECTED_TWICE, NULL, "slot '%s' is connected twice (first at line %d)", slot_name, p->slots[s].line);
         return;
     }
     /* From here on errors concern the value: the slot counts as connected
@@ -355,7 +355,7 @@ static void bind_slot(vrg_graph *g, vrg_pass *p, const _vrg_key *k, const char *
     int prev = 0;
     if (at) {
         if (strcmp(at, "@prev") != 0 || dir == VRG_OUT) {
-            _vrg_error_at(&g->diag, k->line, "'@prev' on an input names last frame's value of a resource",
+            _vrg_error_at(&g->diag, k->line, VRG_E_BAD_PREV, "'@prev' on an input names last frame's value of a resource",
                          "'%s' is not a resource name%s", k->value, dir == VRG_OUT ? " an output can write" : "");
             return;
         }
@@ -363,12 +363,12 @@ static void bind_slot(vrg_graph *g, vrg_pass *p, const _vrg_key *k, const char *
         prev = 1;
     }
     if (!valid_name(name) || strlen(name) >= VRG_NAME_MAX) {
-        _vrg_error_at(&g->diag, k->line, "resource names use letters, digits, '_', '-' and '.'", "'%s' is not a valid resource name", k->value);
+        _vrg_error_at(&g->diag, k->line, VRG_E_INVALID_NAME, "resource names use letters, digits, '_', '-' and '.'", "'%s' is not a valid resource name", k->value);
         return;
     }
     int r = _vrg_graph_add_resource(g, name);
     if (r < 0) {
-        _vrg_error_at(&g->diag, k->line, NULL, "too many resources (at most %d)", VRG_MAX_RESOURCES);
+        _vrg_error_at(&g->diag, k->line, VRG_E_TOO_MANY, NULL, "too many resources (at most %d)", VRG_MAX_RESOURCES);
         return;
     }
     _vrg_resource *res = &g->res[r];
@@ -382,7 +382,7 @@ static void bind_slot(vrg_graph *g, vrg_pass *p, const _vrg_key *k, const char *
             char h[128];
             snprintf(h, sizeof h, "pass '%s' already writes it at line %d; give one of them another name", g->passes[res->writer].name,
                      res->writer_line);
-            _vrg_error_at(&g->diag, k->line, h, "resource '%s' has two writers", name);
+            _vrg_error_at(&g->diag, k->line, VRG_E_TWO_WRITERS, h, "resource '%s' has two writers", name);
             return;
         }
         res->writer = (int)(p - g->passes);
@@ -422,7 +422,7 @@ static void pass_section(vrg_graph *g, const _vrg_ast *a, int si, vrg_pass *p)
             int pi = find_param(desc, k->name);
             if (pi < 0) {
                 param_hint(desc, hint, sizeof hint);
-                _vrg_error_at(&g->diag, k->line, hint, "unknown key '%s' in [%s]", k->name, a->sections[si].name);
+                _vrg_error_at(&g->diag, k->line, VRG_E_UNKNOWN_KEY, hint, "unknown key '%s' in [%s]", k->name, a->sections[si].name);
             } else
                 set_param(g, p, pi, k->value, k->line, k->name);
         }
@@ -435,7 +435,7 @@ static void resource_section(vrg_graph *g, const _vrg_ast *a, int si, const char
         return;
     int ri = find_resource(g, name);
     if (ri < 0) {
-        _vrg_note_at(&g->diag, a->sections[si].line, "[resource %s] is not used by any pass", name);
+        _vrg_warning_at(&g->diag, a->sections[si].line, VRG_W_UNUSED_RESOURCE, "[resource %s] is not used by any pass", name);
         return;
     }
     _vrg_resource *r = &g->res[ri];
@@ -448,14 +448,14 @@ static void resource_section(vrg_graph *g, const _vrg_ast *a, int si, const char
         if (strcmp(k->name, "format") == 0) {
             VkFormat f = _vrg_format_parse(k->value);
             if (f == VK_FORMAT_UNDEFINED)
-                _vrg_error_at(&g->diag, k->line, _vrg_format_list(), "unknown format '%s'", k->value);
+                _vrg_error_at(&g->diag, k->line, VRG_E_UNKNOWN_FORMAT, _vrg_format_list(), "unknown format '%s'", k->value);
             else
                 r->format = f, r->format_line = k->line;
         } else if (strcmp(k->name, "scale") == 0) {
             if (parse_double(k->value, &v) != 0)
-                _vrg_error_at(&g->diag, k->line, "a fraction of the graph size, e.g. 0.5", "'scale = %s' is not a number", k->value);
+                _vrg_error_at(&g->diag, k->line, VRG_E_NOT_A_NUMBER, "a fraction of the graph size, e.g. 0.5", "'scale = %s' is not a number", k->value);
             else if (v <= 0 || v > 16)
-                _vrg_error_at(&g->diag, k->line, "a fraction of the graph size in (0, 16]", "'scale = %s' must be > 0 (and at most 16)", k->value);
+                _vrg_error_at(&g->diag, k->line, VRG_E_OUT_OF_RANGE, "a fraction of the graph size in (0, 16]", "'scale = %s' must be > 0 (and at most 16)", k->value);
             else
                 r->scale = (float)v, r->size_line = r->extent_line = k->line;
         } else if (strcmp(k->name, "width") == 0) {
@@ -467,16 +467,16 @@ static void resource_section(vrg_graph *g, const _vrg_ast *a, int si, const char
         } else if (strcmp(k->name, "size") == 0) {
             long s;
             if (parse_int(k->value, &s) != 0 || s <= 0)
-                _vrg_error_at(&g->diag, k->line, "buffer size in bytes", "'size = %s' must be a positive integer", k->value);
+                _vrg_error_at(&g->diag, k->line, VRG_E_NOT_A_NUMBER, "buffer size in bytes", "'size = %s' must be a positive integer", k->value);
             else
                 r->size = (uint64_t)s, r->size_line = r->bytes_line = k->line;
         } else
-            _vrg_error_at(&g->diag, k->line, "format, scale, width, height (images) or size (buffers)", "unknown key '%s' in [resource %s]", k->name, name);
+            _vrg_error_at(&g->diag, k->line, VRG_E_UNKNOWN_KEY, "format, scale, width, height (images) or size (buffers)", "unknown key '%s' in [resource %s]", k->name, name);
     }
     if ((r->abs_width != 0) != (r->abs_height != 0))
-        _vrg_error_at(&g->diag, r->line, "give both width and height, or scale", "[resource %s] sets only one of width and height", name);
+        _vrg_error_at(&g->diag, r->line, VRG_E_SIZE_KEYS, "give both width and height, or scale", "[resource %s] sets only one of width and height", name);
     if (r->abs_width && r->scale > 0)
-        _vrg_error_at(&g->diag, r->line, "give width and height, or scale, not both", "[resource %s] sets both a scale and a size", name);
+        _vrg_error_at(&g->diag, r->line, VRG_E_SIZE_KEYS, "give width and height, or scale, not both", "[resource %s] sets both a scale and a size", name);
 }
 
 static int find_pass(const vrg_graph *g, const char *name)
@@ -507,13 +507,13 @@ static void collect_sections(vrg_graph *g, const _vrg_ast *a, const char *graph_
         const char *arg;
         sec_kind kind = section_kind(sec->name, &arg);
         if (kind == SEC_UNKNOWN) {
-            _vrg_error_at(&g->diag, sec->line, "sections are [graph], [camera], [scene], [pass NAME] and [resource NAME]", "unknown section '[%s]'",
+            _vrg_error_at(&g->diag, sec->line, VRG_E_UNKNOWN_SECTION, "sections are [graph], [camera], [scene], [pass NAME] and [resource NAME]", "unknown section '[%s]'",
                          sec->name);
             continue;
         }
         if (kind == SEC_CAMERA) {
             if (*camera_si >= 0)
-                _vrg_error_at(&g->diag, sec->line, NULL, "duplicate section [camera] (first at line %d)", a->sections[*camera_si].line);
+                _vrg_error_at(&g->diag, sec->line, VRG_E_DUPLICATE_SECTION, NULL, "duplicate section [camera] (first at line %d)", a->sections[*camera_si].line);
             else
                 *camera_si = si;
             continue;
@@ -521,7 +521,7 @@ static void collect_sections(vrg_graph *g, const _vrg_ast *a, const char *graph_
         if (kind == SEC_GRAPH || kind == SEC_SCENE) {
             int *seen = kind == SEC_GRAPH ? graph_si : &scene_si;
             if (*seen >= 0)
-                _vrg_error_at(&g->diag, sec->line, NULL, "duplicate section [%s] (first at line %d)", sec->name, a->sections[*seen].line);
+                _vrg_error_at(&g->diag, sec->line, VRG_E_DUPLICATE_SECTION, NULL, "duplicate section [%s] (first at line %d)", sec->name, a->sections[*seen].line);
             else
                 *seen = si;
             if (kind == SEC_GRAPH)
@@ -530,7 +530,7 @@ static void collect_sections(vrg_graph *g, const _vrg_ast *a, const char *graph_
         if (kind == SEC_RESOURCE) {
             for (int o = 0; o < si; o++)
                 if (strcmp(a->sections[o].name, sec->name) == 0) {
-                    _vrg_error_at(&g->diag, sec->line, NULL, "duplicate section [%s] (first at line %d)", sec->name, a->sections[o].line);
+                    _vrg_error_at(&g->diag, sec->line, VRG_E_DUPLICATE_SECTION, NULL, "duplicate section [%s] (first at line %d)", sec->name, a->sections[o].line);
                     break;
                 }
             continue;
@@ -542,18 +542,18 @@ static void collect_sections(vrg_graph *g, const _vrg_ast *a, const char *graph_
         if (kind == SEC_PASS && name_too_long(g, sec->line, "pass", pname, strlen(pname)))
             continue;
         if (kind == SEC_PASS && !valid_name(pname)) {
-            _vrg_error_at(&g->diag, sec->line, "pass names use letters, digits, '_', '-' and '.'", "'%s' is not a valid pass name", pname);
+            _vrg_error_at(&g->diag, sec->line, VRG_E_INVALID_NAME, "pass names use letters, digits, '_', '-' and '.'", "'%s' is not a valid pass name", pname);
             continue;
         }
         if (kind == SEC_PASS && (strcmp(pname, "scene") == 0 || find_pass(g, pname) >= 0)) {
             int first = find_pass(g, pname);
             char h[96];
             snprintf(h, sizeof h, "the first [pass %s] is at line %d; pass names must be unique", pname, first >= 0 ? g->passes[first].line : 0);
-            _vrg_error_at(&g->diag, sec->line, h, "duplicate pass name '%s'", pname);
+            _vrg_error_at(&g->diag, sec->line, VRG_E_DUPLICATE_PASS, h, "duplicate pass name '%s'", pname);
             continue;
         }
         if (g->pass_count >= VRG_MAX_PASSES) {
-            _vrg_error_at(&g->diag, sec->line, NULL, "too many passes (at most %d)", VRG_MAX_PASSES);
+            _vrg_error_at(&g->diag, sec->line, VRG_E_TOO_MANY, NULL, "too many passes (at most %d)", VRG_MAX_PASSES);
             continue;
         }
         vrg_pass *p = &g->passes[g->pass_count++];
@@ -569,23 +569,23 @@ static void collect_sections(vrg_graph *g, const _vrg_ast *a, const char *graph_
         for (int i = 0; i < a->key_count; i++)
             if (a->keys[i].section_index == si && strcmp(a->keys[i].name, "plugin") == 0) {
                 if (plugin_key)
-                    _vrg_error_at(&g->diag, a->keys[i].line, NULL, "duplicate key 'plugin' in [%s] (first at line %d)", sec->name, plugin_key->line);
+                    _vrg_error_at(&g->diag, a->keys[i].line, VRG_E_DUPLICATE_KEY, NULL, "duplicate key 'plugin' in [%s] (first at line %d)", sec->name, plugin_key->line);
                 else
                     plugin_key = &a->keys[i];
             }
         if (!plugin_key) {
-            _vrg_error_at(&g->diag, sec->line, "add 'plugin = NAME' (`voxrg plugins` lists them)", "[%s] has no plugin", sec->name);
+            _vrg_error_at(&g->diag, sec->line, VRG_E_NO_PLUGIN, "add 'plugin = NAME' (`voxrg plugins` lists them)", "[%s] has no plugin", sec->name);
             continue;
         }
         const _vrg_plugin *pl = _vrg_plugin_load(plugin_key->value, graph_path, graph_plugin_path(a), &g->diag, plugin_key->line);
         if (!pl)
             continue;
         if (kind == SEC_PASS && pl->desc->kind == VRG_PLUGIN_SCENE) {
-            _vrg_error_at(&g->diag, plugin_key->line, "use it in the [scene] section", "plugin '%s' is a scene plugin, not a pass", pl->name);
+            _vrg_error_at(&g->diag, plugin_key->line, VRG_E_PLUGIN_KIND, "use it in the [scene] section", "plugin '%s' is a scene plugin, not a pass", pl->name);
             continue;
         }
         if (kind == SEC_SCENE && pl->desc->kind != VRG_PLUGIN_SCENE) {
-            _vrg_error_at(&g->diag, plugin_key->line, "use it in a [pass NAME] section", "plugin '%s' is a pass plugin, not a scene plugin", pl->name);
+            _vrg_error_at(&g->diag, plugin_key->line, VRG_E_PLUGIN_KIND, "use it in a [pass NAME] section", "plugin '%s' is a pass plugin, not a scene plugin", pl->name);
             continue;
         }
         p->plugin = pl;
@@ -601,7 +601,7 @@ static void apply_overrides(vrg_graph *g, const vrg_graph_desc *desc)
         const char *o = desc->overrides[i];
         const char *dot = strchr(o, '.'), *eq = strchr(o, '=');
         if (!dot || !eq || dot > eq) {
-            _vrg_error(&g->diag, "--set '%s': expected PASS.PARAM=VALUE", o);
+            _vrg_error(&g->diag, VRG_E_BAD_OVERRIDE, "--set '%s': expected PASS.PARAM=VALUE", o);
             continue;
         }
         char pass[VRG_NAME_MAX] = {0}, param[VRG_NAME_MAX] = {0};
@@ -609,7 +609,7 @@ static void apply_overrides(vrg_graph *g, const vrg_graph_desc *desc)
         snprintf(param, sizeof param, "%.*s", (int)(eq - dot - 1), dot + 1);
         int pi = find_pass(g, pass);
         if (pi < 0) {
-            _vrg_error(&g->diag, "--set '%s': the graph has no pass '%s'", o, pass);
+            _vrg_error(&g->diag, VRG_E_UNKNOWN_PARAMETER, "--set '%s': the graph has no pass '%s'", o, pass);
             continue;
         }
         vrg_pass *p = &g->passes[pi];
@@ -619,7 +619,7 @@ static void apply_overrides(vrg_graph *g, const vrg_graph_desc *desc)
         if (idx < 0) {
             char hint[1024];
             param_hint(p->plugin->desc, hint, sizeof hint);
-            _vrg_error(&g->diag, "--set '%s': pass '%s' has no parameter '%s' (%s)", o, pass, param, hint);
+            _vrg_error(&g->diag, VRG_E_UNKNOWN_PARAMETER, "--set '%s': pass '%s' has no parameter '%s' (%s)", o, pass, param, hint);
             continue;
         }
         char what[2 * VRG_NAME_MAX + 2];
@@ -647,7 +647,7 @@ static void check_prev_of_persistent(vrg_graph *g)
             char h[160];
             snprintf(h, sizeof h, "pass '%s' keeps it up to date in place (line %d): read '%s' without @prev", g->passes[r->writer].name,
                      r->writer_line, r->name);
-            _vrg_error_at(&g->diag, b->line, h, "'%s@prev': resource '%s' is persistent and has no last frame's copy", r->name, r->name);
+            _vrg_error_at(&g->diag, b->line, VRG_E_PREV_OF_PERSISTENT, h, "'%s@prev': resource '%s' is persistent and has no last frame's copy", r->name, r->name);
         }
     }
 }
@@ -659,27 +659,26 @@ static void resolve_resources(vrg_graph *g)
         if (r->writer < 0)
             continue;
         const vrg_slot_desc *sd = vrg_slot(&g->passes[r->writer], r->writer_slot);
+        const vrg_slot_desc def = _vrg_slot_desc_defaults(sd);
         r->kind = sd->kind;
-        if (sd->kind == VRG_BUFFER)
-            r->format = sd->format ? sd->format : VK_FORMAT_R32_UINT; /* the texel format of TEXEL_READ views */
-        else if (!r->format_line)
-            r->format = sd->format ? sd->format : VK_FORMAT_R16G16B16A16_SFLOAT;
+        if (sd->kind == VRG_BUFFER || !r->format_line)
+            r->format = def.format;
         if (!r->size_line) {
-            r->scale = sd->scale > 0 ? sd->scale : 1.0f;
+            r->scale = def.scale;
             r->abs_width = sd->width;
             r->abs_height = sd->height;
             if (sd->kind != VRG_IMAGE)
                 r->size = g->passes[r->writer].buffer_size[r->writer_slot] ? g->passes[r->writer].buffer_size[r->writer_slot] : sd->size;
         }
         if (sd->kind == VRG_ACCEL && (r->format_line || r->extent_line))
-            _vrg_error_at(&g->diag, r->format_line ? r->format_line : r->extent_line, "acceleration structures take size = INSTANCES",
+            _vrg_error_at(&g->diag, r->format_line ? r->format_line : r->extent_line, VRG_E_KEY_WRONG_KIND, "acceleration structures take size = INSTANCES",
                          "resource '%s' is an acceleration structure", r->name);
         if (sd->kind == VRG_BUFFER && r->size == 0)
-            _vrg_error_at(&g->diag, r->writer_line, "give the buffer a size in a [resource] section", "buffer '%s' has size 0", r->name);
+            _vrg_error_at(&g->diag, r->writer_line, VRG_E_BUFFER_SIZE, "give the buffer a size in a [resource] section", "buffer '%s' has size 0", r->name);
         else if (sd->kind == VRG_BUFFER && r->size % _vrg_format_bytes(r->format)) {
             char h[160];
             snprintf(h, sizeof h, "pass '%s' declares %s texels for it (its slot '%s')", g->passes[r->writer].name, _vrg_format_name(r->format), sd->name);
-            _vrg_error_at(&g->diag, r->size_line ? r->size_line : r->writer_line, h, "buffer '%s' of %llu bytes is not a whole number of %llu-byte texels", r->name,
+            _vrg_error_at(&g->diag, r->size_line ? r->size_line : r->writer_line, VRG_E_BUFFER_SIZE, h, "buffer '%s' of %llu bytes is not a whole number of %llu-byte texels", r->name,
                          (unsigned long long)r->size, (unsigned long long)_vrg_format_bytes(r->format));
         }
         /* A shader writes a storage image through a format qualifier: the
@@ -688,17 +687,17 @@ static void resolve_resources(vrg_graph *g)
         if (sd->kind == VRG_IMAGE && r->format_line && storage && sd->format && sd->format != r->format) {
             char h[160];
             snprintf(h, sizeof h, "pass '%s' writes it as a storage image of format %s", g->passes[r->writer].name, _vrg_format_name(sd->format));
-            _vrg_error_at(&g->diag, r->format_line, h, "format mismatch: resource '%s' cannot be %s", r->name, _vrg_format_name(r->format));
+            _vrg_error_at(&g->diag, r->format_line, VRG_E_FORMAT_MISMATCH, h, "format mismatch: resource '%s' cannot be %s", r->name, _vrg_format_name(r->format));
         }
         if (sd->kind == VRG_BUFFER && r->format_line)
-            _vrg_error_at(&g->diag, r->format_line, "format applies to images", "resource '%s' is a buffer", r->name);
+            _vrg_error_at(&g->diag, r->format_line, VRG_E_KEY_WRONG_KIND, "format applies to images", "resource '%s' is a buffer", r->name);
         /* an acceleration structure is rebuilt from scene data, never aliased */
         r->persistent = (sd->flags & VRG_SLOT_PERSISTENT) != 0 || sd->kind == VRG_ACCEL;
         r->mip_request = sd->mip_levels;
         if (sd->kind != VRG_BUFFER && sd->kind != VRG_ACCEL && r->bytes_line)
-            _vrg_error_at(&g->diag, r->bytes_line, "size = applies to buffers; images take scale or width/height", "resource '%s' is an image", r->name);
+            _vrg_error_at(&g->diag, r->bytes_line, VRG_E_KEY_WRONG_KIND, "size = applies to buffers; images take scale or width/height", "resource '%s' is an image", r->name);
         if (sd->kind == VRG_BUFFER && r->extent_line)
-            _vrg_error_at(&g->diag, r->extent_line, "buffers take size = BYTES", "resource '%s' is a buffer", r->name);
+            _vrg_error_at(&g->diag, r->extent_line, VRG_E_KEY_WRONG_KIND, "buffers take size = BYTES", "resource '%s' is a buffer", r->name);
     }
     for (int pi = 0; pi < g->pass_count; pi++) {
         vrg_pass *p = &g->passes[pi];
@@ -721,7 +720,7 @@ static void resolve_resources(vrg_graph *g)
                 if (r >= 0) {
                     _vrg_resource *res = &g->res[r];
                     res->kind = sd->kind;
-                    res->format = sd->format ? sd->format : sd->kind == VRG_BUFFER ? VK_FORMAT_R32_UINT : VK_FORMAT_R16G16B16A16_SFLOAT;
+                    res->format = _vrg_slot_desc_defaults(sd).format;
                     res->abs_width = res->abs_height = 1;
                     res->size = sd->size > 16 ? sd->size : 16;
                     res->persistent = res->dummy = 1;
@@ -734,7 +733,7 @@ static void resolve_resources(vrg_graph *g)
                 if (!(sd->flags & VRG_SLOT_OPTIONAL)) {
                     char h[160];
                     snprintf(h, sizeof h, "add 'in.%s = RESOURCE' to [%s%s]", sd->name, p->is_scene ? "scene" : "pass ", p->is_scene ? "" : p->name);
-                    _vrg_error_at(&g->diag, p->line, h, "required input '%s' of pass '%s' is not connected", sd->name, p->name);
+                    _vrg_error_at(&g->diag, p->line, VRG_E_INPUT_NOT_CONNECTED, h, "required input '%s' of pass '%s' is not connected", sd->name, p->name);
                 }
                 continue;
             }
@@ -742,13 +741,13 @@ static void resolve_resources(vrg_graph *g)
             if (r->writer < 0 && r->writer_unknown)
                 continue;
             if (r->writer < 0) {
-                _vrg_error_at(&g->diag, b->line, "some pass must write it (out.SLOT = NAME), or fix the name",
+                _vrg_error_at(&g->diag, b->line, VRG_E_NEVER_WRITTEN, "some pass must write it (out.SLOT = NAME), or fix the name",
                              "resource '%s' is read but never written", r->name);
                 continue;
             }
             if (r->kind != sd->kind) {
                 static const char *kinds[] = {"?", "an image", "a buffer", "an acceleration structure"};
-                _vrg_error_at(&g->diag, b->line, NULL, "kind mismatch: resource '%s' is %s, slot '%s' of pass '%s' takes %s", r->name,
+                _vrg_error_at(&g->diag, b->line, VRG_E_KIND_MISMATCH, NULL, "kind mismatch: resource '%s' is %s, slot '%s' of pass '%s' takes %s", r->name,
                              kinds[r->kind], sd->name, p->name, kinds[sd->kind]);
                 continue;
             }
@@ -756,7 +755,7 @@ static void resolve_resources(vrg_graph *g)
                 char h[256];
                 snprintf(h, sizeof h, "'%s' is written by pass '%s' (line %d)%s", r->name, g->passes[r->writer].name, r->writer_line,
                          r->format_line ? "; see its [resource] format" : "");
-                _vrg_error_at(&g->diag, b->line, h, "format mismatch: resource '%s' is %s, slot '%s' of pass '%s' needs %s", r->name,
+                _vrg_error_at(&g->diag, b->line, VRG_E_FORMAT_MISMATCH, h, "format mismatch: resource '%s' is %s, slot '%s' of pass '%s' needs %s", r->name,
                              _vrg_format_name(r->format), sd->name, p->name, _vrg_format_name(sd->format));
             }
             if (sd->kind == VRG_BUFFER && sd->format && sd->format != r->format) {
@@ -764,7 +763,7 @@ static void resolve_resources(vrg_graph *g)
                 char h[256];
                 snprintf(h, sizeof h, "'%s' is written by pass '%s' (line %d), whose slot '%s' %s", r->name, g->passes[r->writer].name, r->writer_line,
                          wd->name, wd->format ? "names that texel format" : "names no texel format (r32ui)");
-                _vrg_error_at(&g->diag, b->line, h, "texel format mismatch: buffer '%s' has %s texels, slot '%s' of pass '%s' reads %s", r->name,
+                _vrg_error_at(&g->diag, b->line, VRG_E_FORMAT_MISMATCH, h, "texel format mismatch: buffer '%s' has %s texels, slot '%s' of pass '%s' reads %s", r->name,
                              _vrg_format_name(r->format), sd->name, p->name, _vrg_format_name(sd->format));
             }
             if (sd->kind == VRG_IMAGE && (sd->scale > 0 || sd->width)) {
@@ -780,12 +779,12 @@ static void resolve_resources(vrg_graph *g)
                         snprintf(need, sizeof need, "%ux%u", sd->width, sd->height);
                     else
                         snprintf(need, sizeof need, "scale %g", sd->scale);
-                    _vrg_error_at(&g->diag, b->line, "check the [resource] size or the writer's slot", "size mismatch: resource '%s' is %s, slot '%s' of pass '%s' needs %s",
+                    _vrg_error_at(&g->diag, b->line, VRG_E_SIZE_MISMATCH, "check the [resource] size or the writer's slot", "size mismatch: resource '%s' is %s, slot '%s' of pass '%s' needs %s",
                                  r->name, have, sd->name, p->name, need);
                 }
             }
             if (sd->kind == VRG_BUFFER && sd->size > r->size)
-                _vrg_error_at(&g->diag, b->line, NULL, "size mismatch: buffer '%s' has %llu bytes, slot '%s' of pass '%s' needs at least %llu", r->name,
+                _vrg_error_at(&g->diag, b->line, VRG_E_SIZE_MISMATCH, NULL, "size mismatch: buffer '%s' has %llu bytes, slot '%s' of pass '%s' needs at least %llu", r->name,
                              (unsigned long long)r->size, sd->name, p->name, (unsigned long long)sd->size);
         }
     }
@@ -811,7 +810,7 @@ static void default_outputs(vrg_graph *g)
             else
                 snprintf(name, sizeof name, "%s.%s", p->name, sd->name);
             if (find_resource(g, name) >= 0 && g->res[find_resource(g, name)].writer >= 0) {
-                _vrg_error_at(&g->diag, p->line, NULL, "resource '%s' (the default for unconnected out.%s) has two writers", name, sd->name);
+                _vrg_error_at(&g->diag, p->line, VRG_E_TWO_WRITERS, NULL, "resource '%s' (the default for unconnected out.%s) has two writers", name, sd->name);
                 continue;
             }
             int r = _vrg_graph_add_resource(g, name);
@@ -846,7 +845,7 @@ static void check_conflicting_uses(vrg_graph *g)
                 _vrg_access_info ia = _vrg_access_info_of(vrg_slot(p, a)->access, VRG_IMAGE);
                 _vrg_access_info ib = _vrg_access_info_of(vrg_slot(p, b)->access, VRG_IMAGE);
                 if (ia.layout != ib.layout)
-                    _vrg_error_at(&g->diag, y->line, "read it through one slot, or give the plugin matching accesses",
+                    _vrg_error_at(&g->diag, y->line, VRG_E_LAYOUT_CONFLICT, "read it through one slot, or give the plugin matching accesses",
                                  "resource '%s' is bound to slots '%s' (%s) and '%s' (%s) of pass '%s', which need different layouts",
                                  g->res[x->res].name, vrg_slot(p, a)->name, _vrg_access_name(vrg_slot(p, a)->access), vrg_slot(p, b)->name,
                                  _vrg_access_name(vrg_slot(p, b)->access), p->name);
@@ -882,7 +881,7 @@ static int cycle_dfs(vrg_graph *g, int pi, int *state, int *stack, int depth)
             }
             if (path)
                 snprintf(path + used, cap - used, "%s", g->passes[w].name);
-            _vrg_error_at(&g->diag, g->passes[first].line, "read last frame's value with NAME@prev to break the cycle",
+            _vrg_error_at(&g->diag, g->passes[first].line, VRG_E_CYCLE, "read last frame's value with NAME@prev to break the cycle",
                          "cycle between passes: %s", path ? path : "(out of memory listing them)");
             free(path);
             return 1;
@@ -912,7 +911,7 @@ int _vrg_validate(vrg_graph *g, const _vrg_ast *ast, const vrg_graph_desc *desc)
     if (graph_si >= 0)
         graph_section(g, ast, graph_si, desc->path);
     else
-        _vrg_error_at(&g->diag, 1, "start the file with [graph] and 'output = RESOURCE'", "the graph has no [graph] section, so no output");
+        _vrg_error_at(&g->diag, 1, VRG_E_NO_GRAPH_SECTION, "start the file with [graph] and 'output = RESOURCE'", "the graph has no [graph] section, so no output");
     for (int si = 0; si < ast->section_count; si++) {
         const char *arg;
         sec_kind kind = section_kind(ast->sections[si].name, &arg);
@@ -932,7 +931,7 @@ int _vrg_validate(vrg_graph *g, const _vrg_ast *ast, const vrg_graph_desc *desc)
         int rc = p->plugin->desc->check(p);
         _vrg_running_leave(before);
         if (rc != 0 && !p->failed)
-            vrg_pass_error(p, "its check() failed");
+            _vrg_pass_fail(p, VRG_E_CALLBACK_FAILED, "its check() failed");
     }
     default_outputs(g);
     for (int si = 0; si < ast->section_count; si++) {
@@ -946,23 +945,23 @@ int _vrg_validate(vrg_graph *g, const _vrg_ast *ast, const vrg_graph_desc *desc)
     if (graph_si >= 0) {
         if (!g->output_name[0]) {
             if (!g->output_line) /* else given, but not usable: already reported */
-                _vrg_error_at(&g->diag, ast->sections[graph_si].line, "add 'output = RESOURCE' to [graph]", "the graph has no output");
+                _vrg_error_at(&g->diag, ast->sections[graph_si].line, VRG_E_NO_OUTPUT, "add 'output = RESOURCE' to [graph]", "the graph has no output");
         } else {
             g->output = find_resource(g, g->output_name);
             if (g->output >= 0 && g->res[g->output].writer_unknown)
                 ; /* its writer's plugin failed to load: already reported */
             else if (g->output < 0 || g->res[g->output].writer < 0)
-                _vrg_error_at(&g->diag, g->output_line, "name a resource some pass writes", "output resource '%s' is never written",
+                _vrg_error_at(&g->diag, g->output_line, VRG_E_OUTPUT_NEVER_WRITTEN, "name a resource some pass writes", "output resource '%s' is never written",
                              g->output_name);
             else if (g->res[g->output].kind != VRG_IMAGE)
-                _vrg_error_at(&g->diag, g->output_line, "the output is shown and written as PNG", "output resource '%s' is a buffer, not an image",
+                _vrg_error_at(&g->diag, g->output_line, VRG_E_OUTPUT_NOT_IMAGE, "the output is shown and written as PNG", "output resource '%s' is a buffer, not an image",
                              g->output_name);
             else
                 g->res[g->output].is_output = 1;
         }
         if (!g->width || !g->height)
             if (!desc->width && !g->diag.errors)
-                _vrg_error_at(&g->diag, ast->sections[graph_si].line, "add 'width = ' and 'height = ' to [graph] (or pass --size)",
+                _vrg_error_at(&g->diag, ast->sections[graph_si].line, VRG_E_NO_SIZE, "add 'width = ' and 'height = ' to [graph] (or pass --size)",
                              "the graph has no size");
     }
     if (desc->width && desc->height)
@@ -970,7 +969,7 @@ int _vrg_validate(vrg_graph *g, const _vrg_ast *ast, const vrg_graph_desc *desc)
     for (uint32_t i = 0; i < desc->readback_count; i++) {
         int r = find_resource(g, desc->readback[i]);
         if (r < 0 || g->res[r].writer < 0)
-            _vrg_error(&g->diag, "--dump %s: the graph writes no resource of that name", desc->readback[i]);
+            _vrg_error(&g->diag, VRG_E_UNKNOWN_RESOURCE, "--dump %s: the graph writes no resource of that name", desc->readback[i]);
         else
             g->res[r].readback = 1;
     }
