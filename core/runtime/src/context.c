@@ -59,7 +59,7 @@ static int create_instance(vrg_context *ctx, const vrg_context_desc *desc)
     for (uint32_t i = 0; i < desc->instance_extension_count && next < 17; i++)
         exts[next++] = desc->instance_extensions[i];
     if (desc->validate && !has_layer(layers[0])) {
-        fprintf(stderr, "error: --validate needs VK_LAYER_KHRONOS_validation (Debian package vulkan-validationlayers; run scripts/setup.sh)\n");
+        fprintf(stderr, "error: validation (vrg_context_desc.validate) needs VK_LAYER_KHRONOS_validation (Debian package vulkan-validationlayers; run scripts/setup.sh)\n");
         return -1;
     }
     VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
@@ -158,7 +158,7 @@ static int pick_device(vrg_context *ctx, const vrg_context_desc *desc)
                 pick = (int)i;
         }
         if (pick < 0) {
-            fprintf(stderr, "error: --device '%s' matches no device; devices:\n", desc->device);
+            fprintf(stderr, "error: device '%s' (vrg_context_desc.device) matches no device; devices:\n", desc->device);
             for (uint32_t i = 0; i < n; i++) {
                 VkPhysicalDeviceProperties p;
                 vkGetPhysicalDeviceProperties(pds[i], &p);

@@ -435,7 +435,7 @@ static int find_readable(vrg_graph *g, const char *name)
     for (int i = 0; i < g->res_count; i++)
         if (strcmp(g->res[i].name, name) == 0) {
             if (!(g->res[i].is_output || g->res[i].readback || i == g->shown) || g->res[i].first_use < 0) {
-                _vrg_error(&g->diag, VRG_E_NOT_READ_BACK, "resource '%s' is not read back (ask for it in vrg_graph_desc.readback / --dump)", name);
+                _vrg_error(&g->diag, VRG_E_NOT_READ_BACK, "resource '%s' is not read back (ask for it in vrg_graph_desc.readback)", name);
                 return -1;
             }
             if (!g->frame_done) {

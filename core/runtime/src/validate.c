@@ -159,7 +159,7 @@ static int set_param(vrg_graph *g, vrg_pass *p, int idx, const char *value, int 
         if (line)
             _vrg_error_at(&g->diag, line, VRG_E_NOT_A_NUMBER, hint, "%s = '%s' is not a number of the right kind: %s expects %s", what, value, pd->name, kind);
         else
-            _vrg_error(&g->diag, VRG_E_NOT_A_NUMBER, "--set %s=%s: not a number of the right kind (%s expects %s)", what, value, pd->name, kind);
+            _vrg_error(&g->diag, VRG_E_NOT_A_NUMBER, "override %s=%s: not a number of the right kind (%s expects %s)", what, value, pd->name, kind);
         return -1;
     }
     if ((pd->min != 0 || pd->max != 0) && (v < pd->min || v > pd->max)) {
@@ -168,7 +168,7 @@ static int set_param(vrg_graph *g, vrg_pass *p, int idx, const char *value, int 
         if (line)
             _vrg_error_at(&g->diag, line, VRG_E_OUT_OF_RANGE, h, "%s = %s is out of range", what, value);
         else
-            _vrg_error(&g->diag, VRG_E_OUT_OF_RANGE, "--set %s=%s is out of range (%s)", what, value, h);
+            _vrg_error(&g->diag, VRG_E_OUT_OF_RANGE, "override %s=%s is out of range (%s)", what, value, h);
         return -1;
     }
     p->params[idx] = v;
@@ -601,7 +601,7 @@ static void apply_overrides(vrg_graph *g, const vrg_graph_desc *desc)
         const char *o = desc->overrides[i];
         const char *dot = strchr(o, '.'), *eq = strchr(o, '=');
         if (!dot || !eq || dot > eq) {
-            _vrg_error(&g->diag, VRG_E_BAD_OVERRIDE, "--set '%s': expected PASS.PARAM=VALUE", o);
+            _vrg_error(&g->diag, VRG_E_BAD_OVERRIDE, "override '%s': expected PASS.PARAM=VALUE", o);
             continue;
         }
         char pass[VRG_NAME_MAX] = {0}, param[VRG_NAME_MAX] = {0};
@@ -609,7 +609,7 @@ static void apply_overrides(vrg_graph *g, const vrg_graph_desc *desc)
         snprintf(param, sizeof param, "%.*s", (int)(eq - dot - 1), dot + 1);
         int pi = find_pass(g, pass);
         if (pi < 0) {
-            _vrg_error(&g->diag, VRG_E_UNKNOWN_PARAMETER, "--set '%s': the graph has no pass '%s'", o, pass);
+            _vrg_error(&g->diag, VRG_E_UNKNOWN_PARAMETER, "override '%s': the graph has no pass '%s'", o, pass);
             continue;
         }
         vrg_pass *p = &g->passes[pi];
@@ -619,7 +619,7 @@ static void apply_overrides(vrg_graph *g, const vrg_graph_desc *desc)
         if (idx < 0) {
             char hint[1024];
             param_hint(p->plugin->desc, hint, sizeof hint);
-            _vrg_error(&g->diag, VRG_E_UNKNOWN_PARAMETER, "--set '%s': pass '%s' has no parameter '%s' (%s)", o, pass, param, hint);
+            _vrg_error(&g->diag, VRG_E_UNKNOWN_PARAMETER, "override '%s': pass '%s' has no parameter '%s' (%s)", o, pass, param, hint);
             continue;
         }
         char what[2 * VRG_NAME_MAX + 2];
@@ -961,7 +961,7 @@ int _vrg_validate(vrg_graph *g, const _vrg_ast *ast, const vrg_graph_desc *desc)
         }
         if (!g->width || !g->height)
             if (!desc->width && !g->diag.errors)
-                _vrg_error_at(&g->diag, ast->sections[graph_si].line, VRG_E_NO_SIZE, "add 'width = ' and 'height = ' to [graph] (or pass --size)",
+                _vrg_error_at(&g->diag, ast->sections[graph_si].line, VRG_E_NO_SIZE, "add 'width = ' and 'height = ' to [graph] (or load it with a size)",
                              "the graph has no size");
     }
     if (desc->width && desc->height)
@@ -969,7 +969,7 @@ int _vrg_validate(vrg_graph *g, const _vrg_ast *ast, const vrg_graph_desc *desc)
     for (uint32_t i = 0; i < desc->readback_count; i++) {
         int r = find_resource(g, desc->readback[i]);
         if (r < 0 || g->res[r].writer < 0)
-            _vrg_error(&g->diag, VRG_E_UNKNOWN_RESOURCE, "--dump %s: the graph writes no resource of that name", desc->readback[i]);
+            _vrg_error(&g->diag, VRG_E_UNKNOWN_RESOURCE, "readback '%s': the graph writes no resource of that name", desc->readback[i]);
         else
             g->res[r].readback = 1;
     }
