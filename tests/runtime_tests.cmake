@@ -124,3 +124,12 @@ set_tests_properties(compare PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}" TIMEOUT 90
 add_test(NAME compare_report_browser COMMAND python3 ${CMAKE_CURRENT_SOURCE_DIR}/test_report_browser.py
          ${CMAKE_CURRENT_BINARY_DIR}/compare_out/e2e/report.html ${CMAKE_CURRENT_BINARY_DIR}/compare_browser)
 set_tests_properties(compare_report_browser PROPERTIES TIMEOUT 300 SKIP_RETURN_CODE 77 FIXTURES_REQUIRED compare_report)
+
+# Frames in flight: rings, attribution of readbacks, stats and timings.
+add_executable(test_frames_in_flight test_frames_in_flight.c)
+target_link_libraries(test_frames_in_flight PRIVATE voxrg)
+vrg_use_fast_malloc(test_frames_in_flight)
+foreach(case ring ring_deep ring_single_frame attribution timings resize_capture)
+  add_test(NAME frames_in_flight_${case} COMMAND test_frames_in_flight ${case})
+  set_tests_properties(frames_in_flight_${case} PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}" TIMEOUT 300)
+endforeach()
