@@ -133,3 +133,6 @@ foreach(case ring ring_deep ring_single_frame attribution timings resize_capture
   add_test(NAME frames_in_flight_${case} COMMAND test_frames_in_flight ${case})
   set_tests_properties(frames_in_flight_${case} PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}" TIMEOUT 300)
 endforeach()
+add_test(NAME frames_in_flight_images COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test_frames_in_flight.sh $<TARGET_FILE:voxrg_cli> ${PROJECT_SOURCE_DIR}
+         ${CMAKE_CURRENT_BINARY_DIR}/frames_in_flight_out)
+set_tests_properties(frames_in_flight_images PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}" TIMEOUT 600)
