@@ -129,7 +129,7 @@ set_tests_properties(compare_report_browser PROPERTIES TIMEOUT 300 SKIP_RETURN_C
 add_executable(test_frames_in_flight test_frames_in_flight.c)
 target_link_libraries(test_frames_in_flight PRIVATE voxrg)
 vrg_use_fast_malloc(test_frames_in_flight)
-foreach(case ring ring_deep ring_single_frame attribution timings resize_capture)
+foreach(case ring ring_deep ring_single_frame attribution timings resize_capture timeout)
   add_test(NAME frames_in_flight_${case} COMMAND test_frames_in_flight ${case})
   set_tests_properties(frames_in_flight_${case} PROPERTIES ENVIRONMENT "${VRG_TEST_ENV}" TIMEOUT 300)
 endforeach()

@@ -6,6 +6,7 @@
  * Usage: test_frames_in_flight CASE (ctest registers one test per case). */
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include "voxrg/voxrg.h"
 
 static int failures;
@@ -21,8 +22,9 @@ static vrg_context *ctx;
         }                                                                                    \
     } while (0)
 
-/* The ring_probe graph with `frames` in flight and a spin of `spin`. */
-static vrg_graph *probe_graph(int frames, double spin)
+/* The ring_probe graph with `frames` in flight and a spin of `spin`;
+ * messages to diag (NULL: stderr). */
+static vrg_graph *probe_graph_to(int frames, double spin, FILE *diag)
 {
     char text[512], set[64];
     snprintf(text, sizeof text,
@@ -32,7 +34,7 @@ static vrg_graph *probe_graph(int frames, double spin)
     snprintf(set, sizeof set, "probe.spin=%g", spin);
     static const char *reads[] = {"log"};
     const char *sets[] = {set};
-    vrg_graph_desc d = {.path = "<ring_probe>", .text = text, .overrides = sets, .override_count = 1, .readback = reads, .readback_count = 1};
+    vrg_graph_desc d = {.path = "<ring_probe>", .text = text, .overrides = sets, .override_count = 1, .readback = reads, .readback_count = 1, .diag = diag};
     vrg_graph *g = NULL;
     if (vrg_graph_load(ctx, &d, &g) != 0) {
         failures++;
@@ -40,6 +42,8 @@ static vrg_graph *probe_graph(int frames, double spin)
     }
     return g;
 }
+
+static vrg_graph *probe_graph(int frames, double spin) { return probe_graph_to(frames, spin, NULL); }
 
 static uint32_t log_word(vrg_graph *g, uint64_t frame)
 {
@@ -148,6 +152,33 @@ static void test_resize_capture(void)
     vrg_graph_destroy(g);
 }
 
+/* A frame that never ends, found by the next frame that needs its slot:
+ * frames 0 and 1 are submitted at once, frame 2 waits for frame 0 and
+ * gives up after the context's GPU timeout, naming frame 0 and its pass.
+ * (A float count past 2^24 stops growing: the spin never ends.) The GPU
+ * still runs it, so the process ends without freeing anything. */
+static void test_timeout(void)
+{
+    FILE *diag = tmpfile();
+    vrg_graph *g = probe_graph_to(2, 1e9, diag);
+    if (!g)
+        return;
+    CHECK(vrg_graph_frame(g) == 0 && vrg_graph_frame(g) == 0, "frames 0 and 1 were not submitted at once");
+    CHECK(vrg_graph_frame(g) == -1, "frame 2 did not time out waiting for frame 0");
+    CHECK(vrg_context_gpu_busy(ctx), "the device is not marked busy");
+    char text[2048] = "";
+    rewind(diag);
+    size_t n = fread(text, 1, sizeof text - 1, diag);
+    text[n] = 0;
+    CHECK(strstr(text, "frame 0: pass 'probe' (plugin ring_probe) has run for more than 1 s on the GPU") != NULL, "message: %s", text);
+    CHECK(vrg_graph_wait(g) == -1, "a wait after the timeout succeeded");
+    uint32_t v = vrg_context_validation_errors(ctx);
+    CHECK(v == 0, "%u validation messages", v);
+    printf("timeout: %s\n", failures ? "FAILED" : "ok");
+    fflush(NULL);
+    _exit(failures ? 1 : 0); /* the GPU never idles: nothing may be freed */
+}
+
 int main(int argc, char **argv)
 {
     static const struct {
@@ -160,6 +191,7 @@ int main(int argc, char **argv)
         {"attribution", test_attribution},
         {"timings", test_timings},
         {"resize_capture", test_resize_capture},
+        {"timeout", test_timeout},
     };
     if (argc != 2) {
         fprintf(stderr, "usage: test_frames_in_flight CASE\n");
@@ -168,7 +200,7 @@ int main(int argc, char **argv)
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         if (strcmp(cases[i].name, argv[1]) != 0)
             continue;
-        vrg_context_desc cd = {.validate = 1, .quiet = 1};
+        vrg_context_desc cd = {.validate = 1, .quiet = 1, .gpu_timeout_s = strcmp(argv[1], "timeout") == 0 ? 1.0 : 0.0};
         if (vrg_context_create(&cd, &ctx) != 0)
             return 1;
         cases[i].fn();
