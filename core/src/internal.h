@@ -342,7 +342,6 @@ struct vrg_graph {
     /* frames in flight: the CPU records into one slot while the GPU runs
      * the others; a slot is reused once its last frame finished */
     uint32_t frames_in_flight;
-    int frames_in_flight_line; /* [graph] frames_in_flight, 0 if not given */
     struct _vrg_frame_slot {
         VkCommandBuffer cmd;
         VkFence fence;

@@ -250,7 +250,7 @@ static void graph_section(vrg_graph *g, const _vrg_ast *a, int si, const char *g
                 _vrg_error_at(&g->diag, k->line, "1: the CPU waits for each frame; 2 (the default): it records the next while the GPU runs one",
                               "'frames_in_flight = %s' must be a whole number from 1 to %d", k->value, VRG_MAX_FRAMES_IN_FLIGHT);
             else
-                g->frames_in_flight = (uint32_t)n, g->frames_in_flight_line = k->line;
+                g->frames_in_flight = (uint32_t)n;
         } else if (strcmp(k->name, "plugin_path") == 0)
             _vrg_plugin_path_check(graph_path, k->value, &g->diag, k->line); /* a typo: not "unknown plugin" per pass */
         else
