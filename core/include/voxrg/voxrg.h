@@ -108,8 +108,9 @@ uint32_t vrg_graph_frames_in_flight(const vrg_graph *g);
 double vrg_graph_cpu_ms(const vrg_graph *g);
 /* CPU time of pass i's execute callback in the last frame (0 if culled). */
 double vrg_graph_pass_cpu_ms(const vrg_graph *g, uint32_t i);
-/* For benchmarks: renders one frame keeping its barriers and dispatches
- * (pipeline, pushed descriptors, push constants, group counts) as data;
+/* For benchmarks: renders one frame (and waits for it) keeping its
+ * barriers and dispatches (pipeline, pushed descriptors, push constants,
+ * group counts) as data;
  * vrg_capture_record records exactly those commands with direct Vulkan
  * calls, valid when the resources are in the state the captured frame
  * found them in (a frame of the same parity just ran). */
@@ -118,7 +119,8 @@ vrg_capture *vrg_graph_capture_frame(vrg_graph *g);
 void vrg_capture_record(const vrg_capture *c, VkCommandBuffer cmd);
 void vrg_capture_counts(const vrg_capture *c, uint32_t *dispatches, uint32_t *barrier_batches);
 void vrg_capture_free(vrg_capture *c);
-/* New graph size: re-allocates every resource and resets history. */
+/* New graph size: waits for the frames in flight, re-allocates every
+ * resource and resets history. */
 int vrg_graph_resize(vrg_graph *g, uint32_t width, uint32_t height);
 /* Next frame sees history_valid = 0 and cleared @prev images (camera cut). */
 void vrg_graph_reset_history(vrg_graph *g);
