@@ -207,7 +207,6 @@ void vrg_graph_destroy(vrg_graph *g)
     if (g->ctx) {
         VkDevice dev = g->ctx->dev.device;
         vkDeviceWaitIdle(dev); /* every frame in flight */
-        _vrg_free_retired(g, 1);
         for (int i = 0; i < g->pass_count; i++) {
             vrg_pass *p = &g->passes[i];
             if (p->created && p->plugin->desc->destroy) {
@@ -218,6 +217,7 @@ void vrg_graph_destroy(vrg_graph *g)
             _vrg_pipelines_destroy(p);
             _vrg_pass_free_host_buffers(p);
         }
+        _vrg_free_retired(g, 1); /* also what destroy callbacks freed just now */
         free_readback(g);
         _vrg_free_resources(g);
         free_frame_objects(g);
