@@ -3,8 +3,16 @@
  * GPU busy (`spin` iterations), then copies the slice into word
  * frame_index % 64 of `log`. If the host wrote a slice the GPU still reads
  * (one slice for all frames in flight), a frame's word holds a later
- * frame's index. It also records the frame index as the stat "frame". */
+ * frame's index. It also records the frame index as the stat "frame", and
+ * frees a buffer of its own in destroy() (freed after the frames in flight
+ * end: a leak under LSan if the runtime forgot it). */
+#include <stdlib.h>
 #include "voxrg/plugin.h"
+
+typedef struct probe {
+    vrg_ring *ring;
+    VkBuffer own;
+} probe;
 
 #define LOG_WORDS 64
 
@@ -21,15 +29,27 @@ static const vrg_slot_desc slots[] = {
 
 static int create(vrg_pass *pass)
 {
-    vrg_ring *ring = vrg_pass_host_ring(pass, "frame index", sizeof(uint32_t), 0);
-    vrg_pass_set_user(pass, ring);
-    return ring ? 0 : -1;
+    probe *p = calloc(1, sizeof *p);
+    if (!p)
+        return vrg_pass_error(pass, "out of memory");
+    vrg_pass_set_user(pass, p);
+    p->ring = vrg_pass_host_ring(pass, "frame index", sizeof(uint32_t), 0);
+    vrg_buffer_desc own = {.name = "own", .size = 64, .usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT, .host_visible = 1};
+    return p->ring && vrg_pass_buffer(pass, &own, &p->own, NULL) ? 0 : -1;
+}
+
+static void destroy(vrg_pass *pass)
+{
+    probe *p = vrg_pass_user(pass);
+    vrg_pass_free_buffer(pass, p->own);
+    free(p);
 }
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     const vrg_frame_info *f = vrg_pass_frame(pass);
-    vrg_ring_slice slice = vrg_pass_ring_slice(pass, vrg_pass_user(pass), sizeof(uint32_t));
+    probe *p = vrg_pass_user(pass);
+    vrg_ring_slice slice = vrg_pass_ring_slice(pass, p->ring, sizeof(uint32_t));
     if (!slice.map)
         return;
     *(uint32_t *)slice.map = (uint32_t)f->frame_index;
@@ -59,6 +79,7 @@ static const vrg_plugin_desc desc = {
     .slot_count = sizeof slots / sizeof slots[0],
     .create = create,
     .execute = execute,
+    .destroy = destroy,
 };
 
 VRG_PLUGIN(desc)
