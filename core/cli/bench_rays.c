@@ -47,7 +47,7 @@ int vrg_bench_rays(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure *
         static const char *kinds[] = {"primary", "sun shadow", "AO", "indirect"};
         double ms[4][64];
         for (int r = 0; r < runs + 2; r++) { /* two warm-up frames: the JIT, the world */
-            if (vrg_graph_frame(g) != 0) {
+            if (vrg_graph_frame(g) != 0 || vrg_graph_wait(g) != 0) { /* the wait: timings of this frame */
                 vrg_graph_destroy(g);
                 return -1;
             }

@@ -15,6 +15,7 @@
 #include "compare.h"
 #include "run.h"
 #include "util.h"
+#include "png_writer.h"
 #include "voxrg/voxrg.h"
 #include "voxrg/output.h"
 #include "voxrg/png.h"
@@ -261,9 +262,10 @@ static int cmd_check(int argc, char **argv)
 
 
 /* DIR/NAME.png (or .bin for a buffer); with frame >= 0 DIR/NAME-NNNNN.png,
- * not announced. Every file appears complete (vrg_output), so a script
- * polling for a frame never reads half a file. */
-static int write_resource(vrg_graph *g, const char *dir, const char *name, long frame)
+ * not announced, encoded by `writer` when given (while the next frame
+ * renders). Every file appears complete (vrg_output), so a script polling
+ * for a frame never reads half a file. */
+static int write_resource(vrg_graph *g, const char *dir, const char *name, long frame, vrg_cli_png_writer *writer)
 {
     char path[VRG_CLI_PATH];
     int rc;
@@ -275,6 +277,8 @@ static int write_resource(vrg_graph *g, const char *dir, const char *name, long 
             snprintf(path, sizeof path, "%s/%s.png", dir, name);
         else
             snprintf(path, sizeof path, "%s/%s-%05ld.png", dir, name, frame);
+        if (writer)
+            return vrg_cli_png_writer_push(writer, path, &img);
         rc = vrg_write_png(path, &img);
         free(img.pixels);
     } else {
@@ -413,7 +417,10 @@ static int cmd_render(int argc, char **argv)
     }
     double start = vrg_cli_now_ms();
     int isatty_err = isatty(2);
-    if (o.watch && vrg_graph_watch(g, 1) != 0) {
+    /* two frames queued: one encoding, one waiting, while a third renders */
+    vrg_cli_png_writer *writer = o.sequence ? vrg_cli_png_writer_start(2) : NULL;
+    if ((o.sequence && !writer) || (o.watch && vrg_graph_watch(g, 1) != 0)) {
+        vrg_cli_png_writer_finish(writer);
         free(times.ring), free(times.sum);
         vrg_camera_path_free(&path);
         return finish(ctx, g, 1);
@@ -439,13 +446,19 @@ static int cmd_render(int argc, char **argv)
                 fprintf(stderr, "error: frame %u failed\n", k);
                 rc = 1;
             }
+        /* the frame's readbacks and GPU timings: it must end first; the
+         * writer encodes its files while the next frame runs */
+        if (rc == 0 && vrg_graph_wait(g) != 0) {
+            fprintf(stderr, "error: frame %u failed\n", k);
+            rc = 1;
+        }
         if (rc)
             break;
         done = k + 1;
         if (o.sequence) {
-            rc |= write_resource(g, o.out, vrg_graph_output(g), k) != 0;
+            rc |= write_resource(g, o.out, vrg_graph_output(g), k, writer) != 0;
             for (int i = 0; rc == 0 && i < o.dump_count; i++)
-                rc |= write_resource(g, o.out, o.dumps[i], k) != 0;
+                rc |= write_resource(g, o.out, o.dumps[i], k, writer) != 0;
         }
         if (o.watch && vrg_graph_reload_ms(g) != reloaded) {
             reloaded = vrg_graph_reload_ms(g);
@@ -465,6 +478,7 @@ static int cmd_render(int argc, char **argv)
         }
         pace(frame_start, o.interval_ms);
     }
+    rc |= vrg_cli_png_writer_finish(writer) != 0; /* every queued frame is on disk */
     sigaction(SIGINT, &old_int, NULL);
     sigaction(SIGTERM, &old_term, NULL);
     if (interrupted)
@@ -476,9 +490,9 @@ static int cmd_render(int argc, char **argv)
         rc = 1;
     }
     if (rc == 0)
-        rc |= write_resource(g, o.out, vrg_graph_output(g), -1) != 0;
+        rc |= write_resource(g, o.out, vrg_graph_output(g), -1, NULL) != 0;
     for (int i = 0; rc == 0 && i < o.dump_count; i++)
-        rc |= write_resource(g, o.out, o.dumps[i], -1) != 0;
+        rc |= write_resource(g, o.out, o.dumps[i], -1, NULL) != 0;
     if (rc == 0 && o.json)
         rc |= write_json(o.json, ctx, g, &o, &times, wall) != 0;
     free(times.ring), free(times.sum);

@@ -122,6 +122,9 @@ vrg_capture *vrg_graph_capture_frame(vrg_graph *g)
     g->capture = c;
     int rc = vrg_graph_frame(g);
     g->capture = NULL;
+    /* the captured commands replay after this frame, which must have ended */
+    if (rc == 0)
+        rc = vrg_graph_wait(g);
     if (rc != 0) {
         vrg_capture_free(c);
         return NULL;

@@ -48,24 +48,44 @@ static int frame_objects(vrg_graph *g)
 {
     vrg_context *ctx = g->ctx;
     VkDevice dev = ctx->dev.device;
-    VkCommandBufferAllocateInfo ai = {
-        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, .commandPool = ctx->cmd_pool, .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY, .commandBufferCount = 1};
-    VkFenceCreateInfo fi = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    if (vkAllocateCommandBuffers(dev, &ai, &g->cmd) != VK_SUCCESS || vkCreateFence(dev, &fi, NULL, &g->fence) != VK_SUCCESS) {
-        _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "cannot create the frame's command buffer and fence");
-        return -1;
+    for (uint32_t i = 0; i < g->frames_in_flight; i++) {
+        struct _vrg_frame_slot *s = &g->slots[i];
+        VkCommandBufferAllocateInfo ai = {
+            .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, .commandPool = ctx->cmd_pool, .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY, .commandBufferCount = 1};
+        VkFenceCreateInfo fi = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+        if (vkAllocateCommandBuffers(dev, &ai, &s->cmd) != VK_SUCCESS || vkCreateFence(dev, &fi, NULL, &s->fence) != VK_SUCCESS) {
+            _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "cannot create the command buffer and fence of frame slot %u", i);
+            return -1;
+        }
+        if (ctx->dev.features.timestamps && g->schedule_count) {
+            VkQueryPoolCreateInfo qi = {
+                .sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO, .queryType = VK_QUERY_TYPE_TIMESTAMP, .queryCount = (uint32_t)(2 * g->schedule_count)};
+            if (vkCreateQueryPool(dev, &qi, NULL, &s->queries) != VK_SUCCESS)
+                s->queries = VK_NULL_HANDLE; /* timings become -1; rendering goes on */
+            _vrg_name_object(ctx, VK_OBJECT_TYPE_QUERY_POOL, (uint64_t)s->queries, "%s/pass timestamps[%u]", g->name, i);
+        }
+        _vrg_name_object(ctx, VK_OBJECT_TYPE_COMMAND_BUFFER, (uint64_t)s->cmd, "%s/frame[%u]", g->name, i);
     }
-    if (ctx->dev.features.timestamps && g->schedule_count) {
-        VkQueryPoolCreateInfo qi = {
-            .sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO, .queryType = VK_QUERY_TYPE_TIMESTAMP, .queryCount = (uint32_t)(2 * g->schedule_count)};
-        if (vkCreateQueryPool(dev, &qi, NULL, &g->queries) != VK_SUCCESS)
-            g->queries = VK_NULL_HANDLE; /* timings become -1; rendering goes on */
-        _vrg_name_object(ctx, VK_OBJECT_TYPE_QUERY_POOL, (uint64_t)g->queries, "%s/pass timestamps", g->name);
-    }
-    _vrg_name_object(ctx, VK_OBJECT_TYPE_COMMAND_BUFFER, (uint64_t)g->cmd, "%s/frame", g->name);
     return 0;
 }
 
+static void free_frame_objects(vrg_graph *g)
+{
+    VkDevice dev = g->ctx->dev.device;
+    for (uint32_t i = 0; i < g->frames_in_flight; i++) {
+        struct _vrg_frame_slot *s = &g->slots[i];
+        if (s->cmd)
+            vkFreeCommandBuffers(dev, g->ctx->cmd_pool, 1, &s->cmd);
+        vkDestroyFence(dev, s->fence, NULL);
+        vkDestroyQueryPool(dev, s->queries, NULL);
+    }
+}
+
+static VkDeviceSize align256(VkDeviceSize v) { return (v + 255) / 256 * 256; }
+
+/* A part per frame slot: the read-back resources, then a word per scheduled
+ * pass the GPU sets when the pass is done (the host reads which one runs
+ * while a frame is late, record.c), then the frame's timestamps. */
 static int readback_buffer(vrg_graph *g)
 {
     VkDevice dev = g->ctx->dev.device;
@@ -78,10 +98,14 @@ static int readback_buffer(vrg_graph *g)
         VkDeviceSize bytes = r->kind == VRG_IMAGE ? (VkDeviceSize)r->width * r->height * _vrg_format_bytes(r->format) : r->size;
         size += (bytes + 15) / 16 * 16;
     }
-    /* then a word per scheduled pass the GPU sets when the pass is done:
-     * the host reads which one runs while a frame is late (record.c) */
     g->progress_offset = size;
     size += 4 * VRG_MAX_PASSES;
+    g->timestamp_offset = size;
+    size += 2 * sizeof(uint64_t) * VRG_MAX_PASSES;
+    g->readback_slot_bytes = align256(size);
+    for (uint32_t i = 0; i < g->frames_in_flight; i++)
+        g->slots[i].readback_base = i * g->readback_slot_bytes;
+    size = g->frames_in_flight * g->readback_slot_bytes;
     VkBufferCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = size, .usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT};
     VkMemoryRequirements req = {0};
     int type = -1;
@@ -113,7 +137,7 @@ static void free_readback(vrg_graph *g)
     g->readback_buffer = VK_NULL_HANDLE;
     g->readback_memory = VK_NULL_HANDLE;
     g->readback_map = NULL;
-    g->frame_done = 0;
+    g->last_slot = -1; /* nothing to read until the next frame */
 }
 
 int vrg_graph_load(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph **out)
@@ -129,6 +153,9 @@ int vrg_graph_load(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph **out
     g->diag = (_vrg_diag){.out = desc->diag, .file = g->path, .collect = 1};
     for (int i = 0; i < VRG_MAX_PASSES; i++)
         g->pass_ms[i] = -1;
+    g->timed_frame = -1;
+    g->last_slot = -1;
+    g->frames_in_flight = VRG_FRAMES_IN_FLIGHT_DEFAULT;
     g->output = -1;
     vrg_camera_default(&g->camera);
     snprintf(g->name, sizeof g->name, "graph");
@@ -179,7 +206,7 @@ void vrg_graph_destroy(vrg_graph *g)
     _vrg_watch_destroy(g->watch);
     if (g->ctx) {
         VkDevice dev = g->ctx->dev.device;
-        vkDeviceWaitIdle(dev);
+        vkDeviceWaitIdle(dev); /* every frame in flight */
         for (int i = 0; i < g->pass_count; i++) {
             vrg_pass *p = &g->passes[i];
             if (p->created && p->plugin->desc->destroy) {
@@ -190,12 +217,10 @@ void vrg_graph_destroy(vrg_graph *g)
             _vrg_pipelines_destroy(p);
             _vrg_pass_free_host_buffers(p);
         }
+        _vrg_free_retired(g, 1); /* also what destroy callbacks freed just now */
         free_readback(g);
         _vrg_free_resources(g);
-        if (g->cmd)
-            vkFreeCommandBuffers(dev, g->ctx->cmd_pool, 1, &g->cmd);
-        vkDestroyFence(dev, g->fence, NULL);
-        vkDestroyQueryPool(dev, g->queries, NULL);
+        free_frame_objects(g);
     }
     for (int i = 0; i < g->pass_count; i++) {
         _vrg_pass_free_params(&g->passes[i]);
@@ -409,8 +434,9 @@ int vrg_graph_resize(vrg_graph *g, uint32_t width, uint32_t height)
         _vrg_error(&g->diag, VRG_E_GPU_BUSY, "resize: the GPU is still busy with a frame that timed out or was interrupted");
         return -1;
     }
-    if (g->ctx)
-        vkDeviceWaitIdle(g->ctx->dev.device);
+    /* the frames in flight use the resources: they end first (or time out) */
+    if (g->ctx && _vrg_wait_frames(g) != 0)
+        return -1;
     free_readback(g);
     _vrg_free_resources(g);
     g->width = width;
@@ -438,15 +464,31 @@ static int find_readable(vrg_graph *g, const char *name)
                 _vrg_error(&g->diag, VRG_E_NOT_READ_BACK, "resource '%s' is not read back (ask for it in vrg_graph_desc.readback)", name);
                 return -1;
             }
-            if (!g->frame_done) {
+            if (g->last_slot < 0) {
                 _vrg_error(&g->diag, VRG_E_NOT_READ_BACK, "resource '%s': no frame rendered yet", name);
                 return -1;
             }
-            return i;
+            /* what is read is the last submitted frame's: it must end first */
+            return _vrg_wait_frames(g) == 0 ? i : -1;
         }
     _vrg_error(&g->diag, VRG_E_UNKNOWN_RESOURCE, "the graph has no resource '%s'", name);
     return -1;
 }
+
+/* The last submitted frame's part of the readback buffer. */
+static const uint8_t *last_readback(const vrg_graph *g) { return (const uint8_t *)g->readback_map + g->slots[g->last_slot].readback_base; }
+
+int vrg_graph_wait(vrg_graph *g)
+{
+    if (g->ctx && g->ctx->gpu_busy) {
+        _vrg_error(&g->diag, VRG_E_GPU_BUSY, "graph '%s': the GPU is still busy with a frame that timed out or was interrupted", g->name);
+        return -1;
+    }
+    return g->ctx ? _vrg_wait_frames(g) : 0;
+}
+
+int64_t vrg_graph_timed_frame(const vrg_graph *g) { return g->timed_frame; }
+uint32_t vrg_graph_frames_in_flight(const vrg_graph *g) { return g->frames_in_flight; }
 
 static float half_to_float(uint16_t h)
 {
@@ -543,7 +585,7 @@ int vrg_graph_read(vrg_graph *g, const char *name, vrg_image_data *out)
         _vrg_error(&g->diag, VRG_E_WRONG_READ, "resource '%s' is a buffer: use vrg_graph_read_buffer", name);
         return -1;
     }
-    const uint8_t *src = (const uint8_t *)g->readback_map + g->readback_offset[i];
+    const uint8_t *src = last_readback(g) + g->readback_offset[i];
     uint32_t ch = _vrg_format_channels(r->format);
     size_t n = (size_t)r->width * r->height;
     out->width = r->width;
@@ -612,7 +654,7 @@ int vrg_graph_read_buffer(vrg_graph *g, const char *name, void **data, uint64_t 
         return -1;
     }
     *data = malloc(r->size);
-    memcpy(*data, (const uint8_t *)g->readback_map + g->readback_offset[i], r->size);
+    memcpy(*data, last_readback(g) + g->readback_offset[i], r->size);
     *size = r->size;
     return 0;
 }

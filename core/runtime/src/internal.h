@@ -18,6 +18,7 @@
 #define VRG_MAX_PARAMS 64
 #define VRG_MAX_KEYS 2048
 #define VRG_MAX_PLUGINS 128
+#define VRG_FRAMES_IN_FLIGHT_DEFAULT 2
 
 /* ---- diagnostics (diag.c) ---- */
 typedef struct _vrg_diag_entry {
@@ -243,6 +244,7 @@ struct vrg_pass {
     struct _vrg_param_value *strings;     /* string parameter values, in file order */
     int string_count;
     struct _vrg_host_buffer *host_buffers;
+    struct vrg_ring *rings;
     struct _vrg_pass_figure *stats; /* vrg_pass_stat: this frame's, grown as named */
     int stat_count, stat_cap;
     VkCommandBuffer cmd;      /* during execute */
@@ -266,12 +268,37 @@ typedef struct _vrg_host_buffer {
     VkBuffer buffer;
     VkDeviceMemory memory;
     void *map;
+    VkDeviceAddress address;
+    uint64_t size;
     struct _vrg_host_buffer *next;
 } _vrg_host_buffer;
+
+/* vrg_pass_host_ring: a host-visible buffer per frame slot, so that the
+ * host writes the slot of the frame it records while the GPU reads the
+ * others. Slices grow on demand (vrg_pass_ring_slice's min_bytes). */
+struct vrg_ring {
+    char name[VRG_NAME_MAX];
+    VkBufferUsageFlags usage;
+    _vrg_host_buffer *slice[VRG_MAX_FRAMES_IN_FLIGHT];
+    struct vrg_ring *next;
+};
+
+/* Freed once every frame that may use it has finished (frames in flight):
+ * a buffer of vrg_pass_free_buffer, or what vrg_pass_defer frees. */
+typedef struct _vrg_retired {
+    uint64_t serial; /* the frame recording when it was retired: free after it */
+    _vrg_host_buffer *buffer;
+    void (*fn)(void *user);
+    void *user;
+    struct _vrg_retired *next;
+} _vrg_retired;
 
 void _vrg_pass_free_params(vrg_pass *p);
 void _vrg_pass_free_host_buffers(vrg_pass *p);
 void _vrg_pass_free_shared(vrg_pass *p);
+/* Frees what was retired before the newest finished frame; all: everything
+ * (the GPU is idle). */
+void _vrg_free_retired(vrg_graph *g, int all);
 /* Forgets the figures of vrg_pass_stat (a new frame); free: also the table. */
 void _vrg_pass_clear_stats(vrg_pass *p, int free_table);
 int _vrg_pass_add_string(vrg_pass *p, int param, const char *value, int line, int replace);
@@ -332,18 +359,34 @@ struct vrg_graph {
     vrg_frame_info frame;
     int history_reset;        /* clear @prev copies at the next frame */
     int fresh;                /* resources just allocated: clear persistent ones */
-    VkCommandBuffer cmd;
-    VkFence fence;
-    VkQueryPool queries;
+    /* frames in flight: the CPU records into one slot while the GPU runs
+     * the others; a slot is reused once its last frame finished */
+    uint32_t frames_in_flight;
+    struct _vrg_frame_slot {
+        VkCommandBuffer cmd;
+        VkFence fence;
+        VkQueryPool queries;
+        VkDeviceSize readback_base; /* its part of the readback buffer */
+        uint64_t frame_index;       /* the frame it last ran */
+        uint64_t serial;            /* that frame's submission number (from 1) */
+        int pending;                /* submitted and not yet waited for */
+        int schedule_count;         /* timestamps it holds */
+    } slots[VRG_MAX_FRAMES_IN_FLIGHT];
+    uint64_t submitted;       /* frames submitted; the recording frame's serial is submitted + 1 */
+    uint64_t finished;        /* serial of the newest frame known finished */
+    int last_slot;            /* the slot of the last submitted frame, -1 none */
+    _vrg_retired *retired;
     double pass_ms[VRG_MAX_PASSES];
+    int64_t timed_frame;      /* the frame pass_ms describe, -1 none */
     double pass_cpu_ms[VRG_MAX_PASSES]; /* the last frame's execute callback, CPU ms */
     VkBuffer readback_buffer;
     VkDeviceMemory readback_memory;
     VkDeviceSize readback_size;
     void *readback_map;
-    VkDeviceSize readback_offset[VRG_MAX_RESOURCES];
-    VkDeviceSize progress_offset; /* in the readback buffer: a word per scheduled pass, 1 once it ended */
-    int frame_done;
+    VkDeviceSize readback_offset[VRG_MAX_RESOURCES]; /* within a slot's part */
+    VkDeviceSize progress_offset; /* within a slot's part: a word per scheduled pass, 1 once it ended */
+    VkDeviceSize timestamp_offset; /* within a slot's part: the frame's timestamps, copied by the GPU */
+    VkDeviceSize readback_slot_bytes;
     vrg_camera camera;        /* for the next frame */
     vrg_camera last_camera;   /* the last frame's */
 };
@@ -368,6 +411,9 @@ int _vrg_allocate(vrg_graph *g);
 void _vrg_free_resources(vrg_graph *g);
 /* record.c */
 int _vrg_record_frame(vrg_graph *g);
+/* Waits for every submitted frame (reading their timestamps); -1 after
+ * reporting a GPU timeout, interrupt or device loss. */
+int _vrg_wait_frames(vrg_graph *g);
 /* barrier.c: the access a use needs, and the barrier that gets it there. */
 typedef struct _vrg_access_info {
     VkPipelineStageFlags2 stage;

@@ -250,10 +250,13 @@ void *vrg_pass_buffer(vrg_pass *p, const vrg_buffer_desc *d, VkBuffer *buffer, V
         return NULL;
     }
     _vrg_name_object(ctx, VK_OBJECT_TYPE_BUFFER, (uint64_t)hb->buffer, "%s/%s.%s", p->graph->name, p->name, d->name);
-    if (wants_address && address) {
+    hb->size = ci.size;
+    if (wants_address) {
         VkBufferDeviceAddressInfo info = {.sType = VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO, .buffer = hb->buffer};
-        *address = vkGetBufferDeviceAddress(dev, &info);
+        hb->address = vkGetBufferDeviceAddress(dev, &info);
     }
+    if (address)
+        *address = hb->address;
     hb->next = p->host_buffers;
     p->host_buffers = hb;
     *buffer = hb->buffer;
@@ -266,15 +269,111 @@ void *vrg_pass_host_buffer(vrg_pass *p, const char *name, uint64_t bytes, VkBuff
     return vrg_pass_buffer(p, &d, buffer, NULL);
 }
 
+static void retire(vrg_graph *g, _vrg_host_buffer *hb, void (*fn)(void *), void *user)
+{
+    _vrg_retired *r = calloc(1, sizeof *r);
+    if (!r) { /* cannot defer: wait for the GPU instead */
+        vkDeviceWaitIdle(g->ctx->dev.device);
+        if (hb)
+            free_one(g->ctx->dev.device, hb);
+        if (fn)
+            fn(user);
+        return;
+    }
+    *r = (_vrg_retired){.serial = g->submitted + 1, .buffer = hb, .fn = fn, .user = user, .next = g->retired};
+    g->retired = r;
+}
+
+int vrg_pass_defer(vrg_pass *p, void (*fn)(void *user), void *user)
+{
+    if (!fn)
+        return vrg_pass_error(p, "vrg_pass_defer: no function");
+    if (!p->graph->ctx)
+        fn(user); /* no device: nothing in flight */
+    else
+        retire(p->graph, NULL, fn, user);
+    return 0;
+}
+
+void _vrg_free_retired(vrg_graph *g, int all)
+{
+    for (_vrg_retired **at = &g->retired; *at;) {
+        _vrg_retired *r = *at;
+        if (!all && r->serial > g->finished) {
+            at = &r->next;
+            continue;
+        }
+        *at = r->next;
+        if (r->fn)
+            r->fn(r->user);
+        if (r->buffer)
+            free_one(g->ctx->dev.device, r->buffer);
+        free(r);
+    }
+}
+
 void vrg_pass_free_buffer(vrg_pass *p, VkBuffer buffer)
 {
     for (_vrg_host_buffer **at = &p->host_buffers; *at; at = &(*at)->next)
         if ((*at)->buffer == buffer) {
             _vrg_host_buffer *hb = *at;
             *at = hb->next;
-            free_one(p->graph->ctx->dev.device, hb);
+            retire(p->graph, hb, NULL, NULL); /* frames in flight may still read it */
             return;
         }
+}
+
+/* A buffer for one slice: made like vrg_pass_buffer's, but owned by the ring. */
+static _vrg_host_buffer *ring_buffer(vrg_pass *p, const vrg_ring *ring, uint32_t slot, uint64_t bytes)
+{
+    char name[VRG_NAME_MAX + 16];
+    snprintf(name, sizeof name, "%s[%u]", ring->name, slot);
+    VkBuffer buffer;
+    vrg_buffer_desc d = {.name = name, .size = bytes, .usage = ring->usage, .host_visible = 1};
+    if (!vrg_pass_buffer(p, &d, &buffer, NULL))
+        return NULL;
+    _vrg_host_buffer *hb = p->host_buffers; /* just added first: take it off the pass's list */
+    p->host_buffers = hb->next;
+    hb->next = NULL;
+    return hb;
+}
+
+vrg_ring *vrg_pass_host_ring(vrg_pass *p, const char *name, uint64_t bytes, VkBufferUsageFlags usage)
+{
+    vrg_ring *ring = calloc(1, sizeof *ring);
+    if (!ring) {
+        vrg_pass_error(p, "out of memory for ring '%s'", name);
+        return NULL;
+    }
+    snprintf(ring->name, sizeof ring->name, "%s", name);
+    ring->usage = usage ? usage : VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+    ring->next = p->rings;
+    p->rings = ring;
+    for (uint32_t s = 0; s < p->graph->frames_in_flight; s++)
+        if (!(ring->slice[s] = ring_buffer(p, ring, s, bytes)))
+            return NULL;
+    return ring;
+}
+
+vrg_ring_slice vrg_pass_ring_slice(vrg_pass *p, vrg_ring *ring, uint64_t min_bytes)
+{
+    vrg_graph *g = p->graph;
+    uint32_t slot = g->frame.frame_slot;
+    if (!p->cmd) { /* another slot may be in use by the GPU right now */
+        vrg_pass_error(p, "vrg_pass_ring_slice('%s') is for execute() only", ring->name);
+        return (vrg_ring_slice){0};
+    }
+    _vrg_host_buffer *hb = ring->slice[slot];
+    if (!hb || hb->size < min_bytes) {
+        /* grown by a quarter more, so that slow growth reallocates rarely */
+        _vrg_host_buffer *grown = ring_buffer(p, ring, slot, min_bytes + min_bytes / 4);
+        if (!grown)
+            return (vrg_ring_slice){0};
+        if (hb)
+            retire(g, hb, NULL, NULL);
+        ring->slice[slot] = hb = grown;
+    }
+    return (vrg_ring_slice){.map = hb->map, .buffer = hb->buffer, .size = hb->size, .address = hb->address};
 }
 
 VkAccelerationStructureKHR vrg_res_accel(const vrg_pass *p, vrg_res h)
@@ -286,6 +385,14 @@ VkAccelerationStructureKHR vrg_res_accel(const vrg_pass *p, vrg_res h)
 
 void _vrg_pass_free_host_buffers(vrg_pass *p)
 {
+    while (p->rings) {
+        vrg_ring *ring = p->rings;
+        p->rings = ring->next;
+        for (int s = 0; s < VRG_MAX_FRAMES_IN_FLIGHT; s++)
+            if (ring->slice[s])
+                free_one(p->graph->ctx->dev.device, ring->slice[s]);
+        free(ring);
+    }
     while (p->host_buffers) {
         _vrg_host_buffer *hb = p->host_buffers;
         p->host_buffers = hb->next;

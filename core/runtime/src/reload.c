@@ -64,7 +64,9 @@ static int matching(const vrg_graph *old, const vrg_graph *g, int i)
 static int copy_history(vrg_graph *old, vrg_graph *g)
 {
     VkDevice dev = g->ctx->dev.device;
-    VkCommandBuffer cmd = g->cmd;
+    /* the new graph has run no frame: its first slot is free */
+    VkCommandBuffer cmd = g->slots[0].cmd;
+    VkFence fence = g->slots[0].fence;
     VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
     vkBeginCommandBuffer(cmd, &bi);
     for (int i = 0; i < g->res_count; i++) {
@@ -101,9 +103,9 @@ static int copy_history(vrg_graph *old, vrg_graph *g)
     vkEndCommandBuffer(cmd);
     VkCommandBufferSubmitInfo cbi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = cmd};
     VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cbi};
-    vkResetFences(dev, 1, &g->fence);
+    vkResetFences(dev, 1, &fence);
     double waited;
-    if (vkQueueSubmit2(g->ctx->dev.queue, 1, &si, g->fence) != VK_SUCCESS || _vrg_wait_fence(g->ctx, g->fence, &waited) != VRG_WAIT_DONE) {
+    if (vkQueueSubmit2(g->ctx->dev.queue, 1, &si, fence) != VK_SUCCESS || _vrg_wait_fence(g->ctx, fence, &waited) != VRG_WAIT_DONE) {
         _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "reload: copying history failed (or was interrupted)");
         return -1;
     }
@@ -217,7 +219,9 @@ int vrg_graph_reload(vrg_graph **pg)
     g->frame.frame_index = old->frame.frame_index; /* random sequences and history copies continue */
     g->camera = old->camera;
     g->last_camera = old->last_camera;
-    if (copy_history(old, g) != 0) {
+    /* the old graph's frames in flight end before its resources are copied
+     * and freed (a GPU timeout here is reported like a frame's) */
+    if (_vrg_wait_frames(old) != 0 || copy_history(old, g) != 0) {
         vrg_graph_destroy(g);
         return -1;
     }

@@ -214,7 +214,7 @@ static sec_kind section_kind(const char *name, const char **arg)
 
 static void graph_section(vrg_graph *g, const _vrg_ast *a, int si, const char *graph_path)
 {
-    static const char *known = "name, output, width, height, seed, fps, plugin_path";
+    static const char *known = "name, output, width, height, seed, fps, frames_in_flight, plugin_path";
     for (int i = 0; i < a->key_count; i++) {
         const _vrg_key *k = &a->keys[i];
         if (k->section_index != si || repeated_key(g, a, i))
@@ -244,6 +244,13 @@ static void graph_section(vrg_graph *g, const _vrg_ast *a, int si, const char *g
                 _vrg_error_at(&g->diag, k->line, VRG_E_OUT_OF_RANGE, "frames per second of simulated time", "'fps = %s' must be > 0", k->value);
             else
                 g->fps = v;
+        } else if (strcmp(k->name, "frames_in_flight") == 0) {
+            long n;
+            if (parse_int(k->value, &n) != 0 || n < 1 || n > VRG_MAX_FRAMES_IN_FLIGHT)
+                _vrg_error_at(&g->diag, k->line, VRG_E_OUT_OF_RANGE, "1: the CPU waits for each frame; 2 (the default): it records the next while the GPU runs one",
+                              "'frames_in_flight = %s' must be a whole number from 1 to %d", k->value, VRG_MAX_FRAMES_IN_FLIGHT);
+            else
+                g->frames_in_flight = (uint32_t)n;
         } else if (strcmp(k->name, "plugin_path") == 0)
             _vrg_plugin_path_check(graph_path, k->value, &g->diag, k->line); /* a typo: not "unknown plugin" per pass */
         else

@@ -107,7 +107,8 @@ int vrg_scene_create(vrg_pass *pass, vrg_scene_gpu *s, vrg_world *world)
     /* room to upload the whole grid in one frame (the first, or after a
      * teleport or reallocation); later only changed chunks go up */
     s->staging_bytes = vrg_world_gpu_bytes((dims[0] - 1) / 2, dims[1]);
-    s->staging = vrg_pass_host_buffer(pass, "world staging", s->staging_bytes, &s->staging_buffer);
+    s->staging = vrg_pass_host_ring(pass, "world staging", s->staging_bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    /* written once, here, before any frame: a plain host buffer */
     void *atlas = vrg_pass_host_buffer(pass, "atlas staging", vrg_atlas_bytes(), &s->atlas_staging);
     if (!s->staging || !atlas)
         return -1;
@@ -133,9 +134,12 @@ void vrg_scene_record(vrg_pass *pass, vrg_scene_gpu *s, VkCommandBuffer cmd)
         vrg_atlas_record_upload(pass, cmd, "atlas", s->atlas_staging);
     }
     int uploaded = 0;
-    if (vrg_world_dirty_count(s->world))
-        uploaded = vrg_world_upload(s->world, cmd, vrg_res_buffer(pass, vrg_pass_res(pass, "world")), s->staging, s->staging_buffer,
-                                    s->staging_bytes);
+    if (vrg_world_dirty_count(s->world)) {
+        /* this frame's slice: earlier frames may still copy from theirs */
+        vrg_ring_slice slice = vrg_pass_ring_slice(pass, s->staging, s->staging_bytes);
+        if (slice.map)
+            uploaded = vrg_world_upload(s->world, cmd, vrg_res_buffer(pass, vrg_pass_res(pass, "world")), slice.map, slice.buffer, s->staging_bytes);
+    }
     vrg_pass_stat(pass, "chunks_uploaded", uploaded);
     if (s->accel)
         vrg_world_accel_record(s->accel, cmd, "tlas");

@@ -378,8 +378,8 @@ static void pack_slot(const vrg_world *w, slot *sl, uint32_t *out)
 
 int vrg_world_upload(vrg_world *w, VkCommandBuffer cmd, VkBuffer dst, void *staging, VkBuffer staging_buffer, uint64_t staging_bytes)
 {
-    /* Regions go out in batches; the staging memory is used once per frame
-     * (its copies run before the host writes it again). */
+    /* Regions go out in batches; the staging memory is this frame's (a ring
+     * slice: the host writes it again only after these copies ran). */
     VkBufferCopy regions[256];
     uint32_t nr = 0;
     uint64_t used = 0;

@@ -19,12 +19,12 @@ struct vrg_world_accel {
     int slots;
     chunk_blas *blas; /* per slot */
     int *changed;
-    /* per-frame host data: triangle vertices of rebuilt chunks, instances */
-    VkBuffer vertices, instances, scratch;
-    float *vertex_map;
-    VkAccelerationStructureInstanceKHR *instance_map;
-    VkDeviceAddress vertex_address, instance_address, scratch_address;
-    uint64_t vertex_bytes, scratch_bytes;
+    /* per-frame host data, rings (earlier frames may still build from
+     * theirs): triangle vertices of rebuilt chunks, instances */
+    vrg_ring *vertices, *instances;
+    VkBuffer scratch;
+    VkDeviceAddress scratch_address;
+    uint64_t scratch_bytes;
     VkDeviceSize scratch_align;
     /* VK_KHR_acceleration_structure's commands, from the pass's device */
     VkDevice device;
@@ -39,6 +39,20 @@ static void *buffer(vrg_world_accel *a, const char *name, uint64_t size, VkBuffe
 {
     vrg_buffer_desc d = {.name = name, .size = size, .usage = usage | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT, .host_visible = host};
     return vrg_pass_buffer(a->pass, &d, b, addr);
+}
+
+/* A replaced BLAS, destroyed once no frame in flight traces it. */
+typedef struct retired_blas {
+    PFN_vkDestroyAccelerationStructureKHR destroy;
+    VkDevice device;
+    VkAccelerationStructureKHR as;
+} retired_blas;
+
+static void destroy_retired_blas(void *user)
+{
+    retired_blas *r = user;
+    r->destroy(r->device, r->as, NULL);
+    free(r);
 }
 
 vrg_world_accel *vrg_world_accel_create(vrg_pass *pass, vrg_world *world)
@@ -65,9 +79,10 @@ vrg_world_accel *vrg_world_accel_create(vrg_pass *pass, vrg_world *world)
     VkPhysicalDeviceProperties2 p2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &asp};
     vkGetPhysicalDeviceProperties2(dev->physical_device, &p2);
     a->scratch_align = asp.minAccelerationStructureScratchOffsetAlignment ? asp.minAccelerationStructureScratchOffsetAlignment : 256;
-    a->instance_map = buffer(a, "tlas instances", (uint64_t)a->slots * sizeof(VkAccelerationStructureInstanceKHR),
-                             VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR, 1, &a->instances, &a->instance_address);
-    if (!a->instance_map) {
+    const VkBufferUsageFlags input = VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+    a->instances = vrg_pass_host_ring(pass, "tlas instances", (uint64_t)a->slots * sizeof(VkAccelerationStructureInstanceKHR), input);
+    a->vertices = a->instances ? vrg_pass_host_ring(pass, "blas vertices", 16, input) : NULL; /* grows with the first frame's chunks */
+    if (!a->vertices) {
         vrg_world_accel_destroy(a);
         return NULL;
     }
@@ -177,17 +192,12 @@ int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *
         total += (uint64_t)quads[i];
     }
     uint64_t vbytes = total * 18 * sizeof(float);
-    if (vbytes > a->vertex_bytes) {
-        if (a->vertices)
-            vrg_pass_free_buffer(a->pass, a->vertices); /* the last frame that read it has finished */
-        a->vertex_bytes = vbytes + vbytes / 4;
-        a->vertex_map = buffer(a, "blas vertices", a->vertex_bytes, VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR, 1,
-                               &a->vertices, &a->vertex_address);
-        if (!a->vertex_map) {
-            free(keys);
-            free(quads);
-            return -1;
-        }
+    vrg_ring_slice vslice = vrg_pass_ring_slice(a->pass, a->vertices, vbytes);
+    vrg_ring_slice islice = vrg_pass_ring_slice(a->pass, a->instances, (uint64_t)a->slots * sizeof(VkAccelerationStructureInstanceKHR));
+    if (!vslice.map || !islice.map) {
+        free(keys);
+        free(quads);
+        return -1;
     }
     /* 2. one BLAS per changed chunk with faces */
     VkAccelerationStructureGeometryKHR *geoms = calloc(cap, sizeof *geoms);
@@ -201,16 +211,22 @@ int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *
     for (int i = 0; i < nchanged && rc == 0; i++) {
         int s = a->changed[i];
         chunk_blas *b = &a->blas[s];
-        if (b->as) {
-            a->destroy_as(dev, b->as, NULL);
+        if (b->as) { /* earlier frames in flight may still trace it */
             vrg_pass_free_buffer(a->pass, b->buffer);
+            retired_blas *r = malloc(sizeof *r);
+            if (!r) {
+                rc = vrg_pass_error(a->pass, "out of memory retiring the BLAS of chunk slot %d", s);
+                break;
+            }
+            *r = (retired_blas){a->destroy_as, dev, b->as};
+            vrg_pass_defer(a->pass, destroy_retired_blas, r); /* deferred last: destroyed before its buffer */
             memset(b, 0, sizeof *b);
         }
         int c[3];
         if (!quads[i] || !vrg_world_slot_chunk(a->world, s, c))
             continue;
         int n = chunk_quads(a->world, c, keys);
-        float *v = a->vertex_map + voff / sizeof(float);
+        float *v = (float *)vslice.map + voff / sizeof(float);
         for (int q = 0; q < n; q++)
             quad_vertices(keys[q], v + 18 * q);
         VkAccelerationStructureGeometryKHR *g = &geoms[nbuild];
@@ -220,7 +236,7 @@ int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *
             .flags = VK_GEOMETRY_OPAQUE_BIT_KHR,
             .geometry.triangles = {.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_TRIANGLES_DATA_KHR,
                                    .vertexFormat = VK_FORMAT_R32G32B32_SFLOAT,
-                                   .vertexData.deviceAddress = a->vertex_address + voff,
+                                   .vertexData.deviceAddress = vslice.address + voff,
                                    .vertexStride = 3 * sizeof(float),
                                    .maxVertex = (uint32_t)(6 * n - 1),
                                    .indexType = VK_INDEX_TYPE_NONE_KHR},
@@ -271,7 +287,7 @@ int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *
         chunk_blas *b = &a->blas[s];
         if (!b->as)
             continue;
-        VkAccelerationStructureInstanceKHR *in = &a->instance_map[ninst++];
+        VkAccelerationStructureInstanceKHR *in = (VkAccelerationStructureInstanceKHR *)islice.map + ninst++;
         memset(in, 0, sizeof *in);
         in->transform.matrix[0][0] = in->transform.matrix[1][1] = in->transform.matrix[2][2] = 1.0f;
         in->transform.matrix[0][3] = (float)(b->chunk[0] * 16);
@@ -285,7 +301,7 @@ int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *
     VkAccelerationStructureGeometryKHR tgeom = {
         .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR,
         .geometryType = VK_GEOMETRY_TYPE_INSTANCES_KHR,
-        .geometry.instances = {.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_INSTANCES_DATA_KHR, .data.deviceAddress = a->instance_address},
+        .geometry.instances = {.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_INSTANCES_DATA_KHR, .data.deviceAddress = islice.address},
     };
     VkAccelerationStructureBuildGeometryInfoKHR tinfo = {
         .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR,

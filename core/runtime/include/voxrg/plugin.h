@@ -25,7 +25,8 @@ extern "C" {
  * and voxrg/sky.h, which scene plugins use (VRG_SCENE_SLOTS,
  * vrg_scene_gpu, the frame uniforms). Additions at the end of
  * vrg_plugin_desc are compatible. 2: the layers split (the scene glue moved
- * to libvoxrg_voxel; vrg_pass_set_world became vrg_pass_share). */
+ * to libvoxrg_voxel; vrg_pass_set_world became vrg_pass_share) and frames
+ * in flight (what the host may write when; vrg_scene_gpu's staging ring). */
 #define VRG_ABI_VERSION 2u
 #define VRG_PLUGIN_ENTRY_SYMBOL "vrg_plugin_entry"
 #define VRG_EXPORT __attribute__((visibility("default")))
@@ -219,7 +220,16 @@ typedef struct vrg_frame_info {
     int params_changed;     /* first frame after a reload of the graph (new parameter
                              * values or structure) or vrg_graph_set_param: history
                              * carried over stays valid, but accumulations restart */
+    /* Frames in flight ([graph] frames_in_flight): the GPU may still run up
+     * to frames_in_flight - 1 earlier frames while this one is recorded.
+     * frame_slot (0 .. frames_in_flight - 1) names the slot this frame
+     * records into; its ring slices are this frame's alone. (Added at the
+     * end: the runtime allocates vrg_frame_info, plugins only read it.) */
+    uint32_t frame_slot;
+    uint32_t frames_in_flight;
 } vrg_frame_info;
+
+#define VRG_MAX_FRAMES_IN_FLIGHT 4
 
 /* A resource a pass can name: one of its slots or an internal resource. */
 typedef struct vrg_res {
@@ -237,7 +247,9 @@ int vrg_pass_error(vrg_pass *pass, const char *fmt, ...) __attribute__((format(p
 /* An error at a line of the graph file (e.g. a parameter's, from vrg_param_item). */
 int vrg_pass_error_at(vrg_pass *pass, int line, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 
-/* GPU milliseconds of a pass (NULL: this one) in the last finished frame; -1 if unknown. */
+/* GPU milliseconds of a pass (NULL: this one) in the newest frame known to
+ * have finished: with frames in flight an earlier one than this frame
+ * (at least frame_index - frames_in_flight); -1 if unknown. */
 double vrg_pass_gpu_ms(const vrg_pass *pass, const char *other_pass);
 
 /* A named figure of this frame (e.g. chunks integrated, milliseconds spent
@@ -262,13 +274,39 @@ int vrg_param_choice(vrg_pass *pass, const char *name, const char *const *choice
 /* In check() or create(): the byte size of a buffer output, when it depends
  * on parameters (readers' minimum sizes are checked against it). */
 int vrg_pass_set_buffer_size(vrg_pass *pass, const char *slot, uint64_t bytes);
+/* What a pass may write from the host, with frames in flight (the GPU may
+ * still run earlier frames while execute() records this one):
+ *  - its ring slice of this frame (vrg_pass_ring_slice), in execute(), any
+ *    number of times until execute() returns;
+ *  - memory of vrg_pass_host_buffer and host-visible vrg_pass_buffer only
+ *    before the first frame that uses it is submitted (e.g. the atlas
+ *    staging, filled in create()); data that changes per frame goes through
+ *    a ring.
+ * Host writes made before vrg_graph_frame submits are visible to the frame. */
+
 /* In create(): host-visible, coherent, persistently mapped memory owned by
- * the runtime (staging for uploads). Returns the mapping; *buffer is usable
- * as a transfer source. Host writes before the frame's submission are
- * visible to it. */
+ * the runtime (staging for uploads, written before its first use). Returns
+ * the mapping; *buffer is usable as a transfer source. */
 void *vrg_pass_host_buffer(vrg_pass *pass, const char *name, uint64_t bytes, VkBuffer *buffer);
+/* In create(): a ring of host-visible, coherent, mapped buffers, one per
+ * frame slot, each of at least `bytes`, with `usage` (0: TRANSFER_SRC).
+ * NULL after reporting an error. */
+typedef struct vrg_ring vrg_ring;
+vrg_ring *vrg_pass_host_ring(vrg_pass *pass, const char *name, uint64_t bytes, VkBufferUsageFlags usage);
+/* In execute(): this frame's slice of the ring, the only ring memory the
+ * host may write now (the GPU has finished the frame that used it before).
+ * min_bytes larger than the slice grows it (the old buffer is freed once
+ * the frames that used it finished). map NULL after reporting an error. */
+typedef struct vrg_ring_slice {
+    void *map;               /* the host's view, size bytes */
+    VkBuffer buffer;         /* this slice alone: offsets start at 0 */
+    uint64_t size;
+    VkDeviceAddress address; /* when usage has SHADER_DEVICE_ADDRESS, else 0 */
+} vrg_ring_slice;
+vrg_ring_slice vrg_pass_ring_slice(vrg_pass *pass, vrg_ring *ring, uint64_t min_bytes);
 /* In create() or execute(): a buffer kept for the pass's lifetime and owned by the
- * runtime (freed with the pass, or earlier with vrg_pass_free_buffer).
+ * runtime (freed with the pass, or earlier with vrg_pass_free_buffer, which
+ * frees it once the frames in flight that may use it have finished).
  * Returns the mapping when host_visible (else a non-NULL token); *address
  * gets the device address when usage has SHADER_DEVICE_ADDRESS. NULL after
  * reporting an error. */
@@ -280,6 +318,13 @@ typedef struct vrg_buffer_desc {
 } vrg_buffer_desc;
 void *vrg_pass_buffer(vrg_pass *pass, const vrg_buffer_desc *desc, VkBuffer *buffer, VkDeviceAddress *address);
 void vrg_pass_free_buffer(vrg_pass *pass, VkBuffer buffer);
+/* Frees something the pass made itself (an acceleration structure, a
+ * pipeline) once no frame in flight can use it: fn(user) runs after every
+ * frame recorded so far has finished, at the latest when the graph is
+ * destroyed (after the passes' destroy(), before plugins are unloaded);
+ * at once without a device. Things deferred together are freed in reverse
+ * order. Returns 0, or -1 after reporting an error. */
+int vrg_pass_defer(vrg_pass *pass, void (*fn)(void *user), void *user);
 /* The acceleration structure of a VRG_ACCEL slot (VK_NULL_HANDLE if none). */
 VkAccelerationStructureKHR vrg_res_accel(const vrg_pass *pass, vrg_res res);
 

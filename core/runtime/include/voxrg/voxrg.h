@@ -80,15 +80,37 @@ typedef struct vrg_graph_desc {
 int vrg_graph_load(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph **out);
 void vrg_graph_destroy(vrg_graph *g);
 
-/* Record, submit and wait for one frame. Returns 0, or -1 on error. */
+/* Records and submits one frame. With frames in flight ([graph]
+ * frames_in_flight, default 2) it returns once the frame is submitted,
+ * having waited only for the frame frames_in_flight before this one, so
+ * the CPU records the next frame while the GPU runs this one. Returns 0, or
+ * -1 on error (also when that wait times out: --gpu-timeout, naming the
+ * frame and the pass still running).
+ *
+ * What describes a frame:
+ *  - readbacks (vrg_graph_read, vrg_graph_read_buffer, vrg_graph_image)
+ *    are of the last frame submitted: they wait for it to end first;
+ *  - figures of vrg_pass_stat (vrg_graph_stat) and the CPU times are of the
+ *    last frame recorded, known at once;
+ *  - GPU timings (vrg_graph_pass_ms) are of the newest frame known to have
+ *    ended, vrg_graph_timed_frame; after vrg_graph_wait (or a readback)
+ *    that is the last frame submitted. */
 int vrg_graph_frame(vrg_graph *g);
+/* Waits for every frame in flight: 0, or -1 after reporting a GPU timeout
+ * (naming the frame and pass) or an earlier one. */
+int vrg_graph_wait(vrg_graph *g);
+/* The frame index the GPU timings describe; -1 before any frame ended. */
+int64_t vrg_graph_timed_frame(const vrg_graph *g);
+/* [graph] frames_in_flight (1..VRG_MAX_FRAMES_IN_FLIGHT, default 2). */
+uint32_t vrg_graph_frames_in_flight(const vrg_graph *g);
 /* CPU time of the last frame's recording and submission (barriers, the
  * passes' execute callbacks, the submit), without the wait for the GPU. */
 double vrg_graph_cpu_ms(const vrg_graph *g);
 /* CPU time of pass i's execute callback in the last frame (0 if culled). */
 double vrg_graph_pass_cpu_ms(const vrg_graph *g, uint32_t i);
-/* For benchmarks: renders one frame keeping its barriers and dispatches
- * (pipeline, pushed descriptors, push constants, group counts) as data;
+/* For benchmarks: renders one frame (and waits for it) keeping its
+ * barriers and dispatches (pipeline, pushed descriptors, push constants,
+ * group counts) as data;
  * vrg_capture_record records exactly those commands with direct Vulkan
  * calls, valid when the resources are in the state the captured frame
  * found them in (a frame of the same parity just ran). */
@@ -97,7 +119,8 @@ vrg_capture *vrg_graph_capture_frame(vrg_graph *g);
 void vrg_capture_record(const vrg_capture *c, VkCommandBuffer cmd);
 void vrg_capture_counts(const vrg_capture *c, uint32_t *dispatches, uint32_t *barrier_batches);
 void vrg_capture_free(vrg_capture *c);
-/* New graph size: re-allocates every resource and resets history. */
+/* New graph size: waits for the frames in flight, re-allocates every
+ * resource and resets history. */
 int vrg_graph_resize(vrg_graph *g, uint32_t width, uint32_t height);
 /* Next frame sees history_valid = 0 and cleared @prev images (camera cut). */
 void vrg_graph_reset_history(vrg_graph *g);
@@ -123,7 +146,7 @@ typedef struct vrg_image_data {
 int vrg_graph_read(vrg_graph *g, const char *resource, vrg_image_data *out);
 /* For presenting: the image of a read-back image resource (the output, or
  * one named in vrg_graph_desc.readback) after the last frame, in
- * VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL and idle. A host may copy or blit
+ * VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL and idle (it waits for the frame). A host may copy or blit
  * from it on the graph's queue before the next vrg_graph_frame. */
 int vrg_graph_image(vrg_graph *g, const char *resource, VkImage *image, VkExtent2D *extent, VkFormat *format);
 /* With keep_images: the image resources a viewer may show (written, not
@@ -147,7 +170,8 @@ int vrg_graph_read_buffer(vrg_graph *g, const char *resource, void **data, uint6
 /* What `voxrg check` prints: schedule, resources, barriers, culled passes, memory. */
 void vrg_graph_report(const vrg_graph *g, FILE *f);
 void vrg_graph_write_dot(const vrg_graph *g, FILE *f);
-/* Per-pass GPU milliseconds of the last frame; -1 where not measured. */
+/* Per-pass GPU milliseconds of frame vrg_graph_timed_frame (the newest
+ * that ended; vrg_graph_wait makes it the last one); -1 where not measured. */
 uint32_t vrg_graph_pass_count(const vrg_graph *g);
 const char *vrg_graph_pass_name(const vrg_graph *g, uint32_t i);
 double vrg_graph_pass_ms(const vrg_graph *g, uint32_t i);

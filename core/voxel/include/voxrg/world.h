@@ -94,9 +94,10 @@ typedef struct vrg_world_hit {
  * origin outside the world (VRG_WORLD_LIMIT) hits nothing. */
 int vrg_world_pick(const vrg_world *w, const float origin[3], const float dir[3], float max_distance, vrg_world_hit *hit);
 
-/* Records copies of changed chunks (at most what fits the staging ring)
+/* Records copies of changed chunks (at most what fits the staging memory)
  * into dst, the world buffer a scene writes with VRG_ACCESS_TRANSFER_DST.
- * staging is host-visible memory of staging_bytes (vrg_pass_host_buffer).
+ * staging is host-visible memory of staging_bytes the host may write now:
+ * this frame's slice of a ring (vrg_pass_ring_slice).
  * Returns the number of slots uploaded; the rest wait for the next frame. */
 int vrg_world_upload(vrg_world *w, VkCommandBuffer cmd, VkBuffer dst, void *staging, VkBuffer staging_buffer, uint64_t staging_bytes);
 /* The box of the non-air blocks the GPU copy holds after the last upload,
@@ -211,8 +212,7 @@ void vrg_scene_write_frame(vrg_pass *pass, VkCommandBuffer cmd, const char *slot
 
 typedef struct vrg_scene_gpu {
     vrg_world *world;
-    void *staging; /* world uploads */
-    VkBuffer staging_buffer;
+    vrg_ring *staging; /* world uploads: a slice per frame in flight */
     uint64_t staging_bytes;
     VkBuffer atlas_staging;
     vrg_world_accel *accel; /* traversal = rayquery */
