@@ -15,6 +15,7 @@
 #include <unistd.h>
 #include "voxrg/camera.h"
 #include "voxrg/camera_path.h"
+#include "voxrg/png.h"
 
 enum { MAX_PASSES = 64 };
 

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "util.h"
+#include "voxrg/png.h"
 
 typedef struct job {
     char path[VRG_CLI_PATH];
