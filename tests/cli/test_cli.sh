@@ -220,10 +220,10 @@ GLSL
 expect_rc 0 "shader with #include" env VOXRG_SHADER_PATH="$out/sh" "$voxrg" render "$tests/graphs/shader_file.ini" --validate --out "$out/sh_ok"
 sed -i 's/return vec4/return vec3/' "$out/sh/inc.glsl"   # a type error on line 2 of the include
 expect_rc 1 "shader error in an include" env VOXRG_SHADER_PATH="$out/sh" "$voxrg" render "$tests/graphs/shader_file.ini" --validate --out "$out/sh_bad"
-has "$out/stderr" "^$out/sh/inc.glsl:2: error:" "include error names the included file and line"
+has "$out/stderr" "^$out/sh/inc.glsl:2: error\[VRG-E063\]:" "include error names the included file and line"
 printf '#version 450\nlayout(local_size_x = 8) in;\nvoid main() { undefined_call(); }\n' >"$out/sh/user.comp"
 expect_rc 1 "shader error in the main file" env VOXRG_SHADER_PATH="$out/sh" "$voxrg" render "$tests/graphs/shader_file.ini" --out "$out/sh_bad2"
-has "$out/stderr" "^$out/sh/user.comp:3: error:.*undefined_call" "main-file error names file and line"
+has "$out/stderr" "^$out/sh/user.comp:3: error\[VRG-E063\]:.*undefined_call" "main-file error names file and line"
 has "$out/stderr" "shader_file.ini:8: error\[VRG-E060\]: pass 'user'" "the failing pass is named at its line"
 
 # --camera: a path moves the camera; a bad path names FILE:LINE

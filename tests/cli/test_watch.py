@@ -142,7 +142,7 @@ def shader_case(tmp):
 
     k = settle(r)
     save(shader, "#version 450\nlayout(local_size_x = 8) in;\nvoid main() { this is not glsl }\n")
-    check(r.wait_stderr(r"user\.comp:3: error"), "shader: the syntax error was not reported at user.comp:3")
+    check(r.wait_stderr(r"user\.comp:3: error\[VRG-E063\]"), "shader: the syntax error was not reported at user.comp:3")
     check(r.alive(), "shader: the process stopped on a broken shader")
     k = r.latest()
     for j in range(k + 1, k + BOUND):

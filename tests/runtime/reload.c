@@ -60,8 +60,8 @@ static void test_hot_reload_shader(void)
         const char *err = vrg_graph_reload_error(g);
         if (step == 2) {
             fflush(diag);
-            CHECK(err && strstr(err, "user.comp:3: error"), "no FILE:LINE reload error: %s", err ? err : "(none)");
-            CHECK(log && strstr(log, "user.comp:3: error"), "the error was not printed: %s", log ? log : "");
+            CHECK(err && strstr(err, "user.comp:3: error[VRG-E063]"), "no FILE:LINE reload error: %s", err ? err : "(none)");
+            CHECK(log && strstr(log, "user.comp:3: error[VRG-E063]"), "the error was not printed: %s", log ? log : "");
         } else
             CHECK(!err, "step %d: unexpected reload error %s", step, err);
         if (step == 1 || step == 3)

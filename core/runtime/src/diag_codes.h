@@ -76,6 +76,7 @@
     X(VRG_E_SHADER_FAILED, "VRG-E060", "shader-failed", "a pass's shader is not found, does not compile or makes no pipeline")             \
     X(VRG_E_BAD_DISPATCH, "VRG-E061", "bad-dispatch", "a pass's dispatch cannot be recorded (bindings, push constants, domain)")            \
     X(VRG_E_PASS_API_MISUSE, "VRG-E062", "pass-api-misuse", "a plugin called the pass API at the wrong time or with wrong names")           \
+    X(VRG_E_SHADER_SOURCE, "VRG-E063", "shader-source", "a shader or a file it #includes has a GLSL error, a bad #include or cannot be read") \
     /* the device and the running graph */                                                                                                  \
     X(VRG_E_DEVICE_UNSUPPORTED, "VRG-E070", "device-unsupported", "the device lacks an extension, format or size the graph needs")         \
     X(VRG_E_VULKAN_FAILED, "VRG-E071", "vulkan-failed", "creating a Vulkan object, device memory or a submission failed")                  \
@@ -88,6 +89,7 @@
     X(VRG_E_WATCH_FAILED, "VRG-E078", "watch-failed", "hot reload cannot watch the graph's files")                                        \
     /* warnings */                                                                                                                          \
     X(VRG_W_UNUSED_RESOURCE, "VRG-W001", "unused-resource", "a [resource] section configures a resource no pass uses")                    \
-    X(VRG_W_PLUGIN_SHADOWED, "VRG-W002", "plugin-shadowed", "a plugin of the same name earlier on the search path is used instead")
+    X(VRG_W_PLUGIN_SHADOWED, "VRG-W002", "plugin-shadowed", "a plugin of the same name earlier on the search path is used instead")     \
+    X(VRG_W_SHADER_WARNING, "VRG-W003", "shader-warning", "the GLSL compiler warns about a shader or a file it #includes")
 
 #endif

@@ -1,7 +1,7 @@
 #define _GNU_SOURCE
 /* GLSL → SPIR-V at run time with glslang's C API. #include "x.glsl" is
  * resolved next to the including file, then in shaders/include and shaders/.
- * Errors come out as FILE:LINE: error: MESSAGE. */
+ * Errors come out as FILE:LINE: error[VRG-E063]: MESSAGE (warnings VRG-W003). */
 #include <glslang/Include/glslang_c_interface.h>
 #include <glslang/Public/resource_limits_c.h>
 #include <pthread.h>
@@ -10,6 +10,8 @@
 #include <string.h>
 #include <unistd.h>
 #include "internal.h"
+
+#define SOURCE_CODE (_vrg_diag_info_of(VRG_E_SHADER_SOURCE)->code)
 
 #ifndef VRG_SOURCE_DIR
 #define VRG_SOURCE_DIR "."
@@ -137,7 +139,7 @@ static int remember_include(expand_ctx *e, const char *resolved)
         int cap = e->seen_cap ? 2 * e->seen_cap : 16;
         char (*grown)[VRG_PATH_MAX] = realloc(e->seen, (size_t)cap * sizeof *grown);
         if (!grown) {
-            fprintf(e->diag, "%s: error: out of memory\n", resolved);
+            fprintf(e->diag, "%s: error[%s]: out of memory\n", resolved, SOURCE_CODE);
             e->failed = 1;
             return -1;
         }
@@ -173,15 +175,15 @@ static void expand(expand_ctx *e, const char *path, const char *text, int depth)
                 const char *qe = close ? memchr(q + 1, close, (size_t)(p + n - q - 1)) : NULL;
                 char name[512], resolved[VRG_PATH_MAX];
                 if (!qe || (size_t)(qe - q - 1) >= sizeof name) {
-                    fprintf(e->diag, "%s:%d: error: malformed #include\n", path, line);
+                    fprintf(e->diag, "%s:%d: error[%s]: malformed #include\n", path, line, SOURCE_CODE);
                     e->failed = 1;
                 } else {
                     snprintf(name, sizeof name, "%.*s", (int)(qe - q - 1), q + 1);
                     if (resolve_include(path, name, resolved, sizeof resolved) != 0) {
-                        fprintf(e->diag, "%s:%d: error: cannot find include file \"%s\"\n", path, line, name);
+                        fprintf(e->diag, "%s:%d: error[%s]: cannot find include file \"%s\"\n", path, line, SOURCE_CODE, name);
                         e->failed = 1;
                     } else if (depth > 16) {
-                        fprintf(e->diag, "%s:%d: error: #include nested too deeply\n", path, line);
+                        fprintf(e->diag, "%s:%d: error[%s]: #include nested too deeply\n", path, line, SOURCE_CODE);
                         e->failed = 1;
                     } else {
                         int seen = 0;
@@ -234,7 +236,7 @@ static void expand(expand_ctx *e, const char *path, const char *text, int depth)
 }
 
 /* glslang says "ERROR: 0:12: msg" for the main file and "ERROR: path:12:
- * msg" after a #line naming an include; print each as PATH:LINE: error: msg. */
+ * msg" after a #line naming an include; print each as PATH:LINE: error[CODE]: msg. */
 static void print_log(FILE *f, const char *path, const char *log)
 {
     while (log && *log) {
@@ -244,6 +246,7 @@ static void print_log(FILE *f, const char *path, const char *log)
         if (is_err || is_warn) {
             const char *rest = log + (is_err ? 7 : 9), *stop = log + n;
             const char *kind = is_err ? "error" : "warning";
+            const char *code = _vrg_diag_info_of(is_err ? VRG_E_SHADER_SOURCE : VRG_W_SHADER_WARNING)->code;
             /* FILE:LINE: where LINE is digits; FILE is "0" for the main file */
             const char *colon = memchr(rest, ':', (size_t)(stop - rest));
             const char *num = colon ? colon + 1 : NULL, *q = num;
@@ -251,10 +254,10 @@ static void print_log(FILE *f, const char *path, const char *log)
                 q++;
             if (colon && q > num && q < stop && *q == ':') {
                 int main_file = colon - rest == 1 && rest[0] == '0';
-                fprintf(f, "%.*s:%.*s: %s:%.*s\n", main_file ? (int)strlen(path) : (int)(colon - rest), main_file ? path : rest, (int)(q - num),
-                        num, kind, (int)(stop - q - 1), q + 1);
+                fprintf(f, "%.*s:%.*s: %s[%s]:%.*s\n", main_file ? (int)strlen(path) : (int)(colon - rest), main_file ? path : rest, (int)(q - num),
+                        num, kind, code, (int)(stop - q - 1), q + 1);
             } else
-                fprintf(f, "%s: %s: %.*s\n", path, kind, (int)(stop - rest), rest);
+                fprintf(f, "%s: %s[%s]: %.*s\n", path, kind, code, (int)(stop - rest), rest);
         }
         log = end ? end + 1 : log + n;
     }
@@ -307,7 +310,7 @@ int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines,
     size_t len;
     char *src = read_file(path, &len);
     if (!src) {
-        fprintf(diag, "%s: error: cannot read shader\n", path);
+        fprintf(diag, "%s: error[%s]: cannot read shader\n", path, SOURCE_CODE);
         return -1;
     }
     /* Every shader sees the device's preferred workgroup shape and pixel
@@ -377,7 +380,7 @@ int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines,
             _vrg_name_object(ctx, VK_OBJECT_TYPE_SHADER_MODULE, (uint64_t)out->module, "%s", path);
             rc = 0;
         } else
-            fprintf(diag, "%s: error: vkCreateShaderModule failed\n", path);
+            fprintf(diag, "%s: error[%s]: vkCreateShaderModule failed\n", path, _vrg_diag_info_of(VRG_E_VULKAN_FAILED)->code);
     }
     if (program)
         glslang_program_delete(program);
