@@ -80,6 +80,12 @@ static spng_ctx *encoder(const uint8_t *rgb, uint32_t w, uint32_t h, int *err)
         return NULL;
     }
     spng_set_option(ctx, SPNG_ENCODE_TO_BUFFER, 1);
+    /* Fast settings (zlib level 1, the Sub filter on every row): `render
+     * --sequence` and compare write a file per frame, and on a CPU device
+     * the encoder takes its time from the renderer. The pixels are the
+     * same; docs/benchmarks.md has the cost in time and bytes. */
+    spng_set_option(ctx, SPNG_IMG_COMPRESSION_LEVEL, 1);
+    spng_set_option(ctx, SPNG_FILTER_CHOICE, SPNG_FILTER_CHOICE_SUB);
     struct spng_ihdr ihdr = {.width = w, .height = h, .bit_depth = 8, .color_type = SPNG_COLOR_TYPE_TRUECOLOR};
     spng_set_ihdr(ctx, &ihdr);
     *err = spng_encode_image(ctx, rgb, (size_t)w * h * 3, SPNG_FMT_PNG, SPNG_ENCODE_FINALIZE);
