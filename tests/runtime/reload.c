@@ -74,6 +74,47 @@ static void test_hot_reload_shader(void)
     remove(user), remove(tint), rmdir(dir);
 }
 
+/* A shader saved while earlier frames are still in flight (none waited
+ * for): its old pipeline stays alive until those frames end (the validation
+ * layer reports destroying a pipeline in use otherwise) and the next frame
+ * uses the new one. */
+static void test_hot_reload_shader_in_flight(void)
+{
+    char dir[] = "/tmp/voxrg-reload-XXXXXX";
+    if (!mkdtemp(dir)) {
+        CHECK(0, "mkdtemp failed");
+        return;
+    }
+    char user[1100], tint[1100], path[1024];
+    snprintf(user, sizeof user, "%s/user.comp", dir);
+    snprintf(tint, sizeof tint, "%s/tint.glsl", dir);
+    save_file(user, user_shader);
+    save_file(tint, "#define TINT vec3(0.25, 0.5, 0.75)\n");
+    setenv("VOXRG_SHADER_PATH", dir, 1);
+    snprintf(path, sizeof path, "%s/graphs/shader_file.ini", TEST_DIR);
+    static const char *reads[] = {"color"};
+    vrg_graph_desc d = {.path = path, .readback = reads, .readback_count = 1};
+    vrg_graph *g = NULL;
+    CHECK(vrg_graph_load(ctx, &d, &g) == 0, "cannot load shader_file.ini");
+    if (g) {
+        CHECK(vrg_graph_watch(g, 1) == 0, "watch failed");
+        for (int k = 0; k < 3; k++) /* frames in flight, never waited for here */
+            CHECK(vrg_graph_frame(g) == 0, "frame %d failed", k);
+        save_file(tint, "#define TINT vec3(1.0, 0.0, 0.0)\n");
+        CHECK(vrg_graph_frame(g) == 0, "the frame after the save failed");
+        vrg_image_data img;
+        CHECK(vrg_graph_read(g, "color", &img) == 0, "readback failed");
+        if (img.pixels) {
+            CHECK(fabsf(px(&img, 5, 7, 0) - 1.0f) < 1e-3f && fabsf(px(&img, 5, 7, 1)) < 1e-3f, "the saved shader is not in use: (%g, %g)",
+                  px(&img, 5, 7, 0), px(&img, 5, 7, 1));
+            free(img.pixels);
+        }
+        vrg_graph_destroy(g);
+    }
+    unsetenv("VOXRG_SHADER_PATH");
+    remove(user), remove(tint), rmdir(dir);
+}
+
 /* variant 0: as loaded; 1: an unrelated pass added (structural, every
  * history resource keeps its name); 2: the counter's resource renamed */
 static const char *reload_graph_text(float step, int variant, int broken)
@@ -505,6 +546,7 @@ int main(int argc, char **argv)
 {
     static const test_case cases[] = {
         {"hot_reload_shader", test_hot_reload_shader, 1},
+        {"hot_reload_shader_in_flight", test_hot_reload_shader_in_flight, 1},
         {"hot_reload_graph", test_hot_reload_graph, 1},
         {"hot_reload_plugin", test_hot_reload_plugin, 1},
         {"hot_reload_many_plugins", test_hot_reload_many_plugins, 1},

@@ -95,6 +95,19 @@ static void free_pipeline_objects(VkDevice dev, _vrg_pipeline *pl)
     free(pl->deps);
 }
 
+/* A replaced pipeline: earlier frames in flight may still run it. */
+typedef struct retired_pipeline {
+    VkDevice dev;
+    _vrg_pipeline objects;
+} retired_pipeline;
+
+static void free_retired_pipeline(void *user)
+{
+    retired_pipeline *r = user;
+    free_pipeline_objects(r->dev, &r->objects);
+    free(r);
+}
+
 static _vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *defines, const VkDescriptorType *types, uint32_t count)
 {
     if (!defines)
@@ -153,8 +166,8 @@ int _vrg_pipelines_reload(vrg_pass *p, char (*changed)[VRG_PATH_MAX], int count)
             hit = uses_file(pl->deps, changed[i]);
         if (!hit)
             continue;
-        /* build the new version beside the old; frames are synchronous, so
-         * the old objects are idle by now and can go once it works */
+        /* build the new version beside the old; the old objects go once
+         * the frames in flight that may run them have ended */
         _vrg_pipeline fresh = *pl;
         fresh.deps = NULL;
         fresh.pipeline = VK_NULL_HANDLE;
@@ -164,7 +177,14 @@ int _vrg_pipelines_reload(vrg_pass *p, char (*changed)[VRG_PATH_MAX], int count)
             failed = 1;
             continue;
         }
-        free_pipeline_objects(dev, pl);
+        retired_pipeline *old = malloc(sizeof *old);
+        if (old) {
+            *old = (retired_pipeline){.dev = dev, .objects = *pl};
+            _vrg_retire(p->graph, free_retired_pipeline, old);
+        } else { /* cannot defer: wait for the GPU instead */
+            vkDeviceWaitIdle(dev);
+            free_pipeline_objects(dev, pl);
+        }
         _vrg_pipeline *next = pl->next;
         *pl = fresh;
         pl->next = next;

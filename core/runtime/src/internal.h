@@ -296,6 +296,8 @@ typedef struct _vrg_retired {
 void _vrg_pass_free_params(vrg_pass *p);
 void _vrg_pass_free_host_buffers(vrg_pass *p);
 void _vrg_pass_free_shared(vrg_pass *p);
+/* fn(user) once the frames in flight now have ended (the graph has a device). */
+void _vrg_retire(vrg_graph *g, void (*fn)(void *user), void *user);
 /* Frees what was retired before the newest finished frame; all: everything
  * (the GPU is idle). */
 void _vrg_free_retired(vrg_graph *g, int all);

@@ -284,6 +284,8 @@ static void retire(vrg_graph *g, _vrg_host_buffer *hb, void (*fn)(void *), void 
     g->retired = r;
 }
 
+void _vrg_retire(vrg_graph *g, void (*fn)(void *user), void *user) { retire(g, NULL, fn, user); }
+
 int vrg_pass_defer(vrg_pass *p, void (*fn)(void *user), void *user)
 {
     if (!fn)
