@@ -2,6 +2,9 @@
 /* Hot reload of shaders, graphs and plugins (rebuilt with cc) while a graph
  * runs: edits take effect, broken edits keep the running version.
  * Usage: PROGRAM CASE (ctest registers one test per case). */
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <time.h>
 #include "harness.h"
 
 static const char *user_shader =
@@ -471,6 +474,13 @@ static void test_hot_reload_plugin(void)
     snprintf(path, sizeof path, "%s/reload.ini", dir);
     snprintf(shader, sizeof shader, "%s/reloadme.comp", dir);
     save_file(path, "[graph]\noutput = color\nwidth = 8\nheight = 8\n[pass r]\nplugin = reloadme\nout.color = color\n");
+    /* the graph was saved an hour before the plugin is rebuilt: the reload
+     * is timed from the rebuilt .so, not from the graph file */
+    struct timespec hour_ago[2];
+    clock_gettime(CLOCK_REALTIME, &hour_ago[0]);
+    hour_ago[0].tv_sec -= 3600;
+    hour_ago[1] = hour_ago[0];
+    CHECK(utimensat(AT_FDCWD, path, hour_ago, 0) == 0, "cannot set the graph file's mtime");
     save_file(shader, "#version 450\nlayout(local_size_x = 8, local_size_y = 8) in;\n"
                       "layout(binding = 0, rgba16f) uniform writeonly image2D dst;\n"
                       "layout(push_constant) uniform P { vec4 c; } pc;\n"
@@ -508,6 +518,8 @@ static void test_hot_reload_plugin(void)
     CHECK(px(&img, 1, 1, 0) == 0 && px(&img, 1, 1, 1) == 1 && fabsf(px(&img, 1, 1, 2) - 0.05f) < 1e-3f,
           "version 2, state carried over (5 frames): %g %g %g", px(&img, 1, 1, 0), px(&img, 1, 1, 1), px(&img, 1, 1, 2));
     free(img.pixels);
+    CHECK(vrg_graph_reload_ms(g) >= 0 && vrg_graph_reload_ms(g) < 5 * 60 * 1000,
+          "a plugin rebuilt now, an hour after the graph file was saved: reload time %g ms", vrg_graph_reload_ms(g));
     /* the old graph is gone, so is version 1: an edit loop does not pile up versions */
     CHECK(mapped_versions("reloadme.so") == 1, "%d versions of the plugin loaded after a reload, want 1", mapped_versions("reloadme.so"));
 

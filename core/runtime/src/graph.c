@@ -287,6 +287,19 @@ void vrg_graph_sources(const vrg_graph *g, void (*fn)(void *user, const char *pa
         _vrg_pipelines_deps((vrg_pass *)&g->passes[i], fn, user);
 }
 
+/* The graph file or a plugin was saved: the host is to reload. The newest
+ * of their mtimes starts the save-to-frame time of that reload (a plugin
+ * rebuilt long after the graph was saved is timed from its own build). */
+static void note_source_saved(vrg_graph *g, const char *path)
+{
+    struct stat st;
+    g->source_changed = 1;
+    if (stat(path, &st) == 0) {
+        double t = (double)st.st_mtim.tv_sec + 1e-9 * (double)st.st_mtim.tv_nsec;
+        g->source_saved_at = t > g->source_saved_at ? t : g->source_saved_at;
+    }
+}
+
 /* Saved shaders: recompile the pipelines that read them before this frame
  * records. Failures keep the old pipeline; their messages (FILE:LINE) go to
  * the diagnostics as usual and are kept for vrg_graph_reload_error. */
@@ -301,7 +314,8 @@ static void apply_reloads(vrg_graph *g)
     /* the graph file itself: the host reloads it (vrg_graph_reload) */
     if (g->loaded_from_file && realpath(g->path, self))
         for (int i = 0; i < n; i++)
-            g->source_changed |= strcmp(changed[i], self) == 0;
+            if (strcmp(changed[i], self) == 0)
+                note_source_saved(g, changed[i]);
     /* a rebuilt plugin: also the host's to reload (a new graph instance) */
     for (int i = 0; i < n; i++)
         for (int k = 0; k < g->pass_count; k++) {
@@ -309,7 +323,7 @@ static void apply_reloads(vrg_graph *g)
                 continue;
             g->passes[k].plugin_rebuilt = 1;
             g->plugins_rebuilt = 1;
-            g->source_changed = 1;
+            note_source_saved(g, changed[i]);
         }
     char *text = NULL;
     size_t len = 0;

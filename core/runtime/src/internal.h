@@ -327,6 +327,7 @@ struct vrg_graph {
     double reload_ms;          /* save-to-frame time of the last reload, -1 if none */
     double pending_since;      /* newest save (epoch seconds) reloaded in this frame, 0: none */
     int source_changed;        /* the graph file or a plugin was saved since load (reload.c) */
+    double source_saved_at;    /* newest mtime of those saves (epoch seconds), 0: none seen */
     int plugins_rebuilt;       /* passes with plugin_rebuilt set wait for vrg_graph_reload */
     int params_changed;        /* the next frame is the first after a parameter-only reload */
     int history_carried;       /* a structural reload copied matching history resources over */

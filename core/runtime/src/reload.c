@@ -176,6 +176,8 @@ int vrg_graph_reload(vrg_graph **pg)
         _vrg_error(&old->diag, VRG_E_NO_DEVICE, "reload: the graph was not loaded from a file with a device");
         return -1;
     }
+    double saved_at = old->source_saved_at; /* this reload takes these saves, done or refused */
+    old->source_saved_at = 0;
     /* rebuilt plugins first: the new graph picks up their newest versions */
     if (reload_plugins(old) != 0) {
         old->source_changed = 0;
@@ -231,7 +233,9 @@ int vrg_graph_reload(vrg_graph **pg)
         g->history_carried = 1; /* a reset, but the matching ones survive it */
     g->params_changed = 1;      /* the graph changed under accumulations either way */
     struct stat st;
-    if (stat(old->path, &st) == 0)
+    if (saved_at > 0) /* the files whose saves the watch saw: the graph, rebuilt plugins */
+        g->pending_since = saved_at;
+    else if (stat(old->path, &st) == 0) /* a reload the host asked for unprompted */
         g->pending_since = (double)st.st_mtim.tv_sec + 1e-9 * (double)st.st_mtim.tv_nsec;
     if (old->watch)
         vrg_graph_watch(g, 1);

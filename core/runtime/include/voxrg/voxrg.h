@@ -189,8 +189,9 @@ uint32_t vrg_graph_subframes(const vrg_graph *g);
  * for vrg_graph_reload_error until a reload succeeds. */
 int vrg_graph_watch(vrg_graph *g, int on);
 const char *vrg_graph_reload_error(const vrg_graph *g);
-/* Milliseconds from the save (the file's mtime) to the end of the first
- * frame that used it, for the last reload; -1 if none. */
+/* Milliseconds from the save (the newest mtime among the files that
+ * changed: shaders, the graph file, a rebuilt plugin's .so) to the end of
+ * the first frame that used it, for the last reload; -1 if none. */
 double vrg_graph_reload_ms(const vrg_graph *g);
 /* Sets a numeric parameter while the graph runs ("pass.param", the --set
  * syntax), checked against its type and range; passes see it from the next
