@@ -53,6 +53,54 @@ static void test_gbuffer_normals(void)
     vrg_graph_destroy(g);
 }
 
+/* docs/lighting.md's motion convention, units and sign: the camera moved
+ * by `step` blocks along its own right (axis 0) or up (axis 1) vector moves
+ * a point at view depth z by step * f * height / (2 z) pixels on screen
+ * (f = 1 / tan(fov_y / 2)), left or up (pixel y grows down), and motion is
+ * now minus before: -that along x, +that along y, 0 across. */
+static void check_motion_along(vrg_graph *g, vrg_camera cam, int axis, float step)
+{
+    float f[3], r[3], u[3], yaw = cam.yaw * 3.14159265f / 180.0f;
+    vrg_camera_forward(&cam, f);
+    r[0] = cosf(yaw), r[1] = 0, r[2] = -sinf(yaw);
+    u[0] = r[1] * f[2] - r[2] * f[1], u[1] = r[2] * f[0] - r[0] * f[2], u[2] = r[0] * f[1] - r[1] * f[0];
+    vrg_graph_set_camera(g, &cam);
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    for (int i = 0; i < 3; i++)
+        cam.position[i] += step * (axis == 0 ? r[i] : u[i]);
+    vrg_graph_set_camera(g, &cam);
+    vrg_image_data m, depth;
+    CHECK(vrg_graph_frame(g) == 0 && vrg_graph_read(g, "gbuffer.motion", &m) == 0 && vrg_graph_read(g, "gbuffer.depth", &depth) == 0,
+          "readback failed");
+    double focal = 1.0 / tan((cam.fov_y > 0 ? cam.fov_y : 70.0) * 3.14159265358979 / 360.0), worst = 0;
+    int bad = 0, checked = 0;
+    for (uint32_t y = 0; y < m.height; y++)
+        for (uint32_t x = 0; x < m.width; x++) {
+            double z = px(&depth, x, y, 0);
+            if (z <= 0)
+                continue;
+            double shift = step * focal * m.height / (2.0 * z);
+            double want[2] = {axis == 0 ? -shift : 0, axis == 1 ? shift : 0};
+            double e = fabs(px(&m, x, y, 0) - want[0]) + fabs(px(&m, x, y, 1) - want[1]);
+            worst = fmax(worst, e);
+            bad += e > 0.02 + 0.01 * shift; /* rg16f keeps 11 bits */
+            checked++;
+        }
+    CHECK(checked > 1000 && bad == 0, "camera moved %g blocks along its %s: %d of %d motion vectors off (worst %g px)", step,
+          axis == 0 ? "right" : "up", bad, checked, worst);
+    free(m.pixels);
+    free(depth.pixels);
+}
+
+static void check_motion_units(vrg_graph *g)
+{
+    vrg_camera cam = *vrg_graph_camera(g);
+    cam.position[0] = 16, cam.position[1] = 14, cam.position[2] = 40;
+    cam.yaw = 20, cam.pitch = -25;
+    check_motion_along(g, cam, 0, 0.5f);
+    check_motion_along(g, cam, 1, 0.5f);
+}
+
 /* Motion vectors: zero for a still camera; for a moving one, each surface
  * pixel minus where the previous camera saw that world point. */
 static void test_gbuffer_motion(void)
@@ -125,6 +173,7 @@ static void test_gbuffer_motion(void)
     CHECK(behind > 100 && mirrored == 0, "turn: %d of %d points behind the previous camera reproject onto its screen", mirrored, behind);
     free(m.pixels);
     free(pos.pixels);
+    check_motion_units(g);
     vrg_graph_destroy(g);
 }
 
