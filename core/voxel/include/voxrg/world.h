@@ -193,10 +193,14 @@ void vrg_scene_write_frame(vrg_pass *pass, VkCommandBuffer cmd, const char *slot
  * among its parameters, builds its vrg_world, and calls the functions
  * below from check, create, execute and destroy (plugins/blocks/blocks.c is
  * the shortest example). */
+/* designated: a plugin built with -Wextra gets no missing-field warning */
 #define VRG_SCENE_PARAMS                                                                                         \
-    {"time_of_day", VRG_PARAM_FLOAT, 10, 0, 24, "hours at the start, 12 = noon"},                                \
-    {"day_length", VRG_PARAM_FLOAT, 0, 0, 1e6, "seconds per 24-hour cycle; 0 keeps the time of day"},              \
-    {"traversal", VRG_PARAM_STRING, 0, 0, 0, "dda (voxel DDA only) or rayquery (also build BLAS/TLAS for ray queries)", 0, "dda"}
+    {.name = "time_of_day", .type = VRG_PARAM_FLOAT, .default_value = 10, .min = 0, .max = 24,                   \
+     .help = "hours at the start, 12 = noon"},                                                                   \
+    {.name = "day_length", .type = VRG_PARAM_FLOAT, .default_value = 0, .min = 0, .max = 1e6,                    \
+     .help = "seconds per 24-hour cycle; 0 keeps the time of day"},                                              \
+    {.name = "traversal", .type = VRG_PARAM_STRING, .default_string = "dda",                                     \
+     .help = "dda (voxel DDA only) or rayquery (also build BLAS/TLAS for ray queries)"}
 
 #define VRG_SCENE_SLOTS                                                                                          \
     {.name = "world", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_TRANSFER_DST, .size = 16,          \
