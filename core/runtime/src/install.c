@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include "internal.h"
 #include "voxrg/version.h"
 
@@ -20,12 +21,19 @@ const char *vrg_version(void) { return VRG_VERSION_STRING; }
 
 static char lib_dir[VRG_PATH_MAX];
 static char data_dir[VRG_PATH_MAX];
+static int build_tree;
 static pthread_once_t dirs_once = PTHREAD_ONCE_INIT;
 
 static int inside(const char *path, const char *dir)
 {
     size_t n = strlen(dir);
     return n && strncmp(path, dir, n) == 0 && (path[n] == '/' || path[n] == '\0');
+}
+
+static int is_dir(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISDIR(st.st_mode);
 }
 
 static void dirs_find(void)
@@ -38,15 +46,25 @@ static void dirs_find(void)
     if (slash)
         *slash = '\0';
     snprintf(lib_dir, sizeof lib_dir, "%s", real);
+    snprintf(data_dir, sizeof data_dir, "%s/../share/voxrg", real);
+    /* an installed layout wins even inside the build folder (a prefix
+     * staged there, as the install test does) */
+    if (is_dir(data_dir))
+        return;
 #if defined(VRG_BUILD_DIR) && defined(VRG_SOURCE_DIR)
     char build[PATH_MAX];
     if (realpath(VRG_BUILD_DIR, build) && inside(real, build)) {
+        build_tree = 1;
         snprintf(data_dir, sizeof data_dir, "%s", VRG_SOURCE_DIR);
-        return;
     }
 #endif
     (void)inside;
-    snprintf(data_dir, sizeof data_dir, "%s/../share/voxrg", real);
+}
+
+int _vrg_build_tree(void)
+{
+    pthread_once(&dirs_once, dirs_find);
+    return build_tree;
 }
 
 const char *_vrg_lib_dir(void)

@@ -201,8 +201,7 @@ static void search_path_build(search_path *s, const char *graph_path, const char
 #if defined(VRG_BUILD_PLUGIN_DIR) && defined(VRG_BUILD_DIR)
         /* tests and fuzzers run from other folders of the build; an
          * installed voxrg never searches the folder it was built in */
-        size_t b = strlen(VRG_BUILD_DIR);
-        if (strncmp(exe, VRG_BUILD_DIR, b) == 0 && (exe[b] == '/' || exe[b] == '\0'))
+        if (_vrg_build_tree())
             add_dir(s, DIR_BUILTIN, VRG_BUILD_PLUGIN_DIR, strlen(VRG_BUILD_PLUGIN_DIR));
 #endif
     }
