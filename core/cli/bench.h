@@ -40,6 +40,4 @@ vrg_graph *vrg_bench_load_shipped(vrg_context *ctx, const char *name, uint32_t w
 
 /* `voxrg bench`; returns the exit status. */
 int vrg_cli_bench(const vrg_bench_opts *o);
-/* The source tree (graphs/paths), compiled in. */
-const char *vrg_source_dir(void);
 #endif

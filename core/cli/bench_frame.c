@@ -150,7 +150,7 @@ static int measure_output(vrg_context *ctx, const vrg_bench_opts *o, const char 
 int vrg_bench_frame(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure *out, int *count)
 {
     char file[1100], *names[64];
-    snprintf(file, sizeof file, "%s/graphs/paths/walk.path", vrg_source_dir());
+    snprintf(file, sizeof file, "%s/graphs/paths/walk.path", vrg_data_dir());
     vrg_camera_path path;
     if (vrg_camera_path_load(file, &path, stderr) != 0)
         return -1;

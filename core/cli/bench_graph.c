@@ -61,7 +61,7 @@ int vrg_bench_graph(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure 
 {
     int runs = o->smoke ? 2 : (o->runs < 20 ? 20 : o->runs), n = *count, rc = 0;
     char path[1100];
-    snprintf(path, sizeof path, "%s/graphs/thesis.ini", vrg_source_dir());
+    snprintf(path, sizeof path, "%s/graphs/thesis.ini", vrg_data_dir());
     /* compile: parse, validate, schedule, lifetimes and the aliasing plan (no device) */
     double compile[64];
     int compiles = o->smoke ? 1 : (o->runs < 64 ? o->runs : 64);

@@ -29,7 +29,7 @@ static int listed(const char *list, const char *name)
 int vrg_bench_shipped_graphs(const vrg_bench_opts *o, char **names, int max)
 {
     char dir[1100];
-    snprintf(dir, sizeof dir, "%s/graphs", vrg_source_dir());
+    snprintf(dir, sizeof dir, "%s/graphs", vrg_data_dir());
     DIR *d = opendir(dir);
     int n = 0;
     struct dirent *e;
@@ -62,7 +62,7 @@ int vrg_bench_shipped_graphs(const vrg_bench_opts *o, char **names, int max)
 vrg_graph *vrg_bench_load_shipped(vrg_context *ctx, const char *name, uint32_t w, uint32_t h, int smoke)
 {
     char path[1200];
-    snprintf(path, sizeof path, "%s/graphs/%s", vrg_source_dir(), name);
+    snprintf(path, sizeof path, "%s/graphs/%s", vrg_data_dir(), name);
     int shrink = 0;
     if (smoke) { /* only graphs whose scene has a radius */
         FILE *quiet = fopen("/dev/null", "w"); /* a graph without a scene is no error here */

@@ -54,10 +54,19 @@ static const char *reload_shader =
  * shader taken from a scratch copy ($VOXRG_SHADER_OVERRIDE, searched before
  * the pass's own folder), saved with a new random-stream constant each run
  * so that glslang and lavapipe's JIT both do the whole work. */
+/* The first of two places (the source tree's, the installed prefix's,
+ * relative to vrg_data_dir) that exists, in `out`. */
+static void data_file(char *out, size_t cap, const char *in_tree, const char *installed)
+{
+    snprintf(out, cap, "%s/%s", vrg_data_dir(), in_tree);
+    if (access(out, F_OK) != 0)
+        snprintf(out, cap, "%s/%s", vrg_data_dir(), installed);
+}
+
 static int ray_shader_reload(vrg_context *ctx, const char *dir, int runs, double *ms)
 {
     char path[1100], shader[1100];
-    snprintf(path, sizeof path, "%s/passes/ao/ao.comp", vrg_source_dir());
+    data_file(path, sizeof path, "passes/ao/ao.comp", "../../lib/voxrg/plugins/ao/ao.comp");
     char *src = vrg_cli_read_text(path);
     char *salt = src ? strstr(src, "const uint SALT = 0x414f0002u;") : NULL;
     if (!salt) {
@@ -67,7 +76,7 @@ static int ray_shader_reload(vrg_context *ctx, const char *dir, int runs, double
     snprintf(shader, sizeof shader, "%s/ao.comp", dir);
     save_text(shader, src);
     setenv("VOXRG_SHADER_OVERRIDE", dir, 1);
-    snprintf(path, sizeof path, "%s/graphs/thesis.ini", vrg_source_dir());
+    snprintf(path, sizeof path, "%s/graphs/thesis.ini", vrg_data_dir());
     vrg_graph_desc d = {.path = path, .width = 320, .height = 180};
     vrg_graph *g = NULL;
     int rc = vrg_graph_load(ctx, &d, &g) == 0 && vrg_graph_watch(g, 1) == 0 && vrg_graph_frame(g) == 0 ? 0 : -1;
@@ -133,7 +142,7 @@ int vrg_bench_reload(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure
     /* a parameter of the thesis graph (320x180): reparse, revalidate, a new
      * graph instance with its world, history carried over, pipelines kept */
     char src[1100];
-    snprintf(src, sizeof src, "%s/graphs/thesis.ini", vrg_source_dir());
+    snprintf(src, sizeof src, "%s/graphs/thesis.ini", vrg_data_dir());
     FILE *f = fopen(src, "r");
     size_t len = f ? fread(text, 1, sizeof text - 64, f) : 0;
     if (f)
@@ -161,7 +170,8 @@ int vrg_bench_reload(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure
     /* a plugin rebuilt: private copy, dlopen, ABI checks, a new graph
      * instance with the state handed over (the compile itself not counted:
      * the clock starts at the file's mtime) */
-    char plugin_src[1100], cmd[4096], so[1100];
+    char plugin_src[1100], cmd[4096], so[1100], include[1100];
+    data_file(include, sizeof include, "core/runtime/include", "../../include");
     snprintf(plugin_src, sizeof plugin_src, "%s/benchfill.c", dir);
     snprintf(so, sizeof so, "%s/benchfill.so", dir);
     save_text(plugin_src, "#include \"voxrg/plugin.h\"\n"
@@ -182,8 +192,8 @@ int vrg_bench_reload(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure
     g = NULL;
     for (int r = -1; ok && r < runs; r++) {
         snprintf(cmd, sizeof cmd,
-                 "cc -std=c11 -shared -fPIC -I'%s/core/runtime/include' -DVALUE=%d -DDIR='\"%s\"' '%s' -o '%s.new' 2>/dev/null && mv '%s.new' '%s'",
-                 vrg_source_dir(), r + 2, dir, plugin_src, so, so, so);
+                 "cc -std=c11 -shared -fPIC -I'%s' -DVALUE=%d -DDIR='\"%s\"' '%s' -o '%s.new' 2>/dev/null && mv '%s.new' '%s'",
+                 include, r + 2, dir, plugin_src, so, so, so);
         if (system(cmd) != 0) {
             printf("reload: plugin figure skipped: no working `cc` to rebuild a plugin with\n");
             break;

@@ -68,7 +68,7 @@ int vrg_bench_terrain(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figur
     /* streaming along graphs/paths/walk.path, budget 2 ms: main-thread time per frame */
     vrg_camera_path path;
     char path_file[1024];
-    snprintf(path_file, sizeof path_file, "%s/graphs/paths/walk.path", vrg_source_dir());
+    snprintf(path_file, sizeof path_file, "%s/graphs/paths/walk.path", vrg_data_dir());
     if (vrg_camera_path_load(path_file, &path, stderr) != 0)
         return -1;
     vrg_graph *g = terrain_graph(ctx, 2, "budget", radius);

@@ -16,6 +16,7 @@
 #include "run.h"
 #include "util.h"
 #include "png_writer.h"
+#include "new_pass.h"
 #include "voxrg/voxrg.h"
 #include "voxrg/output.h"
 #include "voxrg/png.h"
@@ -36,7 +37,16 @@ static const char *usage_main =
     "  plugins [NAME]  list plugins, or one plugin's slots and parameters\n"
     "  compare A.ini.. measure graphs against a converged reference: metrics, HTML report\n"
     "  bench           measure the figures in docs/benchmarks.md\n"
-    "'voxrg COMMAND --help' describes each.\n";
+    "  new-pass NAME   write a pass to build outside the tree (docs/out-of-tree.md)\n"
+    "'voxrg COMMAND --help' describes each; 'voxrg --version' prints the version.\n";
+
+static const char *usage_new_pass =
+    "usage: voxrg new-pass NAME [--dir DIR]\n"
+    "Writes a ready out-of-tree pass into DIR (default: NAME; created if missing):\n"
+    "NAME.c (a tint of an input image), NAME.comp, a CMakeLists.txt that builds it\n"
+    "against an installed voxrg (find_package(voxrg CONFIG), voxrg_add_pass) and\n"
+    "NAME.ini, a graph that runs it between shipped passes. NAME is a C identifier.\n"
+    "Existing files are never overwritten. docs/out-of-tree.md.\n";
 
 static const char *usage_check =
     "usage: voxrg check GRAPH [--dot FILE] [--set PASS.PARAM=VALUE]... [--size WxH]\n"
@@ -633,8 +643,6 @@ static const char *usage_bench =
     "radius of rays and terrain (default 13); --graphs limits memory and frame to some\n"
     "shipped graphs. docs/benchmarks.md.\n";
 
-const char *vrg_source_dir(void) { return VRG_SOURCE_DIR; }
-
 static int cmd_bench(int argc, char **argv)
 {
     vrg_bench_opts o = {.suite = "all", .runs = 5, .width = 640, .height = 360, .radius = 13};
@@ -678,6 +686,29 @@ static int cmd_bench(int argc, char **argv)
     return vrg_cli_bench(&o);
 }
 
+static int cmd_new_pass(int argc, char **argv)
+{
+    const char *name = NULL, *dir = NULL;
+    for (int i = 0; i < argc; i++) {
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            fputs(usage_new_pass, stdout);
+            return 0;
+        } else if (!strcmp(argv[i], "--dir")) {
+            if (i + 1 >= argc)
+                return usage_error(usage_new_pass, "%s needs a folder", "--dir");
+            dir = argv[++i];
+        } else if (argv[i][0] == '-')
+            return usage_error(usage_new_pass, "unknown option '%s'", argv[i]);
+        else if (name)
+            return usage_error(usage_new_pass, "unexpected argument '%s' (one NAME only)", argv[i]);
+        else
+            name = argv[i];
+    }
+    if (!name)
+        return usage_error(usage_new_pass, "%s missing", "NAME");
+    return vrg_cli_new_pass(name, dir ? dir : name);
+}
+
 int main(int argc, char **argv)
 {
     /* a write past the file size limit (ulimit -f) is then an error the
@@ -687,6 +718,12 @@ int main(int argc, char **argv)
         fputs(usage_main, argc < 2 ? stderr : stdout);
         return argc < 2 ? 2 : 0;
     }
+    if (!strcmp(argv[1], "--version")) {
+        printf("voxrg %s\n", vrg_version());
+        return 0;
+    }
+    if (!strcmp(argv[1], "new-pass"))
+        return cmd_new_pass(argc - 2, argv + 2);
     if (!strcmp(argv[1], "check"))
         return cmd_check(argc - 2, argv + 2);
     if (!strcmp(argv[1], "render"))

@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-#include "bench.h" /* vrg_source_dir */
+#include "bench.h"
 #include "overlay.h"
 #include "run.h"
 #include "util.h"
@@ -771,7 +771,7 @@ int vrg_cli_run(const vrg_run_options *o)
                           fmt == VK_FORMAT_R16_UINT || fmt == VK_FORMAT_R8_UINT || fmt == VK_FORMAT_R32_SINT;
             if (integer)
                 snprintf(w.shown_name, sizeof w.shown_name, "%s (an integer image: showing %s)", show, vrg_graph_output(g));
-            else if (display_prepare(&w, ext, vrg_source_dir()) == 0) {
+            else if (display_prepare(&w, ext, vrg_data_dir()) == 0) {
                 display_mode(&w, show);
                 via_display = 1;
             }

@@ -59,10 +59,12 @@ for layer, bad in forbidden.items():
 libs = {"runtime": runtime_lib, "voxel": voxel_lib, "tools": tools_lib}
 below = {"runtime": [], "voxel": ["runtime"], "tools": ["runtime"]}
 for layer, lib in libs.items():
-    allowed = {os.path.basename(libs[l]) for l in below[layer]}
+    # by name without the version: DT_NEEDED holds the SONAME
+    # (libvoxrg.so.MAJOR), the build names the file libvoxrg.so.VERSION
+    allowed = {os.path.basename(libs[l]).split(".so")[0] for l in below[layer]}
     for dep in needed(lib):
         others = {os.path.basename(libs[l]).split(".so")[0] for l in libs if l != layer}
-        if dep.split(".so")[0] in others and dep not in allowed:
+        if dep.split(".so")[0] in others and dep.split(".so")[0] not in allowed:
             failures.append("%s needs %s, a layer above or beside it" % (os.path.basename(lib), dep))
     provided = symbols(lib, True).union(*(symbols(libs[l], True) for l in below[layer]))
     for sym in sorted(s for s in symbols(lib, False) if s.startswith("vrg_") and s not in provided):

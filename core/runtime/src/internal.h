@@ -441,6 +441,12 @@ typedef struct _vrg_shader_module {
 } _vrg_shader_module;
 int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, _vrg_shader_module *out, FILE *diag);
 int _vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t cap);
+/* The folder of libvoxrg's own file (install.c); "" if unknown. */
+const char *_vrg_lib_dir(void);
+/* 1 while libvoxrg (or a test linking it statically) runs from its build
+ * folder and not from an installed layout: the source tree's shaders and
+ * the build's plugins are then searched too. */
+int _vrg_build_tree(void);
 void _vrg_pipelines_destroy(vrg_pass *p);
 /* Hot reload: recompile this pass's pipelines that use any of the changed
  * files; a pipeline whose new version fails keeps running (the errors go to

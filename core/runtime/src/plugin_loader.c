@@ -1,6 +1,7 @@
 /* Plugins are found by name on one search path; the first NAME.so wins:
  *   1. built-in: <exe>/plugins (the build tree; tests also the build's
- *      plugin folder), 2. installed: <exe>/../lib/voxrg/plugins,
+ *      plugin folder), 2. installed: voxrg/plugins beside libvoxrg's own
+ *      file (PREFIX/lib/voxrg/plugins, wherever the prefix was moved),
  *   3. $VOXRG_PLUGIN_PATH (':'-separated): the user's own,
  *   4. the graph's `[graph] plugin_path` (':'-separated, relative to the
  *      graph file).
@@ -200,12 +201,12 @@ static void search_path_build(search_path *s, const char *graph_path, const char
 #if defined(VRG_BUILD_PLUGIN_DIR) && defined(VRG_BUILD_DIR)
         /* tests and fuzzers run from other folders of the build; an
          * installed voxrg never searches the folder it was built in */
-        size_t b = strlen(VRG_BUILD_DIR);
-        if (strncmp(exe, VRG_BUILD_DIR, b) == 0 && (exe[b] == '/' || exe[b] == '\0'))
+        if (_vrg_build_tree())
             add_dir(s, DIR_BUILTIN, VRG_BUILD_PLUGIN_DIR, strlen(VRG_BUILD_PLUGIN_DIR));
 #endif
-        add_dir(s, DIR_INSTALLED, dir, (size_t)snprintf(dir, sizeof dir, "%s/../lib/voxrg/plugins", exe));
     }
+    if (*_vrg_lib_dir())
+        add_dir(s, DIR_INSTALLED, dir, (size_t)snprintf(dir, sizeof dir, "%s/voxrg/plugins", _vrg_lib_dir()));
     add_list(s, DIR_ENV, NULL, getenv("VOXRG_PLUGIN_PATH"));
     if (graph_path && plugin_path) {
         char base[VRG_PATH_MAX];

@@ -1,6 +1,9 @@
 #define _GNU_SOURCE
 /* GLSL → SPIR-V at run time with glslang's C API. #include "x.glsl" is
- * resolved next to the including file, then in shaders/include and shaders/.
+ * resolved next to the including file, then in the data folder's
+ * shaders/include and shaders/ (vrg_data_dir: PREFIX/share/voxrg installed,
+ * the source tree in the build). The order for a pass's shader file is in
+ * docs/plugin-abi.md ("Where shaders are found").
  * Errors come out as FILE:LINE: error[VRG-E063]: MESSAGE (warnings VRG-W003). */
 #include <glslang/Include/glslang_c_interface.h>
 #include <glslang/Public/resource_limits_c.h>
@@ -12,10 +15,6 @@
 #include "internal.h"
 
 #define SOURCE_CODE (_vrg_diag_info_of(VRG_E_SHADER_SOURCE)->code)
-
-#ifndef VRG_SOURCE_DIR
-#define VRG_SOURCE_DIR "."
-#endif
 
 static pthread_once_t glslang_once = PTHREAD_ONCE_INIT;
 static void glslang_init(void) { glslang_initialize_process(); }
@@ -55,6 +54,20 @@ static int override(const char *name, char *out, size_t cap)
     return exists(out) ? 0 : -1;
 }
 
+/* An installed plugin's shaders lie in a folder named after it next to its
+ * .so (PREFIX/lib/voxrg/plugins/NAME/): searched before the folder compiled
+ * into the plugin, so that an installed copy never reads the tree it was
+ * built from. In a build tree that folder does not exist. */
+static int installed_shader(const vrg_pass *p, const char *name, char *out, size_t cap)
+{
+    const char *so = p->plugin->source;
+    const char *slash = strrchr(so, '/');
+    if (!slash)
+        return -1;
+    snprintf(out, cap, "%.*s/%s/%s", (int)(slash - so), so, p->plugin->name, name);
+    return exists(out) ? 0 : -1;
+}
+
 int _vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t cap)
 {
     if (name[0] == '/') {
@@ -62,6 +75,8 @@ int _vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t c
         return exists(out) ? 0 : -1;
     }
     if (override(name, out, cap) == 0)
+        return 0;
+    if (p && installed_shader(p, name, out, cap) == 0)
         return 0;
     if (p && p->plugin->desc->shader_dir) {
         snprintf(out, cap, "%s/%s", p->plugin->desc->shader_dir, name);
@@ -77,10 +92,13 @@ int _vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t c
             return 0;
         env = c ? c + 1 : env + len;
     }
-    snprintf(out, cap, "%s/shaders/%s", VRG_SOURCE_DIR, name);
+    const char *data = vrg_data_dir();
+    if (!*data)
+        return -1;
+    snprintf(out, cap, "%s/shaders/%s", data, name);
     if (exists(out))
         return 0;
-    snprintf(out, cap, "%s/%s", VRG_SOURCE_DIR, name);
+    snprintf(out, cap, "%s/%s", data, name);
     return exists(out) ? 0 : -1;
 }
 
@@ -123,9 +141,10 @@ static int resolve_include(const char *includer, const char *name, char *out, si
     snprintf(out, cap, "%.*s/%s", slash ? (int)(slash - includer) : 1, slash ? includer : ".", name);
     if (exists(out))
         return 0;
-    const char *dirs[] = {VRG_SOURCE_DIR "/shaders/include", VRG_SOURCE_DIR "/shaders", VRG_SOURCE_DIR};
-    for (int i = 0; i < 3; i++) {
-        snprintf(out, cap, "%s/%s", dirs[i], name);
+    const char *data = vrg_data_dir();
+    const char *dirs[] = {"shaders/include/", "shaders/", ""};
+    for (int i = 0; i < 3 && *data; i++) {
+        snprintf(out, cap, "%s/%s%s", data, dirs[i], name);
         if (exists(out))
             return 0;
     }

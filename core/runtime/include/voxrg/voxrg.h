@@ -12,6 +12,15 @@ extern "C" {
  * -fvisibility=hidden); the runtime's internals stay hidden. */
 #pragma GCC visibility push(default)
 
+/* The project's version, "MAJOR.MINOR.PATCH" (VRG_VERSION_STRING of
+ * voxrg/version.h for the headers a program was built with). */
+const char *vrg_version(void);
+/* The folder of voxrg's shipped data (shaders/, graphs/, graphs/paths/):
+ * PREFIX/share/voxrg next to an installed libvoxrg, found from the
+ * library's own location; the source tree while it runs from its build
+ * folder. "" if the library cannot tell where it is. */
+const char *vrg_data_dir(void);
+
 typedef struct vrg_context vrg_context;
 typedef struct vrg_graph vrg_graph;
 

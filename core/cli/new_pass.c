@@ -1,0 +1,250 @@
+/* `voxrg new-pass NAME [--dir DIR]`: a ready out-of-tree pass (after
+ * Falcor's new-render-pass script). It writes NAME.c (a tint of an input
+ * image, with a parameter), NAME.comp, a CMakeLists.txt that builds it
+ * against an installed voxrg (find_package(voxrg CONFIG), voxrg_add_pass)
+ * and NAME.ini, a graph that runs it between shipped passes, so that the
+ * folder builds and renders as written (docs/out-of-tree.md). Existing files
+ * are never overwritten: all four are checked before any is written. */
+#define _POSIX_C_SOURCE 200809L
+#include <ctype.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include "new_pass.h"
+#include "voxrg/output.h"
+
+/* Every "@NAME@" in the templates becomes the pass's name. */
+static const char *c_template =
+    "/* @NAME@: colour = input x tint, a pass built outside the voxrg tree.\n"
+    " * Scaffolded by `voxrg new-pass`; docs/plugin-abi.md describes the ABI. */\n"
+    "#include \"voxrg/plugin.h\"\n"
+    "\n"
+    "static const vrg_param_desc params[] = {\n"
+    "    {.name = \"red\", .type = VRG_PARAM_FLOAT, .default_value = 1, .min = 0, .max = 16, .help = \"multiplies red\"},\n"
+    "    {.name = \"green\", .type = VRG_PARAM_FLOAT, .default_value = 1, .min = 0, .max = 16, .help = \"multiplies green\"},\n"
+    "    {.name = \"blue\", .type = VRG_PARAM_FLOAT, .default_value = 1, .min = 0, .max = 16, .help = \"multiplies blue\"},\n"
+    "    {.name = \"strength\", .type = VRG_PARAM_FLOAT, .default_value = 1, .min = 0, .max = 1,\n"
+    "     .help = \"0: the input as it is, 1: fully tinted\"},\n"
+    "};\n"
+    "\n"
+    "static const vrg_slot_desc slots[] = {\n"
+    "    {.name = \"color\", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = \"linear colour\"},\n"
+    "    {.name = \"tinted\", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE,\n"
+    "     .format = VK_FORMAT_R16G16B16A16_SFLOAT, .help = \"the colour, tinted\"},\n"
+    "};\n"
+    "\n"
+    "static void execute(vrg_pass *pass, VkCommandBuffer cmd)\n"
+    "{\n"
+    "    float tint[3] = {(float)vrg_param(pass, \"red\"), (float)vrg_param(pass, \"green\"), (float)vrg_param(pass, \"blue\")};\n"
+    "    float strength = (float)vrg_param(pass, \"strength\");\n"
+    "    struct {\n"
+    "        float tint[4]; /* a vec4 in the shader: std430 pads a vec3 */\n"
+    "    } pc = {{1 + strength * (tint[0] - 1), 1 + strength * (tint[1] - 1), 1 + strength * (tint[2] - 1), 0}};\n"
+    "    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = \"@NAME@.comp\", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1});\n"
+    "}\n"
+    "\n"
+    "static const vrg_plugin_desc desc = {\n"
+    "    .abi_version = VRG_ABI_VERSION,\n"
+    "    .name = \"@NAME@\",\n"
+    "    .kind = VRG_PLUGIN_PASS,\n"
+    "    .help = \"colour x tint (an out-of-tree pass)\",\n"
+    "    .shader_dir = VRG_PLUGIN_DIR,\n"
+    "    .params = params,\n"
+    "    .param_count = sizeof params / sizeof params[0],\n"
+    "    .slots = slots,\n"
+    "    .slot_count = sizeof slots / sizeof slots[0],\n"
+    "    .execute = execute,\n"
+    "};\n"
+    "\n"
+    "VRG_PLUGIN(desc)\n";
+
+static const char *comp_template =
+    "#version 460\n"
+    "// @NAME@: colour x tint. pixel.glsl comes with voxrg (share/voxrg/shaders/include).\n"
+    "#include \"pixel.glsl\"\n"
+    "\n"
+    "layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;\n"
+    "// bindings in the order of the plugin's slots\n"
+    "layout(binding = 0) uniform sampler2D in_color;\n"
+    "layout(binding = 1, rgba16f) uniform writeonly image2D out_tinted;\n"
+    "layout(push_constant) uniform Push { vec4 tint; } pc;\n"
+    "\n"
+    "void shade(ivec2 p)\n"
+    "{\n"
+    "    ivec2 size = imageSize(out_tinted);\n"
+    "    if (any(greaterThanEqual(p, size)))\n"
+    "        return;\n"
+    "    vec4 c = texelFetch(in_color, vrg_pixel_in(p, size, textureSize(in_color, 0)), 0);\n"
+    "    imageStore(out_tinted, p, vec4(c.rgb * pc.tint.rgb, c.a));\n"
+    "}\n"
+    "\n"
+    "void main()\n"
+    "{\n"
+    "    for (uint k = 0u; k < VRG_PIXEL_ROWS; k++)\n"
+    "        shade(vrg_pixel(k));\n"
+    "}\n";
+
+static const char *cmake_template =
+    "# The out-of-tree pass @NAME@, built against an installed voxrg:\n"
+    "#   cmake -S . -B build -DCMAKE_PREFIX_PATH=<voxrg prefix> && cmake --build build\n"
+    "#   voxrg render @NAME@.ini --out out   (its [graph] plugin_path is build)\n"
+    "cmake_minimum_required(VERSION 3.20)\n"
+    "project(@NAME@ LANGUAGES C)\n"
+    "set(CMAKE_C_STANDARD 11)\n"
+    "add_compile_options(-Wall -Wextra)\n"
+    "find_package(voxrg CONFIG REQUIRED)\n"
+    "# @NAME@.so in the build folder; `cmake --install` puts it and its shader\n"
+    "# in lib/voxrg/plugins of the install prefix\n"
+    "voxrg_add_pass(@NAME@ SOURCES @NAME@.c SHADERS @NAME@.comp)\n"
+    "set_target_properties(@NAME@ PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR})\n";
+
+static const char *graph_template =
+    "; @NAME@ between shipped passes: the G-buffer's albedo, tinted, tonemapped.\n"
+    "; Needs build/@NAME@.so (cmake, see CMakeLists.txt):\n"
+    ";   voxrg render @NAME@.ini --out out\n"
+    "[graph]\n"
+    "name        = @NAME@\n"
+    "output      = ldr\n"
+    "width       = 320\n"
+    "height      = 180\n"
+    "plugin_path = build\n"
+    "\n"
+    "[camera]\n"
+    "position = -40 80 40\n"
+    "yaw      = -40\n"
+    "pitch    = -35\n"
+    "\n"
+    "[scene]\n"
+    "plugin      = terrain\n"
+    "seed        = 1337\n"
+    "radius      = 2\n"
+    "time_of_day = 15\n"
+    "\n"
+    "[pass gbuffer]\n"
+    "plugin     = gbuffer\n"
+    "in.world   = world\n"
+    "in.frame   = frame\n"
+    "in.atlas   = atlas\n"
+    "out.albedo = albedo\n"
+    "\n"
+    "[pass @NAME@]\n"
+    "plugin     = @NAME@\n"
+    "in.color   = albedo\n"
+    "out.tinted = tinted\n"
+    "red        = 1\n"
+    "green      = 0.6\n"
+    "blue       = 0.3\n"
+    "strength   = 0.8\n"
+    "\n"
+    "[pass tonemap]\n"
+    "plugin   = tonemap\n"
+    "in.color = tinted\n"
+    "out.ldr  = ldr\n";
+
+/* A C identifier that is also a portable file name: [A-Za-z_][A-Za-z0-9_]*,
+ * at most NEW_PASS_NAME_MAX characters. */
+#define NEW_PASS_NAME_MAX 48
+static int valid_name(const char *name)
+{
+    size_t n = strlen(name);
+    if (n == 0 || n > NEW_PASS_NAME_MAX || isdigit((unsigned char)name[0]))
+        return 0;
+    for (size_t i = 0; i < n; i++)
+        if (!isalnum((unsigned char)name[i]) && name[i] != '_')
+            return 0;
+    return 1;
+}
+
+/* The template with @NAME@ replaced, malloc'd. */
+static char *instantiate(const char *tmpl, const char *name)
+{
+    size_t cap = strlen(tmpl) + 1, nlen = strlen(name);
+    for (const char *p = strstr(tmpl, "@NAME@"); p; p = strstr(p + 6, "@NAME@"))
+        cap += nlen;
+    char *out = malloc(cap), *o = out;
+    if (!out)
+        return NULL;
+    for (const char *p = tmpl; *p;) {
+        if (strncmp(p, "@NAME@", 6) == 0) {
+            memcpy(o, name, nlen);
+            o += nlen, p += 6;
+        } else
+            *o++ = *p++;
+    }
+    *o = '\0';
+    return out;
+}
+
+typedef struct scaffold_file {
+    const char *suffix; /* after NAME, or a whole name when fixed */
+    int fixed;
+    const char *tmpl;
+} scaffold_file;
+
+static const scaffold_file files[] = {
+    {".c", 0, NULL}, {".comp", 0, NULL}, {"CMakeLists.txt", 1, NULL}, {".ini", 0, NULL},
+};
+
+static void file_path(char *out, size_t cap, const char *dir, const char *name, int i)
+{
+    if (files[i].fixed)
+        snprintf(out, cap, "%s/%s", dir, files[i].suffix);
+    else
+        snprintf(out, cap, "%s/%s%s", dir, name, files[i].suffix);
+}
+
+static int make_dir(const char *dir)
+{
+    struct stat st;
+    if (stat(dir, &st) == 0) {
+        if (S_ISDIR(st.st_mode))
+            return 0;
+        fprintf(stderr, "error: --dir '%s' exists and is not a folder\n", dir);
+        return -1;
+    }
+    if (mkdir(dir, 0777) != 0) {
+        fprintf(stderr, "error: cannot create the folder '%s': %s (its parent must exist)\n", dir, strerror(errno));
+        return -1;
+    }
+    return 0;
+}
+
+int vrg_cli_new_pass(const char *name, const char *dir)
+{
+    if (!valid_name(name)) {
+        fprintf(stderr, "error: new-pass: '%s' is not a valid pass name: a C identifier ([A-Za-z_][A-Za-z0-9_]*, "
+                        "at most %d characters), used for the plugin, its files and its symbols\n", name, NEW_PASS_NAME_MAX);
+        return 2;
+    }
+    const char *tmpls[] = {c_template, comp_template, cmake_template, graph_template};
+    const int count = (int)(sizeof files / sizeof files[0]);
+    char path[4200];
+    int existing = 0;
+    for (int i = 0; i < count; i++) {
+        file_path(path, sizeof path, dir, name, i);
+        if (access(path, F_OK) == 0) {
+            fprintf(stderr, "error: new-pass: %s exists; nothing was written (new-pass never overwrites a file: "
+                            "choose another NAME or --dir)\n", path);
+            existing++;
+        }
+    }
+    if (existing || make_dir(dir) != 0)
+        return 1;
+    for (int i = 0; i < count; i++) {
+        file_path(path, sizeof path, dir, name, i);
+        char *text = instantiate(tmpls[i], name);
+        int rc = text ? vrg_output_write(path, text, strlen(text)) : -1;
+        if (!text)
+            fprintf(stderr, "error: new-pass: out of memory\n");
+        free(text);
+        if (rc != 0)
+            return 1;
+        printf("wrote %s\n", path);
+    }
+    printf("next: cmake -S %s -B %s/build -DCMAKE_PREFIX_PATH=<voxrg prefix> && cmake --build %s/build\n"
+           "      voxrg render %s/%s.ini --out %s/out --validate\n", dir, dir, dir, dir, name, dir);
+    return 0;
+}

@@ -1,0 +1,8 @@
+/* `voxrg new-pass`: scaffolds an out-of-tree pass (new_pass.c). */
+#ifndef VOXRG_CLI_NEW_PASS_H
+#define VOXRG_CLI_NEW_PASS_H
+/* Writes NAME.c, NAME.comp, CMakeLists.txt and NAME.ini into dir (created
+ * if missing; its parent must exist). Returns the exit status: 0, 1 after
+ * an error (a file exists, a write failed), 2 for an invalid NAME. */
+int vrg_cli_new_pass(const char *name, const char *dir);
+#endif

@@ -1,0 +1,111 @@
+#!/usr/bin/env bash
+# The installed SDK, used the way a user outside the tree uses it: the build
+# is installed to a temporary prefix, which is then moved (nothing may point
+# into where it was installed, nor into the build or source tree). From a
+# folder outside the tree and with a cleared environment, the installed
+# voxrg scaffolds a pass (new-pass), CMake builds it with find_package(voxrg)
+# against the moved prefix, and the docs' invert pass (docs/plugin-abi.md)
+# is compiled with pkg-config; both load in graphs beside shipped passes and
+# render under --validate, and `voxrg plugins NAME` finds each.
+# usage: test_install.sh BUILD_DIR SOURCE_DIR OUT_DIR
+set -u
+build=$1 src=$2 out=$3
+rm -rf "$out" && mkdir -p "$out/work"
+fail() { echo "FAIL: $*"; exit 1; }
+cmake --install "$build" --prefix "$out/installed" > "$out/install.log" 2>&1 || { cat "$out/install.log"; fail "cmake --install"; }
+mv "$out/installed" "$out/prefix" || fail "cannot move the prefix"
+prefix=$out/prefix
+# a cleared environment: only what a user's shell has (and the sanitizers'
+# settings of the sanitizer build)
+run() {
+    env -i PATH=/usr/local/bin:/usr/bin:/bin HOME="$out/work" \
+        ${ASAN_OPTIONS+ASAN_OPTIONS="$ASAN_OPTIONS"} ${LSAN_OPTIONS+LSAN_OPTIONS="$LSAN_OPTIONS"} \
+        ${UBSAN_OPTIONS+UBSAN_OPTIONS="$UBSAN_OPTIONS"} "$@"
+}
+voxrg=$prefix/bin/voxrg
+cd "$out/work" || fail "no work folder"
+
+# one version: the program, the CMake package and pkg-config agree
+version=$(run "$voxrg" --version) || fail "voxrg --version"
+pcversion=$(run PKG_CONFIG_PATH="$prefix/lib/pkgconfig" pkg-config --modversion voxrg) || fail "pkg-config voxrg"
+[ "$version" = "voxrg $pcversion" ] || fail "voxrg --version says '$version', voxrg.pc '$pcversion'"
+grep -q "PACKAGE_VERSION \"$pcversion\"" "$prefix/lib/cmake/voxrg/voxrgConfigVersion.cmake" || fail "voxrgConfigVersion.cmake is not $pcversion"
+
+# shipped plugins come from the moved prefix
+run "$voxrg" plugins tonemap > plugins_tonemap.txt 2>&1 || { cat plugins_tonemap.txt; fail "voxrg plugins tonemap"; }
+grep -q "file: $prefix/lib/voxrg/plugins/tonemap.so" plugins_tonemap.txt || { cat plugins_tonemap.txt; fail "tonemap not found in the prefix"; }
+
+# the scaffold: refuses a bad name, builds with CMake, renders
+run "$voxrg" new-pass 9lives > bad_name.txt 2>&1
+[ $? -eq 2 ] && grep -q "not a valid pass name" bad_name.txt || { cat bad_name.txt; fail "new-pass accepted 9lives"; }
+run "$voxrg" new-pass tint > new_pass.txt 2>&1 || { cat new_pass.txt; fail "voxrg new-pass tint"; }
+run "$voxrg" new-pass tint > again.txt 2>&1
+[ $? -eq 1 ] && grep -q "tint/tint.c exists; nothing was written" again.txt || { cat again.txt; fail "new-pass overwrote tint/"; }
+(run cmake -S tint -B tint/build -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_FLAGS=-Werror &&
+    run cmake --build tint/build) > tint_build.log 2>&1 || { cat tint_build.log; fail "the scaffolded pass does not build"; }
+run "$voxrg" render tint/tint.ini --validate --frames 1 --out tint/out > tint_render.log 2>&1 ||
+    { cat tint_render.log; fail "the scaffolded graph does not render"; }
+[ -s tint/out/ldr.png ] || fail "tint wrote no ldr.png"
+run VOXRG_PLUGIN_PATH="$out/work/tint/build" "$voxrg" plugins tint > plugins_tint.txt 2>&1 &&
+    grep -q "file: $out/work/tint/build/tint.so" plugins_tint.txt || { cat plugins_tint.txt; fail "voxrg plugins tint"; }
+
+# the docs' invert pass, built with pkg-config against the prefix only
+page="$src/docs/plugin-abi.md"
+block() {
+    awk -v marker="$1" '
+        index($0, marker) == 1 { want = 1; next }
+        want && /^```/ { if (inside) exit; inside = 1; next }
+        inside { print }' "$page"
+}
+mkdir -p invert
+block '`passes/invert/invert.c`:' > invert/invert.c
+block '`passes/invert/invert.comp`:' > invert/invert.comp
+[ -s invert/invert.c ] && [ -s invert/invert.comp ] || fail "docs/plugin-abi.md has no invert.c or invert.comp block"
+run PKG_CONFIG_PATH="$prefix/lib/pkgconfig" sh -c 'gcc -std=c11 -fPIC -shared $(pkg-config --cflags voxrg) \
+    -DVRG_PLUGIN_DIR="\"$PWD/invert\"" invert/invert.c -o invert/invert.so $(pkg-config --libs voxrg)' > invert_build.log 2>&1 ||
+    { cat invert_build.log; fail "the docs' invert.c does not build with pkg-config"; }
+cat > invert.ini <<'INI'
+[graph]
+output      = ldr
+width       = 160
+height      = 90
+plugin_path = invert
+
+[camera]
+position = -20 60 20
+yaw      = -40
+pitch    = -35
+
+[scene]
+plugin = terrain
+radius = 1
+
+[pass gbuffer]
+plugin     = gbuffer
+in.world   = world
+in.frame   = frame
+in.atlas   = atlas
+out.albedo = albedo
+
+[pass invert]
+plugin  = invert
+in.src  = albedo
+out.dst = inverted
+
+[pass tonemap]
+plugin   = tonemap
+in.color = inverted
+out.ldr  = ldr
+INI
+run "$voxrg" render invert.ini --validate --frames 1 --out invert/out > invert_render.log 2>&1 ||
+    { cat invert_render.log; fail "the invert graph does not render"; }
+[ -s invert/out/ldr.png ] || fail "invert wrote no ldr.png"
+run VOXRG_PLUGIN_PATH="$out/work/invert" "$voxrg" plugins invert > plugins_invert.txt 2>&1 &&
+    grep -q "strength" plugins_invert.txt || { cat plugins_invert.txt; fail "voxrg plugins invert"; }
+
+# an installed plugin's shaders are read from the prefix, not from the tree
+# it was built in: a broken installed tonemap.comp is the one reported
+printf '#version 460\nthis is not glsl\n' > "$prefix/lib/voxrg/plugins/tonemap/tonemap.comp"
+run "$voxrg" render invert.ini --frames 1 --out invert/broken > broken.log 2>&1 && fail "a broken installed shader rendered"
+grep -q "$prefix/lib/voxrg/plugins/tonemap/tonemap.comp:2: error\[VRG-E063\]" broken.log || { cat broken.log; fail "the installed shader was not the one compiled"; }
+echo "install: ok"
