@@ -16,7 +16,7 @@ typedef struct _vrg_pipeline {
     VkFormat formats[VRG_MAX_BINDINGS]; /* storage images: the bound format, else UNDEFINED */
     uint32_t count;
     /* what reflection checks against, from the dispatch that made it */
-    char labels[VRG_MAX_BINDINGS][VRG_NAME_MAX + 32]; /* "slot 'out.color'" */
+    char labels[VRG_MAX_BINDINGS][2 * VRG_NAME_MAX + 32]; /* "slot 'out.color'" */
     uint32_t push_size, push_bytes; /* the dispatch's push_size; the shader's block */
     char push_where[VRG_PATH_MAX + 16];
     uint32_t local[3];
@@ -172,7 +172,7 @@ static void free_retired_pipeline(void *user)
 typedef struct bound_set {
     VkDescriptorType types[VRG_MAX_BINDINGS];
     VkFormat formats[VRG_MAX_BINDINGS];
-    char labels[VRG_MAX_BINDINGS][VRG_NAME_MAX + 32];
+    char labels[VRG_MAX_BINDINGS][2 * VRG_NAME_MAX + 32];
     uint32_t count;
     uint32_t push_size;
 } bound_set;
