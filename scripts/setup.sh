@@ -10,7 +10,7 @@ export DEBIAN_FRONTEND=noninteractive
 
 PKGS="build-essential cmake pkg-config git ca-certificates
       libvulkan-dev vulkan-validationlayers vulkan-tools spirv-tools
-      glslang-dev glslang-tools libglfw3-dev libinih-dev libspng-dev libjemalloc-dev
+      glslang-dev glslang-tools libspirv-cross-c-shared-dev libglfw3-dev libinih-dev libspng-dev libjemalloc-dev
       xvfb xauth xdotool chromium clang llvm libclang-rt-14-dev python3"
 
 missing=""

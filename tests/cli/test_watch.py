@@ -150,6 +150,18 @@ def shader_case(tmp):
         if not check(c == (255, 0, 0), "shader: frame %d after the broken save is %s, not the last good red" % (j, c)):
             break
 
+    # valid GLSL that disagrees with the slot (rgba32f for rgba16f): the
+    # reflection check fails the reload like a compile error does
+    save(shader, body.replace("rgba16f", "rgba32f") % "0.0, 0.0, 1.0")
+    check(r.wait_stderr(r"user\.comp:3: error\[VRG-E066\]: binding 0 'dst' is rgba32f, but slot 'out.color' of pass 'user' \(plugin shader_file\) is rgba16f"),
+          "shader: the format mismatch was not reported at user.comp:3")
+    check(r.alive(), "shader: the process stopped on a mismatching shader")
+    k = r.latest()
+    for j in range(k + 1, k + BOUND):
+        c = r.frame(j)[2]
+        if not check(c == (255, 0, 0), "shader: frame %d after the mismatching save is %s, not the last good red" % (j, c)):
+            break
+
     k = settle(r)
     save(shader, body % "0.0, 1.0, 0.0")
     check(r.first(k, lambda w, h, c: c == (0, 255, 0)) is not None, "shader: the fixed shader did not show")

@@ -77,6 +77,10 @@
     X(VRG_E_BAD_DISPATCH, "VRG-E061", "bad-dispatch", "a pass's dispatch cannot be recorded (bindings, push constants, domain)")            \
     X(VRG_E_PASS_API_MISUSE, "VRG-E062", "pass-api-misuse", "a plugin called the pass API at the wrong time or with wrong names")           \
     X(VRG_E_SHADER_SOURCE, "VRG-E063", "shader-source", "a shader or a file it #includes has a GLSL error, a bad #include or cannot be read") \
+    X(VRG_E_SHADER_BINDING_UNBOUND, "VRG-E064", "shader-binding-unbound", "a shader declares a binding its dispatch does not bind (no slot or resource there, or a set other than 0)") \
+    X(VRG_E_SHADER_BINDING_TYPE, "VRG-E065", "shader-binding-type", "a shader's binding has another descriptor type than the bound slot's access gives") \
+    X(VRG_E_SHADER_IMAGE_FORMAT, "VRG-E066", "shader-image-format", "a shader's storage image format qualifier is not the bound image's format") \
+    X(VRG_E_SHADER_PUSH_SIZE, "VRG-E067", "shader-push-size", "a shader's push-constant block is larger than the push constants its dispatch gives") \
     /* the device and the running graph */                                                                                                  \
     X(VRG_E_DEVICE_UNSUPPORTED, "VRG-E070", "device-unsupported", "the device lacks an extension, format or size the graph needs")         \
     X(VRG_E_VULKAN_FAILED, "VRG-E071", "vulkan-failed", "creating a Vulkan object, device memory or a submission failed")                  \
@@ -90,6 +94,7 @@
     /* warnings */                                                                                                                          \
     X(VRG_W_UNUSED_RESOURCE, "VRG-W001", "unused-resource", "a [resource] section configures a resource no pass uses")                    \
     X(VRG_W_PLUGIN_SHADOWED, "VRG-W002", "plugin-shadowed", "a plugin of the same name earlier on the search path is used instead")     \
-    X(VRG_W_SHADER_WARNING, "VRG-W003", "shader-warning", "the GLSL compiler warns about a shader or a file it #includes")
+    X(VRG_W_SHADER_WARNING, "VRG-W003", "shader-warning", "the GLSL compiler warns about a shader or a file it #includes") \
+    X(VRG_W_UNUSED_BINDING, "VRG-W004", "unused-binding", "a dispatch binds a slot or resource at a binding its shader does not declare")
 
 #endif

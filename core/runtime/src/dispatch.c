@@ -13,7 +13,12 @@ typedef struct _vrg_pipeline {
     char *deps;       /* files it was compiled from (shader.c), for hot reload */
     char defines[256];
     VkDescriptorType types[VRG_MAX_BINDINGS];
+    VkFormat formats[VRG_MAX_BINDINGS]; /* storage images: the bound format, else UNDEFINED */
     uint32_t count;
+    /* what reflection checks against, from the dispatch that made it */
+    char labels[VRG_MAX_BINDINGS][2 * VRG_NAME_MAX + 32]; /* "slot 'out.color'" */
+    uint32_t push_size, push_bytes; /* the dispatch's push_size; the shader's block */
+    char push_where[VRG_PATH_MAX + 16];
     uint32_t local[3];
     VkDescriptorSetLayout set_layout;
     VkPipelineLayout layout;
@@ -32,6 +37,51 @@ static VkDescriptorType descriptor_type(vrg_resource_kind kind, vrg_access a)
     return a == VRG_ACCESS_SAMPLED ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 }
 
+/* The shader's declarations against what the dispatch binds: every error
+ * and warning at the declaring line; -1 when any is an error. */
+static int check_reflection(vrg_pass *p, const _vrg_pipeline *pl, const _vrg_reflection *r, FILE *diag)
+{
+    const char *plugin = p->plugin->desc->name;
+    int errors = 0;
+    for (int k = 0; k < r->count; k++) {
+        const _vrg_reflected_binding *b = &r->bindings[k];
+        uint32_t i = b->binding;
+        if (b->set != 0) {
+            fprintf(diag, "%s: error[%s]: binding %u '%s' is in set %u, but pass '%s' (plugin %s) binds set 0 only\n", b->where,
+                    _vrg_diag_info_of(VRG_E_SHADER_BINDING_UNBOUND)->code, i, b->name, b->set, p->name, plugin);
+            errors++;
+        } else if (i >= pl->count) {
+            fprintf(diag, "%s: error[%s]: binding %u '%s' is bound to nothing: pass '%s' (plugin %s) binds %u resource%s (bindings 0 to %d)\n", b->where,
+                    _vrg_diag_info_of(VRG_E_SHADER_BINDING_UNBOUND)->code, i, b->name, p->name, plugin, pl->count, pl->count == 1 ? "" : "s", (int)pl->count - 1);
+            errors++;
+        } else if (b->type != pl->types[i]) {
+            fprintf(diag, "%s: error[%s]: binding %u '%s' is %s, but %s of pass '%s' (plugin %s) is bound as %s\n", b->where,
+                    _vrg_diag_info_of(VRG_E_SHADER_BINDING_TYPE)->code, i, b->name, _vrg_descriptor_type_name(b->type), pl->labels[i], p->name, plugin,
+                    _vrg_descriptor_type_name(pl->types[i]));
+            errors++;
+        } else if (b->format && pl->formats[i] && b->format != pl->formats[i]) {
+            fprintf(diag, "%s: error[%s]: binding %u '%s' is %s, but %s of pass '%s' (plugin %s) is %s\n", b->where, _vrg_diag_info_of(VRG_E_SHADER_IMAGE_FORMAT)->code,
+                    i, b->name, _vrg_glsl_format_name(b->format), pl->labels[i], p->name, plugin, _vrg_glsl_format_name(pl->formats[i]));
+            errors++;
+        }
+    }
+    if (r->push_bytes > pl->push_size) {
+        fprintf(diag, "%s: error[%s]: push-constant block '%s' is %u bytes, but pass '%s' (plugin %s) pushes %u (vrg_dispatch_desc.push_size)\n", r->push_where,
+                _vrg_diag_info_of(VRG_E_SHADER_PUSH_SIZE)->code, r->push_name, r->push_bytes, p->name, plugin, pl->push_size);
+        errors++;
+    }
+    /* every shipped pass declares each slot it binds, in either mode */
+    for (uint32_t i = 0; i < pl->count; i++) {
+        int declared = 0;
+        for (int k = 0; k < r->count && !declared; k++)
+            declared = r->bindings[k].set == 0 && r->bindings[k].binding == i;
+        if (!declared)
+            fprintf(diag, "%s: warning[%s]: %s of pass '%s' (plugin %s) is bound at binding %u, which the shader does not declare\n", pl->path,
+                    _vrg_diag_info_of(VRG_W_UNUSED_BINDING)->code, pl->labels[i], p->name, plugin, i);
+    }
+    return errors ? -1 : 0;
+}
+
 /* Compiles pl->path with pl->defines and makes its layouts and pipeline.
  * On failure pl's Vulkan objects stay unset and -1 is returned after the
  * compile errors (FILE:LINE) went to the graph's diagnostics. */
@@ -43,6 +93,16 @@ static int build_pipeline(vrg_pass *p, _vrg_pipeline *pl)
     FILE *diag = p->graph->diag.out ? p->graph->diag.out : stderr;
     if (_vrg_shader_compile(ctx, pl->path, pl->defines, &sm, diag) != 0) {
         _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "shader %s failed to compile", pl->path);
+        return -1;
+    }
+    int mismatch = check_reflection(p, pl, &sm.refl, diag);
+    pl->push_bytes = sm.refl.push_bytes;
+    snprintf(pl->push_where, sizeof pl->push_where, "%s", sm.refl.push_where);
+    _vrg_reflection_free(&sm.refl);
+    if (mismatch != 0) {
+        vkDestroyShaderModule(dev, sm.module, NULL);
+        free(sm.deps);
+        _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "shader %s does not match what the pass binds", pl->path);
         return -1;
     }
     pl->deps = sm.deps;
@@ -108,8 +168,19 @@ static void free_retired_pipeline(void *user)
     free(r);
 }
 
-static _vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *defines, const VkDescriptorType *types, uint32_t count)
+/* What one dispatch binds, for the pipeline cache and reflection's checks. */
+typedef struct bound_set {
+    VkDescriptorType types[VRG_MAX_BINDINGS];
+    VkFormat formats[VRG_MAX_BINDINGS];
+    char labels[VRG_MAX_BINDINGS][2 * VRG_NAME_MAX + 32];
+    uint32_t count;
+    uint32_t push_size;
+} bound_set;
+
+static _vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *defines, const bound_set *bs)
 {
+    const VkDescriptorType *types = bs->types;
+    uint32_t count = bs->count;
     if (!defines)
         defines = "";
     if (strlen(shader) >= sizeof((_vrg_pipeline *)0)->shader || strlen(defines) >= sizeof((_vrg_pipeline *)0)->defines) {
@@ -120,7 +191,8 @@ static _vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *
      * once, when its pipeline is built, not with file-system calls on every
      * dispatch of every frame */
     for (_vrg_pipeline *pl = p->pipelines; pl; pl = pl->next)
-        if (strcmp(pl->shader, shader) == 0 && strcmp(pl->defines, defines) == 0 && pl->count == count && memcmp(pl->types, types, count * sizeof *types) == 0)
+        if (strcmp(pl->shader, shader) == 0 && strcmp(pl->defines, defines) == 0 && pl->count == count && memcmp(pl->types, types, count * sizeof *types) == 0 &&
+            memcmp(pl->formats, bs->formats, count * sizeof *bs->formats) == 0)
             return pl;
     char path[VRG_PATH_MAX];
     if (_vrg_shader_resolve(p, shader, path, sizeof path) != 0) {
@@ -132,7 +204,10 @@ static _vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *
     snprintf(pl->shader, sizeof pl->shader, "%s", shader);
     snprintf(pl->defines, sizeof pl->defines, "%s", defines);
     memcpy(pl->types, types, count * sizeof *types);
+    memcpy(pl->formats, bs->formats, count * sizeof *bs->formats);
+    memcpy(pl->labels, bs->labels, count * sizeof bs->labels[0]);
     pl->count = count;
+    pl->push_size = bs->push_size;
     if (build_pipeline(p, pl) != 0) {
         free(pl);
         return NULL;
@@ -221,6 +296,7 @@ void _vrg_pipelines_destroy(vrg_pass *p)
 typedef struct bound {
     int res, prev;
     vrg_access access;
+    int slot; /* -1: an internal resource */
 } bound;
 
 static int resolve_bindings(vrg_pass *p, const vrg_dispatch_desc *d, bound *out)
@@ -237,7 +313,7 @@ static int resolve_bindings(vrg_pass *p, const vrg_dispatch_desc *d, bound *out)
             if (n == VRG_MAX_BINDINGS)
                 return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "its slots need more than the %d bindings of a dispatch: name the ones the shader uses in bindings[]",
                                       VRG_MAX_BINDINGS);
-            out[n++] = (bound){r, p->slots[s].prev, pd->slots[s].access};
+            out[n++] = (bound){r, p->slots[s].prev, pd->slots[s].access, (int)s};
         }
         return n;
     }
@@ -249,9 +325,20 @@ static int resolve_bindings(vrg_pass *p, const vrg_dispatch_desc *d, bound *out)
         vrg_access a = d->bindings[n].access;
         if (!a)
             a = slot >= 0 ? pd->slots[slot].access : VRG_ACCESS_STORAGE_READ_WRITE;
-        out[n] = (bound){res, prev, a};
+        out[n] = (bound){res, prev, a, slot};
     }
     return n;
+}
+
+/* How messages name a bound resource: "slot 'out.color'" or "internal resource 'tmp'". */
+static void label_binding(const vrg_pass *p, const bound *b, char *out, size_t cap)
+{
+    if (b->slot < 0) {
+        snprintf(out, cap, "internal resource '%s'", p->graph->res[b->res].name);
+        return;
+    }
+    const vrg_slot_desc *sd = vrg_slot(p, b->slot);
+    snprintf(out, cap, "slot '%s.%s'", sd->dir == VRG_IN ? "in" : "out", sd->name);
 }
 
 int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
@@ -261,7 +348,8 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
     int n = resolve_bindings(p, d, b);
     if (n < 0)
         return -1;
-    VkDescriptorType types[VRG_MAX_BINDINGS];
+    bound_set bs = {.count = (uint32_t)n, .push_size = d->push_size};
+    VkDescriptorType *types = bs.types;
     for (int i = 0; i < n; i++) {
         if (b[i].access == VRG_ACCESS_TRANSFER_SRC || b[i].access == VRG_ACCESS_TRANSFER_DST || b[i].access == VRG_ACCESS_AS_BUILD)
             return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "binding %d: %s access cannot be bound to a shader", i, _vrg_access_name(b[i].access));
@@ -269,6 +357,9 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
             return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "binding %d: acceleration structure '%s' was not built (its scene uses no ray-query backend)", i,
                                   g->res[b[i].res].name);
         types[i] = descriptor_type(g->res[b[i].res].kind, b[i].access);
+        if (types[i] == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)
+            bs.formats[i] = g->res[b[i].res].format;
+        label_binding(p, &b[i], bs.labels[i], sizeof bs.labels[i]);
     }
     if (d->push_size > 128)
         return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "push constants of %u bytes (at most 128)", d->push_size);
@@ -287,9 +378,15 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
             snprintf(defines + len, sizeof defines - len, " TRACE_RAYQUERY TLAS_BINDING=%d", i);
             break;
         }
-    _vrg_pipeline *pl = get_pipeline(p, d->shader, defines, types, (uint32_t)n);
+    _vrg_pipeline *pl = get_pipeline(p, d->shader, defines, &bs);
     if (!pl)
         return -1;
+    if (pl->push_bytes > d->push_size) { /* another dispatch of the same pipeline */
+        FILE *diag = g->diag.out ? g->diag.out : stderr;
+        fprintf(diag, "%s: error[%s]: push-constant block is %u bytes, but pass '%s' (plugin %s) pushes %u (vrg_dispatch_desc.push_size)\n", pl->push_where,
+                _vrg_diag_info_of(VRG_E_SHADER_PUSH_SIZE)->code, pl->push_bytes, p->name, p->plugin->desc->name, d->push_size);
+        return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "push constants of %u bytes for shader %s, which reads %u", d->push_size, pl->path, pl->push_bytes);
+    }
 
     _vrg_barrier_rec bars[VRG_MAX_BINDINGS];
     int nb = 0;

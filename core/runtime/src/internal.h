@@ -434,10 +434,32 @@ int _vrg_copy_of(const vrg_graph *g, int res, int prev);
 int _vrg_pass_lookup(const vrg_pass *p, const char *name, int *res, int *prev, int *slot);
 int _vrg_resource_barrier(vrg_graph *g, int res, int copy, vrg_access access, _vrg_barrier_rec *out);
 /* shader.c */
+/* ---- reflection (reflect.c): what a compiled shader declares ---- */
+typedef struct _vrg_reflected_binding {
+    uint32_t set, binding;
+    VkDescriptorType type;
+    VkFormat format; /* storage images: the format qualifier (UNDEFINED: none) */
+    char name[64];
+    char where[VRG_PATH_MAX + 16]; /* FILE:LINE of its declaration */
+} _vrg_reflected_binding;
+typedef struct _vrg_reflection {
+    _vrg_reflected_binding *bindings;
+    int count, cap;
+    uint32_t push_bytes; /* the push-constant block's size, 0: none */
+    char push_name[64];
+    char push_where[VRG_PATH_MAX + 16];
+} _vrg_reflection;
+/* src: the expanded GLSL (with shader.c's #line directives), for the lines. */
+int _vrg_reflect(const uint32_t *spv, size_t words, const char *src, const char *path, _vrg_reflection *out, FILE *diag);
+void _vrg_reflection_free(_vrg_reflection *r);
+const char *_vrg_glsl_format_name(VkFormat f);
+const char *_vrg_descriptor_type_name(VkDescriptorType t);
+
 typedef struct _vrg_shader_module {
     VkShaderModule module;
     uint32_t local_size[3];
     char *deps; /* the file and every file it includes, real paths, one per line (free()) */
+    _vrg_reflection refl; /* _vrg_reflection_free() */
 } _vrg_shader_module;
 int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, _vrg_shader_module *out, FILE *diag);
 int _vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t cap);

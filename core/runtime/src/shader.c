@@ -320,12 +320,14 @@ VkShaderModule vrg_compile_compute_shader(vrg_context *ctx, const char *path, co
     if (_vrg_shader_compile(ctx, path, defines, &sm, stderr) != 0)
         return VK_NULL_HANDLE;
     free(sm.deps);
+    _vrg_reflection_free(&sm.refl);
     return sm.module;
 }
 
 int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, _vrg_shader_module *out, FILE *diag)
 {
     pthread_once(&glslang_once, glslang_init);
+    memset(&out->refl, 0, sizeof out->refl);
     size_t len;
     char *src = read_file(path, &len);
     if (!src) {
@@ -394,6 +396,8 @@ int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines,
         size_t words = glslang_program_SPIRV_get_size(program);
         const uint32_t *spv = glslang_program_SPIRV_get_ptr(program);
         local_size_of(spv, words, out->local_size);
+        if (_vrg_reflect(spv, words, src, path, &out->refl, diag) != 0)
+            goto done;
         VkShaderModuleCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, .codeSize = words * 4, .pCode = spv};
         if (vkCreateShaderModule(ctx->dev.device, &ci, NULL, &out->module) == VK_SUCCESS) {
             _vrg_name_object(ctx, VK_OBJECT_TYPE_SHADER_MODULE, (uint64_t)out->module, "%s", path);
@@ -401,6 +405,7 @@ int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines,
         } else
             fprintf(diag, "%s: error[%s]: vkCreateShaderModule failed\n", path, _vrg_diag_info_of(VRG_E_VULKAN_FAILED)->code);
     }
+done:
     if (program)
         glslang_program_delete(program);
     glslang_shader_delete(shader);
@@ -408,6 +413,7 @@ int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines,
     if (rc != 0) {
         free(out->deps);
         out->deps = NULL;
+        _vrg_reflection_free(&out->refl);
     }
     return rc;
 }
