@@ -5,8 +5,9 @@
 // world's occupancy: empty chunks, 8^3 bricks, 4^3 sub-bricks, 2^3 cells
 // and 2x1x2 layers of cells are each crossed in one step, voxels are
 // stepped only where such a layer holds something. Backend 2 (#define
-// TRACE_RAYQUERY, TLAS_BINDING): VK_KHR_ray_query against the scene's
-// per-chunk BLASes. Include world.glsl and frame.glsl first.
+// TRACE_RAYQUERY, TLAS_BINDING; world.glsl defines them when the runtime
+// says VRG_ACCEL_BINDING): VK_KHR_ray_query against the scene's per-chunk
+// BLASes. Include world.glsl and frame.glsl first.
 //
 // What the DDA is shaped by (measured on lavapipe, docs/benchmarks.md): a
 // buffer load with a per-invocation address is a scalar loop over the SIMD

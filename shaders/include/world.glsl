@@ -4,6 +4,12 @@
 #ifndef VOXRG_WORLD_GLSL
 #define VOXRG_WORLD_GLSL
 #include "ifloor.glsl"
+// The runtime defines VRG_ACCEL_BINDING when a dispatch binds an
+// acceleration structure: trace.glsl's ray-query backend traces it.
+#if defined(VRG_ACCEL_BINDING) && !defined(TRACE_RAYQUERY)
+#define TRACE_RAYQUERY
+#define TLAS_BINDING VRG_ACCEL_BINDING
+#endif
 #ifdef TRACE_RAYQUERY
 // extensions come before any declaration (trace.glsl's ray-query backend)
 #extension GL_EXT_ray_query : require

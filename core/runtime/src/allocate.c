@@ -61,7 +61,7 @@ static int create_accel(vrg_graph *g, _vrg_resource *r)
     if (!r->size)
         return 0;
     if (!ctx->dev.features.acceleration_structure) {
-        _vrg_error_at(&g->diag, r->writer_line, VRG_E_DEVICE_UNSUPPORTED, "use the DDA traversal on this device", "resource '%s' needs VK_KHR_acceleration_structure, which '%s' lacks",
+        _vrg_error_at(&g->diag, r->writer_line, VRG_E_DEVICE_UNSUPPORTED, "this device cannot build acceleration structures: use a graph that needs none", "resource '%s' needs VK_KHR_acceleration_structure, which '%s' lacks",
                      r->name, ctx->device_name);
         return -1;
     }

@@ -452,7 +452,7 @@ int vrg_context_create(const vrg_context_desc *desc, vrg_context **out)
                 f->ray_query ? "yes" : "no", f->acceleration_structure ? "yes" : "no", f->timestamps ? "yes" : "no",
                 desc->validate ? ", validation + synchronization validation on" : "");
         if (!f->ray_query)
-            fprintf(stderr, "voxrg: note: no VK_KHR_ray_query on this device: only DDA traversal is available\n");
+            fprintf(stderr, "voxrg: note: no VK_KHR_ray_query on this device: shaders cannot trace acceleration structures\n");
     }
     *out = ctx;
     return 0;

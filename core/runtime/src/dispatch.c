@@ -307,7 +307,7 @@ static int resolve_bindings(vrg_pass *p, const vrg_dispatch_desc *d, bound *out)
         for (uint32_t s = 0; s < pd->slot_count; s++) {
             int r = p->slots[s].res;
             /* acceleration structures that do not exist (unconnected, or a scene
-             * on the DDA backend) are left out: declare them last */
+             * of size 0) are left out: declare them last */
             if (r < 0 || (p->graph->res[r].kind == VRG_ACCEL && !p->graph->res[r].accel))
                 continue;
             if (n == VRG_MAX_BINDINGS)
@@ -354,7 +354,7 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
         if (b[i].access == VRG_ACCESS_TRANSFER_SRC || b[i].access == VRG_ACCESS_TRANSFER_DST || b[i].access == VRG_ACCESS_AS_BUILD)
             return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "binding %d: %s access cannot be bound to a shader", i, _vrg_access_name(b[i].access));
         if (g->res[b[i].res].kind == VRG_ACCEL && !g->res[b[i].res].accel)
-            return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "binding %d: acceleration structure '%s' was not built (its scene uses no ray-query backend)", i,
+            return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "binding %d: acceleration structure '%s' was not built (its writer made none: size 0)", i,
                                   g->res[b[i].res].name);
         types[i] = descriptor_type(g->res[b[i].res].kind, b[i].access);
         if (types[i] == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)
@@ -363,19 +363,20 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
     }
     if (d->push_size > 128)
         return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "push constants of %u bytes (at most 128)", d->push_size);
-    /* A bound acceleration structure selects trace.glsl's ray-query backend. */
+    /* A bound acceleration structure is announced to the shader as
+     * VRG_ACCEL_BINDING (the voxel layer's trace.glsl then traces it). */
     char defines[sizeof ((_vrg_pipeline *)0)->defines];
     if (d->shader && strlen(d->shader) >= sizeof ((_vrg_pipeline *)0)->shader)
         return _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "shader name of %zu characters (at most %zu)", strlen(d->shader), sizeof ((_vrg_pipeline *)0)->shader - 1);
-    /* room for the ray-query backend's defines added below */
-    size_t max_defines = sizeof defines - sizeof " TRACE_RAYQUERY TLAS_BINDING=99";
+    /* room for the define added below */
+    size_t max_defines = sizeof defines - sizeof " VRG_ACCEL_BINDING=99";
     if (d->defines && strlen(d->defines) > max_defines)
         return _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "defines of %zu characters (at most %zu)", strlen(d->defines), max_defines);
     snprintf(defines, sizeof defines, "%s", d->defines ? d->defines : "");
     for (int i = 0; i < n; i++)
         if (g->res[b[i].res].kind == VRG_ACCEL) {
             size_t len = strlen(defines);
-            snprintf(defines + len, sizeof defines - len, " TRACE_RAYQUERY TLAS_BINDING=%d", i);
+            snprintf(defines + len, sizeof defines - len, " VRG_ACCEL_BINDING=%d", i);
             break;
         }
     _vrg_pipeline *pl = get_pipeline(p, d->shader, defines, &bs);

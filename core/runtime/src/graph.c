@@ -203,10 +203,15 @@ void vrg_graph_destroy(vrg_graph *g)
      * nothing it uses can be freed (vrg_context_gpu_busy) */
     if (g->ctx && g->ctx->gpu_busy)
         return;
+    /* this graph's frames in flight first, with the GPU timeout: a stuck
+     * frame is reported and its objects left, as above, instead of waiting
+     * for it forever */
+    if (g->ctx && _vrg_wait_frames(g) != 0)
+        return;
     _vrg_watch_destroy(g->watch);
     if (g->ctx) {
         VkDevice dev = g->ctx->dev.device;
-        vkDeviceWaitIdle(dev); /* every frame in flight */
+        vkDeviceWaitIdle(dev); /* what hosts recorded with the graph's images (a window's blit) */
         for (int i = 0; i < g->pass_count; i++) {
             vrg_pass *p = &g->passes[i];
             if (p->created && p->plugin->desc->destroy) {

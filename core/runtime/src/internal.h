@@ -69,7 +69,7 @@ struct vrg_context {
     PFN_vkSetDebugUtilsObjectNameEXT set_name;
     PFN_vkCmdPushDescriptorSetKHR push_descriptor;
     VkSampler sampler_linear;
-    VkSampler sampler_mips;   /* nearest texels, linear between levels: voxel textures */
+    VkSampler sampler_mips;   /* nearest texels, linear between levels (mip-mapped sampled images) */
     uint32_t group_size[2];   /* VRG_GROUP_X/Y for shaders: see shader.c */
     uint32_t pixel_tile[2];   /* VRG_TILE_W/H: the pixels of a group of a pixel loop (pixel.glsl) */
     uint32_t pixel_rows;      /* VRG_PIXEL_ROWS: tile rows per invocation of a pixel loop */

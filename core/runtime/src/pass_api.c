@@ -289,7 +289,7 @@ void _vrg_retire(vrg_graph *g, void (*fn)(void *user), void *user) { retire(g, N
 int vrg_pass_defer(vrg_pass *p, void (*fn)(void *user), void *user)
 {
     if (!fn)
-        return vrg_pass_error(p, "vrg_pass_defer: no function");
+        return _vrg_pass_fail(p, VRG_E_PASS_API_MISUSE, "vrg_pass_defer: no function");
     if (!p->graph->ctx)
         fn(user); /* no device: nothing in flight */
     else
@@ -344,7 +344,7 @@ vrg_ring *vrg_pass_host_ring(vrg_pass *p, const char *name, uint64_t bytes, VkBu
 {
     vrg_ring *ring = calloc(1, sizeof *ring);
     if (!ring) {
-        vrg_pass_error(p, "out of memory for ring '%s'", name);
+        _vrg_pass_fail(p, VRG_E_OUT_OF_MEMORY, "out of memory for ring '%s'", name);
         return NULL;
     }
     snprintf(ring->name, sizeof ring->name, "%s", name);
@@ -362,7 +362,7 @@ vrg_ring_slice vrg_pass_ring_slice(vrg_pass *p, vrg_ring *ring, uint64_t min_byt
     vrg_graph *g = p->graph;
     uint32_t slot = g->frame.frame_slot;
     if (!p->cmd) { /* another slot may be in use by the GPU right now */
-        vrg_pass_error(p, "vrg_pass_ring_slice('%s') is for execute() only", ring->name);
+        _vrg_pass_fail(p, VRG_E_PASS_API_MISUSE, "vrg_pass_ring_slice('%s') is for execute() only", ring->name);
         return (vrg_ring_slice){0};
     }
     _vrg_host_buffer *hb = ring->slice[slot];

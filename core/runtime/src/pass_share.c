@@ -17,7 +17,7 @@ struct _vrg_shared {
 int vrg_pass_share(vrg_pass *p, const char *name, void *object)
 {
     if (!name || !*name)
-        return vrg_pass_error(p, "vrg_pass_share: the name is empty");
+        return _vrg_pass_fail(p, VRG_E_PASS_API_MISUSE, "vrg_pass_share: the name is empty");
     struct _vrg_shared **at = &p->shared;
     while (*at && strcmp((*at)->name, name) != 0)
         at = &(*at)->next;
@@ -34,7 +34,7 @@ int vrg_pass_share(vrg_pass *p, const char *name, void *object)
         struct _vrg_shared *s = calloc(1, sizeof *s);
         if (!s || !(s->name = strdup(name))) {
             free(s);
-            return vrg_pass_error(p, "vrg_pass_share '%s': out of memory", name);
+            return _vrg_pass_fail(p, VRG_E_OUT_OF_MEMORY, "vrg_pass_share '%s': out of memory", name);
         }
         *at = s;
     }

@@ -194,6 +194,10 @@ static int wait_slot(vrg_graph *g, struct _vrg_frame_slot *s)
 
 int _vrg_wait_frames(vrg_graph *g)
 {
+    if (g->ctx && g->ctx->gpu_busy && g->submitted > g->finished) {
+        _vrg_error(&g->diag, VRG_E_GPU_BUSY, "graph '%s': the GPU is still busy with a frame that timed out or was interrupted", g->name);
+        return -1;
+    }
     /* oldest first: the timings end as the newest frame's */
     for (uint64_t serial = g->finished + 1; serial <= g->submitted; serial++)
         for (uint32_t i = 0; i < g->frames_in_flight; i++)

@@ -105,8 +105,14 @@ static int copy_history(vrg_graph *old, vrg_graph *g)
     VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cbi};
     vkResetFences(dev, 1, &fence);
     double waited;
-    if (vkQueueSubmit2(g->ctx->dev.queue, 1, &si, fence) != VK_SUCCESS || _vrg_wait_fence(g->ctx, fence, &waited) != VRG_WAIT_DONE) {
-        _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "reload: copying history failed (or was interrupted)");
+    if (vkQueueSubmit2(g->ctx->dev.queue, 1, &si, fence) != VK_SUCCESS) {
+        _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "reload: submitting the copy of history failed");
+        return -1;
+    }
+    _vrg_wait_result w = _vrg_wait_fence(g->ctx, fence, &waited);
+    if (w != VRG_WAIT_DONE) {
+        _vrg_error(&g->diag, w == VRG_WAIT_FAILED ? VRG_E_DEVICE_LOST : VRG_E_GPU_TIMEOUT, "reload: the copy of history %s after %.1f s",
+                   w == VRG_WAIT_FAILED ? "failed" : w == VRG_WAIT_INTERRUPTED ? "was interrupted" : "timed out", waited);
         return -1;
     }
     return 0;
@@ -176,6 +182,10 @@ int vrg_graph_reload(vrg_graph **pg)
         _vrg_error(&old->diag, VRG_E_NO_DEVICE, "reload: the graph was not loaded from a file with a device");
         return -1;
     }
+    if (old->ctx->gpu_busy) {
+        _vrg_error(&old->diag, VRG_E_GPU_BUSY, "reload: the GPU is still busy with a frame that timed out or was interrupted");
+        return -1;
+    }
     double saved_at = old->source_saved_at; /* this reload takes these saves, done or refused */
     old->source_saved_at = 0;
     /* rebuilt plugins first: the new graph picks up their newest versions */
@@ -208,6 +218,14 @@ int vrg_graph_reload(vrg_graph **pg)
     free(text);
     g->desc.diag = old->desc.diag;
     g->diag.out = old->desc.diag;
+    /* the old graph's frames in flight end before its passes hand their
+     * state over (save_state may read what they write) and before its
+     * resources are copied and freed (a GPU timeout here is reported like
+     * a frame's) */
+    if (_vrg_wait_frames(old) != 0) {
+        vrg_graph_destroy(g);
+        return -1;
+    }
     carry_state(old, g);
     /* pipelines depend on the shader, its defines and descriptor types only:
      * a pass running the same plugin keeps its compiled ones (no new JIT) */
@@ -221,9 +239,7 @@ int vrg_graph_reload(vrg_graph **pg)
     g->frame.frame_index = old->frame.frame_index; /* random sequences and history copies continue */
     g->camera = old->camera;
     g->last_camera = old->last_camera;
-    /* the old graph's frames in flight end before its resources are copied
-     * and freed (a GPU timeout here is reported like a frame's) */
-    if (_vrg_wait_frames(old) != 0 || copy_history(old, g) != 0) {
+    if (copy_history(old, g) != 0) {
         vrg_graph_destroy(g);
         return -1;
     }

@@ -158,7 +158,7 @@ static int remember_include(expand_ctx *e, const char *resolved)
         int cap = e->seen_cap ? 2 * e->seen_cap : 16;
         char (*grown)[VRG_PATH_MAX] = realloc(e->seen, (size_t)cap * sizeof *grown);
         if (!grown) {
-            fprintf(e->diag, "%s: error[%s]: out of memory\n", resolved, SOURCE_CODE);
+            fprintf(e->diag, "%s: error[%s]: out of memory\n", resolved, _vrg_diag_info_of(VRG_E_OUT_OF_MEMORY)->code);
             e->failed = 1;
             return -1;
         }

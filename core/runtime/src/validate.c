@@ -247,7 +247,7 @@ static void graph_section(vrg_graph *g, const _vrg_ast *a, int si, const char *g
         } else if (strcmp(k->name, "frames_in_flight") == 0) {
             long n;
             if (parse_int(k->value, &n) != 0 || n < 1 || n > VRG_MAX_FRAMES_IN_FLIGHT)
-                _vrg_error_at(&g->diag, k->line, VRG_E_OUT_OF_RANGE, "1: the CPU waits for each frame; 2 (the default): it records the next while the GPU runs one",
+                _vrg_error_at(&g->diag, k->line, parse_int(k->value, &n) != 0 ? VRG_E_NOT_A_NUMBER : VRG_E_OUT_OF_RANGE, "1: the CPU waits for each frame; 2 (the default): it records the next while the GPU runs one",
                               "'frames_in_flight = %s' must be a whole number from 1 to %d", k->value, VRG_MAX_FRAMES_IN_FLIGHT);
             else
                 g->frames_in_flight = (uint32_t)n;

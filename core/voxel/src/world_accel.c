@@ -212,12 +212,12 @@ int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *
         int s = a->changed[i];
         chunk_blas *b = &a->blas[s];
         if (b->as) { /* earlier frames in flight may still trace it */
-            vrg_pass_free_buffer(a->pass, b->buffer);
-            retired_blas *r = malloc(sizeof *r);
+            retired_blas *r = malloc(sizeof *r); /* before anything is freed: a failure leaves the BLAS whole */
             if (!r) {
                 rc = vrg_pass_error(a->pass, "out of memory retiring the BLAS of chunk slot %d", s);
                 break;
             }
+            vrg_pass_free_buffer(a->pass, b->buffer);
             *r = (retired_blas){a->destroy_as, dev, b->as};
             vrg_pass_defer(a->pass, destroy_retired_blas, r); /* deferred last: destroyed before its buffer */
             memset(b, 0, sizeof *b);

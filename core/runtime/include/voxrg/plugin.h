@@ -398,8 +398,8 @@ typedef struct vrg_dispatch_desc {
      * the pass is bound in declaration order (unconnected optional inputs
      * through their 1x1 stand-ins), except acceleration structures that do
      * not exist, which is why they are declared last. Whenever one is bound
-     * at binding i, the shader is compiled with TRACE_RAYQUERY and
-     * TLAS_BINDING=i (trace.glsl's ray-query backend). */
+     * at binding i, the shader is compiled with VRG_ACCEL_BINDING=i (the
+     * voxel layer's trace.glsl then uses its ray-query backend on it). */
     vrg_binding bindings[VRG_MAX_BINDINGS];
     /* Preprocessor definitions for this variant, "NAME" or "NAME=VALUE",
      * separated by spaces or ';' (each set is its own cached pipeline). */
