@@ -45,6 +45,37 @@ static float *blur_image(const float *src, uint32_t w, uint32_t h)
     return img;
 }
 
+/* A resize a pass refuses leaves the graph without frames (no half-made
+ * readback to copy into), with a message, until a resize succeeds. */
+static void test_resize_refused(void)
+{
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *diag = open_memstream(&buf, &len);
+    const char *text = "[graph]\noutput = grey\nwidth = 16\nheight = 16\n[pass limit]\nplugin = resize_limit\nout.color = grey\n";
+    vrg_graph_desc d = {.path = "resize.ini", .text = text, .diag = diag};
+    vrg_graph *g = NULL;
+    CHECK(vrg_graph_load(ctx, &d, &g) == 0, "load failed");
+    if (g) {
+        CHECK(vrg_graph_frame(g) == 0, "frame at 16x16 failed");
+        CHECK(vrg_graph_resize(g, 64, 64) != 0, "the refused resize succeeded");
+        CHECK(vrg_graph_frame(g) != 0, "a frame after the refused resize ran");
+        CHECK(vrg_graph_resize(g, 24, 24) == 0, "resize to 24x24 failed");
+        CHECK(vrg_graph_frame(g) == 0, "frame at 24x24 failed");
+        vrg_image_data img;
+        if (vrg_graph_read(g, "grey", &img) == 0) {
+            CHECK(img.width == 24 && fabsf(px(&img, 23, 23, 0) - 0.5f) < 1e-3f, "24x24 output wrong: %ux%u, %g", img.width, img.height,
+                  px(&img, 23, 23, 0));
+            free(img.pixels);
+        } else
+            CHECK(0, "readback failed");
+        vrg_graph_destroy(g);
+    }
+    fclose(diag);
+    CHECK(buf && strstr(buf, "output 64x64 is wider than max_width 32") && strstr(buf, "its last resize failed"), "messages:\n%s", buf ? buf : "");
+    free(buf);
+}
+
 /* pattern → blur → add(blur, pattern): values against a CPU computation. */
 static void test_chain(void)
 {
@@ -419,6 +450,7 @@ static void test_set_param(void)
 int main(int argc, char **argv)
 {
     static const test_case cases[] = {
+        {"resize_refused", test_resize_refused, 1},
         {"chain", test_chain, 1},
         {"history", test_history, 1},
         {"accumulate", test_accumulate, 1},

@@ -366,7 +366,7 @@ static void apply_reloads(vrg_graph *g)
 int vrg_graph_frame(vrg_graph *g)
 {
     if (!g->ctx || !g->allocated) {
-        _vrg_error(&g->diag, VRG_E_NO_DEVICE, "graph '%s' has no device resources (loaded without a context)", g->name);
+        _vrg_error(&g->diag, VRG_E_NO_DEVICE, "graph '%s' has no device resources (loaded without a context, or its last resize failed)", g->name);
         return -1;
     }
     if (g->ctx->gpu_busy) { /* the command buffer may still be executing */
@@ -462,8 +462,10 @@ int vrg_graph_resize(vrg_graph *g, uint32_t width, uint32_t height)
     g->height = height;
     if (_vrg_allocate(g) != 0)
         return -1;
-    if (g->ctx && (readback_buffer(g) != 0 || resize_passes(g) != 0))
+    if (g->ctx && (readback_buffer(g) != 0 || resize_passes(g) != 0)) {
+        g->allocated = 0; /* half resized (no readback buffer, or a pass refused): no frame until a resize succeeds */
         return -1;
+    }
     return 0;
 }
 
