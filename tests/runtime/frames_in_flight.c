@@ -9,19 +9,11 @@
 #include <time.h>
 #include <unistd.h>
 #include "voxrg/voxrg.h"
+#include "check.h"
 
 static int failures;
 static vrg_context *ctx;
 
-#define CHECK(cond, ...)                                                                     \
-    do {                                                                                     \
-        if (!(cond)) {                                                                       \
-            fprintf(stderr, "%s:%d: check failed: %s: ", __FILE__, __LINE__, #cond);        \
-            fprintf(stderr, __VA_ARGS__);                                                    \
-            fputc('\n', stderr);                                                             \
-            failures++;                                                                      \
-        }                                                                                    \
-    } while (0)
 
 /* The ring_probe graph with `frames` in flight and a spin of `spin`;
  * messages to diag (NULL: stderr). */

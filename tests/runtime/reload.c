@@ -12,22 +12,30 @@ static const char *user_shader =
     "layout(binding = 0, rgba16f) uniform writeonly image2D dst;\n"
     "void main() { imageStore(dst, ivec2(gl_GlobalInvocationID.xy), vec4(TINT, 1.0)); }\n";
 
+/* A folder of user.comp and the tint.glsl it includes, on VOXRG_SHADER_PATH
+ * for tests/graphs/shader_file.ini; dir is a mkdtemp template. */
+static int shader_folder(char *dir, char user[1100], char tint[1100])
+{
+    if (!mkdtemp(dir)) {
+        CHECK(0, "mkdtemp failed");
+        return -1;
+    }
+    snprintf(user, 1100, "%s/user.comp", dir);
+    snprintf(tint, 1100, "%s/tint.glsl", dir);
+    save_file(user, user_shader);
+    save_file(tint, "#define TINT vec3(0.25, 0.5, 0.75)\n");
+    setenv("VOXRG_SHADER_PATH", dir, 1);
+    return 0;
+}
+
 /* Hot reload of shaders: a saved shader (or a file it #includes) is in use
  * on the next frame; a broken one is reported with FILE:LINE while the last
  * good pipeline keeps rendering; fixing it brings the new version. */
 static void test_hot_reload_shader(void)
 {
-    char dir[] = "/tmp/voxrg-reload-XXXXXX";
-    if (!mkdtemp(dir)) {
-        CHECK(0, "mkdtemp failed");
+    char dir[] = "/tmp/voxrg-reload-XXXXXX", user[1100], tint[1100];
+    if (shader_folder(dir, user, tint) != 0)
         return;
-    }
-    char user[1100], tint[1100];
-    snprintf(user, sizeof user, "%s/user.comp", dir);
-    snprintf(tint, sizeof tint, "%s/tint.glsl", dir);
-    save_file(user, user_shader);
-    save_file(tint, "#define TINT vec3(0.25, 0.5, 0.75)\n");
-    setenv("VOXRG_SHADER_PATH", dir, 1);
     char *log = NULL;
     size_t len = 0;
     FILE *diag = open_memstream(&log, &len);
@@ -83,17 +91,9 @@ static void test_hot_reload_shader(void)
  * uses the new one. */
 static void test_hot_reload_shader_in_flight(void)
 {
-    char dir[] = "/tmp/voxrg-reload-XXXXXX";
-    if (!mkdtemp(dir)) {
-        CHECK(0, "mkdtemp failed");
+    char dir[] = "/tmp/voxrg-reload-XXXXXX", user[1100], tint[1100], path[1024];
+    if (shader_folder(dir, user, tint) != 0)
         return;
-    }
-    char user[1100], tint[1100], path[1024];
-    snprintf(user, sizeof user, "%s/user.comp", dir);
-    snprintf(tint, sizeof tint, "%s/tint.glsl", dir);
-    save_file(user, user_shader);
-    save_file(tint, "#define TINT vec3(0.25, 0.5, 0.75)\n");
-    setenv("VOXRG_SHADER_PATH", dir, 1);
     snprintf(path, sizeof path, "%s/graphs/shader_file.ini", TEST_DIR);
     static const char *reads[] = {"color"};
     vrg_graph_desc d = {.path = path, .readback = reads, .readback_count = 1};
