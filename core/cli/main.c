@@ -259,6 +259,11 @@ static int cmd_check(int argc, char **argv)
     if (load(&o, &ctx, &g) != 0)
         return finish(ctx, g, 1);
     vrg_graph_report(g, stdout);
+    printf("shaders%s:\n", ctx ? "" : " (compiled without a device)");
+    if (vrg_graph_check_shaders(g, stdout) != 0) {
+        fprintf(stderr, "error: shaders of %s do not compile or do not match their passes (see above)\n", o.graph);
+        return finish(ctx, g, 1);
+    }
     if (o.dot) {
         vrg_output *out = vrg_output_open(o.dot);
         if (!out)

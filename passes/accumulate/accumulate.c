@@ -35,14 +35,23 @@ static int create(vrg_pass *pass)
 
 static int camera_moved(const vrg_camera *a, const vrg_camera *b) { return memcmp(a, b, sizeof *a) != 0; }
 
+typedef struct accumulate_push {
+    int32_t reset, max_frames;
+} accumulate_push;
+
+/* every dispatch execute() records: checked by `voxrg check` */
+static const vrg_dispatch_desc dispatches[] = {
+    {.shader = "accumulate.comp", .push_size = sizeof(accumulate_push), .pixel_loop = 1},
+};
+
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     const vrg_frame_info *f = vrg_pass_frame(pass);
-    struct {
-        int32_t reset, max_frames;
-    } pc = {!vrg_res_history_valid(pass, vrg_pass_res(pass, "history")) || f->params_changed || camera_moved(&f->camera, &f->prev_camera), vrg_param_int(pass, "max_frames")};
+    accumulate_push pc = {!vrg_res_history_valid(pass, vrg_pass_res(pass, "history")) || f->params_changed || camera_moved(&f->camera, &f->prev_camera), vrg_param_int(pass, "max_frames")};
     vrg_pass_stat(pass, "reset", pc.reset);
-    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "accumulate.comp", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1});
+    vrg_dispatch_desc d = dispatches[0];
+    d.push = &pc;
+    (void)vrg_dispatch(pass, cmd, &d);
 }
 
 static const vrg_plugin_desc desc = {
@@ -57,6 +66,8 @@ static const vrg_plugin_desc desc = {
     .slot_count = sizeof slots / sizeof slots[0],
     .create = create,
     .execute = execute,
+    .dispatches = dispatches,
+    .dispatch_count = sizeof dispatches / sizeof dispatches[0],
 };
 
 VRG_PLUGIN(desc)

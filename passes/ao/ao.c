@@ -27,18 +27,21 @@ static const vrg_slot_desc slots[] = {
      .help = "the scene's TLAS: trace with ray queries (traversal = rayquery)"},
 };
 
+typedef struct ao_push {
+    int32_t rays;
+    float radius;
+} ao_push;
+
+/* every dispatch execute() records: checked by `voxrg check` */
+static const vrg_dispatch_desc dispatches[] = {
+    {.shader = "ao.comp", .push_size = sizeof(ao_push), .pixel_loop = 1},
+};
+
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    struct {
-        int32_t rays;
-        float radius;
-    } pc = {vrg_param_int(pass, "rays"), (float)vrg_param(pass, "radius")};
-    vrg_dispatch_desc d = {
-        .shader = "ao.comp",
-        .pixel_loop = 1,
-        .push = &pc,
-        .push_size = sizeof pc,
-    };
+    ao_push pc = {vrg_param_int(pass, "rays"), (float)vrg_param(pass, "radius")};
+    vrg_dispatch_desc d = dispatches[0];
+    d.push = &pc;
     (void)vrg_dispatch(pass, cmd, &d);
 }
 
@@ -53,6 +56,8 @@ static const vrg_plugin_desc desc = {
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,
+    .dispatches = dispatches,
+    .dispatch_count = sizeof dispatches / sizeof dispatches[0],
 };
 
 VRG_PLUGIN(desc)

@@ -37,12 +37,19 @@ static const char *const modes[] = {"physical", "thesis"};
 
 static int check(vrg_pass *pass) { return vrg_param_choice(pass, "mode", modes, 2) < 0 ? -1 : 0; }
 
+typedef struct combine_push {
+    float direct_scale, indirect_scale, ao_scale;
+    int32_t mode, has_visibility, has_ao, has_indirect;
+} combine_push;
+
+/* every dispatch execute() records: checked by `voxrg check` */
+static const vrg_dispatch_desc dispatches[] = {
+    {.shader = "combine.comp", .push_size = sizeof(combine_push), .pixel_loop = 1},
+};
+
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    struct {
-        float direct_scale, indirect_scale, ao_scale;
-        int32_t mode, has_visibility, has_ao, has_indirect;
-    } pc = {
+    combine_push pc = {
         (float)vrg_param(pass, "direct_scale"),
         (float)vrg_param(pass, "indirect_scale"),
         (float)vrg_param(pass, "ao_scale"),
@@ -51,7 +58,9 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         vrg_res_connected(vrg_pass_res(pass, "ao")),
         vrg_res_connected(vrg_pass_res(pass, "indirect")),
     };
-    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "combine.comp", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1});
+    vrg_dispatch_desc d = dispatches[0];
+    d.push = &pc;
+    (void)vrg_dispatch(pass, cmd, &d);
 }
 
 static const vrg_plugin_desc desc = {
@@ -65,6 +74,8 @@ static const vrg_plugin_desc desc = {
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,
+    .dispatches = dispatches,
+    .dispatch_count = sizeof dispatches / sizeof dispatches[0],
     .check = check,
 };
 

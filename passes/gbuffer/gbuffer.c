@@ -32,18 +32,21 @@ static const vrg_slot_desc slots[] = {
      .help = "the scene's TLAS: trace with ray queries (traversal = rayquery)"},
 };
 
+typedef struct gbuffer_push {
+    float max_distance;
+    int32_t textured;
+} gbuffer_push;
+
+/* every dispatch execute() records: checked by `voxrg check` */
+static const vrg_dispatch_desc dispatches[] = {
+    {.shader = "gbuffer.comp", .push_size = sizeof(gbuffer_push), .pixel_loop = 1},
+};
+
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    struct {
-        float max_distance;
-        int32_t textured;
-    } pc = {(float)vrg_param(pass, "max_distance"), vrg_param_int(pass, "textures") && vrg_res_connected(vrg_pass_res(pass, "atlas"))};
-    vrg_dispatch_desc d = {
-        .shader = "gbuffer.comp",
-        .pixel_loop = 1,
-        .push = &pc,
-        .push_size = sizeof pc,
-    };
+    gbuffer_push pc = {(float)vrg_param(pass, "max_distance"), vrg_param_int(pass, "textures") && vrg_res_connected(vrg_pass_res(pass, "atlas"))};
+    vrg_dispatch_desc d = dispatches[0];
+    d.push = &pc;
     (void)vrg_dispatch(pass, cmd, &d);
 }
 
@@ -58,6 +61,8 @@ static const vrg_plugin_desc desc = {
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,
+    .dispatches = dispatches,
+    .dispatch_count = sizeof dispatches / sizeof dispatches[0],
 };
 
 VRG_PLUGIN(desc)

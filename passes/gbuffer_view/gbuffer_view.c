@@ -23,12 +23,21 @@ static const vrg_slot_desc slots[] = {
      .format = VK_FORMAT_R8G8B8A8_UNORM, .help = "mosaic: normal | depth / albedo | motion, display values"},
 };
 
+typedef struct gbuffer_view_push {
+    float far_depth, motion_scale;
+} gbuffer_view_push;
+
+/* every dispatch execute() records: checked by `voxrg check` */
+static const vrg_dispatch_desc dispatches[] = {
+    {.shader = "gbuffer_view.comp", .push_size = sizeof(gbuffer_view_push), .pixel_loop = 1},
+};
+
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    struct {
-        float far_depth, motion_scale;
-    } pc = {(float)vrg_param(pass, "far"), (float)vrg_param(pass, "motion_scale")};
-    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "gbuffer_view.comp", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1});
+    gbuffer_view_push pc = {(float)vrg_param(pass, "far"), (float)vrg_param(pass, "motion_scale")};
+    vrg_dispatch_desc d = dispatches[0];
+    d.push = &pc;
+    (void)vrg_dispatch(pass, cmd, &d);
 }
 
 static const vrg_plugin_desc desc = {
@@ -42,6 +51,8 @@ static const vrg_plugin_desc desc = {
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,
+    .dispatches = dispatches,
+    .dispatch_count = sizeof dispatches / sizeof dispatches[0],
 };
 
 VRG_PLUGIN(desc)

@@ -47,21 +47,24 @@ static const vrg_slot_desc slots[] = {
      .help = "the scene's TLAS: trace with ray queries (traversal = rayquery)"},
 };
 
+typedef struct indirect_push {
+    int32_t rays;
+    float max_distance;
+    int32_t shadow;
+    int32_t textured;
+} indirect_push;
+
+/* every dispatch execute() records: checked by `voxrg check` */
+static const vrg_dispatch_desc dispatches[] = {
+    {.shader = "indirect.comp", .push_size = sizeof(indirect_push), .pixel_loop = 1},
+};
+
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    struct {
-        int32_t rays;
-        float max_distance;
-        int32_t shadow;
-        int32_t textured;
-    } pc = {vrg_param_int(pass, "rays"), (float)vrg_param(pass, "max_distance"), vrg_param_int(pass, "shadow"),
+    indirect_push pc = {vrg_param_int(pass, "rays"), (float)vrg_param(pass, "max_distance"), vrg_param_int(pass, "shadow"),
             vrg_param_int(pass, "textures") && vrg_res_connected(vrg_pass_res(pass, "atlas"))};
-    vrg_dispatch_desc d = {
-        .shader = "indirect.comp",
-        .pixel_loop = 1,
-        .push = &pc,
-        .push_size = sizeof pc,
-    };
+    vrg_dispatch_desc d = dispatches[0];
+    d.push = &pc;
     (void)vrg_dispatch(pass, cmd, &d);
 }
 
@@ -76,6 +79,8 @@ static const vrg_plugin_desc desc = {
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,
+    .dispatches = dispatches,
+    .dispatch_count = sizeof dispatches / sizeof dispatches[0],
 };
 
 VRG_PLUGIN(desc)

@@ -32,22 +32,25 @@ static const vrg_slot_desc slots[] = {
      .help = "the scene's TLAS: trace with ray queries (traversal = rayquery)"},
 };
 
+typedef struct sun_shadow_push {
+    int32_t rays;
+    float sun_radius; /* radians */
+    float max_distance;
+} sun_shadow_push;
+
+/* every dispatch execute() records: checked by `voxrg check` */
+static const vrg_dispatch_desc dispatches[] = {
+    {.shader = "sun_shadow.comp", .push_size = sizeof(sun_shadow_push), .pixel_loop = 1},
+};
+
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    struct {
-        int32_t rays;
-        float sun_radius; /* radians */
-        float max_distance;
-    } pc = {vrg_param_int(pass, "rays"), (float)(vrg_param(pass, "sun_radius") * 3.14159265358979323846 / 180.0),
+    sun_shadow_push pc = {vrg_param_int(pass, "rays"), (float)(vrg_param(pass, "sun_radius") * 3.14159265358979323846 / 180.0),
             (float)vrg_param(pass, "max_distance")};
     if (pc.sun_radius <= 0.0f)
         pc.rays = 1;
-    vrg_dispatch_desc d = {
-        .shader = "sun_shadow.comp",
-        .pixel_loop = 1,
-        .push = &pc,
-        .push_size = sizeof pc,
-    };
+    vrg_dispatch_desc d = dispatches[0];
+    d.push = &pc;
     (void)vrg_dispatch(pass, cmd, &d);
 }
 
@@ -62,6 +65,8 @@ static const vrg_plugin_desc desc = {
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,
+    .dispatches = dispatches,
+    .dispatch_count = sizeof dispatches / sizeof dispatches[0],
 };
 
 VRG_PLUGIN(desc)

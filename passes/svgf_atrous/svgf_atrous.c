@@ -68,6 +68,35 @@ static int create(vrg_pass *pass)
     return 0;
 }
 
+typedef struct atrous_push {
+    float sigma_z, sigma_n, sigma_l, skip_variance;
+    int32_t step;
+} atrous_push;
+
+/* Every dispatch execute() records, which `voxrg check` compiles: the
+ * feedback copies, the pack, and the iterations by kernel radius, source
+ * and destination (the last one unpacks into color). */
+#define COPY_FROM(defs, src, access)                                                                                                             \
+    {.shader = "svgf_atrous.comp", .defines = defs, .pixel_loop = 1, .bindings = {{src, access}, {"feedback", VRG_ACCESS_STORAGE_WRITE}}}
+#define ITERATION(defs, src, dst)                                                                                                                \
+    {.shader = "svgf_atrous.comp", .defines = defs, .push_size = sizeof(atrous_push), .pixel_loop = 1,                                         \
+     .bindings = {{src, VRG_ACCESS_STORAGE_READ}, {"position"}, {"frame"}, {dst, VRG_ACCESS_STORAGE_WRITE}}}
+static const vrg_dispatch_desc dispatches[] = {
+    COPY_FROM("COPY", "illumination", VRG_ACCESS_SAMPLED),
+    COPY_FROM("COPY", "color", VRG_ACCESS_SAMPLED),
+    COPY_FROM("COPY FROM_PACKED", "ping", VRG_ACCESS_STORAGE_READ),
+    COPY_FROM("COPY FROM_PACKED", "pong", VRG_ACCESS_STORAGE_READ),
+    {.shader = "svgf_atrous.comp", .defines = "PACK", .pixel_loop = 1, .bindings = {{"illumination"}, {"position"}, {"normal"}, {"pong", VRG_ACCESS_STORAGE_WRITE}}},
+    ITERATION("KERNEL_RADIUS=1 TO_PACKED", "pong", "ping"),
+    ITERATION("KERNEL_RADIUS=1 TO_PACKED", "ping", "pong"),
+    ITERATION("KERNEL_RADIUS=1", "pong", "color"),
+    ITERATION("KERNEL_RADIUS=1", "ping", "color"),
+    ITERATION("KERNEL_RADIUS=2 TO_PACKED", "pong", "ping"),
+    ITERATION("KERNEL_RADIUS=2 TO_PACKED", "ping", "pong"),
+    ITERATION("KERNEL_RADIUS=2", "pong", "color"),
+    ITERATION("KERNEL_RADIUS=2", "ping", "color"),
+};
+
 /* feedback from the input, the (unpacked) output or a packed iteration */
 static int copy(vrg_pass *pass, VkCommandBuffer cmd, const char *from, int packed)
 {
@@ -82,10 +111,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     if (vrg_pass_require_same_size(pass, "color", same, 3) != 0)
         return;
     int n = vrg_param_int(pass, "iterations"), fb = vrg_param_int(pass, "feedback");
-    struct {
-        float sigma_z, sigma_n, sigma_l, skip_variance;
-        int32_t step;
-    } pc = {(float)vrg_param(pass, "sigma_z"), (float)vrg_param(pass, "sigma_n"), (float)vrg_param(pass, "sigma_l"),
+    atrous_push pc = {(float)vrg_param(pass, "sigma_z"), (float)vrg_param(pass, "sigma_n"), (float)vrg_param(pass, "sigma_l"),
             (float)vrg_param(pass, "skip_variance"), 1};
     int radius = vrg_param_int(pass, "kernel") / 2; /* a define: the taps unroll */
     if (fb == 0 && copy(pass, cmd, "illumination", 0) != 0)
@@ -127,6 +153,8 @@ static const vrg_plugin_desc desc = {
     .check = check,
     .create = create,
     .execute = execute,
+    .dispatches = dispatches,
+    .dispatch_count = sizeof dispatches / sizeof dispatches[0],
 };
 
 VRG_PLUGIN(desc)

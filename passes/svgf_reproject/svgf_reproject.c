@@ -52,6 +52,16 @@ static const vrg_slot_desc slots[] = {
      .help = "history length: earlier frames in the accumulation (0: restarted this frame)"},
 };
 
+typedef struct svgf_reproject_push {
+    float alpha, moments_alpha, normal_threshold, plane_distance;
+    int32_t length_alpha, max_length, history_valid;
+} svgf_reproject_push;
+
+/* every dispatch execute() records: checked by `voxrg check` */
+static const vrg_dispatch_desc dispatches[] = {
+    {.shader = "svgf_reproject.comp", .push_size = sizeof(svgf_reproject_push), .pixel_loop = 1},
+};
+
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     /* the history images are read at reprojected positions: all at one size */
@@ -64,10 +74,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     int valid = 1;
     for (unsigned i = 0; i < sizeof past / sizeof past[0]; i++)
         valid &= vrg_res_history_valid(pass, vrg_pass_res(pass, past[i]));
-    struct {
-        float alpha, moments_alpha, normal_threshold, plane_distance;
-        int32_t length_alpha, max_length, history_valid;
-    } pc = {
+    svgf_reproject_push pc = {
         (float)vrg_param(pass, "alpha"),
         (float)vrg_param(pass, "moments_alpha"),
         (float)vrg_param(pass, "normal_threshold"),
@@ -76,7 +83,9 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         vrg_param_int(pass, "max_length"),
         valid,
     };
-    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "svgf_reproject.comp", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1});
+    vrg_dispatch_desc d = dispatches[0];
+    d.push = &pc;
+    (void)vrg_dispatch(pass, cmd, &d);
 }
 
 static const vrg_plugin_desc desc = {
@@ -90,6 +99,8 @@ static const vrg_plugin_desc desc = {
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,
+    .dispatches = dispatches,
+    .dispatch_count = sizeof dispatches / sizeof dispatches[0],
 };
 
 VRG_PLUGIN(desc)

@@ -52,26 +52,33 @@ static int create(vrg_pass *pass)
     return vrg_res_connected(vrg_pass_request_image(pass, "rows", VK_FORMAT_R32G32B32A32_SFLOAT, 1.0f, VRG_ACCESS_STORAGE_WRITE)) ? 0 : -1;
 }
 
+typedef struct variance_push {
+    int32_t radius, min_history;
+} variance_push;
+
+/* every dispatch execute() records, which `voxrg check` compiles: temporal
+ * mode's one, spatial mode's rows and columns */
+enum { TEMPORAL, ROWS, COLUMNS };
+static const vrg_dispatch_desc dispatches[] = {
+    [TEMPORAL] = {.shader = "svgf_variance.comp", .defines = "TEMPORAL", .push_size = sizeof(variance_push), .pixel_loop = 1,
+                  .bindings = {{"illumination"}, {"moments"}, {"length"}, {"position"}, {"normal"}, {"color"}}},
+    [ROWS] = {.shader = "svgf_variance.comp", .defines = "ROWS", .push_size = sizeof(variance_push), .pixel_loop = 1, .domain = "rows",
+              .bindings = {{"illumination"}, {"position"}, {"rows", VRG_ACCESS_STORAGE_WRITE}}},
+    [COLUMNS] = {.shader = "svgf_variance.comp", .defines = "COLUMNS", .push_size = sizeof(variance_push), .pixel_loop = 1,
+                 .bindings = {{"illumination"}, {"position"}, {"rows", VRG_ACCESS_STORAGE_READ}, {"color"}}},
+};
+
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     int mode = vrg_param_choice(pass, "mode", modes, 2);
-    struct {
-        int32_t radius, min_history;
-    } pc = {vrg_param_int(pass, "size") / 2, vrg_param_int(pass, "min_history")};
-    if (mode == 1) {
-        vrg_dispatch_desc d = {.shader = "svgf_variance.comp", .defines = "TEMPORAL", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1,
-                               .bindings = {{"illumination"}, {"moments"}, {"length"}, {"position"}, {"normal"}, {"color"}}};
-        (void)vrg_dispatch(pass, cmd, &d);
-        return;
-    }
-    vrg_dispatch_desc rows = {.shader = "svgf_variance.comp", .defines = "ROWS", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1,
-                              .domain = "rows",
-                              .bindings = {{"illumination"}, {"position"}, {"rows", VRG_ACCESS_STORAGE_WRITE}}};
-    if (vrg_dispatch(pass, cmd, &rows) != 0)
-        return;
-    vrg_dispatch_desc cols = {.shader = "svgf_variance.comp", .defines = "COLUMNS", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1,
-                              .bindings = {{"illumination"}, {"position"}, {"rows", VRG_ACCESS_STORAGE_READ}, {"color"}}};
-    (void)vrg_dispatch(pass, cmd, &cols);
+    variance_push pc = {vrg_param_int(pass, "size") / 2, vrg_param_int(pass, "min_history")};
+    vrg_dispatch_desc d[3] = {dispatches[TEMPORAL], dispatches[ROWS], dispatches[COLUMNS]};
+    for (int i = 0; i < 3; i++)
+        d[i].push = &pc;
+    if (mode == 1)
+        (void)vrg_dispatch(pass, cmd, &d[TEMPORAL]);
+    else if (vrg_dispatch(pass, cmd, &d[ROWS]) == 0)
+        (void)vrg_dispatch(pass, cmd, &d[COLUMNS]);
 }
 
 static const vrg_plugin_desc desc = {
@@ -87,6 +94,8 @@ static const vrg_plugin_desc desc = {
     .check = check,
     .create = create,
     .execute = execute,
+    .dispatches = dispatches,
+    .dispatch_count = sizeof dispatches / sizeof dispatches[0],
 };
 
 VRG_PLUGIN(desc)

@@ -19,13 +19,22 @@ static const char *const curves[] = {"aces", "reinhard", "linear"};
 
 static int check(vrg_pass *pass) { return vrg_param_choice(pass, "curve", curves, 3) < 0 ? -1 : 0; }
 
+typedef struct tonemap_push {
+    float exposure;
+    int32_t curve;
+} tonemap_push;
+
+/* every dispatch execute() records: checked by `voxrg check` */
+static const vrg_dispatch_desc dispatches[] = {
+    {.shader = "tonemap.comp", .push_size = sizeof(tonemap_push), .pixel_loop = 1},
+};
+
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    struct {
-        float exposure;
-        int32_t curve;
-    } pc = {(float)vrg_param(pass, "exposure"), vrg_param_choice(pass, "curve", curves, 3)};
-    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "tonemap.comp", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1});
+    tonemap_push pc = {(float)vrg_param(pass, "exposure"), vrg_param_choice(pass, "curve", curves, 3)};
+    vrg_dispatch_desc d = dispatches[0];
+    d.push = &pc;
+    (void)vrg_dispatch(pass, cmd, &d);
 }
 
 static const vrg_plugin_desc desc = {
@@ -39,6 +48,8 @@ static const vrg_plugin_desc desc = {
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,
+    .dispatches = dispatches,
+    .dispatch_count = sizeof dispatches / sizeof dispatches[0],
     .check = check,
 };
 

@@ -20,15 +20,24 @@ static const vrg_slot_desc slots[] = {
      .format = VK_FORMAT_R16G16B16A16_SFLOAT, .help = "the view"},
 };
 
+typedef struct world_debug_push {
+    int32_t mode, shadows;
+    float exposure, max_distance;
+    int32_t textured;
+} world_debug_push;
+
+/* every dispatch execute() records: checked by `voxrg check` */
+static const vrg_dispatch_desc dispatches[] = {
+    {.shader = "world_debug.comp", .push_size = sizeof(world_debug_push), .pixel_loop = 1},
+};
+
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    struct {
-        int32_t mode, shadows;
-        float exposure, max_distance;
-        int32_t textured;
-    } pc = {vrg_param_int(pass, "mode"), vrg_param_int(pass, "shadows"), (float)vrg_param(pass, "exposure"),
+    world_debug_push pc = {vrg_param_int(pass, "mode"), vrg_param_int(pass, "shadows"), (float)vrg_param(pass, "exposure"),
             (float)vrg_param(pass, "max_distance"), vrg_res_connected(vrg_pass_res(pass, "atlas"))};
-    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "world_debug.comp", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1});
+    vrg_dispatch_desc d = dispatches[0];
+    d.push = &pc;
+    (void)vrg_dispatch(pass, cmd, &d);
 }
 
 static const vrg_plugin_desc desc = {
@@ -42,6 +51,8 @@ static const vrg_plugin_desc desc = {
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,
+    .dispatches = dispatches,
+    .dispatch_count = sizeof dispatches / sizeof dispatches[0],
 };
 
 VRG_PLUGIN(desc)

@@ -13,17 +13,28 @@ ok() { pass=$((pass + 1)); }
 bad() { echo "FAIL: $*"; fail=$((fail + 1)); }
 graph="$tests/graphs/reflect_probe.ini"
 shader="$out/sh/reflect.comp"
+# Each case renders, and `voxrg check --no-device` (which compiles and
+# reflects every dispatch the plugin lists, without Vulkan) must say the
+# same before any frame: has/hasnt look at both.
 render() { # want_rc description [options...]
     local want=$1 what=$2; shift 2
     env VOXRG_SHADER_PATH="$out/sh" "$voxrg" render "$graph" --validate --out "$out/img" "$@" >"$out/stdout" 2>"$out/stderr"
     local rc=$?
     if [ "$rc" -eq "$want" ]; then ok; else bad "$what: exit $rc, want $want"; cat "$out/stderr"; fi
+    env VOXRG_SHADER_PATH="$out/sh" "$voxrg" check "$graph" --no-device "$@" >"$out/check_stdout" 2>"$out/check_stderr"
+    rc=$?
+    want=${check_want:-$want}
+    if [ "$rc" -eq "$want" ]; then ok; else bad "$what (check --no-device): exit $rc, want $want"; cat "$out/check_stderr"; fi
 }
 has() { # pattern description
-    if grep -qE -- "$1" "$out/stderr"; then ok; else bad "$2: no '$1' in"; sed 's/^/    /' "$out/stderr" | head -20; fi
+    for f in stderr check_stderr; do
+        if grep -qE -- "$1" "$out/$f"; then ok; else bad "$2 ($f): no '$1' in"; sed 's/^/    /' "$out/$f" | head -20; fi
+    done
 }
 hasnt() { # pattern description
-    if grep -qE -- "$1" "$out/stderr"; then bad "$2: '$1' in"; sed 's/^/    /' "$out/stderr" | head -20; else ok; fi
+    for f in stderr check_stderr; do
+        if grep -qE -- "$1" "$out/$f"; then bad "$2 ($f): '$1' in"; sed 's/^/    /' "$out/$f" | head -20; else ok; fi
+    done
 }
 # write_shader LINE3 LINE4 LINE5 LINE6: the declarations, at lines 3 to 6
 write_shader() {
@@ -46,7 +57,11 @@ pos="$out/sh/reflect.comp"
 
 write_shader "$color" "$mask" "$counts" "$push" "$body"
 render 0 "a shader that matches its pass"
-hasnt "VRG-E06[4-7]|VRG-W004" "no reflection message for a matching shader"
+hasnt "VRG-E06[4-8]|VRG-W00[45]" "no reflection message for a matching shader"
+if grep -qE "^  probe +reflect_probe +3 dispatches compiled and reflected$" "$out/check_stdout"; then ok; else bad "check lists the dispatches it compiled"; cat "$out/check_stdout"; fi
+# with a device too (the device's workgroup shape; a pipeline per dispatch)
+env VOXRG_SHADER_PATH="$out/sh" "$voxrg" check "$graph" --validate >"$out/check_device" 2>&1 &&
+    grep -qE "^  probe +reflect_probe +3 dispatches compiled and reflected$" "$out/check_device" && ok || { bad "check with a device"; cat "$out/check_device"; }
 
 write_shader "${color/rgba16f/rgba32f}" "$mask" "$counts" "$push" "$body"
 render 1 "rgba16f slot, rgba32f shader"
@@ -87,12 +102,40 @@ has "^$pos:5: error\[VRG-E064\]: binding 2 'Counts' is in set 1, but pass 'probe
 write_shader "$color" "$mask" "$counts" "${push/vec4 tint;/vec4 tint; vec4 more;}" "$body"
 render 1 "push constants larger than the dispatch's"
 has "^$pos:6: error\[VRG-E067\]: push-constant block 'Push' is 32 bytes, but pass 'probe' \(plugin reflect_probe\) pushes 16 \(vrg_dispatch_desc.push_size\)$" "push block too big"
-render 0 "push constants that fit" --set probe.push_bytes=32
-render 0 "push_size larger than the block is allowed" --set probe.push_bytes=128
+# these render; check still fails: the plugin also lists its 16-byte dispatch
+check_want=1 render 0 "push constants that fit" --set probe.push_bytes=32
+check_want=1 render 0 "push_size larger than the block is allowed" --set probe.push_bytes=128
+if grep -qE "^$pos:6: error\[VRG-E067\]: push-constant block 'Push' is 32 bytes, but .* pushes 16 " "$out/check_stderr"; then ok; else bad "check names the listed dispatch that does not fit"; cat "$out/check_stderr"; fi
 
 write_shader "$color" "$mask" "" "$push" 'ivec2 p = ivec2(gl_GlobalInvocationID.xy); imageStore(color_img, p, push.tint); imageStore(mask_img, p, vec4(1));'
 render 0 "a bound slot the shader does not declare"
 has "^$pos: warning\[VRG-W004\]: slot 'out.counts' of pass 'probe' \(plugin reflect_probe\) is bound at binding 2, which the shader does not declare$" "unused slot warning"
+
+# readonly / writeonly against the slot's access (VRG-E068, VRG-W005); a
+# buffer's qualifiers are on its block's members
+write_shader "${color/writeonly/readonly}" "$mask" "$counts" "$push" 'ivec2 p = ivec2(gl_GlobalInvocationID.xy); imageStore(mask_img, p, imageLoad(color_img, p) + push.tint); counts[0] = 1u;'
+render 1 "a readonly image bound for writing"
+has "^$pos:3: error\[VRG-E068\]: binding 0 'color_img' is declared readonly, but slot 'out.color' of pass 'probe' \(plugin reflect_probe\) is bound with storage-write access$" "readonly output"
+write_shader "${color/writeonly /}" "$mask" "$counts" "$push" "$body"
+render 0 "an output image without writeonly"
+has "^$pos:3: warning\[VRG-W005\]: binding 0 'color_img' is declared neither readonly nor writeonly, but slot 'out.color' .* is bound with storage-write access: declare it writeonly$" "missing writeonly"
+write_shader "$color" "$mask" "${counts/writeonly /readonly }" "$push" 'ivec2 p = ivec2(gl_GlobalInvocationID.xy); imageStore(color_img, p, push.tint + float(counts[0])); imageStore(mask_img, p, vec4(1));'
+render 1 "a readonly buffer bound for writing"
+has "^$pos:5: error\[VRG-E068\]: binding 2 'Counts' is declared readonly, but slot 'out.counts' .* is bound with storage-write access$" "readonly buffer output"
+write_shader "$color" "$mask" "${counts/writeonly /}" "$push" "$body"
+render 0 "an output buffer without writeonly"
+has "^$pos:5: warning\[VRG-W005\]: binding 2 'Counts' is declared neither readonly nor writeonly" "missing writeonly on a buffer"
+
+# a dispatch the plugin does not list is refused at run time
+write_shader "$color" "$mask" "$counts" "$push" "$body"
+env VOXRG_SHADER_PATH="$out/sh" "$voxrg" render "$graph" --out "$out/img" --set probe.push_bytes=20 >"$out/stdout" 2>"$out/stderr"
+[ $? -eq 1 ] && grep -qE "error\[VRG-E061\]: pass 'probe' \(plugin [^)]*\): dispatch of reflect.comp \(defines '', push_size 20\) is none of the 3 its plugin lists in vrg_plugin_desc.dispatches" "$out/stderr" &&
+    ok || { bad "an unlisted dispatch ran"; cat "$out/stderr"; }
+
+# a GLSL error is found by check, before any frame, without a device
+write_shader "$color" "$mask" "$counts" "$push" "$body undeclared_name = 1;"
+render 1 "a shader that does not compile"
+has "^$pos:7: error\[VRG-E063\]" "the compile error at its line"
 
 echo "test_reflect: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

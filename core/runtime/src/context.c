@@ -242,6 +242,7 @@ static int create_device(vrg_context *ctx)
     en12.pNext = &en13;
     en.features.shaderStorageImageWriteWithoutFormat = f2.features.shaderStorageImageWriteWithoutFormat;
     en.features.shaderStorageImageReadWithoutFormat = f2.features.shaderStorageImageReadWithoutFormat;
+    ctx->read_without_format = f2.features.shaderStorageImageReadWithoutFormat;
     en.features.shaderInt64 = f2.features.shaderInt64;
     en12.bufferDeviceAddress = v12.bufferDeviceAddress;
     en12.scalarBlockLayout = v12.scalarBlockLayout;

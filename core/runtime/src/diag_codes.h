@@ -81,6 +81,7 @@
     X(VRG_E_SHADER_BINDING_TYPE, "VRG-E065", "shader-binding-type", "a shader's binding has another descriptor type than the bound slot's access gives") \
     X(VRG_E_SHADER_IMAGE_FORMAT, "VRG-E066", "shader-image-format", "a shader's storage image format qualifier is not the bound image's format") \
     X(VRG_E_SHADER_PUSH_SIZE, "VRG-E067", "shader-push-size", "a shader's push-constant block is larger than the push constants its dispatch gives") \
+    X(VRG_E_SHADER_ACCESS, "VRG-E068", "shader-access", "a shader declares a storage binding readonly that its dispatch binds for writing, or writeonly for reading") \
     /* the device and the running graph */                                                                                                  \
     X(VRG_E_DEVICE_UNSUPPORTED, "VRG-E070", "device-unsupported", "the device lacks an extension, format or size the graph needs")         \
     X(VRG_E_VULKAN_FAILED, "VRG-E071", "vulkan-failed", "creating a Vulkan object, device memory or a submission failed")                  \
@@ -95,6 +96,7 @@
     X(VRG_W_UNUSED_RESOURCE, "VRG-W001", "unused-resource", "a [resource] section configures a resource no pass uses")                    \
     X(VRG_W_PLUGIN_SHADOWED, "VRG-W002", "plugin-shadowed", "a plugin of the same name earlier on the search path is used instead")     \
     X(VRG_W_SHADER_WARNING, "VRG-W003", "shader-warning", "the GLSL compiler warns about a shader or a file it #includes") \
-    X(VRG_W_UNUSED_BINDING, "VRG-W004", "unused-binding", "a dispatch binds a slot or resource at a binding its shader does not declare")
+    X(VRG_W_UNUSED_BINDING, "VRG-W004", "unused-binding", "a dispatch binds a slot or resource at a binding its shader does not declare") \
+    X(VRG_W_ACCESS_QUALIFIER, "VRG-W005", "access-qualifier", "a storage binding bound for reading (writing) only is not declared readonly (writeonly)")
 
 #endif

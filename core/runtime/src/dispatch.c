@@ -7,17 +7,27 @@
 #include <string.h>
 #include "internal.h"
 
+/* What one dispatch binds: the pipeline cache's key beside shader and
+ * defines, and what reflection checks the shader against. */
+typedef struct bound_set {
+    VkDescriptorType types[VRG_MAX_BINDINGS];
+    VkFormat formats[VRG_MAX_BINDINGS]; /* storage images: the bound format, else UNDEFINED */
+    vrg_access access[VRG_MAX_BINDINGS];
+    /* without a device: an internal resource, which only create() makes, so
+     * its type and format are not known */
+    unsigned char unknown[VRG_MAX_BINDINGS];
+    char labels[VRG_MAX_BINDINGS][2 * VRG_NAME_MAX + 32]; /* "slot 'out.color'" */
+    uint32_t count;
+    uint32_t push_size; /* the dispatch's */
+} bound_set;
+
 typedef struct _vrg_pipeline {
     char path[VRG_PATH_MAX];
     char shader[256]; /* as the pass named it */
     char *deps;       /* files it was compiled from (shader.c), for hot reload */
     char defines[256];
-    VkDescriptorType types[VRG_MAX_BINDINGS];
-    VkFormat formats[VRG_MAX_BINDINGS]; /* storage images: the bound format, else UNDEFINED */
-    uint32_t count;
-    /* what reflection checks against, from the dispatch that made it */
-    char labels[VRG_MAX_BINDINGS][2 * VRG_NAME_MAX + 32]; /* "slot 'out.color'" */
-    uint32_t push_size, push_bytes; /* the dispatch's push_size; the shader's block */
+    bound_set bs;     /* from the dispatch that made it */
+    uint32_t push_bytes; /* the shader's push-constant block */
     char push_where[VRG_PATH_MAX + 16];
     uint32_t local[3];
     VkDescriptorSetLayout set_layout;
@@ -37,11 +47,39 @@ static VkDescriptorType descriptor_type(vrg_resource_kind kind, vrg_access a)
     return a == VRG_ACCESS_SAMPLED ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 }
 
-/* The shader's declarations against what the dispatch binds: every error
- * and warning at the declaring line; -1 when any is an error. */
-static int check_reflection(vrg_pass *p, const _vrg_pipeline *pl, const _vrg_reflection *r, FILE *diag)
+static int is_storage(VkDescriptorType t)
+{
+    return t == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE || t == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER || t == VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
+}
+
+/* readonly / writeonly against the bound access: a contradiction is an
+ * error; a missing qualifier a warning, because a shader that writes what
+ * others read at the same time, or reads what was bound for writing only
+ * (its contents not kept), races or reads undefined values. */
+static int check_access(vrg_pass *p, const bound_set *bs, const _vrg_reflected_binding *b, FILE *diag)
 {
     const char *plugin = p->plugin->desc->name;
+    uint32_t i = b->binding;
+    vrg_access a = bs->access[i];
+    const char *said = b->readonly ? "readonly" : b->writeonly ? "writeonly" : "neither readonly nor writeonly";
+    if ((a == VRG_ACCESS_STORAGE_READ && b->writeonly) || (a == VRG_ACCESS_STORAGE_WRITE && b->readonly)) {
+        fprintf(diag, "%s: error[%s]: binding %u '%s' is declared %s, but %s of pass '%s' (plugin %s) is bound with %s access\n", b->where,
+                _vrg_diag_info_of(VRG_E_SHADER_ACCESS)->code, i, b->name, said, bs->labels[i], p->name, plugin, _vrg_access_name(a));
+        return -1;
+    }
+    if ((a == VRG_ACCESS_STORAGE_READ && !b->readonly) || (a == VRG_ACCESS_STORAGE_WRITE && !b->writeonly))
+        fprintf(diag, "%s: warning[%s]: binding %u '%s' is declared %s, but %s of pass '%s' (plugin %s) is bound with %s access: declare it %s\n", b->where,
+                _vrg_diag_info_of(VRG_W_ACCESS_QUALIFIER)->code, i, b->name, said, bs->labels[i], p->name, plugin, _vrg_access_name(a),
+                a == VRG_ACCESS_STORAGE_READ ? "readonly" : "writeonly");
+    return 0;
+}
+
+/* The shader's declarations against what the dispatch binds: every error
+ * and warning at the declaring line; -1 when any is an error. */
+static int check_reflection(vrg_pass *p, const char *path, const bound_set *bs, const _vrg_reflection *r, FILE *diag)
+{
+    const char *plugin = p->plugin->desc->name;
+    const vrg_context *ctx = p->graph->ctx;
     int errors = 0;
     for (int k = 0; k < r->count; k++) {
         const _vrg_reflected_binding *b = &r->bindings[k];
@@ -50,34 +88,42 @@ static int check_reflection(vrg_pass *p, const _vrg_pipeline *pl, const _vrg_ref
             fprintf(diag, "%s: error[%s]: binding %u '%s' is in set %u, but pass '%s' (plugin %s) binds set 0 only\n", b->where,
                     _vrg_diag_info_of(VRG_E_SHADER_BINDING_UNBOUND)->code, i, b->name, b->set, p->name, plugin);
             errors++;
-        } else if (i >= pl->count) {
+        } else if (i >= bs->count) {
             fprintf(diag, "%s: error[%s]: binding %u '%s' is bound to nothing: pass '%s' (plugin %s) binds %u resource%s (bindings 0 to %d)\n", b->where,
-                    _vrg_diag_info_of(VRG_E_SHADER_BINDING_UNBOUND)->code, i, b->name, p->name, plugin, pl->count, pl->count == 1 ? "" : "s", (int)pl->count - 1);
+                    _vrg_diag_info_of(VRG_E_SHADER_BINDING_UNBOUND)->code, i, b->name, p->name, plugin, bs->count, bs->count == 1 ? "" : "s", (int)bs->count - 1);
             errors++;
-        } else if (b->type != pl->types[i]) {
+        } else if (bs->unknown[i]) {
+            continue; /* checked with a device */
+        } else if (b->type != bs->types[i]) {
             fprintf(diag, "%s: error[%s]: binding %u '%s' is %s, but %s of pass '%s' (plugin %s) is bound as %s\n", b->where,
-                    _vrg_diag_info_of(VRG_E_SHADER_BINDING_TYPE)->code, i, b->name, _vrg_descriptor_type_name(b->type), pl->labels[i], p->name, plugin,
-                    _vrg_descriptor_type_name(pl->types[i]));
+                    _vrg_diag_info_of(VRG_E_SHADER_BINDING_TYPE)->code, i, b->name, _vrg_descriptor_type_name(b->type), bs->labels[i], p->name, plugin,
+                    _vrg_descriptor_type_name(bs->types[i]));
             errors++;
-        } else if (b->format && pl->formats[i] && b->format != pl->formats[i]) {
+        } else if (b->format && bs->formats[i] && b->format != bs->formats[i]) {
             fprintf(diag, "%s: error[%s]: binding %u '%s' is %s, but %s of pass '%s' (plugin %s) is %s\n", b->where, _vrg_diag_info_of(VRG_E_SHADER_IMAGE_FORMAT)->code,
-                    i, b->name, _vrg_glsl_format_name(b->format), pl->labels[i], p->name, plugin, _vrg_glsl_format_name(pl->formats[i]));
+                    i, b->name, _vrg_glsl_format_name(b->format), bs->labels[i], p->name, plugin, _vrg_glsl_format_name(bs->formats[i]));
             errors++;
-        }
+        } else if (b->type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE && !b->format && !b->writeonly && ctx && !ctx->read_without_format) {
+            fprintf(diag, "%s: error[%s]: binding %u '%s' has no format qualifier and is read, which '%s' cannot do (shaderStorageImageReadWithoutFormat): "
+                          "declare layout(%s) like %s of pass '%s' (plugin %s)\n", b->where, _vrg_diag_info_of(VRG_E_SHADER_IMAGE_FORMAT)->code, i, b->name,
+                    ctx->device_name, _vrg_glsl_format_name(bs->formats[i]), bs->labels[i], p->name, plugin);
+            errors++;
+        } else if (is_storage(b->type) && check_access(p, bs, b, diag) != 0)
+            errors++;
     }
-    if (r->push_bytes > pl->push_size) {
+    if (r->push_bytes > bs->push_size) {
         fprintf(diag, "%s: error[%s]: push-constant block '%s' is %u bytes, but pass '%s' (plugin %s) pushes %u (vrg_dispatch_desc.push_size)\n", r->push_where,
-                _vrg_diag_info_of(VRG_E_SHADER_PUSH_SIZE)->code, r->push_name, r->push_bytes, p->name, plugin, pl->push_size);
+                _vrg_diag_info_of(VRG_E_SHADER_PUSH_SIZE)->code, r->push_name, r->push_bytes, p->name, plugin, bs->push_size);
         errors++;
     }
     /* every shipped pass declares each slot it binds, in either mode */
-    for (uint32_t i = 0; i < pl->count; i++) {
+    for (uint32_t i = 0; i < bs->count; i++) {
         int declared = 0;
         for (int k = 0; k < r->count && !declared; k++)
             declared = r->bindings[k].set == 0 && r->bindings[k].binding == i;
         if (!declared)
-            fprintf(diag, "%s: warning[%s]: %s of pass '%s' (plugin %s) is bound at binding %u, which the shader does not declare\n", pl->path,
-                    _vrg_diag_info_of(VRG_W_UNUSED_BINDING)->code, pl->labels[i], p->name, plugin, i);
+            fprintf(diag, "%s: warning[%s]: %s of pass '%s' (plugin %s) is bound at binding %u, which the shader does not declare\n", path,
+                    _vrg_diag_info_of(VRG_W_UNUSED_BINDING)->code, bs->labels[i], p->name, plugin, i);
     }
     return errors ? -1 : 0;
 }
@@ -95,7 +141,7 @@ static int build_pipeline(vrg_pass *p, _vrg_pipeline *pl)
         _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "shader %s failed to compile", pl->path);
         return -1;
     }
-    int mismatch = check_reflection(p, pl, &sm.refl, diag);
+    int mismatch = check_reflection(p, pl->path, &pl->bs, &sm.refl, diag);
     pl->push_bytes = sm.refl.push_bytes;
     snprintf(pl->push_where, sizeof pl->push_where, "%s", sm.refl.push_where);
     _vrg_reflection_free(&sm.refl);
@@ -108,12 +154,12 @@ static int build_pipeline(vrg_pass *p, _vrg_pipeline *pl)
     pl->deps = sm.deps;
     memcpy(pl->local, sm.local_size, sizeof pl->local);
     VkDescriptorSetLayoutBinding b[VRG_MAX_BINDINGS];
-    for (uint32_t i = 0; i < pl->count; i++)
-        b[i] = (VkDescriptorSetLayoutBinding){.binding = i, .descriptorType = pl->types[i], .descriptorCount = 1, .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT};
+    for (uint32_t i = 0; i < pl->bs.count; i++)
+        b[i] = (VkDescriptorSetLayoutBinding){.binding = i, .descriptorType = pl->bs.types[i], .descriptorCount = 1, .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT};
     VkDescriptorSetLayoutCreateInfo sli = {
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
         .flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR,
-        .bindingCount = pl->count,
+        .bindingCount = pl->bs.count,
         .pBindings = b,
     };
     vkCreateDescriptorSetLayout(dev, &sli, NULL, &pl->set_layout);
@@ -168,19 +214,15 @@ static void free_retired_pipeline(void *user)
     free(r);
 }
 
-/* What one dispatch binds, for the pipeline cache and reflection's checks. */
-typedef struct bound_set {
-    VkDescriptorType types[VRG_MAX_BINDINGS];
-    VkFormat formats[VRG_MAX_BINDINGS];
-    char labels[VRG_MAX_BINDINGS][2 * VRG_NAME_MAX + 32];
-    uint32_t count;
-    uint32_t push_size;
-} bound_set;
+static int same_bindings(const bound_set *a, const bound_set *b)
+{
+    uint32_t n = a->count;
+    return n == b->count && memcmp(a->types, b->types, n * sizeof *a->types) == 0 && memcmp(a->formats, b->formats, n * sizeof *a->formats) == 0 &&
+           memcmp(a->access, b->access, n * sizeof *a->access) == 0;
+}
 
 static _vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *defines, const bound_set *bs)
 {
-    const VkDescriptorType *types = bs->types;
-    uint32_t count = bs->count;
     if (!defines)
         defines = "";
     if (strlen(shader) >= sizeof((_vrg_pipeline *)0)->shader || strlen(defines) >= sizeof((_vrg_pipeline *)0)->defines) {
@@ -191,8 +233,7 @@ static _vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *
      * once, when its pipeline is built, not with file-system calls on every
      * dispatch of every frame */
     for (_vrg_pipeline *pl = p->pipelines; pl; pl = pl->next)
-        if (strcmp(pl->shader, shader) == 0 && strcmp(pl->defines, defines) == 0 && pl->count == count && memcmp(pl->types, types, count * sizeof *types) == 0 &&
-            memcmp(pl->formats, bs->formats, count * sizeof *bs->formats) == 0)
+        if (strcmp(pl->shader, shader) == 0 && strcmp(pl->defines, defines) == 0 && same_bindings(&pl->bs, bs))
             return pl;
     char path[VRG_PATH_MAX];
     if (_vrg_shader_resolve(p, shader, path, sizeof path) != 0) {
@@ -200,14 +241,14 @@ static _vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *
         return NULL;
     }
     _vrg_pipeline *pl = calloc(1, sizeof *pl);
+    if (!pl) {
+        _vrg_pass_fail(p, VRG_E_OUT_OF_MEMORY, "out of memory for a pipeline of %s", shader);
+        return NULL;
+    }
     snprintf(pl->path, sizeof pl->path, "%s", path);
     snprintf(pl->shader, sizeof pl->shader, "%s", shader);
     snprintf(pl->defines, sizeof pl->defines, "%s", defines);
-    memcpy(pl->types, types, count * sizeof *types);
-    memcpy(pl->formats, bs->formats, count * sizeof *bs->formats);
-    memcpy(pl->labels, bs->labels, count * sizeof bs->labels[0]);
-    pl->count = count;
-    pl->push_size = bs->push_size;
+    pl->bs = *bs;
     if (build_pipeline(p, pl) != 0) {
         free(pl);
         return NULL;
@@ -299,7 +340,27 @@ typedef struct bound {
     int slot; /* -1: an internal resource */
 } bound;
 
-static int resolve_bindings(vrg_pass *p, const vrg_dispatch_desc *d, bound *out)
+/* Whether an acceleration structure exists to be bound: one was made
+ * (allocate.c), or without a device, one would be (its writer sized it). */
+static int accel_exists(const vrg_graph *g, int r)
+{
+    return g->ctx ? g->res[r].accel != VK_NULL_HANDLE : g->res[r].size > 0;
+}
+
+static int names_slot(const vrg_plugin_desc *pd, const char *name)
+{
+    if (strncmp(name, "in.", 3) == 0)
+        name += 3;
+    else if (strncmp(name, "out.", 4) == 0)
+        name += 4;
+    for (uint32_t s = 0; s < pd->slot_count; s++)
+        if (strcmp(pd->slots[s].name, name) == 0)
+            return 1;
+    return 0;
+}
+
+/* n, or -1 after reporting; unknown[i]: an internal resource not made yet. */
+static int resolve_bindings(vrg_pass *p, const vrg_dispatch_desc *d, bound *out, unsigned char *unknown)
 {
     const vrg_plugin_desc *pd = p->plugin->desc;
     int n = 0;
@@ -308,21 +369,31 @@ static int resolve_bindings(vrg_pass *p, const vrg_dispatch_desc *d, bound *out)
             int r = p->slots[s].res;
             /* acceleration structures that do not exist (unconnected, or a scene
              * of size 0) are left out: declare them last */
-            if (r < 0 || (p->graph->res[r].kind == VRG_ACCEL && !p->graph->res[r].accel))
+            if (r < 0 || (p->graph->res[r].kind == VRG_ACCEL && !accel_exists(p->graph, r)))
                 continue;
             if (n == VRG_MAX_BINDINGS)
                 return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "its slots need more than the %d bindings of a dispatch: name the ones the shader uses in bindings[]",
                                       VRG_MAX_BINDINGS);
+            unknown[n] = 0;
             out[n++] = (bound){r, p->slots[s].prev, pd->slots[s].access, (int)s};
         }
         return n;
     }
     for (; n < VRG_MAX_BINDINGS && d->bindings[n].res; n++) {
         int res, prev, slot;
-        if (_vrg_pass_lookup(p, d->bindings[n].res, &res, &prev, &slot) != 0)
+        vrg_access a = d->bindings[n].access;
+        unknown[n] = 0;
+        if (_vrg_pass_lookup(p, d->bindings[n].res, &res, &prev, &slot) != 0) {
+            /* without a device create() did not run: its internal resources
+             * are not there to look up */
+            if (!p->graph->ctx && !names_slot(pd, d->bindings[n].res)) {
+                unknown[n] = 1;
+                out[n] = (bound){-1, -1, a ? a : VRG_ACCESS_STORAGE_READ_WRITE, -1};
+                continue;
+            }
             return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "binding %d names '%s', which is neither a slot nor an internal resource of this pass", n,
                                   d->bindings[n].res);
-        vrg_access a = d->bindings[n].access;
+        }
         if (!a)
             a = slot >= 0 ? pd->slots[slot].access : VRG_ACCESS_STORAGE_READ_WRITE;
         out[n] = (bound){res, prev, a, slot};
@@ -331,54 +402,94 @@ static int resolve_bindings(vrg_pass *p, const vrg_dispatch_desc *d, bound *out)
 }
 
 /* How messages name a bound resource: "slot 'out.color'" or "internal resource 'tmp'". */
-static void label_binding(const vrg_pass *p, const bound *b, char *out, size_t cap)
+static void label_binding(const vrg_pass *p, const bound *b, const char *named, char *out, size_t cap)
 {
     if (b->slot < 0) {
-        snprintf(out, cap, "internal resource '%s'", p->graph->res[b->res].name);
+        snprintf(out, cap, "internal resource '%s'", b->res >= 0 ? p->graph->res[b->res].name : named);
         return;
     }
     const vrg_slot_desc *sd = vrg_slot(p, b->slot);
     snprintf(out, cap, "slot '%s.%s'", sd->dir == VRG_IN ? "in" : "out", sd->name);
 }
 
-int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
+/* The dispatch's bindings (b, n returned), what they are (bs) and the
+ * defines its pipeline is compiled with; -1 after reporting. */
+static int describe_dispatch(vrg_pass *p, const vrg_dispatch_desc *d, bound *b, bound_set *bs, char *defines, size_t cap)
 {
     vrg_graph *g = p->graph;
-    bound b[VRG_MAX_BINDINGS];
-    int n = resolve_bindings(p, d, b);
+    memset(bs, 0, sizeof *bs);
+    int n = resolve_bindings(p, d, b, bs->unknown);
     if (n < 0)
         return -1;
-    bound_set bs = {.count = (uint32_t)n, .push_size = d->push_size};
-    VkDescriptorType *types = bs.types;
+    bs->count = (uint32_t)n;
+    bs->push_size = d->push_size;
     for (int i = 0; i < n; i++) {
+        bs->access[i] = b[i].access;
+        label_binding(p, &b[i], d->bindings[i].res, bs->labels[i], sizeof bs->labels[i]);
         if (b[i].access == VRG_ACCESS_TRANSFER_SRC || b[i].access == VRG_ACCESS_TRANSFER_DST || b[i].access == VRG_ACCESS_AS_BUILD)
             return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "binding %d: %s access cannot be bound to a shader", i, _vrg_access_name(b[i].access));
-        if (g->res[b[i].res].kind == VRG_ACCEL && !g->res[b[i].res].accel)
+        if (bs->unknown[i])
+            continue;
+        if (g->res[b[i].res].kind == VRG_ACCEL && !accel_exists(g, b[i].res))
             return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "binding %d: acceleration structure '%s' was not built (its writer made none: size 0)", i,
                                   g->res[b[i].res].name);
-        types[i] = descriptor_type(g->res[b[i].res].kind, b[i].access);
-        if (types[i] == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)
-            bs.formats[i] = g->res[b[i].res].format;
-        label_binding(p, &b[i], bs.labels[i], sizeof bs.labels[i]);
+        bs->types[i] = descriptor_type(g->res[b[i].res].kind, b[i].access);
+        if (bs->types[i] == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)
+            bs->formats[i] = g->res[b[i].res].format;
     }
     if (d->push_size > 128)
         return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "push constants of %u bytes (at most 128)", d->push_size);
-    /* A bound acceleration structure is announced to the shader as
-     * VRG_ACCEL_BINDING (the voxel layer's trace.glsl then traces it). */
-    char defines[sizeof ((_vrg_pipeline *)0)->defines];
-    if (d->shader && strlen(d->shader) >= sizeof ((_vrg_pipeline *)0)->shader)
-        return _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "shader name of %zu characters (at most %zu)", strlen(d->shader), sizeof ((_vrg_pipeline *)0)->shader - 1);
+    if (!d->shader)
+        return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "dispatch names no shader");
+    if (strlen(d->shader) >= sizeof((_vrg_pipeline *)0)->shader)
+        return _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "shader name of %zu characters (at most %zu)", strlen(d->shader), sizeof((_vrg_pipeline *)0)->shader - 1);
     /* room for the define added below */
-    size_t max_defines = sizeof defines - sizeof " VRG_ACCEL_BINDING=99";
+    size_t max_defines = cap - sizeof " VRG_ACCEL_BINDING=99";
     if (d->defines && strlen(d->defines) > max_defines)
         return _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "defines of %zu characters (at most %zu)", strlen(d->defines), max_defines);
-    snprintf(defines, sizeof defines, "%s", d->defines ? d->defines : "");
+    /* A bound acceleration structure is announced to the shader as
+     * VRG_ACCEL_BINDING (the voxel layer's trace.glsl then traces it). */
+    snprintf(defines, cap, "%s", d->defines ? d->defines : "");
     for (int i = 0; i < n; i++)
-        if (g->res[b[i].res].kind == VRG_ACCEL) {
+        if (!bs->unknown[i] && g->res[b[i].res].kind == VRG_ACCEL) {
             size_t len = strlen(defines);
-            snprintf(defines + len, sizeof defines - len, " VRG_ACCEL_BINDING=%d", i);
+            snprintf(defines + len, cap - len, " VRG_ACCEL_BINDING=%d", i);
             break;
         }
+    return n;
+}
+
+static int same_string(const char *a, const char *b) { return strcmp(a ? a : "", b ? b : "") == 0; }
+
+/* Whether d is one the plugin lists in vrg_plugin_desc.dispatches. */
+static int declared(const vrg_plugin_desc *pd, const vrg_dispatch_desc *d)
+{
+    for (uint32_t k = 0; k < pd->dispatch_count; k++) {
+        const vrg_dispatch_desc *e = &pd->dispatches[k];
+        int same = same_string(e->shader, d->shader) && same_string(e->defines, d->defines) && e->push_size == d->push_size;
+        for (int i = 0; same && i < VRG_MAX_BINDINGS; i++)
+            same = same_string(e->bindings[i].res, d->bindings[i].res) && e->bindings[i].access == d->bindings[i].access;
+        if (same)
+            return 1;
+    }
+    return 0;
+}
+
+int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
+{
+    vrg_graph *g = p->graph;
+    const vrg_plugin_desc *pd = p->plugin->desc;
+    if (pd->dispatch_count && !declared(pd, d))
+        return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH,
+                              "dispatch of %s (defines '%s', push_size %u) is none of the %u its plugin lists in vrg_plugin_desc.dispatches: list every variant it records",
+                              d->shader ? d->shader : "(no shader)", d->defines ? d->defines : "", d->push_size, pd->dispatch_count);
+    bound b[VRG_MAX_BINDINGS];
+    bound_set bs;
+    char defines[sizeof((_vrg_pipeline *)0)->defines];
+    int n = describe_dispatch(p, d, b, &bs, defines, sizeof defines);
+    if (n < 0)
+        return -1;
+    const VkDescriptorType *types = bs.types;
     _vrg_pipeline *pl = get_pipeline(p, d->shader, defines, &bs);
     if (!pl)
         return -1;
@@ -472,4 +583,71 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
         vkCmdPushConstants(cmd, pl->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, d->push_size, d->push);
     vkCmdDispatch(cmd, gx, gy, gz);
     return 0;
+}
+
+/* ---- vrg_graph_check_shaders: every declared dispatch, before any frame ---- */
+
+typedef struct shader_check_count {
+    uint32_t dispatches, failed, unknown;
+} shader_check_count;
+
+/* One declared dispatch: resolved, compiled (with the device's workgroup
+ * shape, or a GPU's without one) and reflected against its bindings, as
+ * its first vrg_dispatch would. */
+static int check_declared(vrg_pass *p, const vrg_dispatch_desc *d, shader_check_count *count)
+{
+    vrg_graph *g = p->graph;
+    FILE *diag = g->diag.out ? g->diag.out : stderr;
+    bound b[VRG_MAX_BINDINGS];
+    bound_set bs;
+    char defines[sizeof((_vrg_pipeline *)0)->defines], path[VRG_PATH_MAX];
+    if (describe_dispatch(p, d, b, &bs, defines, sizeof defines) < 0)
+        return -1;
+    for (uint32_t i = 0; i < bs.count; i++)
+        count->unknown += bs.unknown[i];
+    if (_vrg_shader_resolve(p, d->shader, path, sizeof path) != 0)
+        return _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "shader '%s' not found (searched the plugin's folder, $VOXRG_SHADER_PATH, shaders/)", d->shader);
+    _vrg_shader_module sm;
+    if (_vrg_shader_compile(g->ctx, path, defines, &sm, diag) != 0)
+        return _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "shader %s failed to compile", path);
+    if (sm.module)
+        vkDestroyShaderModule(g->ctx->dev.device, sm.module, NULL);
+    free(sm.deps);
+    int rc = check_reflection(p, path, &bs, &sm.refl, diag);
+    _vrg_reflection_free(&sm.refl);
+    const uint32_t group[2] = {g->ctx ? g->ctx->group_size[0] : 8, g->ctx ? g->ctx->group_size[1] : 8};
+    if (rc == 0 && d->pixel_loop && (sm.local_size[0] != group[0] || sm.local_size[1] != group[1] || sm.local_size[2] != 1))
+        return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "pixel_loop dispatch of %s: local size %ux%ux%u, a pixel loop needs VRG_GROUP_X x VRG_GROUP_Y (%ux%u)", path,
+                              sm.local_size[0], sm.local_size[1], sm.local_size[2], group[0], group[1]);
+    if (rc != 0)
+        return _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "shader %s does not match what the pass binds", path);
+    return 0;
+}
+
+int vrg_graph_check_shaders(vrg_graph *g, FILE *report)
+{
+    int failed = 0;
+    for (int k = 0; k < g->schedule_count; k++) {
+        vrg_pass *p = &g->passes[g->schedule[k]];
+        const vrg_plugin_desc *pd = p->plugin->desc;
+        shader_check_count count = {0};
+        int was_failed = p->failed;
+        for (uint32_t i = 0; i < pd->dispatch_count; i++) {
+            count.dispatches++;
+            if (check_declared(p, &pd->dispatches[i], &count) != 0)
+                count.failed++;
+        }
+        p->failed = was_failed; /* a check, not a frame: the return value says it */
+        failed |= count.failed != 0;
+        if (!report)
+            continue;
+        if (!pd->dispatch_count)
+            fprintf(report, "  %-16s %-16s lists no dispatches (vrg_plugin_desc.dispatches): what it dispatches is checked when it runs\n", p->name, pd->name);
+        else
+            fprintf(report, "  %-16s %-16s %u dispatch%s compiled and reflected%s%s", p->name, pd->name, count.dispatches, count.dispatches == 1 ? "" : "es",
+                    count.failed ? ", FAILED" : "", count.unknown ? "" : "\n");
+        if (count.unknown)
+            fprintf(report, "; %u binding%s to internal resources checked with a device only\n", count.unknown, count.unknown == 1 ? "" : "s");
+    }
+    return failed ? -1 : 0;
 }

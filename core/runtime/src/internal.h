@@ -73,6 +73,7 @@ struct vrg_context {
     uint32_t group_size[2];   /* VRG_GROUP_X/Y for shaders: see shader.c */
     uint32_t pixel_tile[2];   /* VRG_TILE_W/H: the pixels of a group of a pixel loop (pixel.glsl) */
     uint32_t pixel_rows;      /* VRG_PIXEL_ROWS: tile rows per invocation of a pixel loop */
+    int read_without_format;  /* shaderStorageImageReadWithoutFormat enabled (dispatch.c's check) */
     int want_swapchain;       /* vrg_context_desc.swapchain */
     double gpu_timeout_s;     /* resolved: desc, $VOXRG_GPU_TIMEOUT or the default */
     int gpu_busy;             /* a wait gave up: the device never idles (vrg_context_gpu_busy) */
@@ -439,6 +440,7 @@ typedef struct _vrg_reflected_binding {
     uint32_t set, binding;
     VkDescriptorType type;
     VkFormat format; /* storage images: the format qualifier (UNDEFINED: none) */
+    int readonly, writeonly; /* storage images and buffers: declared so (every member of a buffer) */
     char name[64];
     char where[VRG_PATH_MAX + 16]; /* FILE:LINE of its declaration */
 } _vrg_reflected_binding;
@@ -461,6 +463,7 @@ typedef struct _vrg_shader_module {
     char *deps; /* the file and every file it includes, real paths, one per line (free()) */
     _vrg_reflection refl; /* _vrg_reflection_free() */
 } _vrg_shader_module;
+/* ctx NULL: compiled and reflected for a GPU's workgroup shape, no module made. */
 int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, _vrg_shader_module *out, FILE *diag);
 int _vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t cap);
 /* The folder of libvoxrg's own file (install.c); "" if unknown. */

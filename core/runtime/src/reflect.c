@@ -198,6 +198,24 @@ static int add_binding(_vrg_reflection *r, const _vrg_reflected_binding *b)
     return 0;
 }
 
+/* readonly / writeonly: on an image variable; glslang puts a buffer's on
+ * each member of its block. */
+static void access_qualifiers(spvc_compiler comp, const spvc_reflected_resource *r, int buffer, _vrg_reflected_binding *b)
+{
+    b->readonly = spvc_compiler_has_decoration(comp, r->id, SpvDecorationNonWritable);
+    b->writeonly = spvc_compiler_has_decoration(comp, r->id, SpvDecorationNonReadable);
+    if (!buffer || b->readonly || b->writeonly)
+        return;
+    unsigned members = spvc_type_get_num_member_types(spvc_compiler_get_type_handle(comp, r->base_type_id));
+    int all_nw = members > 0, all_nr = members > 0;
+    for (unsigned m = 0; m < members; m++) {
+        all_nw &= spvc_compiler_has_member_decoration(comp, r->base_type_id, m, SpvDecorationNonWritable) != 0;
+        all_nr &= spvc_compiler_has_member_decoration(comp, r->base_type_id, m, SpvDecorationNonReadable) != 0;
+    }
+    b->readonly = all_nw;
+    b->writeonly = all_nr;
+}
+
 static int reflect_resources(spvc_compiler comp, spvc_resources res, const char *src, const char *path, _vrg_reflection *out)
 {
     static const spvc_resource_type kinds[] = {
@@ -218,6 +236,8 @@ static int reflect_resources(spvc_compiler comp, spvc_resources res, const char 
             };
             if (kinds[k] == SPVC_RESOURCE_TYPE_STORAGE_IMAGE)
                 b.format = vk_format_of(spvc_type_get_image_storage_format(type));
+            if (kinds[k] == SPVC_RESOURCE_TYPE_STORAGE_IMAGE || kinds[k] == SPVC_RESOURCE_TYPE_STORAGE_BUFFER)
+                access_qualifiers(comp, &list[i], kinds[k] == SPVC_RESOURCE_TYPE_STORAGE_BUFFER, &b);
             const char *name = spvc_compiler_get_name(comp, list[i].id);
             const char *block = spvc_compiler_get_name(comp, list[i].base_type_id);
             snprintf(b.name, sizeof b.name, "%s", name && *name ? name : list[i].name);

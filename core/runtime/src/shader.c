@@ -342,9 +342,12 @@ int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines,
      * 32 tiles over 8 rows on ray passes, and 4x2 tiles over rows of 8
      * pixels (the lanes' rays are more alike); docs/benchmarks.md has each
      * step's figure. On a GPU: 8x8 groups, one pixel per invocation. */
+    /* without a device (vrg_graph_check_shaders offline): a GPU's shape */
+    const uint32_t group[2] = {ctx ? ctx->group_size[0] : 8, ctx ? ctx->group_size[1] : 8};
+    const uint32_t tile[2] = {ctx ? ctx->pixel_tile[0] : 8, ctx ? ctx->pixel_tile[1] : 8};
     char all_defines[1200];
-    snprintf(all_defines, sizeof all_defines, "VRG_GROUP_X=%u VRG_GROUP_Y=%u VRG_TILE_W=%uu VRG_TILE_H=%uu VRG_PIXEL_ROWS=%uu %s", ctx->group_size[0],
-             ctx->group_size[1], ctx->pixel_tile[0], ctx->pixel_tile[1], ctx->pixel_rows, defines ? defines : "");
+    snprintf(all_defines, sizeof all_defines, "VRG_GROUP_X=%u VRG_GROUP_Y=%u VRG_TILE_W=%uu VRG_TILE_H=%uu VRG_PIXEL_ROWS=%uu %s", group[0], group[1], tile[0],
+             tile[1], ctx ? ctx->pixel_rows : 1, defines ? defines : "");
     expand_ctx e = {.diag = diag, .defines = all_defines};
     expand(&e, path, src, 0);
     free(src);
@@ -398,6 +401,11 @@ int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines,
         local_size_of(spv, words, out->local_size);
         if (_vrg_reflect(spv, words, src, path, &out->refl, diag) != 0)
             goto done;
+        out->module = VK_NULL_HANDLE;
+        if (!ctx) { /* checked, not to be run */
+            rc = 0;
+            goto done;
+        }
         VkShaderModuleCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, .codeSize = words * 4, .pCode = spv};
         if (vkCreateShaderModule(ctx->dev.device, &ci, NULL, &out->module) == VK_SUCCESS) {
             _vrg_name_object(ctx, VK_OBJECT_TYPE_SHADER_MODULE, (uint64_t)out->module, "%s", path);

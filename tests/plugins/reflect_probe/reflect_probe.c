@@ -1,7 +1,8 @@
 /* Test plugin for shader reflection: three slots of different descriptor
  * types and formats, bound in declaration order, and push constants of
  * push_bytes bytes; the shader, reflect.comp, is found on $VOXRG_SHADER_PATH,
- * where tests write shaders that get one thing wrong. */
+ * where tests write shaders that get one thing wrong. It lists the
+ * dispatches it may record, so `voxrg check` finds the same mistakes. */
 #include "voxrg/plugin.h"
 
 static const vrg_slot_desc slots[] = {
@@ -15,6 +16,14 @@ static const vrg_slot_desc slots[] = {
 
 static const vrg_param_desc params[] = {
     {.name = "push_bytes", .type = VRG_PARAM_INT, .default_value = 16, .min = 0, .max = 128, .help = "push_size of the dispatch"},
+};
+
+/* the push sizes the tests use; another one is a dispatch the plugin does
+ * not list, which the runtime refuses */
+static const vrg_dispatch_desc dispatches[] = {
+    {.shader = "reflect.comp", .push_size = 16},
+    {.shader = "reflect.comp", .push_size = 32},
+    {.shader = "reflect.comp", .push_size = 128},
 };
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
@@ -33,6 +42,8 @@ static const vrg_plugin_desc desc = {
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .execute = execute,
+    .dispatches = dispatches,
+    .dispatch_count = sizeof dispatches / sizeof dispatches[0],
 };
 
 VRG_PLUGIN(desc)

@@ -167,6 +167,15 @@ typedef struct vrg_plugin_desc {
      * vrg_pass_error_at(), and size outputs with vrg_pass_set_buffer_size().
      * Return 0 if all is well. May be NULL. */
     int (*check)(vrg_pass *pass);
+    /* Every dispatch the pass records (vrg_dispatch): shader, bindings,
+     * defines and push_size of each variant; push, domain and the group
+     * counts are not read here. `voxrg check` (vrg_graph_check_shaders)
+     * compiles and reflects each against the slots before any frame, even
+     * without a device; a pass that lists its dispatches records only these
+     * (another one fails with VRG-E061). May be NULL: the shaders are then
+     * checked at their first dispatch only. */
+    const struct vrg_dispatch_desc *dispatches;
+    uint32_t dispatch_count;
 } vrg_plugin_desc;
 
 /* What a plugin exports: its entry (host_abi is the runtime's

@@ -179,6 +179,15 @@ int vrg_graph_read_buffer(vrg_graph *g, const char *resource, void **data, uint6
 /* What `voxrg check` prints: schedule, resources, barriers, culled passes, memory. */
 void vrg_graph_report(const vrg_graph *g, FILE *f);
 void vrg_graph_write_dot(const vrg_graph *g, FILE *f);
+/* Compiles and reflects every dispatch each pass declares
+ * (vrg_plugin_desc.dispatches) and checks it against what the dispatch
+ * binds, as the first dispatch would, reporting each mismatch at the
+ * shader's FILE:LINE to the graph's diagnostics. Works without a device
+ * (the shaders are then compiled for a GPU's workgroup shape; bindings that
+ * name a pass's internal resources, which create() makes, are checked for
+ * their type and format only with a device). Writes one line per pass to
+ * `report` (NULL: none). Returns 0, or -1 when any shader failed. */
+int vrg_graph_check_shaders(vrg_graph *g, FILE *report);
 /* Per-pass GPU milliseconds of frame vrg_graph_timed_frame (the newest
  * that ended; vrg_graph_wait makes it the last one); -1 where not measured. */
 uint32_t vrg_graph_pass_count(const vrg_graph *g);
