@@ -38,12 +38,23 @@ static const vrg_slot_desc slots[] = {VRG_SCENE_SLOTS};
 
 static const char *const stream_modes[] = {"wait", "budget"};
 
+/* The generated world and what generates it. A hot reload of a graph whose
+ * world parameters are unchanged shares it with the new instance
+ * (vrg_pass_previous_instance) instead of generating it again; each
+ * instance's destroy() releases its share. */
+typedef struct terrain_world {
+    int refs;
+    terrain_params gen;
+    int radius, hysteresis, threads;
+    vrg_world *world;
+    stream *stream;
+} terrain_world;
+
 typedef struct scene {
     vrg_scene_gpu gpu;
-    terrain_params gen;
-    stream *stream;
+    terrain_world *tw;
     int wait;
-    int threads;
+    int world_kept; /* shared from the instance a reload replaced */
 } scene;
 
 static double now_ms(void)
@@ -79,52 +90,110 @@ static int check(vrg_pass *pass)
 
 static void generate(void *user, int cx, int cy, int cz, vrg_block out[VRG_CHUNK_VOXELS])
 {
-    terrain_generate_chunk(&((scene *)user)->gen, cx, cy, cz, out);
+    terrain_generate_chunk(&((terrain_world *)user)->gen, cx, cy, cz, out);
 }
 
 static void integrate(void *user, int cx, int cy, int cz, const vrg_block *blocks) { vrg_world_put_chunk(user, cx, cy, cz, blocks); }
 static void drop(void *user, int cx, int cy, int cz) { vrg_world_drop_chunk(user, cx, cy, cz); }
 
-static int create(vrg_pass *pass)
+static void release_world(terrain_world *tw)
 {
-    scene *s = calloc(1, sizeof *s);
-    vrg_pass_set_user(pass, s);
-    params_from(pass, &s->gen);
-    s->wait = vrg_param_choice(pass, "stream", stream_modes, 2) == 0;
+    if (!tw || --tw->refs > 0)
+        return;
+    stream_destroy(tw->stream); /* workers stop before the world goes */
+    vrg_world_destroy(tw->world);
+    free(tw);
+}
+
+/* the parameters the world's blocks and streaming depend on (time of day,
+ * traversal and the stream mode do not) */
+static void world_params(vrg_pass *pass, terrain_world *tw)
+{
+    params_from(pass, &tw->gen);
+    tw->radius = vrg_param_int(pass, "radius");
+    tw->hysteresis = vrg_param_int(pass, "hysteresis");
     int threads = vrg_param_int(pass, "threads");
     if (threads == 0) {
         long n = sysconf(_SC_NPROCESSORS_ONLN);
         threads = n > 0 ? (int)n : 1;
     }
-    s->threads = threads;
-    vrg_world *world = vrg_world_create(grid_radius(pass), s->gen.height_chunks);
-    stream_desc sd = {.threads = threads,
-                      .radius = vrg_param_int(pass, "radius"),
-                      .hysteresis = vrg_param_int(pass, "hysteresis"),
-                      .height_chunks = s->gen.height_chunks,
+    tw->threads = threads;
+}
+
+/* The world of the instance a reload replaces, when its parameters are
+ * these (terrain_params holds only 4-byte fields: memcmp sees no padding). */
+static terrain_world *previous_world(vrg_pass *pass, const terrain_world *want)
+{
+    vrg_pass *prev = vrg_pass_previous_instance(pass);
+    scene *old = prev ? vrg_pass_user(prev) : NULL;
+    terrain_world *tw = old ? old->tw : NULL;
+    if (!tw || memcmp(&tw->gen, &want->gen, sizeof want->gen) != 0 || tw->radius != want->radius || tw->hysteresis != want->hysteresis ||
+        tw->threads != want->threads)
+        return NULL;
+    tw->refs++;
+    return tw;
+}
+
+static terrain_world *new_world(const terrain_world *want)
+{
+    terrain_world *tw = malloc(sizeof *tw);
+    if (!tw)
+        return NULL;
+    *tw = *want;
+    tw->refs = 1;
+    tw->world = vrg_world_create(tw->radius + tw->hysteresis, tw->gen.height_chunks);
+    stream_desc sd = {.threads = tw->threads,
+                      .radius = tw->radius,
+                      .hysteresis = tw->hysteresis,
+                      .height_chunks = tw->gen.height_chunks,
                       .generate = generate,
-                      .user = s};
-    s->stream = world ? stream_create(&sd) : NULL;
-    if (!s->stream) {
-        vrg_world_destroy(world);
-        return vrg_pass_error(pass, "cannot create the world (out of memory?)");
+                      .user = tw};
+    tw->stream = tw->world ? stream_create(&sd) : NULL;
+    if (!tw->stream) {
+        vrg_world_destroy(tw->world);
+        free(tw);
+        return NULL;
     }
-    return vrg_scene_create(pass, &s->gpu, world);
+    return tw;
+}
+
+static int create(vrg_pass *pass)
+{
+    scene *s = calloc(1, sizeof *s);
+    if (!s)
+        return vrg_pass_error(pass, "out of memory");
+    vrg_pass_set_user(pass, s);
+    s->wait = vrg_param_choice(pass, "stream", stream_modes, 2) == 0;
+    terrain_world want = {0};
+    world_params(pass, &want);
+    s->tw = previous_world(pass, &want);
+    int shared = s->tw != NULL;
+    if (!shared)
+        s->tw = new_world(&want);
+    if (!s->tw)
+        return vrg_pass_error(pass, "cannot create the world (out of memory?)");
+    s->world_kept = shared;
+    if (vrg_scene_create(pass, &s->gpu, s->tw->world) != 0)
+        return -1;
+    if (shared && s->gpu.accel) /* the new backend has no BLAS yet: every chunk's faces again */
+        vrg_world_invalidate_meshes(s->tw->world);
+    return 0;
 }
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     scene *s = vrg_pass_user(pass);
     vrg_world *world = s->gpu.world;
+    stream *st = s->tw->stream;
     const vrg_camera *cam = &vrg_pass_frame(pass)->camera;
     /* the runtime keeps cameras in the world; vrg_world_floor holds even if not */
     int cx = vrg_floor_div16(vrg_world_floor(cam->position[0])), cz = vrg_floor_div16(vrg_world_floor(cam->position[2]));
     double t0 = now_ms();
-    stream_update(s->stream, cx, cz, drop, world);
+    stream_update(st, cx, cz, drop, world);
     if (s->wait)
-        stream_wait_idle(s->stream);
+        stream_wait_idle(st);
     double t1 = now_ms(), spent = 0;
-    int integrated = stream_integrate(s->stream, s->wait ? 1e9 : vrg_param(pass, "budget_ms"), integrate, world, &spent);
+    int integrated = stream_integrate(st, s->wait ? 1e9 : vrg_param(pass, "budget_ms"), integrate, world, &spent);
     double t2 = now_ms();
     vrg_scene_record(pass, &s->gpu, cmd);
     /* figures for `voxrg bench` and --json (upload_ms includes BLAS/TLAS recording) */
@@ -133,8 +202,9 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     vrg_pass_stat(pass, "upload_ms", now_ms() - t2);
     vrg_pass_stat(pass, "chunks_integrated", integrated);
     vrg_pass_stat(pass, "chunks_loaded", vrg_world_chunk_count(world));
-    vrg_pass_stat(pass, "chunks_pending", stream_pending(s->stream));
-    vrg_pass_stat(pass, "threads", s->threads);
+    vrg_pass_stat(pass, "chunks_pending", stream_pending(st));
+    vrg_pass_stat(pass, "threads", s->tw->threads);
+    vrg_pass_stat(pass, "world_kept", s->world_kept);
 }
 
 static void destroy(vrg_pass *pass)
@@ -142,8 +212,9 @@ static void destroy(vrg_pass *pass)
     scene *s = vrg_pass_user(pass);
     if (!s)
         return;
-    stream_destroy(s->stream); /* workers stop before the world goes */
+    s->gpu.world = NULL; /* the world is the terrain_world's, maybe shared */
     vrg_scene_destroy(pass, &s->gpu);
+    release_world(s->tw);
     free(s);
 }
 

@@ -263,6 +263,91 @@ static void test_terrain_world(void)
     vrg_graph_destroy(g);
 }
 
+/* A small terrain graph with a hard ray-query shadow (no random numbers, so
+ * frame counters do not matter): seed and exposure vary between saves. */
+static const char *keep_world_text(int seed, float exposure)
+{
+    static char text[1200];
+    snprintf(text, sizeof text,
+             "[graph]\noutput = ldr\nwidth = 64\nheight = 36\n"
+             "[camera]\nposition = -20 45 20\nyaw = -40\npitch = -30\n"
+             "[scene]\nplugin = terrain\nseed = %d\nradius = 1\ntraversal = rayquery\nthreads = 2\n"
+             "[pass gbuffer]\nplugin = gbuffer\nin.world = world\nin.frame = frame\nin.atlas = atlas\nin.tlas = tlas\n"
+             "[pass shadow]\nplugin = sun_shadow\nin.world = world\nin.frame = frame\nin.position = gbuffer.position\n"
+             "in.normal = gbuffer.normal\nin.tlas = tlas\nout.visibility = sun\nrays = 1\nsun_radius = 0\n"
+             "[pass combine]\nplugin = combine\nin.normal = gbuffer.normal\nin.frame = frame\nin.visibility = sun\nout.illumination = light\n"
+             "[pass modulate]\nplugin = modulate\nin.illumination = light\nin.albedo = gbuffer.albedo\nout.color = color\n"
+             "[pass tonemap]\nplugin = tonemap\nin.color = color\nout.ldr = ldr\nexposure = %g\n",
+             seed, exposure);
+    return text;
+}
+
+/* One frame of path's graph, freshly loaded: what a reload must match. */
+static int fresh_image(const char *path, vrg_image_data *img)
+{
+    static const char *reads[] = {"ldr"};
+    vrg_graph_desc d = {.path = path, .readback = reads, .readback_count = 1};
+    vrg_graph *g = NULL;
+    if (vrg_graph_load(ctx, &d, &g) != 0)
+        return -1;
+    int rc = vrg_graph_frame(g) == 0 && vrg_graph_read(g, "ldr", img) == 0 ? 0 : -1;
+    vrg_graph_destroy(g);
+    return rc;
+}
+
+static int same_pixels(const vrg_image_data *a, const vrg_image_data *b)
+{
+    return a->width == b->width && a->height == b->height && memcmp(a->pixels, b->pixels, (size_t)a->width * a->height * 4 * sizeof(float)) == 0;
+}
+
+/* A graph reload whose world parameters are unchanged shares the generated
+ * world with the new graph (terrain's world_kept) instead of generating it
+ * again, and renders what a freshly loaded graph renders: the new
+ * ray-query backend gets every chunk's faces (else no shadows), the new
+ * world buffer every chunk. A changed seed generates a new world. */
+static void test_terrain_reload_keeps_world(void)
+{
+    char dir[] = "/tmp/voxrg-keep-XXXXXX";
+    if (!mkdtemp(dir)) {
+        CHECK(0, "mkdtemp failed");
+        return;
+    }
+    char path[1100];
+    snprintf(path, sizeof path, "%s/keep.ini", dir);
+    save_file(path, keep_world_text(7, 0.5f));
+    static const char *reads[] = {"ldr"};
+    vrg_graph_desc d = {.path = path, .readback = reads, .readback_count = 1};
+    vrg_graph *g = NULL;
+    if (vrg_graph_load(ctx, &d, &g) != 0) {
+        CHECK(0, "cannot load %s", path);
+        return;
+    }
+    CHECK(vrg_graph_frame(g) == 0 && vrg_graph_frame(g) == 0, "frame failed");
+    const vrg_world *before = vrg_graph_world(g);
+    struct {
+        int seed;
+        float exposure;
+        int kept;
+    } steps[] = {{7, 0.8f, 1}, {9, 0.8f, 0}, {9, 0.3f, 1}};
+    for (int s = 0; s < 3; s++) {
+        save_file(path, keep_world_text(steps[s].seed, steps[s].exposure));
+        CHECK(vrg_graph_reload(&g) == 0, "step %d: reload failed", s);
+        CHECK((vrg_graph_world(g) == before) == steps[s].kept, "step %d: the world %s", s, steps[s].kept ? "was generated again" : "was kept");
+        before = vrg_graph_world(g);
+        vrg_image_data img, want;
+        double kept = -1;
+        CHECK(vrg_graph_frame(g) == 0 && vrg_graph_read(g, "ldr", &img) == 0, "step %d: frame failed", s);
+        CHECK(vrg_graph_stat(g, "scene", "world_kept", &kept) == 0 && kept == steps[s].kept, "step %d: world_kept %g", s, kept);
+        CHECK(fresh_image(path, &want) == 0, "step %d: the fresh graph failed", s);
+        CHECK(same_pixels(&img, &want), "step %d: the reloaded graph's image differs from a fresh graph's", s);
+        free(img.pixels);
+        free(want.pixels);
+    }
+    vrg_graph_destroy(g);
+    unlink(path);
+    rmdir(dir);
+}
+
 static float srgb_decode(uint8_t v)
 {
     float c = v / 255.0f;
@@ -397,6 +482,7 @@ static int test_rayquery(void)
 int main(int argc, char **argv)
 {
     static const test_case cases[] = {
+        {"terrain_reload_keeps_world", test_terrain_reload_keeps_world, 1, NULL},
         {"blocks_world", test_blocks_world, 1},
         {"blocks_trace", test_blocks_trace, 1},
         {"terrain_world", test_terrain_world, 1},

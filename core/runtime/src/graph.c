@@ -140,12 +140,15 @@ static void free_readback(vrg_graph *g)
     g->last_slot = -1; /* nothing to read until the next frame */
 }
 
-int vrg_graph_load(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph **out)
+int vrg_graph_load(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph **out) { return _vrg_graph_load_replacing(ctx, desc, NULL, out); }
+
+int _vrg_graph_load_replacing(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph *predecessor, vrg_graph **out)
 {
     *out = NULL;
     vrg_graph *g = calloc(1, sizeof *g);
     _vrg_ast *ast = calloc(1, sizeof *ast);
     g->ctx = ctx;
+    g->predecessor = predecessor;
     snprintf(g->path, sizeof g->path, "%s", desc->path ? desc->path : "<graph>");
     g->desc = *desc;
     g->shown = -1;

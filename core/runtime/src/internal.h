@@ -332,6 +332,7 @@ struct vrg_graph {
     int plugins_rebuilt;       /* passes with plugin_rebuilt set wait for vrg_graph_reload */
     int params_changed;        /* the next frame is the first after a parameter-only reload */
     int history_carried;       /* a structural reload copied matching history resources over */
+    vrg_graph *predecessor;    /* while a reload builds this graph: the one it replaces (vrg_pass_previous_instance) */
     struct vrg_capture *capture; /* vrg_graph_capture_frame: this frame's commands are kept */
     double cpu_ms;             /* the last frame's recording and submission, CPU ms */
     vrg_graph_desc desc;       /* as loaded (the host keeps its arrays): reload reuses it */
@@ -463,6 +464,9 @@ typedef struct _vrg_shader_module {
     char *deps; /* the file and every file it includes, real paths, one per line (free()) */
     _vrg_reflection refl; /* _vrg_reflection_free() */
 } _vrg_shader_module;
+/* vrg_graph_load for a reload: passes may look at `predecessor`'s
+ * (vrg_pass_previous_instance) until the reload ends. */
+int _vrg_graph_load_replacing(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph *predecessor, vrg_graph **out);
 /* ctx NULL: compiled and reflected for a GPU's workgroup shape, no module made. */
 int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, _vrg_shader_module *out, FILE *diag);
 int _vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t cap);

@@ -61,6 +61,17 @@ int _vrg_pass_fail(vrg_pass *p, _vrg_diag_code code, const char *fmt, ...)
     return rc;
 }
 
+vrg_pass *vrg_pass_previous_instance(const vrg_pass *p)
+{
+    vrg_graph *old = p->graph->predecessor;
+    for (int i = 0; old && i < old->pass_count; i++) {
+        vrg_pass *q = &old->passes[i];
+        if (strcmp(q->name, p->name) == 0)
+            return q->plugin == p->plugin && q->created ? q : NULL;
+    }
+    return NULL;
+}
+
 double vrg_pass_gpu_ms(const vrg_pass *p, const char *other)
 {
     const vrg_graph *g = p->graph;

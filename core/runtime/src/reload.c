@@ -204,7 +204,7 @@ int vrg_graph_reload(vrg_graph **pg)
     FILE *real = old->desc.diag ? old->desc.diag : stderr;
     d.diag = mem ? mem : real;
     vrg_graph *g = NULL;
-    int rc = vrg_graph_load(old->ctx, &d, &g);
+    int rc = _vrg_graph_load_replacing(old->ctx, &d, old, &g);
     if (mem) {
         fclose(mem);
         fputs(text ? text : "", real);
@@ -243,6 +243,7 @@ int vrg_graph_reload(vrg_graph **pg)
         vrg_graph_destroy(g);
         return -1;
     }
+    g->predecessor = NULL; /* the reload is done: old goes below */
     if (same_structure(old, g)) /* every history resource carried over */
         g->history_reset = 0;
     else

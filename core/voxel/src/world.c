@@ -168,6 +168,15 @@ static void mark_mesh(vrg_world *w, int cx, int cy, int cz)
     }
 }
 
+void vrg_world_invalidate_meshes(vrg_world *w)
+{
+    for (int s = 0; s < w->gx * w->gy * w->gz; s++)
+        if (!w->slots[s].mesh_dirty) {
+            w->slots[s].mesh_dirty = 1;
+            w->mesh_list[w->mesh_count++] = s;
+        }
+}
+
 int vrg_world_take_mesh_changes(vrg_world *w, int *slots, int max)
 {
     int n = w->mesh_count < max ? w->mesh_count : max;

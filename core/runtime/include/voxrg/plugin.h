@@ -250,6 +250,16 @@ const vrg_frame_info *vrg_pass_frame(const vrg_pass *pass);
 const char *vrg_pass_name(const vrg_pass *pass);
 void *vrg_pass_user(const vrg_pass *pass);
 void vrg_pass_set_user(vrg_pass *pass, void *user);
+/* While a hot reload builds the graph that replaces a running one (from
+ * create() until the reload ends: create, resize, restore_state): the pass
+ * of the same name in the graph being replaced, if it runs the same loaded
+ * plugin (the same file version, so its vrg_pass_user() is the same kind of
+ * object) and was created; else NULL. The old graph stays whole until the
+ * reload ends: destroyed after the new graph is ready, or running on if the
+ * reload fails. A pass may share what its predecessor built (the terrain
+ * scene its generated world, reference-counted) instead of building it
+ * again; each instance's destroy() then releases its share. */
+vrg_pass *vrg_pass_previous_instance(const vrg_pass *pass);
 /* Report an error that names this pass (and its plugin); returns -1. */
 int vrg_pass_error(vrg_pass *pass, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 

@@ -109,6 +109,9 @@ void vrg_world_invalidate_gpu(vrg_world *w);
 /* Slots still waiting for upload. */
 int vrg_world_dirty_count(const vrg_world *w);
 
+/* A new ray-query backend on a world that holds chunks (a world shared
+ * across a hot reload): every slot's faces are to be taken again. */
+void vrg_world_invalidate_meshes(vrg_world *w);
 /* Slots whose exposed faces changed since the last call (at most max). */
 int vrg_world_take_mesh_changes(vrg_world *w, int *slots, int max);
 /* The chunk a slot holds: 1 and its coordinates, or 0 when empty. */
