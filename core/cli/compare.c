@@ -1,4 +1,4 @@
-/* voxrg compare: renders candidate graphs (and variants of the first) along
+/* voxrg compare: renders candidate graphs (and variants of them) along
  * a camera path, and a reference graph converged at every path frame
  * (cached on disk), and measures each candidate frame against the
  * reference frame: PSNR, SSIM, FLIP and temporal error, plus per-pass GPU
@@ -33,10 +33,11 @@ const char *const vrg_cmp_metric_labels[VRG_CMP_METRICS] = {"PSNR (dB)", "SSIM",
 const int vrg_cmp_metric_higher_better[VRG_CMP_METRICS] = {1, 1, 0, 0};
 
 const char *const vrg_cli_compare_usage =
-    "usage: voxrg compare A.ini [B.ini ...] --reference REF.ini [--variant NAME:PASS.PARAM=VALUE,...]...\n"
+    "usage: voxrg compare A.ini [B.ini ...] --reference REF.ini [--variant NAME[@GRAPH]:PASS.PARAM=VALUE,...]...\n"
     "                     [--camera PATH] [--start N] [--frames N] [--size WxH] [--warmup N] [--out DIR]\n"
     "                     [--ref-set PASS.PARAM=VALUE]... [--cache DIR] [--validate] [--device NAME|INDEX]\n"
-    "Renders every candidate (each graph, and each --variant: the first graph with those\n"
+    "Renders every candidate (each graph, and each --variant: the graph GRAPH names, a\n"
+    "listed graph's candidate name, path or file name, else the first graph, with those\n"
     "parameters) and the reference on the same frames: same world, camera path, seeds\n"
     "and size. The reference is rendered converged at each path frame and cached in\n"
     "DIR (default $XDG_CACHE_HOME/voxrg/reference), keyed by its graph, parameters,\n"
@@ -66,6 +67,7 @@ typedef struct options {
 /* one candidate to render: a graph and its overrides */
 typedef struct job {
     const char *graph;
+    int base; /* a variant: the index of the listed graph it changes; -1 for a listed graph */
     const char *sets[MAX_SETS];
     int set_count;
     char buf[1024]; /* the variant's overrides, split in place */
@@ -139,10 +141,12 @@ static int parse_options(int argc, char **argv, options *o)
         else if (!strcmp(a, "--device"))
             o->device = next;
         else if (!strcmp(a, "--variant")) {
-            const char *colon = strchr(next, ':');
-            if (!colon || colon == next || !colon[1])
-                return usage_error("--variant '%s': expected NAME:PASS.PARAM=VALUE[,...]", next);
-            if (!variant_name_ok(next, (size_t)(colon - next)))
+            /* a name has neither '@' nor ':', so whichever comes first ends it */
+            size_t name_len = strcspn(next, "@:");
+            const char *colon = strchr(next + name_len, ':');
+            if (!colon || !name_len || !colon[1] || (next[name_len] == '@' && colon == next + name_len + 1))
+                return usage_error("--variant '%s': expected NAME[@GRAPH]:PASS.PARAM=VALUE[,...]", next);
+            if (!variant_name_ok(next, name_len))
                 return usage_error("--variant '%s': a name is 1 to 63 of A-Z a-z 0-9 _ - and dots (not first or last), "
                                    "and not 'reference'", next);
             if (o->variant_count == VRG_CMP_MAX_CANDIDATES)
@@ -205,12 +209,38 @@ static vrg_graph *load(vrg_context *ctx, const char *graph, const char *const *s
     return g;
 }
 
-/* Jobs and candidate names: each graph, then each variant of the first. */
+/* The listed graph whose candidate name, path as given or file name is
+ * `want`, tried in that order: a candidate name is unique, while one path
+ * or file name may be listed twice. Its index, or -1 after a usage error
+ * that lists the candidates. */
+static int variant_base(const options *o, const vrg_cmp_result *r, const char *variant, const char *want, size_t want_len)
+{
+    int count = 0, found = -1;
+    for (int tier = 0; tier < 3 && !count; tier++)
+        for (int i = 0; i < o->graph_count; i++) {
+            const char *slash = strrchr(o->graphs[i], '/');
+            const char *key = tier == 0 ? r->cand[i].name : tier == 1 ? o->graphs[i] : slash ? slash + 1 : o->graphs[i];
+            if (strlen(key) == want_len && !strncmp(key, want, want_len))
+                found = i, count++;
+        }
+    if (count == 1)
+        return found;
+    fprintf(stderr, "error: --variant %s: '%.*s' %s; the listed graphs are", variant, (int)want_len, want,
+            count ? "is more than one listed graph, name it by its candidate name" : "is not a listed graph");
+    for (int i = 0; i < o->graph_count; i++)
+        fprintf(stderr, "%s %s (%s)", i ? "," : "", r->cand[i].name, o->graphs[i]);
+    fprintf(stderr, "\n%s", vrg_cli_compare_usage);
+    return -1;
+}
+
+/* Jobs and candidate names: each graph, then each variant of a listed
+ * graph. -1 on an error, 2 on a usage error. */
 static int make_jobs(const options *o, job *jobs, vrg_cmp_result *r)
 {
     int n = 0;
     for (int i = 0; i < o->graph_count; i++, n++) {
         jobs[n].graph = o->graphs[i];
+        jobs[n].base = -1;
         stem(o->graphs[i], r->cand[n].name, sizeof r->cand[n].name);
         int taken = !strcmp(r->cand[n].name, RESERVED_NAME);
         for (int k = 0; k < n; k++) /* two graphs of one name: number them */
@@ -227,10 +257,14 @@ static int make_jobs(const options *o, job *jobs, vrg_cmp_result *r)
             fprintf(stderr, "error: at most %d candidates\n", VRG_CMP_MAX_CANDIDATES);
             return -1;
         }
-        const char *colon = strchr(o->variants[v], ':');
+        const char *spec = o->variants[v], *colon = strchr(spec, ':');
+        size_t name_len = strcspn(spec, "@:");
         job *j = &jobs[n];
-        j->graph = o->graphs[0];
-        snprintf(r->cand[n].name, sizeof r->cand[n].name, "%.*s", (int)(colon - o->variants[v]), o->variants[v]);
+        j->base = 0; /* without @GRAPH: the first graph, as before GRAPH could be named */
+        if (spec[name_len] == '@' && (j->base = variant_base(o, r, spec, spec + name_len + 1, (size_t)(colon - spec - name_len - 1))) < 0)
+            return 2;
+        j->graph = o->graphs[j->base];
+        snprintf(r->cand[n].name, sizeof r->cand[n].name, "%.*s", (int)name_len, spec);
         snprintf(r->cand[n].overrides, sizeof r->cand[n].overrides, "%s", colon + 1);
         if ((size_t)snprintf(j->buf, sizeof j->buf, "%s", colon + 1) >= sizeof j->buf) {
             fprintf(stderr, "error: --variant %s: the overrides are longer than %zu characters\n", o->variants[v], sizeof j->buf - 1);
@@ -249,8 +283,10 @@ static int make_jobs(const options *o, job *jobs, vrg_cmp_result *r)
                 return -1;
             }
     }
-    for (int i = 0; i < n; i++)
+    for (int i = 0; i < n; i++) {
         snprintf(r->cand[i].graph, sizeof r->cand[i].graph, "%s", jobs[i].graph);
+        r->cand[i].base = jobs[i].base;
+    }
     r->count = n;
     return 0;
 }
@@ -658,9 +694,14 @@ static int write_json(const char *dir, const vrg_cmp_result *r)
     fprintf(f, "  \"psnr_cap_db\": %g,\n  \"candidates\": [", VRG_PSNR_MAX_DB);
     for (int i = 0; i < r->count; i++) {
         const vrg_cmp_candidate *c = &r->cand[i];
-        fprintf(f, "%s\n    {\"name\": \"%s\", \"graph\": \"%s\", \"overrides\": \"%s\",\n      \"summary\": {", i ? "," : "",
+        fprintf(f, "%s\n    {\"name\": \"%s\", \"graph\": \"%s\", \"overrides\": \"%s\", ", i ? "," : "",
                 vrg_cli_json_str(c->name, e1, sizeof e1), vrg_cli_json_str(c->graph, e2, sizeof e2),
                 vrg_cli_json_str(c->overrides, e3, sizeof e3));
+        /* the listed graph a variant changes, by its candidate name: two listings may share a path */
+        if (c->base >= 0)
+            fprintf(f, "\"variant_of\": \"%s\",\n      \"summary\": {", vrg_cli_json_str(r->cand[c->base].name, e1, sizeof e1));
+        else
+            fputs("\"variant_of\": null,\n      \"summary\": {", f);
         for (int m = 0; m < VRG_CMP_METRICS; m++) {
             fprintf(f, "\"%s\": ", vrg_cmp_metric_names[m]);
             num(f, c->summary[m], 1);
@@ -745,7 +786,9 @@ int vrg_cli_compare(int argc, char **argv)
     vrg_camera fixed;
     double frame_s = 0;
     vrg_camera_path path = {0};
-    if (make_jobs(&o, jobs, &r) != 0 || check_all(&o, jobs, &r, &fixed, &frame_s) != 0)
+    if ((rc = make_jobs(&o, jobs, &r)) != 0)
+        return rc > 0 ? rc : 1;
+    if (check_all(&o, jobs, &r, &fixed, &frame_s) != 0)
         return 1;
     if (o.camera && vrg_camera_path_load(o.camera, &path, stderr) != 0)
         return 1;

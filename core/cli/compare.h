@@ -23,6 +23,7 @@ typedef struct vrg_cmp_candidate {
     char name[64];
     char graph[1024];
     char overrides[1024];         /* "pass.param=value,..." as given, "" for none */
+    int base;                     /* a variant: the index of the listed graph it changes; -1 for a listed graph */
     double *per_frame[VRG_CMP_METRICS]; /* [frames]; temporal of frame 0 is NAN */
     double summary[VRG_CMP_METRICS];    /* means over the frames from warmup on */
     vrg_cmp_pass passes[VRG_CMP_MAX_PASSES];

@@ -306,6 +306,11 @@ static void summary(FILE *f, const vrg_cmp_result *r)
         esc(f, c->name);
         fputs("</td><td>", f);
         esc(f, c->graph);
+        if (c->base >= 0) {
+            fputs(" (variant of ", f);
+            esc(f, r->cand[c->base].name);
+            fputs(")", f);
+        }
         if (c->overrides[0]) {
             fputs(" with ", f);
             esc(f, c->overrides);

@@ -12,6 +12,9 @@
   an unknown parameter: exit 1, a clear message, no report left behind.
 - names: variant names outside the safe set refused; graph names that
   would overwrite the reference's frames or break metrics.csv handled.
+- variants of a named graph (NAME@GRAPH:...): a variant of the second graph
+  renders that graph, not the first; the report says which; a GRAPH not
+  listed, or listed twice, is a usage error (exit 2) naming the candidates.
 Usage: test_compare.py VOXRG SOURCE_DIR OUT_DIR"""
 import base64
 import html.parser
@@ -219,10 +222,42 @@ def names():
     check({"reference-00000.png", "reference-1-00000.png", 'a,"b-00000.png', "v-1.b_2-00001.png"} <= frames, "frames/: %s" % sorted(frames))
 
 
+def variant_graph():
+    out = os.path.join(OUT, "variant-graph")
+    os.makedirs(out, exist_ok=True)
+    small_world = lambda text: text.replace("radius      = 13", "radius      = 2")  # cheap to generate
+    raw, thesis, ref = (os.path.join(out, n) for n in ("raw.ini", "thesis.ini", "converged.ini"))
+    for src, dst in (("raw.ini", raw), ("thesis.ini", thesis), ("reference.ini", ref)):
+        open(dst, "w").write(small_world(open(os.path.join(GRAPHS, src)).read()))
+    run = ["--reference", ref, "--ref-set", "converge.samples_per_frame=2", "--size", "32x18", "--frames", "2", "--warmup", "0"]
+    # not listed, or listed twice: refused before any work, the candidates named
+    for graphs, want, pattern in (([raw, thesis], "svgf", r"'svgf' is not a listed graph; the listed graphs are raw \(.*raw\.ini\), thesis \("),
+                                  ([raw, raw], "raw.ini", r"'raw\.ini' is more than one listed graph.*raw \(.*\), raw-2 \(")):
+        rc, _, stderr = compare(*graphs, "--variant", "v@%s:ao.rays=1" % want, *run, out=out)
+        check(rc == 2, "variant of %s: exit %d, want 2" % (want, rc))
+        check(re.search(pattern, stderr) is not None, "variant of %s: no /%s/ in:\n%s" % (want, pattern, stderr[-1000:]))
+        check(not os.path.exists(os.path.join(out, "frames")), "variant of %s: frames written" % want)
+    # the same overrides on each graph, the second named by its file name:
+    # were it the first graph, its numbers would equal r1's
+    rc, _, stderr = compare(raw, thesis, "--variant", "r1:tonemap.exposure=2", "--variant", "t1@thesis.ini:tonemap.exposure=2", *run, out=out)
+    if not check(rc == 0, "variants of two graphs: exit %d\n%s" % (rc, stderr[-3000:])):
+        return
+    c = {x["name"]: x for x in json.load(open(os.path.join(out, "metrics.json")))["candidates"]}
+    numbers = lambda name: [f[m] for f in c[name]["frames"] for m in ("psnr", "ssim", "flip")]
+    check(c["t1"]["graph"] == thesis and c["t1"]["variant_of"] == "thesis" and c["r1"]["graph"] == raw and c["r1"]["variant_of"] == "raw" and
+          c["thesis"]["variant_of"] is None, "metrics.json graphs: %s" % {n: (x["graph"], x["variant_of"]) for n, x in c.items()})
+    check(numbers("t1") != numbers("r1"), "t1 (thesis, exposure 2) has r1's (raw, exposure 2) numbers: %s" % numbers("t1"))
+    check(numbers("t1") != numbers("thesis"), "t1 (thesis, exposure 2) has thesis's numbers: %s" % numbers("t1"))
+    check({"atrous", "reproject"} <= {p["name"] for p in c["t1"]["passes"]}, "t1's passes are not thesis's: %s" % c["t1"]["passes"])
+    page = open(os.path.join(out, "report.html")).read()
+    check(re.search(r'data-candidate="t1">.*?</td><td>[^<]*thesis\.ini \(variant of thesis\) with tonemap\.exposure=2</td>', page) is not None,
+          "report.html: t1's row does not say it is a variant of thesis")
+
+
 def main():
     shutil.rmtree(OUT, ignore_errors=True)
     os.makedirs(OUT)
-    for case in (errors, names, identical, e2e):
+    for case in (errors, names, variant_graph, identical, e2e):
         case()
         print("%s: done" % case.__name__, flush=True)
     print("compare: %s" % ("FAILED (%d)" % len(failures) if failures else "ok"))

@@ -8,7 +8,13 @@
  *   term alone: HyAB distance of the Hunt-adjusted Lab greys, ^0.7,
  *   redistributed against cmax = HyAB(green, blue)^0.7 = 41.2755. Black
  *   against white: 100^0.7 = 25.119 > 0.4 cmax, so 0.95 + (25.119 - 16.510)
- *   / (41.275 - 16.510) · 0.05 = 0.96738; grey 0.5 against 0.6: 0.28502. */
+ *   / (41.275 - 16.510) · 0.05 = 0.96738; grey 0.5 against 0.6: 0.28502.
+ * - FLIP of a small non-constant pair (flip_pair) is pinned to the value of
+ *   an independent plain-Python FLIP (flip_reference.py: 2D kernels, edge
+ *   pixels repeated beyond the borders as the official code pads), which
+ *   the test also runs when python3 is there, so either side drifting
+ *   fails. The image is smaller than the filters, so every pixel's score
+ *   depends on the padding. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -126,6 +132,47 @@ static void test_flip(void)
           map[16 * W + 24], map[16 * W + 4], map[16 * W + 44]);
 }
 
+/* flip_reference.py's image_pair(), in 1/255 steps: a colour gradient with
+ * one bright pixel; the test has it moved by one and three border pixels
+ * changed, one in a corner */
+enum { PAIR_W = 8, PAIR_H = 6 };
+
+static void flip_pair(float *ref, float *test)
+{
+    for (int y = 0; y < PAIR_H; y++)
+        for (int x = 0; x < PAIR_W; x++) {
+            int v[3] = {30 + 28 * x, 50 + 35 * y, 200 - 20 * x - 10 * y};
+            if (x == 3 && y == 2)
+                v[0] = v[1] = v[2] = 240;
+            for (int c = 0; c < 3; c++)
+                ref[3 * (y * PAIR_W + x) + c] = (float)v[c] / 255.0f;
+        }
+    memcpy(test, ref, sizeof(float) * PAIR_W * PAIR_H * 3);
+    memcpy(test + 3 * (2 * PAIR_W + 3), ref + 3 * (2 * PAIR_W + 4), sizeof(float) * 3);
+    memcpy(test + 3 * (2 * PAIR_W + 4), ref + 3 * (2 * PAIR_W + 3), sizeof(float) * 3);
+    const float red[3] = {1, 0, 0}, black[3] = {0, 0, 0};
+    memcpy(test, red, sizeof red);
+    test[3 * (3 * PAIR_W + 7) + 1] += 40.0f / 255.0f;
+    memcpy(test + 3 * (5 * PAIR_W + 2), black, sizeof black);
+}
+
+/* argv: the Python reference's value, when python3 ran it */
+static void test_flip_pinned(int argc, char **argv)
+{
+    const double pinned = 0.282053842617, tolerance = 1e-6;
+    static float ref[PAIR_W * PAIR_H * 3], test[PAIR_W * PAIR_H * 3];
+    flip_pair(ref, test);
+    double c = vrg_metric_flip(test, ref, PAIR_W, PAIR_H, NULL);
+    CHECK(fabs(c - pinned) < tolerance, "C FLIP of the pair %.12f, pinned %.12f", c, pinned);
+    if (argc < 1)
+        return;
+    char *end;
+    double py = strtod(argv[0], &end);
+    CHECK(end != argv[0] && *end == 0, "the Python reference's output '%s' is not a number", argv[0]);
+    CHECK(fabs(py - pinned) < tolerance, "Python FLIP of the pair %.12f, pinned %.12f", py, pinned);
+    CHECK(fabs(py - c) < tolerance, "Python FLIP %.12f, C %.12f", py, c);
+}
+
 static void test_temporal(void)
 {
     static float r0[N], r1[N], t0[N], t1[N];
@@ -158,9 +205,14 @@ int main(int argc, char **argv)
         const char *name;
         void (*fn)(void);
     } cases[] = {{"psnr", test_psnr}, {"ssim", test_ssim}, {"flip", test_flip}, {"temporal", test_temporal}, {"colors", test_colors}};
+    int ran = 0;
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         if (argc < 2 || strcmp(argv[1], cases[i].name) == 0)
-            cases[i].fn();
+            cases[i].fn(), ran++;
+    if (argc < 2 || strcmp(argv[1], "flip_pinned") == 0)
+        test_flip_pinned(argc > 2 ? argc - 2 : 0, argv + 2), ran++;
+    /* a misspelt case in CMakeLists.txt would otherwise pass by running nothing */
+    CHECK(ran > 0, "no test case named '%s'", argv[1]);
     printf("metrics: %s\n", failures ? "FAILED" : "ok");
     return failures ? 1 : 0;
 }

@@ -4,7 +4,8 @@
  * Andersson, Nilsson, Akenine-Möller, Oskarsson, Åström, Fairchild, "FLIP: A
  * Difference Evaluator for Alternating Images" (HPG 2020). Filters are
  * separable (the FLIP paper's 2D kernels are products or sums of products);
- * FLIP's filters mirror the image at its borders. */
+ * FLIP's filters repeat the edge pixel beyond the borders (clamp to edge), as
+ * the official implementation (NVlabs FLIP) pads, so scores compare with it. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -181,28 +182,24 @@ static double hyab(const double a[3], const double b[3])
     return fabs(a[0] - b[0]) + sqrt((a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
 }
 
-static int mirror(int i, int n)
-{
-    while (i < 0 || i >= n)
-        i = i < 0 ? -i - 1 : 2 * n - i - 1;
-    return i;
-}
+static int clamp_to_edge(int i, int n) { return i < 0 ? 0 : i >= n ? n - 1 : i; }
 
-/* out = src convolved with kx along x then ky along y (radius r), mirrored borders */
+/* out = src convolved with kx along x then ky along y (radius r); beyond the
+ * borders the edge pixel repeats */
 static void convolve_sep(const double *src, int w, int h, const double *kx, const double *ky, int r, double *tmp, double *out)
 {
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
             double s = 0;
             for (int i = -r; i <= r; i++)
-                s += kx[i + r] * src[(size_t)y * w + mirror(x - i, w)];
+                s += kx[i + r] * src[(size_t)y * w + clamp_to_edge(x - i, w)];
             tmp[(size_t)y * w + x] = s;
         }
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
             double s = 0;
             for (int i = -r; i <= r; i++)
-                s += ky[i + r] * tmp[(size_t)mirror(y - i, h) * w + x];
+                s += ky[i + r] * tmp[(size_t)clamp_to_edge(y - i, h) * w + x];
             out[(size_t)y * w + x] = s;
         }
 }
