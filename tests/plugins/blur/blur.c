@@ -9,6 +9,9 @@ static const vrg_slot_desc slots[] = {
      .format = VK_FORMAT_R16G16B16A16_SFLOAT, .scale = 1.0f, .help = "3x3 box average of src"},
 };
 
+/* listed: `voxrg check` compiles it (graphs/runtime-demo.ini uses this plugin) */
+static const vrg_dispatch_desc dispatches[] = {{.shader = "blur.comp"}};
+
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "blur.comp"});
@@ -23,6 +26,8 @@ static const vrg_plugin_desc desc = {
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,
+    .dispatches = dispatches,
+    .dispatch_count = sizeof dispatches / sizeof dispatches[0],
 };
 
 VRG_PLUGIN(desc)

@@ -17,14 +17,19 @@ static const vrg_slot_desc slots[] = {
      .format = VK_FORMAT_R16G16B16A16_SFLOAT, .scale = 1.0f, .help = "the running average"},
 };
 
+typedef struct ema_push {
+    float alpha;
+    int32_t use_history;
+} ema_push;
+
+/* listed: `voxrg check` compiles it (graphs/runtime-demo.ini uses this plugin) */
+static const vrg_dispatch_desc dispatches[] = {{.shader = "ema.comp", .push_size = sizeof(ema_push)}};
+
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     /* the unconnected history is bound to a stand-in; use_history keeps the shader off it */
     int connected = vrg_res_connected(vrg_pass_res(pass, "history"));
-    struct {
-        float alpha;
-        int32_t use_history;
-    } pc = {(float)vrg_param(pass, "alpha"), connected && vrg_res_history_valid(pass, vrg_pass_res(pass, "history"))};
+    ema_push pc = {(float)vrg_param(pass, "alpha"), connected && vrg_res_history_valid(pass, vrg_pass_res(pass, "history"))};
     (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "ema.comp", .push = &pc, .push_size = sizeof pc});
 }
 
@@ -39,6 +44,8 @@ static const vrg_plugin_desc desc = {
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,
+    .dispatches = dispatches,
+    .dispatch_count = sizeof dispatches / sizeof dispatches[0],
 };
 
 VRG_PLUGIN(desc)

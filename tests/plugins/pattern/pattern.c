@@ -11,6 +11,9 @@ static const vrg_slot_desc slots[] = {
      .format = VK_FORMAT_R16G16B16A16_SFLOAT, .scale = 1.0f, .help = "(x/(W-1), y/(H-1), value, 1)"},
 };
 
+/* listed: `voxrg check` compiles it (graphs/runtime-demo.ini uses this plugin) */
+static const vrg_dispatch_desc dispatches[] = {{.shader = "pattern.comp", .push_size = sizeof(float)}};
+
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     float value = (float)vrg_param(pass, "value");
@@ -29,6 +32,8 @@ static const vrg_plugin_desc desc = {
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,
+    .dispatches = dispatches,
+    .dispatch_count = sizeof dispatches / sizeof dispatches[0],
 };
 
 VRG_PLUGIN(desc)
