@@ -7,7 +7,10 @@
 # copies NAME.so to DESTINATION (default lib/voxrg/plugins under the install
 # prefix) and its shaders to DESTINATION/NAME/, where the runtime looks first
 # for an installed plugin's shaders. A scene plugin of the voxel world adds
-# LIBRARIES voxrg::voxel.
+# LIBRARIES voxrg::voxel. Built and installed, NAME.so has a RUNPATH to this
+# SDK's lib folder, so it finds libvoxrg_voxel (and the rest) wherever the
+# host program comes from.
+get_filename_component(_voxrg_lib_dir "${CMAKE_CURRENT_LIST_DIR}/../.." ABSOLUTE)
 function(voxrg_add_pass name)
   cmake_parse_arguments(VRG_PASS "" "DESTINATION" "SOURCES;SHADERS;LIBRARIES" ${ARGN})
   if(NOT VRG_PASS_SOURCES)
@@ -35,7 +38,8 @@ function(voxrg_add_pass name)
   add_library(${name} MODULE ${VRG_PASS_SOURCES} ${shaders})
   target_compile_definitions(${name} PRIVATE VRG_PLUGIN_DIR="${shader_dir}")
   target_link_libraries(${name} PRIVATE voxrg::voxrg ${VRG_PASS_LIBRARIES})
-  set_target_properties(${name} PROPERTIES PREFIX "" C_VISIBILITY_PRESET hidden)
+  set_target_properties(${name} PROPERTIES PREFIX "" C_VISIBILITY_PRESET hidden
+                        BUILD_RPATH "${_voxrg_lib_dir}" INSTALL_RPATH "${_voxrg_lib_dir}")
   install(TARGETS ${name} LIBRARY DESTINATION ${VRG_PASS_DESTINATION})
   if(shaders)
     install(FILES ${shaders} DESTINATION ${VRG_PASS_DESTINATION}/${name})

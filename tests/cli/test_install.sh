@@ -7,9 +7,14 @@
 # against the moved prefix, and the docs' invert pass (docs/plugin-abi.md)
 # is compiled with pkg-config; both load in graphs beside shipped passes and
 # render under --validate, and `voxrg plugins NAME` finds each.
-# usage: test_install.sh BUILD_DIR SOURCE_DIR OUT_DIR
+# A host program linked with libvoxrg only (not libvoxrg_voxel) renders a
+# graph whose scene plugin needs libvoxrg_voxel: the loader finds it from
+# the installed plugin's RUNPATH, not the copy it loads.
+# usage: test_install.sh BUILD_DIR SOURCE_DIR OUT_DIR CC [HOST_CFLAGS]
+# (CC and HOST_CFLAGS build that host: the sanitizer build's libraries
+# need the sanitizers' runtime in the program)
 set -u
-build=$1 src=$2 out=$3
+build=$1 src=$2 out=$3 cc=$4 host_cflags=${5:-}
 rm -rf "$out" && mkdir -p "$out/work"
 fail() { echo "FAIL: $*"; exit 1; }
 cmake --install "$build" --prefix "$out/installed" > "$out/install.log" 2>&1 || { cat "$out/install.log"; fail "cmake --install"; }
@@ -34,6 +39,74 @@ grep -q "PACKAGE_VERSION \"$pcversion\"" "$prefix/lib/cmake/voxrg/voxrgConfigVer
 # shipped plugins come from the moved prefix
 run "$voxrg" plugins tonemap > plugins_tonemap.txt 2>&1 || { cat plugins_tonemap.txt; fail "voxrg plugins tonemap"; }
 grep -q "file: $prefix/lib/voxrg/plugins/tonemap.so" plugins_tonemap.txt || { cat plugins_tonemap.txt; fail "tonemap not found in the prefix"; }
+
+# a host of the render graph only: it does not need libvoxrg_voxel, the
+# terrain plugin does, and finds it in the prefix from the plugin's RUNPATH
+cat > host.c <<'C'
+#include <stdlib.h>
+#include "voxrg/voxrg.h"
+int main(int argc, char **argv)
+{
+    vrg_context *ctx;
+    vrg_graph *g = NULL;
+    vrg_image_data img = {0};
+    if (argc != 2 || vrg_context_create(&(vrg_context_desc){.validate = 1, .quiet = 1}, &ctx) != 0)
+        return 2;
+    int rc = vrg_graph_load(ctx, &(vrg_graph_desc){.path = argv[1]}, &g) != 0 || vrg_graph_frame(g) != 0 ||
+             vrg_graph_read(g, vrg_graph_output(g), &img) != 0;
+    if (rc == 0)
+        printf("rendered %ux%u, pixel (0, 0) %.3f %.3f %.3f\n", img.width, img.height, img.pixels[0], img.pixels[1], img.pixels[2]);
+    free(img.pixels);
+    vrg_graph_destroy(g);
+    rc |= vrg_context_validation_errors(ctx) != 0;
+    vrg_context_destroy(ctx);
+    return rc;
+}
+C
+cat > host.ini <<'INI'
+[graph]
+output = ldr
+width  = 96
+height = 54
+
+[camera]
+position = -20 60 20
+yaw      = -40
+pitch    = -35
+
+[scene]
+plugin = terrain
+radius = 1
+
+[pass gbuffer]
+plugin     = gbuffer
+in.world   = world
+in.frame   = frame
+in.atlas   = atlas
+out.albedo = albedo
+
+[pass tonemap]
+plugin   = tonemap
+in.color = albedo
+out.ldr  = ldr
+INI
+run PKG_CONFIG_PATH="$prefix/lib/pkgconfig" sh -c "$cc -std=c11 $host_cflags host.c -o host -Wl,-rpath,'$prefix/lib' \$(pkg-config --cflags --libs voxrg)" \
+    > host_build.log 2>&1 || { cat host_build.log; fail "the host does not build with pkg-config voxrg"; }
+readelf -d host > host_dynamic.txt || fail "readelf host"
+grep -q 'NEEDED.*libvoxrg\.so' host_dynamic.txt && ! grep -q 'NEEDED.*libvoxrg_voxel' host_dynamic.txt ||
+    { cat host_dynamic.txt; fail "the host should need libvoxrg and not libvoxrg_voxel"; }
+readelf -d "$prefix/lib/voxrg/plugins/terrain.so" | grep -q 'R.*PATH.*\[\$ORIGIN/\.\./\.\.\]' ||
+    fail "the installed terrain.so has no RUNPATH \$ORIGIN/../.."
+run ./host host.ini > host.log 2>&1 || { cat host.log; fail "a host linked with libvoxrg only cannot render the terrain scene"; }
+grep -q "rendered 96x54" host.log || { cat host.log; fail "the host rendered no image"; }
+# the same plugin where its RUNPATH leads to no libvoxrg_voxel: the error
+# names the plugin's file and the library it lacks
+mkdir -p stray/a/b && cp "$prefix/lib/voxrg/plugins/terrain.so" stray/a/b/stray.so
+sed -e 's/^plugin = terrain$/plugin = stray/' -e 's|^\[graph\]$|[graph]\nplugin_path = stray/a/b|' host.ini > stray.ini
+run ./host stray.ini > stray.log 2>&1 && fail "the stray plugin without its library loaded"
+grep -q "stray.ini:13: error\[VRG-E051\]: cannot load plugin 'stray' from $out/work/stray/a/b/stray.so: libvoxrg_voxel.so.0.1: cannot open shared object file" stray.log ||
+    { cat stray.log; fail "the missing library is not named with the plugin's path"; }
+grep -q "hint: a library it needs is on neither its RUNPATH" stray.log || { cat stray.log; fail "no hint about the plugin's RUNPATH"; }
 
 # the scaffold: refuses a bad name, builds with CMake, renders
 run "$voxrg" new-pass 9lives > bad_name.txt 2>&1

@@ -102,6 +102,8 @@ typedef struct _vrg_plugin {
     const vrg_plugin_desc *desc; /* &desc_copy once kept */
     vrg_plugin_desc desc_copy;   /* the plugin's descriptor at this runtime's size */
     int keep_fd;                 /* its in-memory copy (a noexec $TMPDIR), else -1 */
+    void **libs;                 /* libraries it needs, opened from its RUNPATH before the copy */
+    int lib_count;
     unsigned generation; /* load order: the highest of a name is its current version */
     int users;           /* passes of live graphs running it (_vrg_plugin_acquire) */
 } _vrg_plugin;

@@ -16,7 +16,12 @@
  * private file, loaded from there and the copy unlinked. A build that
  * overwrites the .so in place cannot change code that runs, and every load
  * of a rebuilt file is a new image (dlopen hands back the old one for a path
- * it knows). */
+ * it knows). In the copy, $ORIGIN in the plugin's RUNPATH would name the
+ * copy's temporary folder: the libraries it needs are first looked up the
+ * way ld.so would for the original file ($ORIGIN = the original's folder)
+ * and opened from there, so that an installed plugin finds the voxrg
+ * libraries beside it (PREFIX/lib, its RUNPATH $ORIGIN/../..) whatever the
+ * host has loaded. */
 #define _GNU_SOURCE
 #include <dirent.h>
 #include <dlfcn.h>
@@ -38,9 +43,11 @@
 #if UINTPTR_MAX > 0xffffffffu
 typedef Elf64_Ehdr elf_ehdr;
 typedef Elf64_Phdr elf_phdr;
+typedef Elf64_Dyn elf_dyn;
 #else
 typedef Elf32_Ehdr elf_ehdr;
 typedef Elf32_Phdr elf_phdr;
+typedef Elf32_Dyn elf_dyn;
 #endif
 #define PLUGIN_MAX_BYTES (1u << 30) /* larger is no plugin: refuse before reading it */
 
@@ -74,14 +81,27 @@ static _vrg_plugin *free_slot(int claim)
 
 void _vrg_plugin_acquire(const _vrg_plugin *p) { ((_vrg_plugin *)p)->users++; }
 
+/* The plugin first (it uses them), then its libraries, last opened first. */
+static void unload(_vrg_plugin *p)
+{
+    if (p->handle)
+        dlclose(p->handle);
+    while (p->lib_count > 0)
+        dlclose(p->libs[--p->lib_count]);
+    free(p->libs);
+    if (p->keep_fd >= 0)
+        close(p->keep_fd);
+    p->handle = NULL;
+    p->libs = NULL;
+    p->keep_fd = -1;
+}
+
 void _vrg_plugin_release(const _vrg_plugin *cp)
 {
     _vrg_plugin *p = (_vrg_plugin *)cp;
     if (--p->users > 0 || newest(p->source, 1) == p)
         return; /* in use, or the current version (kept loaded: a cache) */
-    dlclose(p->handle);
-    if (p->keep_fd >= 0)
-        close(p->keep_fd);
+    unload(p);
     memset(p, 0, sizeof *p);
 }
 
@@ -156,21 +176,21 @@ static void add_list(search_path *s, dir_origin origin, const char *base, const 
     }
 }
 
-/* The folder of a graph file ("." for a bare name) in `out`. */
-static void graph_folder(const char *graph_path, char *out, size_t cap)
+/* The folder of a file ("." for a bare name) in `out`. */
+static void folder_of(const char *path, char *out, size_t cap)
 {
-    const char *slash = strrchr(graph_path, '/');
+    const char *slash = strrchr(path, '/');
     if (!slash)
         snprintf(out, cap, ".");
     else
-        snprintf(out, cap, "%.*s", slash == graph_path ? 1 : (int)(slash - graph_path), graph_path);
+        snprintf(out, cap, "%.*s", slash == path ? 1 : (int)(slash - path), path);
 }
 
 int _vrg_plugin_path_check(const char *graph_path, const char *plugin_path, _vrg_diag *d, int line)
 {
     static const char *hint = "folders separated by ':', relative to the graph file";
     char base[VRG_PATH_MAX], dir[VRG_PATH_MAX];
-    graph_folder(graph_path ? graph_path : ".", base, sizeof base);
+    folder_of(graph_path ? graph_path : ".", base, sizeof base);
     int errors = d->errors;
     for (const char *p = plugin_path; *p;) {
         const char *c = strchr(p, ':');
@@ -210,7 +230,7 @@ static void search_path_build(search_path *s, const char *graph_path, const char
     add_list(s, DIR_ENV, NULL, getenv("VOXRG_PLUGIN_PATH"));
     if (graph_path && plugin_path) {
         char base[VRG_PATH_MAX];
-        graph_folder(graph_path, base, sizeof base);
+        folder_of(graph_path, base, sizeof base);
         add_list(s, DIR_GRAPH, base, plugin_path);
     }
 }
@@ -342,6 +362,190 @@ static void *dlopen_checked(const _vrg_plugin *p, const char *file, char *why, s
     return handle;
 }
 
+/* ---- the libraries a plugin needs, found from its original file ---- */
+
+/* The file offset of virtual address `vaddr` (in a PT_LOAD segment's file
+ * bytes), or -1. The program headers were checked by elf_problem. */
+static int64_t vaddr_offset(const unsigned char *b, const elf_ehdr *e, uint64_t vaddr)
+{
+    for (unsigned i = 0; i < e->e_phnum; i++) {
+        elf_phdr ph;
+        memcpy(&ph, b + e->e_phoff + (size_t)i * sizeof ph, sizeof ph);
+        if (ph.p_type == PT_LOAD && vaddr >= ph.p_vaddr && vaddr - ph.p_vaddr < ph.p_filesz)
+            return (int64_t)(ph.p_offset + (vaddr - ph.p_vaddr));
+    }
+    return -1;
+}
+
+/* The dynamic section's strings: DT_NEEDED names, DT_RUNPATH or DT_RPATH. */
+typedef struct elf_dynamic {
+    const unsigned char *dyn; /* elf_dyn entries, maybe unaligned in the buffer: read with memcpy */
+    size_t count;
+    const char *strtab;
+    size_t strsz;
+} elf_dynamic;
+
+static int elf_dynamic_find(const unsigned char *b, size_t n, elf_dynamic *out)
+{
+    elf_ehdr e;
+    memcpy(&e, b, sizeof e);
+    memset(out, 0, sizeof *out);
+    uint64_t strtab = 0, strsz = 0;
+    for (unsigned i = 0; i < e.e_phnum && !out->dyn; i++) {
+        elf_phdr ph;
+        memcpy(&ph, b + e.e_phoff + (size_t)i * sizeof ph, sizeof ph);
+        if (ph.p_type == PT_DYNAMIC)
+            out->dyn = b + ph.p_offset, out->count = ph.p_filesz / sizeof(elf_dyn);
+    }
+    for (size_t i = 0; i < out->count; i++) {
+        elf_dyn d;
+        memcpy(&d, out->dyn + i * sizeof d, sizeof d);
+        if (d.d_tag == DT_NULL)
+            break;
+        if (d.d_tag == DT_STRTAB)
+            strtab = d.d_un.d_ptr;
+        else if (d.d_tag == DT_STRSZ)
+            strsz = d.d_un.d_val;
+    }
+    int64_t at = out->dyn && strtab ? vaddr_offset(b, &e, strtab) : -1;
+    if (at < 0)
+        return -1; /* no dynamic strings: nothing to look up, dlopen judges the rest */
+    out->strtab = (const char *)b + at;
+    out->strsz = strsz < n - (size_t)at ? (size_t)strsz : n - (size_t)at;
+    return 0;
+}
+
+/* The string at `off` of the dynamic string table, NULL if it does not end inside it. */
+static const char *elf_dynamic_string(const elf_dynamic *dyn, uint64_t off)
+{
+    if (off >= dyn->strsz || !memchr(dyn->strtab + off, '\0', dyn->strsz - off))
+        return NULL;
+    return dyn->strtab + off;
+}
+
+/* The first value of `tag`, or NULL. */
+static const char *elf_dynamic_value(const elf_dynamic *dyn, int64_t tag)
+{
+    for (size_t i = 0; i < dyn->count; i++) {
+        elf_dyn d;
+        memcpy(&d, dyn->dyn + i * sizeof d, sizeof d);
+        if (d.d_tag == DT_NULL)
+            break;
+        if (d.d_tag == tag)
+            return elf_dynamic_string(dyn, d.d_un.d_val);
+    }
+    return NULL;
+}
+
+/* Folder `entry` (len bytes) of a search list with $ORIGIN / ${ORIGIN}
+ * replaced by `origin`, into dir; 0, or -1 if it holds another token
+ * ($LIB, $PLATFORM: left to ld.so) or does not fit. */
+static int expand_origin(const char *entry, size_t len, const char *origin, char *dir, size_t cap)
+{
+    size_t o = 0;
+    for (size_t i = 0; i < len;) {
+        size_t skip = 0;
+        if (entry[i] == '$') {
+            if (len - i >= 7 && strncmp(entry + i, "$ORIGIN", 7) == 0)
+                skip = 7;
+            else if (len - i >= 9 && strncmp(entry + i, "${ORIGIN}", 9) == 0)
+                skip = 9;
+            else
+                return -1;
+        }
+        const char *piece = skip ? origin : entry + i;
+        size_t plen = skip ? strlen(origin) : 1;
+        if (o + plen >= cap)
+            return -1;
+        memcpy(dir + o, piece, plen);
+        o += plen, i += skip ? skip : 1;
+    }
+    dir[o] = '\0';
+    return 0;
+}
+
+/* Where `lib` lies on the ':'-separated `list` (each entry expanded with
+ * `origin`; NULL: not expanded) as ld.so looks: the first folder holding it,
+ * empty entries skipped. 1 with the file in `file`, 0 if none, -1 if an
+ * entry cannot be expanded here (ld.so decides). */
+static int find_on_list(const char *list, const char *origin, const char *lib, char *file, size_t cap)
+{
+    for (const char *p = list; p && *p;) {
+        const char *c = strchr(p, ':');
+        size_t len = c ? (size_t)(c - p) : strlen(p);
+        char dir[VRG_PATH_MAX];
+        if (len) {
+            if (origin ? expand_origin(p, len, origin, dir, sizeof dir) != 0 : list_entry_dir(NULL, p, len, dir, sizeof dir) < 0)
+                return -1;
+            int n = snprintf(file, cap, "%s/%s", dir, lib);
+            if (n > 0 && (size_t)n < cap && access(file, R_OK) == 0)
+                return 1;
+        }
+        p = c ? c + 1 : p + len;
+    }
+    return 0;
+}
+
+static int keep_lib(_vrg_plugin *p, void *handle)
+{
+    void **grown = realloc(p->libs, (size_t)(p->lib_count + 1) * sizeof *grown);
+    if (!grown)
+        return -1;
+    p->libs = grown;
+    p->libs[p->lib_count++] = handle;
+    return 0;
+}
+
+/* Opens, from where the original file's RUNPATH (or RPATH) points, each
+ * library the plugin needs that ld.so would take from there: not one the
+ * process has loaded already (by SONAME), nor, for RUNPATH, one that
+ * LD_LIBRARY_PATH holds (searched first). The copy then binds to these.
+ * A library found nowhere is left to dlopen's own search (and its error).
+ * The handles stay with the plugin (closed by unload). */
+static int open_needed_libs(_vrg_plugin *p, const unsigned char *data, size_t size, char *why, size_t cap)
+{
+    elf_dynamic dyn;
+    if (elf_dynamic_find(data, size, &dyn) != 0)
+        return 0;
+    const char *runpath = elf_dynamic_value(&dyn, DT_RUNPATH);
+    const char *list = runpath ? runpath : elf_dynamic_value(&dyn, DT_RPATH);
+    if (!list)
+        return 0;
+    char origin[VRG_PATH_MAX], file[2 * VRG_PATH_MAX];
+    folder_of(p->source, origin, sizeof origin);
+    for (size_t i = 0; i < dyn.count; i++) {
+        elf_dyn d;
+        memcpy(&d, dyn.dyn + i * sizeof d, sizeof d);
+        if (d.d_tag == DT_NULL)
+            break;
+        const char *lib = d.d_tag == DT_NEEDED ? elf_dynamic_string(&dyn, d.d_un.d_val) : NULL;
+        if (!lib || !lib[0] || strchr(lib, '/'))
+            continue; /* a path is opened as written, from the copy as from the original */
+        void *loaded_already = dlopen(lib, RTLD_LAZY | RTLD_NOLOAD);
+        if (loaded_already) {
+            dlclose(loaded_already);
+            continue;
+        }
+        (void)dlerror(); /* the failed lookup's message is no error */
+        if (runpath && find_on_list(getenv("LD_LIBRARY_PATH"), NULL, lib, file, sizeof file) != 0)
+            continue;
+        if (find_on_list(list, origin, lib, file, sizeof file) != 1)
+            continue;
+        char err[768];
+        void *handle = dlopen_checked(p, file, err, sizeof err);
+        if (!handle) {
+            snprintf(why, cap, "it needs %s, found through its %s at %s, which does not load: %s", lib, runpath ? "RUNPATH" : "RPATH", file, err);
+            return -1;
+        }
+        if (keep_lib(p, handle) != 0) {
+            dlclose(handle);
+            snprintf(why, cap, "out of memory for the handles of its libraries");
+            return -1;
+        }
+    }
+    return 0;
+}
+
 static int write_all(int fd, const unsigned char *data, size_t size)
 {
     for (size_t put = 0; put < size;) {
@@ -445,12 +649,18 @@ static int load_file(_vrg_plugin *p, _vrg_diag *d, int line)
         problem = why;
     else
         problem = elf_problem(data, size, why, sizeof why);
+    if (!problem && open_needed_libs(p, data, size, why, sizeof why) != 0)
+        problem = why;
     if (!problem && !(p->handle = open_private(p, data, size, &p->keep_fd, why, sizeof why)))
         problem = why;
     free(data);
     if (problem) {
-        fail(d, line, VRG_E_PLUGIN_LOAD_FAILED, "is it a plugin built for this machine? a build still writing it is picked up when it finishes",
-                     "cannot load plugin '%s' from %s: %s", p->name, p->source, problem);
+        unload(p);
+        /* dlerror's words for a library it needs that no search found */
+        const char *hint = strstr(problem, "cannot open shared object file")
+                               ? "a library it needs is on neither its RUNPATH ($ORIGIN: the plugin's folder) nor the system's search path"
+                               : "is it a plugin built for this machine? a build still writing it is picked up when it finishes";
+        fail(d, line, VRG_E_PLUGIN_LOAD_FAILED, hint, "cannot load plugin '%s' from %s: %s", p->name, p->source, problem);
         return -1;
     }
     vrg_plugin_entry_fn entry = (vrg_plugin_entry_fn)dlsym(p->handle, VRG_PLUGIN_ENTRY_SYMBOL);
@@ -472,11 +682,7 @@ static int load_file(_vrg_plugin *p, _vrg_diag *d, int line)
                  _vrg_plugin_check_desc(p->desc, p->name, p->source, d, line) == 0)
             return 0;
     }
-    dlclose(p->handle);
-    if (p->keep_fd >= 0)
-        close(p->keep_fd);
-    p->keep_fd = -1;
-    p->handle = NULL;
+    unload(p);
     p->desc = NULL;
     return -1;
 }
@@ -624,7 +830,7 @@ const _vrg_plugin *_vrg_plugin_load(const char *name, const char *graph_path, co
         search_path_hint(&s, hint, sizeof hint);
         if (graph_path) {
             char base[VRG_PATH_MAX], beside[VRG_PATH_MAX + 2 * VRG_NAME_MAX];
-            graph_folder(graph_path, base, sizeof base);
+            folder_of(graph_path, base, sizeof base);
             for (int k = 0; k < 2 && !plugin_path; k++) {
                 snprintf(beside, sizeof beside, "%s/%s%s.so", base, k ? "plugins/" : "", name);
                 if (access(beside, F_OK) == 0)
