@@ -142,6 +142,8 @@ static terrain_world *new_world(const terrain_world *want)
     *tw = *want;
     tw->refs = 1;
     tw->world = vrg_world_create(tw->radius + tw->hysteresis, tw->gen.height_chunks);
+    if (tw->world) /* chunks within radius of the camera's are wanted: at least radius * 16 blocks */
+        vrg_world_set_view_radius(tw->world, tw->radius * 16);
     stream_desc sd = {.threads = tw->threads,
                       .radius = tw->radius,
                       .hysteresis = tw->hysteresis,

@@ -13,14 +13,14 @@ layout(std140, binding = FRAME_BINDING) uniform FrameUniforms {
     vec4 camera_right;     // scaled by the image plane's half-width at distance 1
     vec4 camera_up;        // scaled by its half-height
     vec4 camera_forward;
-    vec4 sun_dir;          // to the sun; w: elevation in degrees
+    vec4 sun_dir;          // to the key light (the sun, the moon by night); w: its elevation in degrees
     vec4 sun_radiance;
     vec4 sky_zenith;
     vec4 sky_horizon;
     vec4 ambient;
     uvec4 frame_info;      // frame index, width, height, seed
     vec4 time_info;        // simulated seconds, hours of the day, 0, 0
-    ivec4 world_grid;      // the world's slot grid, chunks (world.glsl: world_grid())
+    ivec4 world_grid;      // the world's slot grid, chunks (world.glsl: world_grid()); w: view radius, blocks (0: not streamed)
     vec4 world_lo;         // the box of the non-air blocks the world buffer holds,
     vec4 world_hi;         //   blocks, hi exclusive; empty when lo >= hi (trace.glsl clips rays to it)
 } frame;
@@ -35,7 +35,7 @@ vec3 frame_ray_dir(vec2 pixel, vec2 size)
 
 // Sky radiance along a unit direction: vrg_sky_radiance in core/voxel/src/sky.c,
 // the same formula (keep them in step): a horizon-to-zenith gradient by
-// sqrt(dir.y), a darkened horizon below it, and a glow around the sun.
+// sqrt(dir.y), a darkened horizon below it, and a glow around the key light.
 vec3 frame_sky(vec3 dir)
 {
     float c = max(dot(dir, frame.sun_dir.xyz), 0.0);

@@ -5,6 +5,7 @@
 #include "harness.h"
 #include "voxrg/world.h"
 #include "voxrg/camera.h"
+#include "voxrg/sky.h"
 
 /* Mean of channel c of img over floor pixels (top faces at y = 1) within
  * r blocks of (x, z) in the plane; -1 when none is visible. */
@@ -222,9 +223,85 @@ static void test_light_chain(void)
     }
 }
 
+/* The haze pass against the formula on the CPU, from the frame's own
+ * uniforms: hits keep exp(-density d) of their colour and are all haze at
+ * the streamed world's view radius (terrain radius 1: 16 blocks); misses
+ * below the horizon are all haze, the sky above is unchanged. The camera
+ * looks over the edge of the loaded chunks. */
+static void test_haze(void)
+{
+    static const char *text =
+        "[graph]\noutput = hazed\nwidth = 96\nheight = 54\n"
+        "[camera]\nposition = 0 45 0\nyaw = -30\npitch = -12\n"
+        "[scene]\nplugin = terrain\nradius = 1\nthreads = 2\ntime_of_day = 16\n"
+        "[pass gbuffer]\nplugin = gbuffer\nin.world = world\nin.frame = frame\nin.atlas = atlas\n"
+        "[pass haze]\nplugin = haze\nin.color = gbuffer.albedo\nin.position = gbuffer.position\nin.frame = frame\nout.color = hazed\n"
+        "density = 0.01\nstart = 0.5\n";
+    static const char *reads[] = {"gbuffer.position", "gbuffer.albedo", "frame"};
+    vrg_graph *g = load_text(text, reads, 3);
+    if (!g)
+        return;
+    vrg_image_data pos, col, out;
+    void *data = NULL;
+    uint64_t size = 0;
+    CHECK(vrg_graph_frame(g) == 0 && vrg_graph_read(g, "gbuffer.position", &pos) == 0 && vrg_graph_read(g, "gbuffer.albedo", &col) == 0 &&
+              vrg_graph_read(g, "hazed", &out) == 0 && vrg_graph_read_buffer(g, "frame", &data, &size) == 0,
+          "frame or readback failed");
+    if (failures) {
+        vrg_graph_destroy(g);
+        return;
+    }
+    vrg_frame_uniforms u;
+    memcpy(&u, data, sizeof u);
+    CHECK(u.world_grid[3] == 16, "view radius %d, want 16 (radius 1)", u.world_grid[3]);
+    vrg_sky sky = {0};
+    memcpy(sky.sun_dir, u.sun_dir, sizeof sky.sun_dir);
+    sky.sun_elevation = u.sun_dir[3];
+    memcpy(sky.sun_radiance, u.sun_radiance, sizeof sky.sun_radiance);
+    memcpy(sky.sky_zenith, u.sky_zenith, sizeof sky.sky_zenith);
+    memcpy(sky.sky_horizon, u.sky_horizon, sizeof sky.sky_horizon);
+    int wrong = 0, edge = 0, below = 0, sky_px = 0;
+    for (uint32_t y = 0; y < out.height; y++)
+        for (uint32_t x = 0; x < out.width; x++) {
+            float ray[3], d[3];
+            vrg_camera_ray(vrg_graph_camera(g), out.width, out.height, (float)x, (float)y, ray);
+            const float *p = pos.pixels + 4 * (y * out.width + x), *c = col.pixels + 4 * (y * out.width + x);
+            float flat[3] = {ray[0], ray[1] > 0 ? ray[1] : 0, ray[2]}, n = sqrtf(flat[0] * flat[0] + flat[1] * flat[1] + flat[2] * flat[2]);
+            for (int k = 0; k < 3; k++)
+                flat[k] /= n;
+            float haze[3], f;
+            vrg_sky_radiance(&sky, flat, haze);
+            if (p[3] > 0.5f) {
+                for (int k = 0; k < 3; k++)
+                    d[k] = p[k] - u.camera_pos[k];
+                float dist = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]), dh = sqrtf(d[0] * d[0] + d[2] * d[2]);
+                float t = fminf(fmaxf((dh - 8.0f) / 8.0f, 0.0f), 1.0f);
+                f = fmaxf(1.0f - expf(-0.01f * dist), t * t * (3 - 2 * t));
+                edge += dh >= 16.0f;
+            } else {
+                f = ray[1] < 0 ? 1.0f : 0.0f;
+                below += ray[1] < -0.02f;
+                sky_px += ray[1] > 0.02f;
+            }
+            for (int k = 0; k < 3; k++) {
+                float want = c[k] + (haze[k] - c[k]) * f, got = out.pixels[4 * (y * out.width + x) + k];
+                wrong += fabsf(got - want) > 4e-3f + 2e-3f * fabsf(want);
+            }
+        }
+    CHECK(wrong == 0, "%d channels differ from the haze formula", wrong);
+    CHECK(edge > 20 && below > 20 && sky_px > 20, "the view does not cover the cases: %d hits beyond the radius, %d misses below, %d sky", edge, below,
+          sky_px);
+    free(pos.pixels);
+    free(col.pixels);
+    free(out.pixels);
+    free(data);
+    vrg_graph_destroy(g);
+}
+
 int main(int argc, char **argv)
 {
     static const test_case cases[] = {
+        {"haze", test_haze, 1},
         {"light_floor", test_light_floor, 1},
         {"light_wall", test_light_wall, 1},
         {"light_half_res", test_light_half_res, 1},

@@ -517,8 +517,10 @@ static int test_sun(void)
     flat[2] = -noon.sun_dir[2] / away;
     vrg_sky night_dark = night;
     vrg_sky_radiance(&night_dark, up, rad);
+    /* by night the glow is the moon's: at the zenith c = the moon's dir.y */
+    float mc = night.moon_dir[1], mc4 = mc * mc * mc * mc, mc32 = powf(mc, 32.0f);
     for (int c = 0; c < 3; c++)
-        CHECK(fabsf(rad[c] - night.sky_zenith[c]) < 1e-6f, "night zenith radiance");
+        CHECK(fabsf(rad[c] - (night.sky_zenith[c] + night.moon_radiance[c] * (0.25f * mc32 + 0.05f * mc4))) < 1e-6f, "night zenith radiance");
     vrg_sky_radiance(&noon, flat, rad_flat);
     vrg_sky_radiance(&noon, down, rad_down);
     for (int c = 0; c < 3; c++) {
@@ -532,6 +534,23 @@ static int test_sun(void)
         off[c] /= len;
     vrg_sky_radiance(&noon, off, rad_off);
     CHECK(sum3(rad) > sum3(rad_off), "no glow towards the sun");
+
+    /* The moon lights the night: opposite the sun, dim and bluish, the key
+     * light while the sun is down, and nothing lights at the switch. */
+    float kd[3], ke, kr[3];
+    CHECK(fabsf(night.moon_elevation - 60.0f) < 1e-3f && night.moon_dir[1] > 0.8f, "midnight moon elevation %g", night.moon_elevation);
+    CHECK(night.moon_radiance[2] > night.moon_radiance[0] && sum3(night.moon_radiance) > 0.3 && sum3(night.moon_radiance) < 0.2 * sum3(noon.sun_radiance),
+          "moonlight %g %g %g", night.moon_radiance[0], night.moon_radiance[1], night.moon_radiance[2]);
+    CHECK(sum3(noon.moon_radiance) == 0.0, "a moon below the horizon shines");
+    vrg_sky_key_light(&noon, kd, &ke, kr);
+    CHECK(kd[1] == noon.sun_dir[1] && ke == noon.sun_elevation && kr[0] == noon.sun_radiance[0], "noon's key light is not the sun");
+    vrg_sky_key_light(&night, kd, &ke, kr);
+    CHECK(kd[1] == night.moon_dir[1] && ke == night.moon_elevation && kr[2] == night.moon_radiance[2], "midnight's key light is not the moon");
+    for (float t = 17.995f; t < 18.005f; t += 0.001f) { /* elevation within 0.1 degree of 0 */
+        sky_at(t, &s);
+        vrg_sky_key_light(&s, kd, &ke, kr);
+        CHECK(sum3(kr) < 0.1, "key light jumps at %g h: %g", t, sum3(kr));
+    }
 
     /* Cycling: half a day_length advances 12 hours; frozen when 0. */
     vrg_sky_default(&d);

@@ -37,9 +37,7 @@ void vrg_frame_uniforms_fill(const vrg_frame_info *f, const vrg_sky *sky, vrg_fr
     ray_basis(&f->camera, aspect, u->camera_right, u->camera_up, u->camera_forward);
     if (vrg_mat4_invert(u->view_proj, u->inv_view_proj) != 0)
         memset(u->inv_view_proj, 0, sizeof u->inv_view_proj);
-    memcpy(u->sun_dir, sky->sun_dir, sizeof sky->sun_dir);
-    u->sun_dir[3] = sky->sun_elevation;
-    memcpy(u->sun_radiance, sky->sun_radiance, sizeof sky->sun_radiance);
+    vrg_sky_key_light(sky, u->sun_dir, &u->sun_dir[3], u->sun_radiance); /* the moon by night */
     memcpy(u->sky_zenith, sky->sky_zenith, sizeof sky->sky_zenith);
     memcpy(u->sky_horizon, sky->sky_horizon, sizeof sky->sky_horizon);
     memcpy(u->ambient, sky->ambient, sizeof sky->ambient);
@@ -63,7 +61,7 @@ void vrg_frame_uniforms_world(const vrg_world *world, vrg_frame_uniforms *u)
         u->world_lo[a] = (float)lo[a];
         u->world_hi[a] = (float)hi[a];
     }
-    u->world_grid[3] = 0;
+    u->world_grid[3] = world ? vrg_world_view_radius(world) : 0;
     u->world_lo[3] = u->world_hi[3] = 0;
 }
 

@@ -15,8 +15,11 @@ static const double EXTINCTION[3] = {0.06, 0.14, 0.32};
 /* Gradient colours by day and by night (night: dim blue, never black). */
 static const double DAY_ZENITH[3] = {0.16, 0.33, 0.75};
 static const double DAY_HORIZON[3] = {0.55, 0.66, 0.82};
-static const double NIGHT_ZENITH[3] = {0.012, 0.018, 0.045};
-static const double NIGHT_HORIZON[3] = {0.02, 0.03, 0.06};
+static const double NIGHT_ZENITH[3] = {0.03, 0.045, 0.1};
+static const double NIGHT_HORIZON[3] = {0.045, 0.06, 0.11};
+/* Moonlight at the zenith: about a tenth of the sun, bluish (a night that
+ * stays readable at the graphs' day exposure, not a physical ratio). */
+static const double MOON_ZENITH[3] = {0.22, 0.27, 0.38};
 /* Horizon multiplier at sunrise/sunset: warm it, take out blue. */
 static const double TWILIGHT_TINT[3] = {1.6, 0.9, 0.6};
 
@@ -81,6 +84,14 @@ void vrg_sky_eval(const vrg_sky_desc *d, double time_s, vrg_sky *out)
     for (int c = 0; c < 3; c++)
         out->sun_radiance[c] = (float)(SUN_ZENITH * exp(-EXTINCTION[c] * (airmass - 1.0)) * fade);
 
+    /* Moon: opposite the sun, faded in over its first 3 degrees. */
+    double moon_fade = smoothstepd(0.0, 3.0, -elev);
+    for (int c = 0; c < 3; c++) {
+        out->moon_dir[c] = -out->sun_dir[c];
+        out->moon_radiance[c] = (float)(MOON_ZENITH[c] * moon_fade);
+    }
+    out->moon_elevation = (float)-elev;
+
     /* Sky: night -> day as the sun climbs from 6 degrees below the horizon
      * (end of civil twilight) to 12 above; the horizon gets the twilight
      * tint with a bell-shaped weight around elevation 0. */
@@ -97,21 +108,32 @@ void vrg_sky_eval(const vrg_sky_desc *d, double time_s, vrg_sky *out)
     }
 }
 
+void vrg_sky_key_light(const vrg_sky *s, float dir[3], float *elevation, float radiance[3])
+{
+    int sun = s->sun_elevation > 0.0f;
+    for (int c = 0; c < 3; c++) {
+        dir[c] = sun ? s->sun_dir[c] : s->moon_dir[c];
+        radiance[c] = sun ? s->sun_radiance[c] : s->moon_radiance[c];
+    }
+    *elevation = sun ? s->sun_elevation : s->moon_elevation;
+}
+
 /* The formula (GLSL copies must match):
  *   y >= 0:  base = mix(horizon, zenith, sqrt(y))
  *   y <  0:  base = horizon * (0.3 + 0.7 * exp(8 * y))   (ground haze, darker downwards)
- *   c = max(dot(dir, sun_dir), 0)
- *   out = base + sun_radiance * (0.25 * c^32 + 0.05 * c^4)   (sun glow, no disc) */
+ *   c = max(dot(dir, key_dir), 0)      (vrg_sky_key_light: the sun, the moon by night)
+ *   out = base + key_radiance * (0.25 * c^32 + 0.05 * c^4)   (glow, no disc) */
 void vrg_sky_radiance(const vrg_sky *s, const float dir[3], float out[3])
 {
-    float y = dir[1];
-    float c = dir[0] * s->sun_dir[0] + dir[1] * s->sun_dir[1] + dir[2] * s->sun_dir[2];
+    float y = dir[1], key[3], key_radiance[3], key_elevation;
+    vrg_sky_key_light(s, key, &key_elevation, key_radiance); /* the glow is around it: the moon's by night */
+    float c = dir[0] * key[0] + dir[1] * key[1] + dir[2] * key[2];
     c = c > 0.0f ? c : 0.0f;
     float c2 = c * c, c4 = c2 * c2, c8 = c4 * c4, c16 = c8 * c8, c32 = c16 * c16;
     float glow = 0.25f * c32 + 0.05f * c4;
     for (int i = 0; i < 3; i++) {
         float base = y >= 0.0f ? s->sky_horizon[i] + (s->sky_zenith[i] - s->sky_horizon[i]) * sqrtf(y)
                                : s->sky_horizon[i] * (0.3f + 0.7f * expf(8.0f * y));
-        out[i] = base + s->sun_radiance[i] * glow;
+        out[i] = base + key_radiance[i] * glow;
     }
 }

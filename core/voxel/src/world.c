@@ -63,6 +63,7 @@ struct vrg_world {
      * touches one cache line of every (4 KiB) slot */
     int box_lo[3], box_hi[3];
     int box_stale;
+    int view_radius; /* blocks; 0: the whole scene is loaded */
 };
 
 static const vrg_material materials[VRG_BLOCK_COUNT] = {
@@ -138,6 +139,9 @@ uint64_t vrg_world_gpu_bytes(int radius_chunks, int height_chunks)
     uint64_t g = 2 * (uint64_t)radius_chunks + 1;
     return 4 * (SLOTS_OFFSET + g * g * (uint64_t)height_chunks * SLOT_UINTS);
 }
+
+void vrg_world_set_view_radius(vrg_world *w, int blocks) { w->view_radius = blocks > 0 ? blocks : 0; }
+int vrg_world_view_radius(const vrg_world *w) { return w->view_radius; }
 
 void vrg_world_grid(const vrg_world *w, int dims[3])
 {

@@ -33,7 +33,16 @@ typedef struct vrg_sky {
     float ambient[3];       /* cosine-weighted mean sky radiance over the upper hemisphere, sun glow excluded:
                              * what a white up-facing surface reflects from an unoccluded sky */
     float hours;            /* the time of day used, [0, 24) */
+    /* The moon, opposite the sun (a full moon): lights the night. */
+    float moon_dir[3];      /* unit, pointing TO the moon: -sun_dir */
+    float moon_elevation;   /* -sun_elevation */
+    float moon_radiance[3]; /* dim and bluish; 0 below the horizon */
 } vrg_sky;
+
+/* The directional light that shades the world: the sun while it is above
+ * the horizon, else the moon (both are 0 at the horizon, so the switch is
+ * continuous). Frame uniforms carry it as sun_dir / sun_radiance. */
+void vrg_sky_key_light(const vrg_sky *s, float dir[3], float *elevation, float radiance[3]);
 
 void vrg_sky_default(vrg_sky_desc *d);
 /* time_s: simulated seconds since the start. hours = time_of_day +

@@ -74,6 +74,11 @@ void vrg_world_destroy(vrg_world *w);
 /* Bytes of the GPU buffer (header, material table, slots); see world.glsl. */
 uint64_t vrg_world_gpu_bytes(int radius_chunks, int height_chunks);
 void vrg_world_grid(const vrg_world *w, int dims[3]);
+/* How far around the camera the world is surely loaded, blocks (a streamed
+ * world: its radius; 0, the default: the whole scene is loaded). Frame
+ * uniforms carry it (world_grid.w) for the haze that hides the edge. */
+void vrg_world_set_view_radius(vrg_world *w, int blocks);
+int vrg_world_view_radius(const vrg_world *w);
 /* Stores a chunk (replacing whatever held its slot) and marks it for upload. */
 void vrg_world_put_chunk(vrg_world *w, int cx, int cy, int cz, const vrg_block *blocks);
 void vrg_world_drop_chunk(vrg_world *w, int cx, int cy, int cz);
@@ -166,7 +171,7 @@ typedef struct vrg_frame_uniforms {
     float camera_right[4];
     float camera_up[4];
     float camera_forward[4];
-    float sun_dir[4];         /* to the sun; w: elevation, degrees */
+    float sun_dir[4];         /* to the key light (vrg_sky_key_light: the sun, the moon by night); w: its elevation, degrees */
     float sun_radiance[4];
     float sky_zenith[4];
     float sky_horizon[4];
@@ -177,7 +182,8 @@ typedef struct vrg_frame_uniforms {
      * the chunks its GPU copy holds after this frame's upload (empty: lo >=
      * hi). The traversal clips rays to it; it reads the grid here rather
      * than from the world header because a uniform is one scalar load on a
-     * CPU device, a texel fetch a call per SIMD row. */
+     * CPU device, a texel fetch a call per SIMD row. w: the view radius,
+     * blocks (vrg_world_view_radius; 0: not streamed). */
     int32_t world_grid[4];
     float world_lo[4];
     float world_hi[4];
