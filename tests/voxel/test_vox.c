@@ -604,7 +604,34 @@ static int test_vox_render(void)
     return 0;
 }
 
+/* Streaming terrain: an edit made through the graph's journal is in the
+ * chunk when a new graph generates that chunk again (the integration hook). */
+static void test_terrain_edits(void)
+{
+    make_tmpdir();
+    char sets0[600], err[1024];
+    snprintf(sets0, sizeof sets0, "scene.edits=%s/terrain.edits", tmpdir);
+    const char *sets[] = {sets0};
+    vrg_graph *g = load_with("terrain_probe.ini", sets, 1, NULL, 0);
+    CHECK(g && vrg_graph_frame(g) == 0, "first frame");
+    vrg_edits *e = g ? vrg_graph_edits(g) : NULL;
+    vrg_world *w = g ? vrg_graph_world(g) : NULL;
+    CHECK(e && w, "the terrain shares its journal");
+    if (e && w) {
+        CHECK(vrg_edits_set(e, w, 3, 2, 5, VRG_BLOCK_LAMP, err, sizeof err) == 0, "%s", err);
+        CHECK(vrg_world_block(w, 3, 2, 5) == VRG_BLOCK_LAMP, "the loaded chunk changes at once");
+    }
+    vrg_graph_destroy(g);
+    g = load_with("terrain_probe.ini", sets, 1, NULL, 0);
+    CHECK(g && vrg_graph_frame(g) == 0, "frame of the new graph");
+    w = g ? vrg_graph_world(g) : NULL;
+    CHECK(w && vrg_world_has_chunk(w, 0, 0, 0) && vrg_world_block(w, 3, 2, 5) == VRG_BLOCK_LAMP, "the generated chunk lacks the edit (%d)",
+          w ? vrg_world_block(w, 3, 2, 5) : -1);
+    vrg_graph_destroy(g);
+}
+
 static const test_case cases[] = {
+    {"terrain_edits", test_terrain_edits, 1, NULL},
     {"vox_scene_graph", test_scene_graph, 0, NULL},
     {"vox_bad_files", test_bad_files, 0, NULL},
     {"vox_real_files", NULL, 0, test_real_files},
