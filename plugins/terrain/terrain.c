@@ -12,6 +12,8 @@
 #include <math.h>
 #include <time.h>
 #include <unistd.h>
+#include <stdio.h>
+#include "voxrg/edits.h"
 #include "stream.h"
 #include "terrain_gen.h"
 
@@ -31,6 +33,8 @@ static const vrg_param_desc params[] = {
     {"threads", VRG_PARAM_INT, 0, 0, 64, "generator threads; 0: one per CPU"},
     {"stream", VRG_PARAM_STRING, 0, 0, 0, "wait (deterministic: each frame waits for its chunks) or budget", 0, "wait"},
     {"budget_ms", VRG_PARAM_FLOAT, 2, 0, 1000, "stream = budget: main-thread integration time per frame"},
+    {.name = "edits", .type = VRG_PARAM_STRING, .default_string = "",
+     .help = "edit journal; empty: the graph file's path + .edits; none: no edits"},
     VRG_SCENE_PARAMS,
 };
 
@@ -53,6 +57,7 @@ typedef struct terrain_world {
 typedef struct scene {
     vrg_scene_gpu gpu;
     terrain_world *tw;
+    vrg_edits *edits;
     int wait;
     int world_kept; /* shared from the instance a reload replaced */
 } scene;
@@ -93,7 +98,19 @@ static void generate(void *user, int cx, int cy, int cz, vrg_block out[VRG_CHUNK
     terrain_generate_chunk(&((terrain_world *)user)->gen, cx, cy, cz, out);
 }
 
-static void integrate(void *user, int cx, int cy, int cz, const vrg_block *blocks) { vrg_world_put_chunk(user, cx, cy, cz, blocks); }
+/* A generated chunk gets the journal's edits before it enters the world:
+ * a chunk dropped and generated again shows them too. */
+static void integrate(void *user, int cx, int cy, int cz, const vrg_block *blocks)
+{
+    scene *s = user;
+    vrg_block edited[VRG_CHUNK_VOXELS];
+    if (s->edits) {
+        memcpy(edited, blocks, sizeof edited);
+        if (vrg_edits_apply_chunk(s->edits, cx, cy, cz, edited) > 0)
+            blocks = edited;
+    }
+    vrg_world_put_chunk(s->gpu.world, cx, cy, cz, blocks);
+}
 static void drop(void *user, int cx, int cy, int cz) { vrg_world_drop_chunk(user, cx, cy, cz); }
 
 static void release_world(terrain_world *tw)
@@ -159,6 +176,32 @@ static terrain_world *new_world(const terrain_world *want)
     return tw;
 }
 
+/* The journal, keyed by every parameter the blocks depend on. */
+static int open_edits(vrg_pass *pass, scene *s)
+{
+    const char *param = vrg_param_string(pass, "edits"), *graph = vrg_pass_graph_path(pass), *slash = strrchr(graph, '/');
+    char path[4096], key[VRG_EDITS_KEY_MAX], err[1024];
+    if (strcmp(param, "none") == 0 || (!param[0] && !graph[0]))
+        return 0; /* a graph from text has no folder to keep edits in */
+    if (!param[0])
+        snprintf(path, sizeof path, "%s.edits", graph);
+    else if (param[0] == '/' || !slash)
+        snprintf(path, sizeof path, "%s", param);
+    else
+        snprintf(path, sizeof path, "%.*s/%s", (int)(slash - graph), graph, param);
+    const terrain_params *g = &s->tw->gen;
+    snprintf(key, sizeof key, "terrain seed=%u octaves=%d scale=%g falloff=%g base_height=%g amplitude=%g height_chunks=%d biome_size=%g tree_density=%g sea_level=%d",
+             g->seed, g->octaves, g->scale, g->falloff, g->base_height, g->amplitude, g->height_chunks, g->biome_size, g->tree_density, g->sea_level);
+    s->edits = vrg_edits_open(path, key, err, sizeof err);
+    if (!s->edits)
+        return vrg_pass_error_at(pass, vrg_param_line(pass, "edits"), "%s", err);
+    if (vrg_edits_dropped_bytes(s->edits))
+        vrg_pass_warn_at(pass, vrg_param_line(pass, "edits"), "%s: dropped a torn last record (%ld bytes) left by a crash", path,
+                         vrg_edits_dropped_bytes(s->edits));
+    vrg_edits_apply_world(s->edits, s->tw->world); /* chunks a reload kept */
+    return vrg_pass_share(pass, VRG_EDITS_SHARED_NAME, s->edits);
+}
+
 static int create(vrg_pass *pass)
 {
     scene *s = calloc(1, sizeof *s);
@@ -175,7 +218,7 @@ static int create(vrg_pass *pass)
     if (!s->tw)
         return vrg_pass_error(pass, "cannot create the world (out of memory?)");
     s->world_kept = shared;
-    if (vrg_scene_create(pass, &s->gpu, s->tw->world) != 0)
+    if (vrg_scene_create(pass, &s->gpu, s->tw->world) != 0 || open_edits(pass, s) != 0)
         return -1;
     if (shared && s->gpu.accel) /* the new backend has no BLAS yet: every chunk's faces again */
         vrg_world_invalidate_meshes(s->tw->world);
@@ -195,7 +238,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     if (s->wait)
         stream_wait_idle(st);
     double t1 = now_ms(), spent = 0;
-    int integrated = stream_integrate(st, s->wait ? 1e9 : vrg_param(pass, "budget_ms"), integrate, world, &spent);
+    int integrated = stream_integrate(st, s->wait ? 1e9 : vrg_param(pass, "budget_ms"), integrate, s, &spent);
     double t2 = now_ms();
     vrg_scene_record(pass, &s->gpu, cmd);
     /* figures for `voxrg bench` and --json (upload_ms includes BLAS/TLAS recording) */
@@ -214,6 +257,9 @@ static void destroy(vrg_pass *pass)
     scene *s = vrg_pass_user(pass);
     if (!s)
         return;
+    if (s->edits)
+        vrg_pass_share(pass, VRG_EDITS_SHARED_NAME, NULL);
+    vrg_edits_close(s->edits);
     s->gpu.world = NULL; /* the world is the terrain_world's, maybe shared */
     vrg_scene_destroy(pass, &s->gpu);
     release_world(s->tw);

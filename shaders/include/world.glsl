@@ -29,7 +29,7 @@ uint world_pick(uvec4 w, uint c) { return c == 0u ? w.x : c == 1u ? w.y : c == 2
 uint world_word(uint i) { return world_pick(world_texel(i >> 2u), i & 3u); }
 
 const uint WORLD_MATERIALS = 16u;  // header uints before the material table
-const uint WORLD_SLOTS = 272u;     // header + 32 materials x 8 uints
+const uint WORLD_SLOTS = 2064u;    // header + 256 materials x 8 uints
 const uint WORLD_SLOT_UINTS = 1156u;
 const uint WORLD_OCC = 4u;         // slot-relative: occupancy bits (8 bricks x 16 uints)
 const uint WORLD_IDS = 132u;       // slot-relative: block ids, 4 per uint
@@ -122,7 +122,8 @@ uint material_flags(uint id) { return world_word(uint(WORLD_MATERIALS + id * 8u 
 // Atlas tile of a face: 0 top, 1 side, 2 bottom.
 uint material_tile(uint id, int face) { return world_word(uint(WORLD_MATERIALS + id * 8u + 5u + uint(face))); }
 
-// ---- Block textures (core/voxel/src/textures.c: a 4 x 4 atlas of 16x16 tiles) ----
+// ---- Block textures (core/voxel/src/textures.c: a 16 x 16 atlas of 16x16 tiles) ----
+const uint WORLD_ATLAS_COLUMNS = 16u;
 
 // The thesis's LOD rule: the mip whose texel matches the pixel's footprint on
 // the surface at distance t (pixel_angle: radians per pixel; cos_incidence:
@@ -151,6 +152,6 @@ vec2 world_atlas_uv(uint id, ivec3 n, vec2 uv)
     uint tile = material_tile(id, n.y > 0 ? 0 : n.y < 0 ? 2 : 1);
     // keep half a level-0 texel inside the tile: nearest sampling never crosses
     uv = clamp(uv, vec2(0.5 / 16.0), vec2(1.0 - 0.5 / 16.0));
-    return (vec2(tile % 4u, tile / 4u) + uv) / 4.0;
+    return (vec2(tile % WORLD_ATLAS_COLUMNS, tile / WORLD_ATLAS_COLUMNS) + uv) / float(WORLD_ATLAS_COLUMNS);
 }
 #endif

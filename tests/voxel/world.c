@@ -372,7 +372,7 @@ static void test_atlas(void)
                 double sum = 0;
                 for (uint32_t y = 0; y < ts; y++)
                     for (uint32_t x = 0; x < ts; x++)
-                        sum += srgb_decode(lv[(((tile / 4) * ts + y) * size + (tile % 4) * ts + x) * 4 + c]);
+                        sum += srgb_decode(lv[(((tile / VRG_ATLAS_COLUMNS) * ts + y) * size + (tile % VRG_ATLAS_COLUMNS) * ts + x) * 4 + c]);
                 worst = fmax(worst, fabs(sum / (ts * ts) - m[b].albedo[c]) / m[b].albedo[c]);
             }
         }
@@ -383,7 +383,7 @@ static void test_atlas(void)
     int lo = 255, hi = 0, stone = m[VRG_BLOCK_STONE].tile_top;
     for (int y = 0; y < 16; y++)
         for (int x = 0; x < 16; x++) {
-            int v = l0[(((stone / 4) * 16 + y) * VRG_ATLAS_SIZE + (stone % 4) * 16 + x) * 4];
+            int v = l0[(((stone / VRG_ATLAS_COLUMNS) * 16 + y) * VRG_ATLAS_SIZE + (stone % VRG_ATLAS_COLUMNS) * 16 + x) * 4];
             lo = v < lo ? v : lo;
             hi = v > hi ? v : hi;
         }

@@ -200,6 +200,21 @@ int vrg_pass_error_at(vrg_pass *p, int line, const char *fmt, ...)
     return rc;
 }
 
+void vrg_pass_warn_at(vrg_pass *p, int line, const char *fmt, ...)
+{
+    char msg[1536];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    if (line > 0)
+        _vrg_warning_at(&p->graph->diag, line, VRG_W_PASS_WARNING, "%s", msg);
+    else
+        _vrg_warning_at(&p->graph->diag, p->line, VRG_W_PASS_WARNING, "pass '%s': %s", p->name, msg);
+}
+
+const char *vrg_pass_graph_path(const vrg_pass *p) { return p->graph->loaded_from_file ? p->graph->path : ""; }
+
 int vrg_pass_set_buffer_size(vrg_pass *p, const char *slot, uint64_t bytes)
 {
     const vrg_plugin_desc *d = p->plugin->desc;

@@ -110,7 +110,7 @@ int vrg_scene_create(vrg_pass *pass, vrg_scene_gpu *s, vrg_world *world)
     void *atlas = vrg_pass_host_buffer(pass, "atlas staging", vrg_atlas_bytes(), &s->atlas_staging);
     if (!s->staging || !atlas)
         return -1;
-    vrg_atlas_generate(atlas);
+    vrg_world_atlas_generate(world, atlas);
     if (vrg_param_choice(pass, "traversal", traversals, 2) == 1) {
         const vrg_device *dev = vrg_pass_device(pass);
         if (!dev->features.ray_query || !dev->features.acceleration_structure) {

@@ -55,7 +55,7 @@ static float pattern(int tile, int x, int y, int *grass_texel)
     case 11: return 0.95f + 0.1f * n;                                /* snow */
     case 12: return 0.6f + 0.8f * m * n;                             /* gravel */
     case 13: return (x % 8 == 0 || y % 8 == 0) ? 0.7f : 1.05f;       /* lamp grid */
-    default: return 1.0f;                                            /* flat test colours */
+    default: return 1.0f;                                            /* flat colours: test blocks, run-time materials */
     }
 }
 
@@ -67,11 +67,10 @@ static float srgb_encode(float c)
 
 /* The albedo a tile averages to: the material whose top it is, else whose
  * side, else whose bottom (dirt is also grass's bottom, but it is dirt). */
-static void tile_albedo(int tile, float out[3])
+static void tile_albedo(const vrg_material *m, int count, int tile, float out[3])
 {
-    const vrg_material *m = vrg_materials();
     for (int face = 0; face < 3; face++)
-        for (int b = 1; b < VRG_BLOCK_COUNT; b++)
+        for (int b = 1; b < count; b++)
             if ((face == 0 ? m[b].tile_top : face == 1 ? m[b].tile_side : m[b].tile_bottom) == tile) {
                 memcpy(out, m[b].albedo, 3 * sizeof(float));
                 return;
@@ -79,8 +78,9 @@ static void tile_albedo(int tile, float out[3])
     out[0] = out[1] = out[2] = 0.5f;
 }
 
-void vrg_atlas_generate(uint8_t *out)
+static void generate(const vrg_material *materials, int count, uint8_t *out)
 {
+    /* level 0, in linear light; then each level in place */
     static float linear[VRG_ATLAS_SIZE * VRG_ATLAS_SIZE * 3];
     float grass[3], dirt[3];
     memcpy(grass, vrg_materials()[VRG_BLOCK_GRASS].albedo, sizeof grass);
@@ -88,7 +88,7 @@ void vrg_atlas_generate(uint8_t *out)
     for (int tile = 0; tile < TILES; tile++) {
         float albedo[3], v[VRG_ATLAS_TILE][VRG_ATLAS_TILE], mean = 0;
         int is_grass[VRG_ATLAS_TILE][VRG_ATLAS_TILE];
-        tile_albedo(tile, albedo);
+        tile_albedo(materials, count, tile, albedo);
         for (int y = 0; y < VRG_ATLAS_TILE; y++)
             for (int x = 0; x < VRG_ATLAS_TILE; x++)
                 mean += v[y][x] = pattern(tile, x, y, &is_grass[y][x]);
@@ -103,8 +103,7 @@ void vrg_atlas_generate(uint8_t *out)
                 }
     }
     /* level 0, then each level the 2x2 mean of the one above, in linear light */
-    static float level[VRG_ATLAS_SIZE * VRG_ATLAS_SIZE * 3];
-    memcpy(level, linear, sizeof level);
+    float *level = linear;
     for (uint32_t k = 0; k < VRG_ATLAS_MIPS; k++) {
         uint32_t size = VRG_ATLAS_SIZE >> k;
         uint8_t *dst = out + vrg_atlas_level_offset(k);
@@ -125,6 +124,9 @@ void vrg_atlas_generate(uint8_t *out)
         }
     }
 }
+
+void vrg_atlas_generate(uint8_t *out) { generate(vrg_materials(), VRG_BLOCK_COUNT, out); }
+void vrg_world_atlas_generate(const vrg_world *w, uint8_t *out) { generate(vrg_world_materials(w), vrg_world_material_count(w), out); }
 
 void vrg_atlas_record_upload(vrg_pass *pass, VkCommandBuffer cmd, const char *slot, VkBuffer staging)
 {

@@ -4,7 +4,9 @@
  *   uint header[16]   = {GX, GY, GZ, SLOT_UINTS, SLOTS_OFFSET, BLOCK_COUNT, ...}
  * (the box of the non-air blocks the GPU copy holds, which rays clip to,
  * travels in the frame uniforms: vrg_world_gpu_box)
- *   uint materials[32][8] = {albedo r,g,b (float bits), emissive, flags, tile top, side, bottom}
+ *   uint materials[256][8] = {albedo r,g,b (float bits), emissive, flags, tile top, side, bottom}
+ *     (one entry per block id: the built-in blocks, then those a scene
+ *     defines at run time, vrg_world_add_material)
  *   slots[GX*GY*GZ][SLOT_UINTS]:
  *     [0..1] sub-brick masks: bit 8*b + s is set when 4^3 sub-brick
  *         s = sx + 2*(sz + 2*sy) of brick b holds a solid voxel (bricks 0-3
@@ -26,13 +28,14 @@
  * every slot starts on a texel, so a slot's header words 0-3 (sub-brick
  * masks and word 3) are one fetch, as are a material's albedo. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "voxrg/world.h"
 
 #define HEADER_UINTS 16
 #define MATERIAL_UINTS 8
-#define MAX_MATERIALS 32
+#define MAX_MATERIALS 256 /* every block id (one byte) has an entry */
 #define SLOTS_OFFSET (HEADER_UINTS + MAX_MATERIALS * MATERIAL_UINTS)
 #define SLOT_HEADER 4
 #define SLOT_OCC_UINTS (8 * 16)
@@ -64,6 +67,12 @@ struct vrg_world {
     int box_lo[3], box_hi[3];
     int box_stale;
     int view_radius; /* blocks; 0: the whole scene is loaded */
+    /* the block table: the built-in blocks, then the scene's own (a vox
+     * model's palette colours), each with its own atlas tile */
+    vrg_material materials[MAX_MATERIALS];
+    char material_names[MAX_MATERIALS][VRG_MATERIAL_NAME_MAX];
+    int material_count;
+    int next_tile;
 };
 
 static const vrg_material materials[VRG_BLOCK_COUNT] = {
@@ -121,8 +130,36 @@ vrg_world *vrg_world_create(int radius_chunks, int height_chunks)
     }
     w->header_dirty = 1;
     w->box_stale = 1;
+    memcpy(w->materials, materials, sizeof materials);
+    w->material_count = VRG_BLOCK_COUNT;
+    w->next_tile = VRG_ATLAS_BUILTIN_TILES;
     return w;
 }
+
+/* Tiles are a byte in the material table and the atlas holds
+ * VRG_ATLAS_TILES: a run-time material needs a block id and a tile. */
+int vrg_world_add_material(vrg_world *w, const vrg_material *m)
+{
+    if (w->material_count >= MAX_MATERIALS || w->next_tile >= VRG_ATLAS_TILES)
+        return -1;
+    int id = w->material_count++;
+    vrg_material *dst = &w->materials[id];
+    *dst = *m;
+    snprintf(w->material_names[id], sizeof w->material_names[id], "%s", m->name ? m->name : "");
+    dst->name = w->material_names[id];
+    dst->tile_top = dst->tile_side = dst->tile_bottom = (uint8_t)w->next_tile++;
+    w->header_dirty = 1;
+    return id;
+}
+
+int vrg_world_material_room(const vrg_world *w)
+{
+    int ids = MAX_MATERIALS - w->material_count, tiles = VRG_ATLAS_TILES - w->next_tile;
+    return ids < tiles ? ids : tiles;
+}
+
+const vrg_material *vrg_world_materials(const vrg_world *w) { return w->materials; }
+int vrg_world_material_count(const vrg_world *w) { return w->material_count; }
 
 void vrg_world_destroy(vrg_world *w)
 {
@@ -219,6 +256,22 @@ void vrg_world_put_chunk(vrg_world *w, int cx, int cy, int cz, const vrg_block *
     memcpy(sl->blocks, blocks, VRG_CHUNK_VOXELS);
     mark_dirty(w, s);
     mark_mesh(w, cx, cy, cz);
+}
+
+int vrg_world_set_block(vrg_world *w, int x, int y, int z, vrg_block b)
+{
+    int cx = vrg_floor_div16(x), cy = vrg_floor_div16(y), cz = vrg_floor_div16(z);
+    int s = slot_of(w, cx, cy, cz);
+    slot *sl = s < 0 ? NULL : &w->slots[s];
+    if (!sl || !sl->valid || sl->cx != cx || sl->cz != cz)
+        return -1;
+    vrg_block *at = &sl->blocks[vrg_chunk_index(x & 15, y & 15, z & 15)];
+    if (*at == b)
+        return 0;
+    *at = b;
+    mark_dirty(w, s);
+    mark_mesh(w, cx, cy, cz);
+    return 0;
 }
 
 void vrg_world_drop_chunk(vrg_world *w, int cx, int cy, int cz)
@@ -336,10 +389,10 @@ static void pack_header(const vrg_world *w, uint32_t *out)
     out[2] = (uint32_t)w->gz;
     out[3] = SLOT_UINTS;
     out[4] = SLOTS_OFFSET;
-    out[5] = VRG_BLOCK_COUNT;
-    for (int i = 0; i < VRG_BLOCK_COUNT; i++) {
+    out[5] = (uint32_t)w->material_count;
+    for (int i = 0; i < w->material_count; i++) {
         uint32_t *m = out + HEADER_UINTS + i * MATERIAL_UINTS;
-        const vrg_material *mt = &materials[i];
+        const vrg_material *mt = &w->materials[i];
         m[0] = float_bits(mt->albedo[0]);
         m[1] = float_bits(mt->albedo[1]);
         m[2] = float_bits(mt->albedo[2]);

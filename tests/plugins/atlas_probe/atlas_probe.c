@@ -6,7 +6,7 @@
 static const vrg_slot_desc slots[] = {
     {.name = "atlas", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED},
     {.name = "probe", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R32G32B32A32_SFLOAT,
-     .width = 64, .height = 7},
+     .width = 256, .height = 9}, /* VRG_ATLAS_SIZE x VRG_ATLAS_MIPS (voxrg/world.h) */
 };
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)

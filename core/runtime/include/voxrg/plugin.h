@@ -266,6 +266,13 @@ int vrg_pass_error(vrg_pass *pass, const char *fmt, ...) __attribute__((format(p
 /* An error at a line of the graph file (e.g. a parameter's, from vrg_param_item). */
 int vrg_pass_error_at(vrg_pass *pass, int line, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 
+/* A warning at a line of the graph file (0: naming the pass instead): the
+ * pass goes on (VRG-W006). */
+void vrg_pass_warn_at(vrg_pass *pass, int line, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+/* The graph file's path as the host gave it ("" for a graph loaded from
+ * text): files a parameter names are relative to its folder. */
+const char *vrg_pass_graph_path(const vrg_pass *pass);
+
 /* GPU milliseconds of a pass (NULL: this one) in the newest frame known to
  * have finished: with frames in flight an earlier one than this frame
  * (at least frame_index - frames_in_flight); -1 if unknown. */

@@ -56,7 +56,7 @@ typedef struct vrg_material {
     float emissive;    /* emitted radiance scale, 0 for none */
 } vrg_material;
 
-/* The table, indexed by block id; VRG_BLOCK_COUNT entries. */
+/* The built-in table, indexed by block id; VRG_BLOCK_COUNT entries. */
 const vrg_material *vrg_materials(void);
 /* Block id by name ("stone"), or -1. */
 int vrg_block_by_name(const char *name);
@@ -82,10 +82,28 @@ int vrg_world_view_radius(const vrg_world *w);
 /* Stores a chunk (replacing whatever held its slot) and marks it for upload. */
 void vrg_world_put_chunk(vrg_world *w, int cx, int cy, int cz, const vrg_block *blocks);
 void vrg_world_drop_chunk(vrg_world *w, int cx, int cy, int cz);
+/* Changes one block of a loaded chunk: only that chunk goes up again (and
+ * its faces, with its neighbours', to the ray-query backend). -1 when the
+ * chunk is not loaded. */
+int vrg_world_set_block(vrg_world *w, int x, int y, int z, vrg_block b);
 int vrg_world_has_chunk(const vrg_world *w, int cx, int cy, int cz);
 /* The chunk's blocks, or NULL when it is not loaded. */
 const vrg_block *vrg_world_chunk(const vrg_world *w, int cx, int cy, int cz);
 int vrg_world_chunk_count(const vrg_world *w);
+
+/* A world's block table: the built-in blocks (ids below VRG_BLOCK_COUNT),
+ * then materials a scene defines before its first frame (a vox model's
+ * palette colours). Each gets the next block id and its own atlas tile,
+ * flat at its albedo (vrg_world_atlas_generate); the name is copied
+ * (VRG_MATERIAL_NAME_MAX - 1 characters kept). Returns the id, or -1 when
+ * no block id or tile is left. */
+#define VRG_MATERIAL_NAME_MAX 24
+int vrg_world_add_material(vrg_world *w, const vrg_material *m);
+/* How many more materials vrg_world_add_material accepts. */
+int vrg_world_material_room(const vrg_world *w);
+/* The table, indexed by block id; vrg_world_material_count entries. */
+const vrg_material *vrg_world_materials(const vrg_world *w);
+int vrg_world_material_count(const vrg_world *w);
 /* Block at a world position; air where no chunk is loaded. */
 vrg_block vrg_world_block(const vrg_world *w, int x, int y, int z);
 
@@ -141,18 +159,25 @@ int vrg_world_accel_quads(const vrg_world_accel *a, int cx, int cy, int cz);
 
 /* ---- Block textures ---------------------------------------------------
  * Procedural 16x16 tiles (material tile_top/side/bottom index them) in a
- * 4 x 4 atlas of 64x64 sRGB texels with a full mip chain, each level box-
+ * 16 x 16 atlas of 256x256 sRGB texels with a full mip chain, each level box-
  * filtered in linear space. Tiles are power-of-two aligned, so no level mixes
  * two tiles. Each tile's mean linear colour is its material's albedo (grass
- * sides, half dirt and half grass, excepted). */
+ * sides, half dirt and half grass, excepted). The built-in blocks use the
+ * first VRG_ATLAS_BUILTIN_TILES tiles; a world's run-time materials the
+ * others, one flat tile each. */
 #define VRG_ATLAS_TILE 16
-#define VRG_ATLAS_COLUMNS 4
+#define VRG_ATLAS_COLUMNS 16
+#define VRG_ATLAS_TILES (VRG_ATLAS_COLUMNS * VRG_ATLAS_COLUMNS)
+#define VRG_ATLAS_BUILTIN_TILES 16
 #define VRG_ATLAS_SIZE (VRG_ATLAS_TILE * VRG_ATLAS_COLUMNS)
-#define VRG_ATLAS_MIPS 7
+#define VRG_ATLAS_MIPS 9
 /* Bytes of all levels, level 0 first, each row-major RGBA8 sRGB. */
 uint64_t vrg_atlas_bytes(void);
 uint64_t vrg_atlas_level_offset(uint32_t level);
+/* The built-in blocks' atlas (other tiles mid-grey). */
 void vrg_atlas_generate(uint8_t *out);
+/* A world's atlas: the built-in tiles and one per run-time material. */
+void vrg_world_atlas_generate(const vrg_world *w, uint8_t *out);
 /* Records the upload of every level from staging (vrg_atlas_generate'd). */
 void vrg_atlas_record_upload(vrg_pass *pass, VkCommandBuffer cmd, const char *slot, VkBuffer staging);
 

@@ -1,0 +1,408 @@
+/* Scene plugin: a MagicaVoxel model (.vox) placed in the voxel world.
+ *
+ *   [scene]
+ *   plugin   = vox
+ *   file     = ../../shared/vox/chr_knight.vox  ; relative to the graph file
+ *   position = 0 1 0     ; where the model's bottom centre goes, in blocks
+ *   scale    = 1         ; each voxel becomes scale^3 blocks
+ *   ground   = white     ; a ground plane at y = 0, or none
+ *
+ * MagicaVoxel is z-up, voxrg y-up: vox (x, y, z) becomes (x, z, -y), a
+ * rotation, so nothing is mirrored. Each palette colour a voxel uses
+ * becomes a block material with a flat atlas tile (vrg_world_add_material).
+ * Edits (voxrg/edits.h) are kept beside the graph and applied at start. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "voxrg/edits.h"
+#include "vox_read.h"
+
+static const vrg_param_desc params[] = {
+    {.name = "file", .type = VRG_PARAM_STRING, .default_string = "", .help = "the .vox file, relative to the graph file's folder"},
+    {.name = "position", .type = VRG_PARAM_STRING, .default_string = "0 1 0",
+     .help = "X Y Z: the block where the model's bottom centre goes"},
+    {.name = "scale", .type = VRG_PARAM_INT, .default_value = 1, .min = 1, .max = 16, .help = "blocks per voxel along each axis"},
+    {.name = "ground", .type = VRG_PARAM_STRING, .default_string = "none", .help = "block of a ground plane at y = 0 under the model, or none"},
+    {.name = "edits", .type = VRG_PARAM_STRING, .default_string = "",
+     .help = "edit journal; empty: the graph file's path + .edits; none: no edits"},
+    VRG_SCENE_PARAMS,
+};
+
+static const vrg_slot_desc slots[] = {VRG_SCENE_SLOTS};
+
+#define WORLD_XZ 512     /* |x|, |z| of any block: keeps the toroidal grid (and its GPU buffer) bounded */
+#define WORLD_HEIGHT 256 /* y in [0, 256): 16 chunks, the terrain's largest height */
+#define GROUND_MARGIN 2  /* chunks of ground around the model: its shadow lands on it */
+#define EMISSIVE_SCALE 4.0f /* MagicaVoxel's _emit 1 shines like the lamp block */
+
+typedef struct placed {
+    vox_scene vox;
+    uint8_t *bytes;        /* the file: models point into it */
+    size_t size;
+    char path[4096];
+    int origin[3];         /* world block of the model's (scaled) box corner lo */
+    int lo[3], hi[3];      /* world blocks, hi exclusive */
+    int radius, height;    /* the grid */
+    int scale, ground;
+} placed;
+
+typedef struct scene {
+    vrg_scene_gpu gpu;
+    vrg_edits *edits;
+} scene;
+
+static const char *file_name(const char *path)
+{
+    const char *s = strrchr(path, '/');
+    return s ? s + 1 : path;
+}
+
+/* The file parameter, relative to the graph's folder unless absolute. */
+static void resolve(vrg_pass *pass, const char *file, char *out, size_t n)
+{
+    const char *graph = vrg_pass_graph_path(pass), *slash = strrchr(graph, '/');
+    if (file[0] == '/' || !slash)
+        snprintf(out, n, "%s", file);
+    else
+        snprintf(out, n, "%.*s/%s", (int)(slash - graph), graph, file);
+}
+
+static int read_all(const char *path, uint8_t **data, size_t *size)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return -1;
+    long n = -1;
+    if (fseek(f, 0, SEEK_END) == 0)
+        n = ftell(f);
+    uint8_t *d = n >= 0 && fseek(f, 0, SEEK_SET) == 0 ? malloc(n ? (size_t)n : 1) : NULL;
+    if (!d || fread(d, 1, (size_t)n, f) != (size_t)n) {
+        free(d);
+        fclose(f);
+        return -1;
+    }
+    fclose(f);
+    *data = d;
+    *size = (size_t)n;
+    return 0;
+}
+
+static int floor_half(int v) { return v >= 0 ? v / 2 : -((1 - v) / 2); }
+
+/* Voxel v of an instance in MagicaVoxel's space (vox_read.h), then in
+ * voxrg's: (x, y, z) -> (x, z, -1 - y), the block below vox y's face. */
+static void voxel_block(const vox_instance *in, const int size[3], const uint8_t v[3], int out[3])
+{
+    int c[3], p[3];
+    for (int a = 0; a < 3; a++)
+        c[a] = 2 * v[a] + 1 - size[a];
+    for (int a = 0; a < 3; a++)
+        p[a] = in->t[a] + floor_half(in->rot[a][0] * c[0] + in->rot[a][1] * c[1] + in->rot[a][2] * c[2]);
+    out[0] = p[0];
+    out[1] = p[2];
+    out[2] = -1 - p[1];
+}
+
+/* The box of every placed voxel, from each instance's box corners. */
+static void model_box(const vox_scene *s, int lo[3], int hi[3])
+{
+    for (int a = 0; a < 3; a++)
+        lo[a] = 1 << 30, hi[a] = -(1 << 30);
+    for (int i = 0; i < s->instance_count; i++) {
+        const vox_instance *in = &s->instances[i];
+        const vox_model *m = &s->models[in->model];
+        for (int k = 0; k < 8; k++) {
+            uint8_t v[3] = {(uint8_t)(k & 1 ? m->size[0] - 1 : 0), (uint8_t)(k & 2 ? m->size[1] - 1 : 0), (uint8_t)(k & 4 ? m->size[2] - 1 : 0)};
+            int b[3];
+            voxel_block(in, m->size, v, b);
+            for (int a = 0; a < 3; a++)
+                lo[a] = b[a] < lo[a] ? b[a] : lo[a], hi[a] = b[a] + 1 > hi[a] ? b[a] + 1 : hi[a];
+        }
+    }
+}
+
+static void placed_free(placed *p)
+{
+    vox_free(&p->vox);
+    free(p->bytes);
+    memset(p, 0, sizeof *p);
+}
+
+/* Reads the file and places the model: everything check() and create()
+ * need, every error at its parameter's line. */
+static int place(vrg_pass *pass, placed *p)
+{
+    memset(p, 0, sizeof *p);
+    const char *file = vrg_param_string(pass, "file");
+    int file_line = vrg_param_line(pass, "file");
+    if (!file[0])
+        return vrg_pass_error(pass, "file = the .vox file to show (relative to the graph file)");
+    resolve(pass, file, p->path, sizeof p->path);
+    if (read_all(p->path, &p->bytes, &p->size) != 0)
+        return vrg_pass_error_at(pass, file_line, "file = '%s': cannot read %s (the shipped vox graphs expect ../shared/vox beside the project, docs/world.md)",
+                                 file, p->path);
+    char err[512];
+    if (vox_read(p->bytes, p->size, p->path, &p->vox, err, sizeof err) != 0) {
+        int rc = vrg_pass_error_at(pass, file_line, "%s", err);
+        placed_free(p);
+        return rc;
+    }
+    int pos[3], scale = vrg_param_int(pass, "scale");
+    char extra;
+    const char *ps = vrg_param_string(pass, "position");
+    if (sscanf(ps, "%d %d %d %c", &pos[0], &pos[1], &pos[2], &extra) != 3) {
+        placed_free(p);
+        return vrg_pass_error_at(pass, vrg_param_line(pass, "position"), "position = '%s': expected 'X Y Z' (integers, blocks)", ps);
+    }
+    const char *ground = vrg_param_string(pass, "ground");
+    p->ground = strcmp(ground, "none") == 0 ? 0 : vrg_block_by_name(ground);
+    if (p->ground <= 0) {
+        placed_free(p);
+        return vrg_pass_error_at(pass, vrg_param_line(pass, "ground"), "ground = '%s': expected none or a block name (stone, grass, white, ...)", ground);
+    }
+    int mlo[3], mhi[3];
+    model_box(&p->vox, mlo, mhi);
+    /* the scaled model's bottom centre goes to pos: long long, no overflow for any input */
+    long long lo[3], hi[3];
+    for (int a = 0; a < 3; a++) {
+        long long extent = (long long)(mhi[a] - mlo[a]) * scale;
+        lo[a] = pos[a] - (a == 1 ? 0 : extent / 2);
+        hi[a] = lo[a] + extent;
+    }
+    if (lo[1] < 0 || hi[1] > WORLD_HEIGHT || lo[0] < -WORLD_XZ || hi[0] > WORLD_XZ || lo[2] < -WORLD_XZ || hi[2] > WORLD_XZ) {
+        placed_free(p);
+        return vrg_pass_error_at(pass, file_line,
+                                 "%s: the model spans blocks %lld..%lld x %lld..%lld x %lld..%lld (scale %d, position %s); the world holds 0 <= y < %d and |x|, |z| <= %d",
+                                 p->path, lo[0], hi[0] - 1, lo[1], hi[1] - 1, lo[2], hi[2] - 1, scale, ps, WORLD_HEIGHT, WORLD_XZ);
+    }
+    int r = 0;
+    for (int a = 0; a < 3; a++) {
+        p->lo[a] = (int)lo[a], p->hi[a] = (int)hi[a];
+        p->origin[a] = (int)lo[a] - mlo[a] * scale; /* world block of voxrg model block 0 */
+    }
+    for (int a = 0; a < 3; a += 2) {
+        int c0 = abs(vrg_floor_div16(p->lo[a])), c1 = abs(vrg_floor_div16(p->hi[a] - 1));
+        r = c0 > r ? c0 : r;
+        r = c1 > r ? c1 : r;
+    }
+    p->radius = r + (p->ground ? GROUND_MARGIN : 0);
+    p->height = vrg_floor_div16(p->hi[1] - 1) + 1;
+    p->scale = scale;
+    return 0;
+}
+
+static int check(vrg_pass *pass)
+{
+    placed p;
+    if (place(pass, &p) != 0)
+        return -1;
+    int radius = p.radius, height = p.height;
+    placed_free(&p);
+    return vrg_scene_check(pass, radius, height);
+}
+
+static float srgb_to_linear(uint8_t c)
+{
+    float v = c / 255.0f;
+    return v <= 0.04045f ? v / 12.92f : powf((v + 0.055f) / 1.055f, 2.4f);
+}
+
+static float colour_distance(uint32_t a, uint32_t b)
+{
+    float d = 0;
+    for (int c = 0; c < 3; c++) {
+        float x = srgb_to_linear((uint8_t)(a >> 8 * c)) - srgb_to_linear((uint8_t)(b >> 8 * c));
+        d += x * x;
+    }
+    return d;
+}
+
+/* Palette index -> block id: the used colours become materials, the most
+ * used first; when the world has fewer free ids than colours, the rest take
+ * their nearest kept colour, and the user is told. */
+static int make_materials(vrg_pass *pass, const placed *p, vrg_world *w, vrg_block block_of[256])
+{
+    long long used[256] = {0};
+    for (int i = 0; i < p->vox.instance_count; i++) {
+        const vox_model *m = &p->vox.models[p->vox.instances[i].model];
+        for (int k = 0; k < m->count; k++)
+            used[m->xyzi[4 * k + 3]]++;
+    }
+    int order[255], n = 0;
+    for (int c = 1; c < 256; c++)
+        if (used[c])
+            order[n++] = c;
+    for (int i = 1; i < n; i++) /* most used first; ties by index: the same file gives the same ids */
+        for (int j = i; j > 0 && (used[order[j]] > used[order[j - 1]] || (used[order[j]] == used[order[j - 1]] && order[j] < order[j - 1])); j--) {
+            int t = order[j];
+            order[j] = order[j - 1];
+            order[j - 1] = t;
+        }
+    int room = vrg_world_material_room(w), kept = n < room ? n : room;
+    for (int i = 0; i < kept; i++) {
+        int c = order[i];
+        uint32_t rgba = p->vox.palette[c];
+        char name[VRG_MATERIAL_NAME_MAX];
+        snprintf(name, sizeof name, "vox%d", c);
+        vrg_material m = {.name = name, .flags = VRG_MATERIAL_OPAQUE, .emissive = EMISSIVE_SCALE * p->vox.emissive[c]};
+        for (int a = 0; a < 3; a++)
+            m.albedo[a] = srgb_to_linear((uint8_t)(rgba >> 8 * a));
+        int id = vrg_world_add_material(w, &m);
+        if (id < 0)
+            return vrg_pass_error(pass, "no block id left for palette colour %d", c);
+        block_of[c] = (vrg_block)id;
+    }
+    for (int i = kept; i < n; i++) {
+        int c = order[i], best = order[0];
+        for (int j = 1; j < kept; j++)
+            if (colour_distance(p->vox.palette[c], p->vox.palette[order[j]]) < colour_distance(p->vox.palette[c], p->vox.palette[best]))
+                best = order[j];
+        block_of[c] = block_of[best];
+    }
+    if (n > kept)
+        vrg_pass_warn_at(pass, vrg_param_line(pass, "file"), "%s uses %d palette colours and the world has %d free block ids: the %d least used take their nearest kept colour",
+                         p->path, n, kept, n - kept);
+    return 0;
+}
+
+static void put_model(const placed *p, vrg_world *w, const vrg_block block_of[256])
+{
+    int s = p->scale;
+    for (int i = 0; i < p->vox.instance_count; i++) {
+        const vox_instance *in = &p->vox.instances[i];
+        const vox_model *m = &p->vox.models[in->model];
+        for (int k = 0; k < m->count; k++) {
+            const uint8_t *v = m->xyzi + 4 * k;
+            int b[3];
+            voxel_block(in, m->size, v, b);
+            for (int dy = 0; dy < s; dy++)
+                for (int dz = 0; dz < s; dz++)
+                    for (int dx = 0; dx < s; dx++)
+                        vrg_world_set_block(w, p->origin[0] + b[0] * s + dx, p->origin[1] + b[1] * s + dy, p->origin[2] + b[2] * s + dz, block_of[v[3]]);
+        }
+    }
+}
+
+/* Every chunk of the grid is loaded (air where nothing is), so an edit can
+ * place a block anywhere in it. */
+static vrg_world *build_world(vrg_pass *pass, const placed *p)
+{
+    vrg_world *w = vrg_world_create(p->radius, p->height);
+    vrg_block *chunk = calloc(1, VRG_CHUNK_VOXELS);
+    if (!w || !chunk) {
+        free(chunk);
+        vrg_world_destroy(w);
+        vrg_pass_error(pass, "out of memory for the world");
+        return NULL;
+    }
+    for (int cy = 0; cy < p->height; cy++)
+        for (int cz = -p->radius; cz <= p->radius; cz++)
+            for (int cx = -p->radius; cx <= p->radius; cx++) {
+                memset(chunk, VRG_BLOCK_AIR, VRG_CHUNK_VOXELS);
+                if (cy == 0 && p->ground)
+                    memset(chunk, p->ground, VRG_CHUNK_SIZE * VRG_CHUNK_SIZE); /* layer y = 0 */
+                vrg_world_put_chunk(w, cx, cy, cz, chunk);
+            }
+    free(chunk);
+    vrg_block block_of[256] = {0};
+    if (make_materials(pass, p, w, block_of) != 0) {
+        vrg_world_destroy(w);
+        return NULL;
+    }
+    put_model(p, w, block_of);
+    return w;
+}
+
+static uint64_t fnv1a(const uint8_t *d, size_t n)
+{
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (size_t i = 0; i < n; i++)
+        h = (h ^ d[i]) * 0x100000001b3ull;
+    return h;
+}
+
+/* The journal, keyed by what decides where the blocks are. */
+static int open_edits(vrg_pass *pass, scene *s, const placed *p)
+{
+    const char *param = vrg_param_string(pass, "edits");
+    if (strcmp(param, "none") == 0)
+        return 0;
+    char path[4096], key[VRG_EDITS_KEY_MAX], err[1024];
+    if (param[0])
+        resolve(pass, param, path, sizeof path);
+    else if (vrg_pass_graph_path(pass)[0])
+        snprintf(path, sizeof path, "%s.edits", vrg_pass_graph_path(pass));
+    else
+        return 0; /* a graph from text has no folder to keep edits in */
+    snprintf(key, sizeof key, "vox file=%s bytes=%zu fnv1a=%016llx position=%s scale=%d ground=%s", file_name(p->path), p->size,
+             (unsigned long long)fnv1a(p->bytes, p->size), vrg_param_string(pass, "position"), p->scale, vrg_param_string(pass, "ground"));
+    s->edits = vrg_edits_open(path, key, err, sizeof err);
+    if (!s->edits)
+        return vrg_pass_error_at(pass, vrg_param_line(pass, "edits"), "%s", err);
+    if (vrg_edits_dropped_bytes(s->edits))
+        vrg_pass_warn_at(pass, vrg_param_line(pass, "edits"), "%s: dropped a torn last record (%ld bytes) left by a crash", path,
+                         vrg_edits_dropped_bytes(s->edits));
+    vrg_edits_apply_world(s->edits, s->gpu.world);
+    return vrg_pass_share(pass, VRG_EDITS_SHARED_NAME, s->edits);
+}
+
+static int create(vrg_pass *pass)
+{
+    scene *s = calloc(1, sizeof *s);
+    if (!s)
+        return vrg_pass_error(pass, "out of memory");
+    vrg_pass_set_user(pass, s);
+    placed p;
+    if (place(pass, &p) != 0)
+        return -1;
+    vrg_world *w = build_world(pass, &p);
+    if (!w) {
+        placed_free(&p);
+        return -1;
+    }
+    s->gpu.world = w;
+    int rc = open_edits(pass, s, &p);
+    placed_free(&p);
+    if (rc != 0)
+        return -1;
+    /* after the edits: the world's first upload has them */
+    return vrg_scene_create(pass, &s->gpu, w);
+}
+
+static void execute(vrg_pass *pass, VkCommandBuffer cmd)
+{
+    scene *s = vrg_pass_user(pass);
+    vrg_scene_record(pass, &s->gpu, cmd);
+}
+
+static void destroy(vrg_pass *pass)
+{
+    scene *s = vrg_pass_user(pass);
+    if (!s)
+        return;
+    if (s->edits)
+        vrg_pass_share(pass, VRG_EDITS_SHARED_NAME, NULL);
+    vrg_edits_close(s->edits);
+    if (s->gpu.world)
+        vrg_scene_destroy(pass, &s->gpu); /* frees the world too */
+    free(s);
+}
+
+static const vrg_plugin_desc desc = {
+    .abi_version = VRG_ABI_VERSION,
+    .name = "vox",
+    .kind = VRG_PLUGIN_SCENE,
+    .help = "a MagicaVoxel model (.vox): models, palette, materials and scene graph placed in the world",
+    .shader_dir = VRG_PLUGIN_DIR,
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .slots = slots,
+    .slot_count = sizeof slots / sizeof slots[0],
+    .check = check,
+    .create = create,
+    .execute = execute,
+    .destroy = destroy,
+};
+
+VRG_PLUGIN(desc)
