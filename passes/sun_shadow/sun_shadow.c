@@ -9,7 +9,11 @@
  *                                          whatever `rays` says (they would
  *                                          all be the same ray)
  * A disc sample below the face's horizon (N.D <= 0) counts as occluded
- * without tracing. Rays start at position + normal * 1e-3. */
+ * without tracing. Rays start at position + normal * 1e-3.
+ * occluder (optional, computed only when something reads it): the mean
+ * distance, blocks, from the ray origin to the first block hit, over the
+ * traced rays that hit; -1 where none did (lit, sky, no rays traced). A
+ * denoiser derives the penumbra's width from it (passes/shadow_denoise). */
 #include "voxrg/plugin.h"
 
 static const vrg_param_desc params[] = {
@@ -28,6 +32,9 @@ static const vrg_slot_desc slots[] = {
      .help = "gbuffer normal: the face normal"},
     {.name = "visibility", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16_SFLOAT,
      .help = "fraction of the sun's disc seen, [0,1]; 1 on sky"},
+    {.name = "occluder", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16_SFLOAT,
+     .flags = VRG_SLOT_OPTIONAL, .help = "mean distance to the blocker over the rays that hit, blocks; -1 where none hit (written only when read)"},
+    /* the acceleration structure stays last: an absent one is not bound */
     {.name = "tlas", .dir = VRG_IN, .kind = VRG_ACCEL, .access = VRG_ACCESS_RAY_QUERY, .flags = VRG_SLOT_OPTIONAL,
      .help = "the scene's TLAS: trace with ray queries (traversal = rayquery)"},
 };
@@ -47,6 +54,9 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         .pixel_loop = 1,
         .push = &pc,
         .push_size = sizeof pc,
+        /* the unconnected output is a 1x1 stand-in: the shader neither
+         * writes it nor finds the closest hit the distance needs */
+        .defines = vrg_res_connected(vrg_pass_res(pass, "occluder")) ? "OCCLUDER=1" : "",
     };
     (void)vrg_dispatch(pass, cmd, &d);
 }
