@@ -6,7 +6,7 @@
  * shadows (small d) are left sharp and shadows of far occluders (leaves
  * high above the ground) are smoothed.
  *
- * Two dispatches kinds (shadow_denoise.comp):
+ * Two kinds of dispatch (shadow_denoise.comp):
  *   PACK   per pixel: the mean occluder distance over the same plane's
  *          pixels in a 9x9 window (every other pixel; pixels whose rays all
  *          missed have no distance, so a lit pixel at a penumbra's edge
