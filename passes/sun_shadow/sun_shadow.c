@@ -9,7 +9,11 @@
  *                                          whatever `rays` says (they would
  *                                          all be the same ray)
  * A disc sample below the face's horizon (N.D <= 0) counts as occluded
- * without tracing. Rays start at position + normal * 1e-3. */
+ * without tracing. Rays start at position + normal * 1e-3.
+ * occluder (optional, computed only when something reads it): the mean
+ * distance, blocks, from the ray origin to the first block hit, over the
+ * traced rays that hit; -1 where none did (lit, sky, no rays traced). A
+ * denoiser derives the penumbra's width from it (passes/shadow_denoise). */
 #include "voxrg/plugin.h"
 
 static const vrg_param_desc params[] = {
@@ -28,6 +32,9 @@ static const vrg_slot_desc slots[] = {
      .help = "gbuffer normal: the face normal"},
     {.name = "visibility", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16_SFLOAT,
      .help = "fraction of the sun's disc seen, [0,1]; 1 on sky"},
+    {.name = "occluder", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16_SFLOAT,
+     .flags = VRG_SLOT_OPTIONAL, .help = "mean distance to the blocker over the rays that hit, blocks; -1 where none hit (written only when read)"},
+    /* the acceleration structure stays last: an absent one is not bound */
     {.name = "tlas", .dir = VRG_IN, .kind = VRG_ACCEL, .access = VRG_ACCESS_RAY_QUERY, .flags = VRG_SLOT_OPTIONAL,
      .help = "the scene's TLAS: trace with ray queries (traversal = rayquery)"},
 };
@@ -41,6 +48,7 @@ typedef struct sun_shadow_push {
 /* every dispatch execute() records: checked by `voxrg check` */
 static const vrg_dispatch_desc dispatches[] = {
     {.shader = "sun_shadow.comp", .push_size = sizeof(sun_shadow_push), .pixel_loop = 1},
+    {.shader = "sun_shadow.comp", .defines = "OCCLUDER=1", .push_size = sizeof(sun_shadow_push), .pixel_loop = 1},
 };
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
@@ -49,7 +57,9 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
             (float)vrg_param(pass, "max_distance")};
     if (pc.sun_radius <= 0.0f)
         pc.rays = 1;
-    vrg_dispatch_desc d = dispatches[0];
+    /* the unconnected output is a 1x1 stand-in: the shader neither writes
+     * it nor finds the closest hit the distance needs */
+    vrg_dispatch_desc d = dispatches[vrg_res_connected(vrg_pass_res(pass, "occluder")) ? 1 : 0];
     d.push = &pc;
     (void)vrg_dispatch(pass, cmd, &d);
 }

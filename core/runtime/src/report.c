@@ -159,7 +159,7 @@ void vrg_graph_report(const vrg_graph *g, FILE *f)
         if (r->block >= 0)
             snprintf(mem, sizeof mem, "block %d @ %llu, %s%s", r->block, (unsigned long long)r->offset, sz, r->overlap_count ? ", aliased" : "");
         else
-            snprintf(mem, sizeof mem, "own memory, %s%s", sz, r->history ? " x2 (history)" : r->dummy ? " (unconnected input)" : " (persistent)");
+            snprintf(mem, sizeof mem, "own memory, %s%s", sz, r->history ? " x2 (history)" : r->dummy ? (r->writer >= 0 ? " (unread optional output)" : " (unconnected input)") : " (persistent)");
         const char *role = r->internal_owner >= 0 ? " internal" : r->history ? " @prev" : "";
         fprintf(f, "  %-22s %-28s lifetime %d..%d%s%s  [%s]\n", r->name, what, r->first_use, r->last_use, role, r->is_output ? " output" : "", mem);
     }

@@ -908,6 +908,35 @@ static void check_cycles(vrg_graph *g)
             return; /* one cycle report is enough; the rest usually repeat it */
 }
 
+/* An optional output that no pass reads, that is not the graph's output and
+ * not read back costs its pass nothing: it gets a 1x1 stand-in and the slot
+ * reports unconnected (vrg_res_connected), so the pass can skip computing it.
+ * Run after every reader, the output and the readbacks are known. */
+static void unread_optional_outputs(vrg_graph *g)
+{
+    for (int pi = 0; pi < g->pass_count; pi++) {
+        vrg_pass *p = &g->passes[pi];
+        for (uint32_t s = 0; p->plugin && s < p->plugin->desc->slot_count; s++) {
+            const vrg_slot_desc *sd = vrg_slot(p, (int)s);
+            int ri = p->slots[s].res;
+            if (sd->dir != VRG_OUT || !(sd->flags & VRG_SLOT_OPTIONAL) || sd->kind != VRG_IMAGE || ri < 0 || p->slots[s].bad)
+                continue;
+            _vrg_resource *r = &g->res[ri];
+            int read = r->is_output || r->readback || r->history;
+            for (int qi = 0; qi < g->pass_count && !read; qi++) {
+                const vrg_pass *q = &g->passes[qi];
+                for (uint32_t t = 0; q->plugin && t < q->plugin->desc->slot_count && !read; t++)
+                    read = vrg_slot(q, (int)t)->dir == VRG_IN && q->slots[t].res == ri;
+            }
+            if (read)
+                continue;
+            r->abs_width = r->abs_height = 1;
+            r->persistent = r->dummy = 1;
+            p->slots[s].dummy = 1;
+        }
+    }
+}
+
 int _vrg_validate(vrg_graph *g, const _vrg_ast *ast, const vrg_graph_desc *desc)
 {
     int graph_si, camera_si;
@@ -980,6 +1009,7 @@ int _vrg_validate(vrg_graph *g, const _vrg_ast *ast, const vrg_graph_desc *desc)
         else
             g->res[r].readback = 1;
     }
+    unread_optional_outputs(g);
     check_cycles(g);
     return g->diag.errors ? -1 : 0;
 }

@@ -95,7 +95,10 @@ typedef enum vrg_access {
 } vrg_access;
 
 enum vrg_slot_flags {
-    VRG_SLOT_OPTIONAL = 1u << 0,   /* input may stay unconnected (vrg_res_connected() says) */
+    /* Inputs: may stay unconnected. Image outputs: unconnected unless some
+     * pass reads it, it is the graph's output or it is read back. Either way
+     * vrg_res_connected() says, and a 1x1 stand-in is bound. */
+    VRG_SLOT_OPTIONAL = 1u << 0,
     VRG_SLOT_PERSISTENT = 1u << 1, /* output keeps its contents across frames: never aliased */
 };
 

@@ -1,0 +1,106 @@
+/* shadow_denoise: a spatial filter of the sun visibility whose radius
+ * follows the penumbra's width, as NVIDIA's SIGMA estimates it: a blocker at
+ * distance d casts, from a sun of angular radius a, a penumbra about
+ * 2 d tan(a) wide, which spans 2 d tan(a) / s pixels where one pixel
+ * covers s = z * 2 tan(fov / 2) / height blocks at view depth z. So contact
+ * shadows (small d) are left sharp and shadows of far occluders (leaves
+ * high above the ground) are smoothed.
+ *
+ * Two kinds of dispatch (shadow_denoise.comp):
+ *   PACK   per pixel: the mean occluder distance over the same plane's
+ *          pixels in a 9x9 window (every other pixel; pixels whose rays all
+ *          missed have no distance, so a lit pixel at a penumbra's edge
+ *          takes its neighbours'), the radius
+ *          r = radius_scale * penumbra width / 2 / s, capped at max_radius
+ *          (0 where no pixel in the window saw a blocker), packed with the
+ *          visibility, the pixel's plane (N.X) and its normal axis into one
+ *          texel, so that a tap is one fetch.
+ *   BLUR   `iterations` times, the radius halving each time: `taps` taps on
+ *          a golden-angle spiral filling the disc of radius r, turned by a
+ *          per-pixel, per-frame angle; a tap weighs
+ *            exp(-2 |q - p|^2 / r^2) * [same normal axis]
+ *              * [|N.X_q - N.X_p| <= sigma_z * |q - p| * s]
+ *          (the plane test of svgf_atrous: a tap on another plane, a step or
+ *          a wall, does not count). Pixels with r < 0.5 are copied.
+ * Sky pixels pass through. sun_radius must be sun_shadow's. */
+#include "voxrg/plugin.h"
+
+static const vrg_param_desc params[] = {
+    {"sun_radius", VRG_PARAM_FLOAT, 0.27, 0, 45, "angular radius of the sun's disc, degrees: sun_shadow's sun_radius"},
+    {"radius_scale", VRG_PARAM_FLOAT, 1, 0, 16, "filter radius in penumbra half-widths (0: no filtering)"},
+    {"max_radius", VRG_PARAM_FLOAT, 16, 1, 64, "largest filter radius, pixels"},
+    {"taps", VRG_PARAM_INT, 12, 4, 32, "taps per iteration"},
+    {"iterations", VRG_PARAM_INT, 2, 1, 4, "filter passes, each with half the previous radius"},
+    {"sigma_z", VRG_PARAM_FLOAT, 1, 0.001, 1000, "plane edge-stopping: most distance from p's plane per pixel of offset, in pixel footprints"},
+};
+
+static const vrg_slot_desc slots[] = {
+    {.name = "visibility", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED,
+     .help = "sun visibility in red (sun_shadow's, or its temporal accumulation)"},
+    {.name = "occluder", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "sun_shadow's occluder: mean blocker distance, -1 none"},
+    {.name = "position", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "G-buffer position; w = 0 on sky"},
+    {.name = "normal", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "G-buffer normal"},
+    {.name = "frame", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_UNIFORM, .help = "the scene's per-frame uniforms (camera)"},
+    {.name = "visibility", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16_SFLOAT,
+     .help = "filtered sun visibility"},
+    {.name = "radius", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16_SFLOAT,
+     .flags = VRG_SLOT_OPTIONAL, .help = "the first iteration's filter radius, pixels (written only when read)"},
+};
+
+static int create(vrg_pass *pass)
+{
+    /* packed texels (visibility, radius, plane, normal axis) the iterations pass on */
+    const char *names[] = {"ping", "pong"};
+    for (int i = 0; i < 2; i++)
+        if (!vrg_res_connected(vrg_pass_request_image(pass, names[i], VK_FORMAT_R32G32B32A32_UINT, 1.0f, VRG_ACCESS_STORAGE_WRITE)))
+            return -1;
+    return 0;
+}
+
+static void execute(vrg_pass *pass, VkCommandBuffer cmd)
+{
+    static const char *same[] = {"in.visibility", "occluder", "position", "normal"};
+    if (vrg_pass_require_same_size(pass, "out.visibility", same, 4) != 0)
+        return;
+    struct {
+        float sun_radius, radius_scale, max_radius, sigma_z; /* sun_radius in radians */
+        int32_t taps, iteration;
+    } pc = {(float)(vrg_param(pass, "sun_radius") * 3.14159265358979323846 / 180.0), (float)vrg_param(pass, "radius_scale"),
+            (float)vrg_param(pass, "max_radius"), (float)vrg_param(pass, "sigma_z"), vrg_param_int(pass, "taps"), 0};
+    int radius_out = vrg_res_connected(vrg_pass_res(pass, "radius"));
+    vrg_dispatch_desc pack = {.shader = "shadow_denoise.comp", .defines = radius_out ? "PACK RADIUS_OUT" : "PACK", .push = &pc,
+                              .push_size = sizeof pc, .pixel_loop = 1, .domain = "pong",
+                              .bindings = {{"in.visibility"}, {"occluder"}, {"position"}, {"normal"}, {"frame"},
+                                           {"pong", VRG_ACCESS_STORAGE_WRITE}, {"radius"}}};
+    if (vrg_dispatch(pass, cmd, &pack) != 0)
+        return;
+    int n = vrg_param_int(pass, "iterations");
+    const char *src = "pong", *spare[2] = {"ping", "pong"};
+    for (int i = 0; i < n; i++) {
+        int last = i == n - 1;
+        const char *dst = last ? "out.visibility" : spare[i & 1];
+        pc.iteration = i;
+        vrg_dispatch_desc d = {.shader = "shadow_denoise.comp", .defines = last ? "BLUR" : "BLUR TO_PACKED", .push = &pc,
+                               .push_size = sizeof pc, .pixel_loop = 1, .domain = dst,
+                               .bindings = {{src, VRG_ACCESS_STORAGE_READ}, {"frame"}, {dst, VRG_ACCESS_STORAGE_WRITE}}};
+        if (vrg_dispatch(pass, cmd, &d) != 0)
+            return;
+        src = dst;
+    }
+}
+
+static const vrg_plugin_desc desc = {
+    .abi_version = VRG_ABI_VERSION,
+    .name = "shadow_denoise",
+    .kind = VRG_PLUGIN_PASS,
+    .help = "sun visibility filter whose radius follows the penumbra width (occluder distance, sun radius, view depth), plane edge-stopping",
+    .shader_dir = VRG_PLUGIN_DIR,
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .slots = slots,
+    .slot_count = sizeof slots / sizeof slots[0],
+    .create = create,
+    .execute = execute,
+};
+
+VRG_PLUGIN(desc)
