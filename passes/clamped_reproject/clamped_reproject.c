@@ -1,7 +1,10 @@
 /* clamped_reproject: temporal accumulation that neither lags nor ghosts.
  * The history is reprojected and tested exactly as svgf_reproject does
  * (motion vectors; object id, normal and plane tests; bilinear taps, else
- * the 3x3 around the nearest pixel, else a restart). Then:
+ * the 3x3 around the nearest pixel, else a restart), except that where all
+ * four bilinear taps pass, the colour is resampled with a 4x4 Catmull-Rom
+ * clamped to those taps' range (cubic = 1): bilinear resampling every frame
+ * blurs the history more with every frame it is kept. Then:
  *   - neighbourhood clamp: in YCoCg, the reprojected slow history is
  *     clamped to mean +- clamp_k * sigma of this frame's 3x3 neighbourhood
  *     (non-sky pixels), so colour from another surface or from before a
@@ -28,6 +31,9 @@
 static const vrg_param_desc params[] = {
     {"alpha", VRG_PARAM_FLOAT, 0.1, 0.001, 1, "weight of this frame in the slow history (at least 1 / (length + 1))"},
     {"fast_alpha", VRG_PARAM_FLOAT, 0.5, 0.001, 1, "weight of this frame in the fast history"},
+    {"cubic", VRG_PARAM_INT, 0, 0, 1, "1: resample the history with Catmull-Rom where all 4 bilinear taps are on this surface"},
+    {"nearest", VRG_PARAM_INT, 0, 0, 1, "1: take the passing history tap nearest the reprojected point alone (no bilinear blend)"},
+    {"fallback", VRG_PARAM_INT, 1, 0, 1, "1: where no bilinear tap passes, average the passing taps of the 3x3 around the nearest (0: restart)"},
     {"max_length", VRG_PARAM_INT, 32, 1, 1000, "cap on the history length (frames)"},
     {"clamp_k", VRG_PARAM_FLOAT, 1.5, 0, 100, "clamp the slow history to the 3x3 mean +- clamp_k sigma (0: no clamp)"},
     {"antilag", VRG_PARAM_FLOAT, 1, 0, 100, "how strongly a slow/fast disagreement shortens the history (0: off)"},
@@ -76,7 +82,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         valid &= vrg_res_history_valid(pass, vrg_pass_res(pass, past[i]));
     struct {
         float alpha, fast_alpha, clamp_k, antilag, antilag_threshold, normal_threshold, plane_distance;
-        int32_t max_length, history_valid;
+        int32_t max_length, cubic, nearest, fallback, history_valid;
     } pc = {
         (float)vrg_param(pass, "alpha"),
         (float)vrg_param(pass, "fast_alpha"),
@@ -86,6 +92,9 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         (float)vrg_param(pass, "normal_threshold"),
         (float)vrg_param(pass, "plane_distance"),
         vrg_param_int(pass, "max_length"),
+        vrg_param_int(pass, "cubic"),
+        vrg_param_int(pass, "nearest"),
+        vrg_param_int(pass, "fallback"),
         valid,
     };
     (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "clamped_reproject.comp", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1});

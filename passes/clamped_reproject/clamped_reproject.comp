@@ -24,12 +24,15 @@ layout(binding = 14, rg32f) uniform writeonly image2D out_moments;
 layout(binding = 15, r16f) uniform writeonly image2D out_length;
 layout(push_constant) uniform Params {
     float alpha, fast_alpha, clamp_k, antilag, antilag_threshold, normal_threshold, plane_distance;
-    int max_length, history_valid;
+    int max_length, cubic, nearest, fallback, history_valid;
 } params;
 
 // YCoCg: the clamp box is tighter around real colours than one in RGB
 vec3 to_ycocg(vec3 c) { return vec3(0.25 * c.r + 0.5 * c.g + 0.25 * c.b, 0.5 * c.r - 0.5 * c.b, -0.25 * c.r + 0.5 * c.g - 0.25 * c.b); }
 vec3 from_ycocg(vec3 y) { return vec3(y.x + y.y - y.z, y.x + y.z, y.x - y.y - y.z); }
+
+// the range of the history taps that passed the surface tests
+vec3 lo, hi;
 
 // Does the previous frame's pixel t show this pixel's surface (x, n, chunk)?
 bool same_surface(ivec2 t, ivec2 size, vec3 x, vec3 n, uint chunk)
@@ -44,6 +47,31 @@ bool same_surface(ivec2 t, ivec2 size, vec3 x, vec3 n, uint chunk)
     return abs(dot(px.xyz - x, n)) <= params.plane_distance;
 }
 
+// Catmull-Rom weights of the 4 taps around f in [0, 1)
+vec4 catmull_rom_weights(float f)
+{
+    float f2 = f * f, f3 = f2 * f;
+    return vec4(-0.5 * f3 + f2 - 0.5 * f, 1.5 * f3 - 2.5 * f2 + 1.0, -1.5 * f3 + 2.0 * f2 + 0.5 * f, 0.5 * f3 - 0.5 * f2);
+}
+
+// The history at q resampled with a 4x4 Catmull-Rom: repeated bilinear
+// resampling blurs the history a little more every frame, which costs
+// small shadows and texture-scale detail under a moving camera
+vec3 catmull_rom(vec2 q, ivec2 size)
+{
+    ivec2 q0 = ifloor(q);
+    vec2 f = q - vec2(q0);
+    vec4 wx = catmull_rom_weights(f.x), wy = catmull_rom_weights(f.y);
+    vec3 s = vec3(0.0);
+    for (int j = 0; j < 4; j++) {
+        vec3 row = vec3(0.0);
+        for (int i = 0; i < 4; i++)
+            row += wx[i] * texelFetch(in_history, clamp(q0 + ivec2(i - 1, j - 1), ivec2(0), size - 1), 0).rgb;
+        s += wy[j] * row;
+    }
+    return s;
+}
+
 struct History {
     vec3 color, fast;
     vec2 moments;
@@ -52,7 +80,9 @@ struct History {
 
 void add_tap(inout History h, ivec2 t, float w)
 {
-    h.color += w * texelFetch(in_history, t, 0).rgb;
+    vec3 c = texelFetch(in_history, t, 0).rgb;
+    lo = min(lo, c), hi = max(hi, c);
+    h.color += w * c;
     h.fast += w * texelFetch(in_prev_fast, t, 0).rgb;
     h.moments += w * texelFetch(in_prev_moments, t, 0).xy;
     h.frames += w * texelFetch(in_prev_length, t, 0).r;
@@ -62,21 +92,32 @@ void add_tap(inout History h, ivec2 t, float w)
 float reproject(ivec2 p, ivec2 size, vec3 x, out History h)
 {
     h = History(vec3(0.0), vec3(0.0), vec2(0.0), 0.0);
+    lo = vec3(1e30), hi = vec3(-1e30);
     vec3 n = texelFetch(in_normal, p, 0).xyz;
     uint chunk = imageLoad(in_ids, p).y;
     vec2 q = vec2(p) - texelFetch(in_motion, p, 0).xy;
     ivec2 q0 = ifloor(q);
     vec2 f = q - vec2(q0);
-    float wsum = 0.0;
+    float wsum = 0.0, best_w = 0.0;
+    ivec2 best = ivec2(0);
     for (int i = 0; i < 4; i++) {
         ivec2 o = ivec2(i & 1, i >> 1);
         float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
         if (w > 0.0 && same_surface(q0 + o, size, x, n, chunk)) {
             add_tap(h, q0 + o, w);
             wsum += w;
+            best = w > best_w ? o : best;
+            best_w = max(best_w, w);
         }
     }
-    if (wsum < 1e-4) { // no bilinear tap: the 3x3 around the nearest pixel
+    // nearest: the passing tap that bilinear weighs most, alone
+    if (params.nearest != 0 && wsum >= 1e-4) {
+        h = History(vec3(0.0), vec3(0.0), vec2(0.0), 0.0);
+        add_tap(h, q0 + best, 1.0);
+        wsum = 1.0;
+    }
+    bool all_taps = wsum > 0.999;
+    if (wsum < 1e-4 && params.fallback != 0) { // no bilinear tap: the 3x3 around the nearest pixel
         h = History(vec3(0.0), vec3(0.0), vec2(0.0), 0.0);
         wsum = 0.0;
         ivec2 r = ifloor(q + 0.5);
@@ -90,6 +131,10 @@ float reproject(ivec2 p, ivec2 size, vec3 x, out History h)
     }
     if (wsum >= 1e-4) {
         h.color /= wsum;
+        // every bilinear tap on this surface: the sharper cubic, kept
+        // within the taps' range (no ringing, no other surface's colour)
+        if (params.cubic != 0 && params.nearest == 0 && all_taps)
+            h.color = clamp(catmull_rom(q, size), lo, hi);
         h.fast /= wsum;
         h.moments /= wsum;
         h.frames /= wsum;
