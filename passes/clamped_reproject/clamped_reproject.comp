@@ -14,16 +14,17 @@ layout(binding = 4, rg32ui) uniform readonly uimage2D in_ids;
 layout(binding = 5) uniform sampler2D in_history;
 layout(binding = 6) uniform sampler2D in_prev_fast;
 layout(binding = 7) uniform sampler2D in_prev_moments;
-layout(binding = 8) uniform sampler2D in_prev_length;
-layout(binding = 9) uniform sampler2D in_prev_position;
-layout(binding = 10) uniform sampler2D in_prev_normal;
-layout(binding = 11, rg32ui) uniform readonly uimage2D in_prev_ids;
+layout(binding = 8) uniform sampler2D in_prev_position;
+layout(binding = 9) uniform sampler2D in_prev_normal;
+layout(binding = 10, rg32ui) uniform readonly uimage2D in_prev_ids;
+#define FRAME_BINDING 11
+#include "frame.glsl"
 layout(binding = 12, rgba16f) uniform writeonly image2D out_color;
 layout(binding = 13, rgba16f) uniform writeonly image2D out_fast;
 layout(binding = 14, rg32f) uniform writeonly image2D out_moments;
 layout(binding = 15, r16f) uniform writeonly image2D out_length;
 layout(push_constant) uniform Params {
-    float alpha, fast_alpha, clamp_k, antilag, antilag_threshold, normal_threshold, plane_distance;
+    float alpha, fast_alpha, clamp_k, antilag, antilag_threshold, normal_threshold, plane_distance, footprints;
     int max_length, cubic, nearest, fallback, history_valid;
 } params;
 
@@ -33,6 +34,12 @@ vec3 from_ycocg(vec3 y) { return vec3(y.x + y.y - y.z, y.x + y.z, y.x - y.y - y.
 
 // the range of the history taps that passed the surface tests
 vec3 lo, hi;
+
+// How far (blocks) the previous point may lie from x: `footprints` pixel
+// steps on the surface at x. Far away a pixel spans several blocks, and a
+// voxel world's coplanar faces (canopy tops, terraces) in one chunk pass
+// the plane test blocks apart; 0: no limit
+float reach;
 
 // Does the previous frame's pixel t show this pixel's surface (x, n, chunk)?
 bool same_surface(ivec2 t, ivec2 size, vec3 x, vec3 n, uint chunk)
@@ -44,7 +51,7 @@ bool same_surface(ivec2 t, ivec2 size, vec3 x, vec3 n, uint chunk)
         return false;
     if (dot(texelFetch(in_prev_normal, t, 0).xyz, n) < params.normal_threshold)
         return false;
-    return abs(dot(px.xyz - x, n)) <= params.plane_distance;
+    return abs(dot(px.xyz - x, n)) <= params.plane_distance && (reach == 0.0 || distance(px.xyz, x) <= reach);
 }
 
 // Catmull-Rom weights of the 4 taps around f in [0, 1)
@@ -83,9 +90,10 @@ void add_tap(inout History h, ivec2 t, float w)
     vec3 c = texelFetch(in_history, t, 0).rgb;
     lo = min(lo, c), hi = max(hi, c);
     h.color += w * c;
-    h.fast += w * texelFetch(in_prev_fast, t, 0).rgb;
+    vec4 fast = texelFetch(in_prev_fast, t, 0); // history length in alpha
+    h.fast += w * fast.rgb;
     h.moments += w * texelFetch(in_prev_moments, t, 0).xy;
-    h.frames += w * texelFetch(in_prev_length, t, 0).r;
+    h.frames += w * fast.a;
 }
 
 // The reprojected history of p (weights normalised); wsum 0: none
@@ -94,6 +102,14 @@ float reproject(ivec2 p, ivec2 size, vec3 x, out History h)
     h = History(vec3(0.0), vec3(0.0), vec2(0.0), 0.0);
     lo = vec3(1e30), hi = vec3(-1e30);
     vec3 n = texelFetch(in_normal, p, 0).xyz;
+    reach = 0.0;
+    if (params.footprints > 0.0) {
+        vec3 v = x - frame.camera_pos.xyz;
+        float d = length(v);
+        // a pixel step at distance d, stretched on a surface seen at a slant
+        float step = d * 2.0 * tan(0.5 * frame.camera_pos.w) / float(size.y) / max(abs(dot(n, v / d)), 0.1);
+        reach = params.footprints * step;
+    }
     uint chunk = imageLoad(in_ids, p).y;
     vec2 q = vec2(p) - texelFetch(in_motion, p, 0).xy;
     ivec2 q0 = ifloor(q);
@@ -165,7 +181,7 @@ void neighbourhood(ivec2 p, ivec2 size, out vec3 mean, out vec4 sigma)
 void restart(ivec2 p, vec3 c, float l)
 {
     imageStore(out_color, p, vec4(c, 1.0));
-    imageStore(out_fast, p, vec4(c, 1.0));
+    imageStore(out_fast, p, vec4(c, 0.0));
     imageStore(out_moments, p, vec4(l, l * l, 0.0, 0.0));
     imageStore(out_length, p, vec4(0.0));
 }
@@ -203,7 +219,7 @@ void shade(ivec2 p)
     float a = max(params.alpha, 1.0 / (len + 1.0));
     float samples = min(len + 1.0, (2.0 - params.alpha) / params.alpha);
     imageStore(out_color, p, vec4(mix(slow, c, a), samples));
-    imageStore(out_fast, p, vec4(fast, 1.0));
+    imageStore(out_fast, p, vec4(fast, len));
     imageStore(out_moments, p, vec4(mix(h.moments, vec2(l, l * l), a), 0.0, 0.0));
     imageStore(out_length, p, vec4(len));
 }
