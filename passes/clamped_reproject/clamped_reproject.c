@@ -1,0 +1,126 @@
+/* clamped_reproject: temporal accumulation that neither lags nor ghosts.
+ * The history is reprojected and tested exactly as svgf_reproject does
+ * (motion vectors; object id, normal and plane tests; bilinear taps, else
+ * the 3x3 around the nearest pixel, else a restart), except that where all
+ * four bilinear taps pass, the colour is resampled with a 4x4 Catmull-Rom
+ * clamped to those taps' range (cubic = 1): bilinear resampling every frame
+ * blurs the history more with every frame it is kept. Then:
+ *   - neighbourhood clamp: in YCoCg, the reprojected slow history is
+ *     clamped to mean +- clamp_k * sigma of this frame's 3x3 neighbourhood
+ *     (non-sky pixels), so colour from another surface or from before a
+ *     lighting change cannot survive (clamp_k = 0: no clamp);
+ *   - fast history: a second accumulation with weight max(fast_alpha,
+ *     1 / (length + 1)) (read back from this pass's own `fast`), which
+ *     follows a change within a few frames;
+ *   - anti-lag: where the slow history and the fast one disagree by more
+ *     than antilag_threshold times what the fast history's noise explains
+ *     (the 3x3 luminance sigma * sqrt(fast_alpha / (2 - fast_alpha))), with
+ *     e the excess and r = 1 - 1 / (1 + antilag * e), the slow history
+ *     moves to the fast one by r and the history length is divided by
+ *     1 + antilag * e, so the lighting of now replaces that of frames ago
+ *     instead of leaking in at alpha (antilag = 0: off);
+ *   - history length out, for the variance and the spatial filter, and in
+ *     `fast`'s alpha, where this pass reads it back next frame (a
+ *     separate prev_length input would make 17 bindings, over a
+ *     dispatch's 16).
+ * footprints > 0 adds a reprojection test: the previous point lies within
+ * that many pixel steps of this one (a step at the point's distance,
+ * stretched by 1 / |N.V|): far away one pixel spans blocks, and coplanar
+ * faces in one chunk pass the plane test blocks apart.
+ * Weights: a = max(alpha, 1 / (length + 1)) for colour and moments alike,
+ * so the moments are averaged over the same samples as the colour and
+ * `color` alpha holds the effective sample count of that average:
+ * min(length + 1, (2 - alpha) / alpha), what an exponential average with
+ * weight alpha converges to (its variance is alpha / (2 - alpha) of one
+ * sample's). mean_variance divides the moments' variance by it. */
+#include "voxrg/plugin.h"
+
+static const vrg_param_desc params[] = {
+    {"alpha", VRG_PARAM_FLOAT, 0.1, 0.001, 1, "weight of this frame in the slow history (at least 1 / (length + 1))"},
+    {"fast_alpha", VRG_PARAM_FLOAT, 0.5, 0.001, 1, "weight of this frame in the fast history"},
+    {"cubic", VRG_PARAM_INT, 0, 0, 1, "1: resample the history with Catmull-Rom where all 4 bilinear taps are on this surface"},
+    {"nearest", VRG_PARAM_INT, 0, 0, 1, "1: take the passing history tap nearest the reprojected point alone (no bilinear blend)"},
+    {"fallback", VRG_PARAM_INT, 1, 0, 1, "1: where no bilinear tap passes, average the passing taps of the 3x3 around the nearest (0: restart)"},
+    {"footprints", VRG_PARAM_FLOAT, 0, 0, 100, "most distance of the previous point, in pixel steps on the surface (0: no limit)"},
+    {"max_length", VRG_PARAM_INT, 32, 1, 1000, "cap on the history length (frames)"},
+    {"clamp_k", VRG_PARAM_FLOAT, 1.5, 0, 100, "clamp the slow history to the 3x3 mean +- clamp_k sigma (0: no clamp)"},
+    {"antilag", VRG_PARAM_FLOAT, 1, 0, 100, "how strongly a slow/fast disagreement shortens the history (0: off)"},
+    {"antilag_threshold", VRG_PARAM_FLOAT, 2, 0, 100, "disagreement (in the fast history's noise sigmas) that noise may explain"},
+    {"normal_threshold", VRG_PARAM_FLOAT, 0.9, -1, 1, "least dot(normal, previous normal) of the same surface"},
+    {"plane_distance", VRG_PARAM_FLOAT, 0.05, 0, 100, "most distance (blocks) of the previous point from this pixel's plane"},
+};
+
+static const vrg_slot_desc slots[] = {
+    {.name = "illumination", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "this frame's noisy illumination"},
+    {.name = "motion", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "G-buffer motion vectors (pixels)"},
+    {.name = "position", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "G-buffer world position; w = 0 on sky"},
+    {.name = "normal", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "G-buffer normal"},
+    {.name = "ids", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_READ, .format = VK_FORMAT_R32G32_UINT,
+     .help = "G-buffer ids (block, chunk + 1)"},
+    {.name = "history", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED,
+     .help = "last frame's slow history: this pass's color@prev, or a filter's feedback@prev"},
+    {.name = "prev_fast", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED,
+     .help = "this pass's fast@prev (the history length in its alpha)"},
+    {.name = "prev_moments", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "this pass's moments@prev"},
+    {.name = "prev_position", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "the G-buffer's position@prev"},
+    {.name = "prev_normal", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "the G-buffer's normal@prev"},
+    {.name = "prev_ids", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_READ, .format = VK_FORMAT_R32G32_UINT,
+     .help = "the G-buffer's ids@prev"},
+    {.name = "frame", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_UNIFORM, .help = "the scene's per-frame uniforms (camera)"},
+    {.name = "color", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
+     .help = "accumulated illumination; alpha: effective sample count"},
+    {.name = "fast", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
+     .help = "the fast history (weight fast_alpha); alpha: the history length, read back next frame"},
+    {.name = "moments", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R32G32_SFLOAT,
+     .help = "first and second moments of luminance, averaged like the colour"},
+    {.name = "length", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16_SFLOAT,
+     .help = "history length in frames after anti-lag (0: restarted this frame)"},
+};
+
+static void execute(vrg_pass *pass, VkCommandBuffer cmd)
+{
+    /* the history images are read at reprojected positions: all at one size */
+    static const char *same[] = {"illumination", "motion", "position", "normal", "ids", "history", "prev_fast", "prev_moments",
+                                 "prev_position", "prev_normal", "prev_ids"};
+    if (vrg_pass_require_same_size(pass, "color", same, sizeof same / sizeof same[0]) != 0)
+        return;
+    /* every input from last frame must hold it: after a reload some may not */
+    static const char *past[] = {"history", "prev_fast", "prev_moments", "prev_position", "prev_normal", "prev_ids"};
+    int valid = 1;
+    for (unsigned i = 0; i < sizeof past / sizeof past[0]; i++)
+        valid &= vrg_res_history_valid(pass, vrg_pass_res(pass, past[i]));
+    struct {
+        float alpha, fast_alpha, clamp_k, antilag, antilag_threshold, normal_threshold, plane_distance, footprints;
+        int32_t max_length, cubic, nearest, fallback, history_valid;
+    } pc = {
+        (float)vrg_param(pass, "alpha"),
+        (float)vrg_param(pass, "fast_alpha"),
+        (float)vrg_param(pass, "clamp_k"),
+        (float)vrg_param(pass, "antilag"),
+        (float)vrg_param(pass, "antilag_threshold"),
+        (float)vrg_param(pass, "normal_threshold"),
+        (float)vrg_param(pass, "plane_distance"),
+        (float)vrg_param(pass, "footprints"),
+        vrg_param_int(pass, "max_length"),
+        vrg_param_int(pass, "cubic"),
+        vrg_param_int(pass, "nearest"),
+        vrg_param_int(pass, "fallback"),
+        valid,
+    };
+    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "clamped_reproject.comp", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1});
+}
+
+static const vrg_plugin_desc desc = {
+    .abi_version = VRG_ABI_VERSION,
+    .name = "clamped_reproject",
+    .kind = VRG_PLUGIN_PASS,
+    .help = "temporal accumulation with neighbourhood clamping, a fast history, anti-lag and the effective sample count",
+    .shader_dir = VRG_PLUGIN_DIR,
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .slots = slots,
+    .slot_count = sizeof slots / sizeof slots[0],
+    .execute = execute,
+};
+
+VRG_PLUGIN(desc)

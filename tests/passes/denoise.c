@@ -1,0 +1,250 @@
+#define _POSIX_C_SOURCE 200809L
+/* The issue-18 denoiser stages: clamped_reproject (neighbourhood clamp,
+ * anti-lag with the fast history), mean_variance (variance of the
+ * accumulated mean) and sparse_atrous (the cheaper filter).
+ * Usage: PROGRAM CASE (ctest registers one test per case). */
+#include "harness.h"
+
+/* Mean and largest blue of reproject.color, and mean history length, over
+ * non-sky pixels. */
+typedef struct {
+    double blue, worst_blue, length;
+} light_state;
+
+static light_state read_light(vrg_graph *g)
+{
+    light_state s = {0, 0, 0};
+    vrg_image_data col, len, pos;
+    CHECK(vrg_graph_read(g, "reproject.color", &col) == 0 && vrg_graph_read(g, "reproject.length", &len) == 0 &&
+              vrg_graph_read(g, "gbuffer.position", &pos) == 0,
+          "readback failed");
+    if (!col.pixels || !len.pixels || !pos.pixels)
+        return s;
+    int n = 0;
+    for (uint32_t y = 0; y < col.height; y++)
+        for (uint32_t x = 0; x < col.width; x++) {
+            if (px(&pos, x, y, 3) == 0)
+                continue;
+            s.blue += px(&col, x, y, 2);
+            s.worst_blue = fmax(s.worst_blue, px(&col, x, y, 2));
+            s.length += px(&len, x, y, 0);
+            n++;
+        }
+    CHECK(n > (int)(col.width * col.height) / 2, "only %d pixels see the floor", n);
+    s.blue /= n > 0 ? n : 1;
+    s.length /= n > 0 ? n : 1;
+    free(col.pixels), free(len.pixels), free(pos.pixels);
+    return s;
+}
+
+/* The light (blue) drops from 1 to 0 after 10 still frames: the state one
+ * frame after, with the given settings. */
+static light_state after_light_change(const char *clamp, const char *antilag, light_state *before)
+{
+    static const char *reads[] = {"reproject.color", "reproject.length", "gbuffer.position"};
+    const char *sets[] = {clamp, antilag};
+    light_state s = {0, 0, 0};
+    vrg_graph *g = load_with("denoise_light.ini", sets, 2, reads, 3);
+    if (!g)
+        return s;
+    for (int i = 0; i < 10; i++)
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    *before = read_light(g);
+    CHECK(vrg_graph_set_param(g, "light.value", 0.0) == 0, "light.value not set");
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    s = read_light(g);
+    vrg_graph_destroy(g);
+    return s;
+}
+
+/* Neighbourhood clamping: once the light has changed, the reprojected
+ * history is clamped to this frame's 3x3 neighbourhood, so no pixel keeps
+ * the old light; without the clamp 80% of it stays (alpha 0.2). */
+static void test_denoise_clamp(void)
+{
+    light_state before, off = after_light_change("reproject.clamp_k=0", "reproject.antilag=0", &before);
+    light_state on = after_light_change("reproject.clamp_k=1.5", "reproject.antilag=0", &before);
+    printf("denoise_clamp: blue left %.4f unclamped, %.4f clamped (worst %.4f)\n", off.blue, on.blue, on.worst_blue);
+    CHECK(before.blue > 0.99, "before the change the light is %g, want 1", before.blue);
+    CHECK(off.blue > 0.75, "unclamped history keeps only %g of the old light: the case no longer shows lag", off.blue);
+    CHECK(on.worst_blue < 0.05, "clamped history keeps up to %g of the old light", on.worst_blue);
+}
+
+/* Anti-lag: without the clamp, the fast history sees the change within a
+ * frame; the slow one moves to it and the history length is cut, where
+ * without anti-lag it lags. A still, unchanged light (noise free) must not
+ * trigger it: the history grows to full length first. */
+static void test_denoise_antilag(void)
+{
+    light_state before_on, before_off;
+    light_state on = after_light_change("reproject.clamp_k=0", "reproject.antilag=1", &before_on);
+    light_state off = after_light_change("reproject.clamp_k=0", "reproject.antilag=0", &before_off);
+    printf("denoise_antilag: blue left %.4f with anti-lag (length %.2f), %.4f without (length %.2f)\n", on.blue, on.length, off.blue,
+           off.length);
+    CHECK(before_on.length > 8.5, "anti-lag cut a still history to %g frames (want 9)", before_on.length);
+    CHECK(on.blue < 0.6 * off.blue, "anti-lag leaves %g of the old light, without %g", on.blue, off.blue);
+    CHECK(on.length < 3 && off.length > 8.5, "history length %g with anti-lag, %g without", on.length, off.length);
+}
+
+/* mean_variance on a still noisy scene: equal to (m2 - m1^2) / N (N the
+ * effective sample count in reproject.color's alpha) once history is
+ * old, and falling as the history grows: the variance of the mean, not of
+ * one sample (whose estimate stays put). */
+static void test_denoise_variance(void)
+{
+    static const char *reads[] = {"reproject.color", "reproject.moments", "reproject.length", "gbuffer.position", "variance.color"};
+    vrg_graph *g = load_with("denoise_blocks.ini", NULL, 0, reads, 5);
+    if (!g)
+        return;
+    double mean_var[2] = {0, 0}, mean_sample_var[2] = {0, 0};
+    int frames[2] = {6, 30}, done = 0;
+    for (int round = 0; round < 2; round++) {
+        for (; done < frames[round]; done++)
+            CHECK(vrg_graph_frame(g) == 0, "frame failed");
+        vrg_image_data col, mom, len, pos, var;
+        CHECK(vrg_graph_read(g, "reproject.color", &col) == 0 && vrg_graph_read(g, "reproject.moments", &mom) == 0 &&
+                  vrg_graph_read(g, "reproject.length", &len) == 0 && vrg_graph_read(g, "gbuffer.position", &pos) == 0 &&
+                  vrg_graph_read(g, "variance.color", &var) == 0,
+              "readback failed");
+        int n = 0, bad = 0;
+        for (uint32_t y = 0; y < col.height; y++)
+            for (uint32_t x = 0; x < col.width; x++) {
+                if (px(&pos, x, y, 3) == 0 || px(&len, x, y, 0) + 1 < 4)
+                    continue;
+                double m1 = px(&mom, x, y, 0), m2 = px(&mom, x, y, 1), sample = fmax(0.0, m2 - m1 * m1);
+                double want = sample / fmax(px(&col, x, y, 3), 1.0), got = px(&var, x, y, 3);
+                /* half-float output; m2 - m1^2 cancels in float */
+                if (fabs(got - want) > 2e-3 * want + 1e-4 * m2 / fmax(px(&col, x, y, 3), 1.0) + 1e-7) {
+                    if (bad < 3)
+                        fprintf(stderr, "  (%u, %u): gpu %.6g cpu %.6g\n", x, y, got, want);
+                    bad++;
+                }
+                mean_var[round] += got, mean_sample_var[round] += sample, n++;
+            }
+        CHECK(n > 5000, "round %d: only %d pixels with old history", round, n);
+        CHECK(bad == 0, "after %d frames %d pixels differ from (m2 - m1^2) / N", frames[round], bad);
+        mean_var[round] /= n > 0 ? n : 1;
+        mean_sample_var[round] /= n > 0 ? n : 1;
+        vrg_image_data *all[] = {&col, &mom, &len, &pos, &var};
+        for (int i = 0; i < 5; i++)
+            free(all[i]->pixels);
+    }
+    printf("denoise_variance: mean %.3g after 6 frames, %.3g after 30 (one sample's: %.3g, %.3g)\n", mean_var[0], mean_var[1],
+           mean_sample_var[0], mean_sample_var[1]);
+    CHECK(mean_var[1] < 0.5 * mean_var[0], "the variance of the mean fell only from %g to %g", mean_var[0], mean_var[1]);
+    CHECK(mean_sample_var[1] > 0.5 * mean_sample_var[0], "one sample's variance fell from %g to %g: the scene is not still",
+          mean_sample_var[0], mean_sample_var[1]);
+    vrg_graph_destroy(g);
+}
+
+static double mse_rgb(const vrg_image_data *a, const vrg_image_data *b)
+{
+    double e = 0;
+    for (uint32_t i = 0; i < a->width * a->height; i++)
+        for (int c = 0; c < 3; c++) {
+            double d = (double)a->pixels[4 * i + c] - b->pixels[4 * i + c];
+            e += d * d;
+        }
+    return e / (3.0 * a->width * a->height);
+}
+
+/* sparse_atrous on the young history of a still scene (4 frames): closer to
+ * the converged reference than its input, the accumulated mean (the same
+ * graph with every pixel skipped); and with long_history = 1,
+ * long_iterations = 0 every pixel with history is copied through. */
+static double denoised_mse(const char *set, const vrg_image_data *ref)
+{
+    static const char *reads[] = {"denoised.color"};
+    vrg_graph *g = load_with("denoise_blocks.ini", &set, set ? 1 : 0, reads, 1);
+    if (!g)
+        return 0;
+    for (int i = 0; i < 4; i++)
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_image_data den;
+    double e = 0;
+    if (vrg_graph_read(g, "denoised.color", &den) == 0) {
+        e = mse_rgb(&den, ref);
+        free(den.pixels);
+    } else
+        CHECK(0, "readback failed");
+    vrg_graph_destroy(g);
+    return e;
+}
+
+static void test_denoise_atrous(void)
+{
+    static const char *reads[] = {"variance.color", "atrous.color", "reproject.length"};
+    static const char *ref_reads[] = {"converge.color"};
+    vrg_graph *r = load_with("svgf_blocks_ref.ini", NULL, 0, ref_reads, 1);
+    if (!r)
+        return;
+    for (uint32_t i = 0; i < vrg_graph_subframes(r); i++)
+        CHECK(vrg_graph_frame(r) == 0, "reference frame failed");
+    vrg_image_data ref;
+    CHECK(vrg_graph_read(r, "converge.color", &ref) == 0, "readback failed");
+    vrg_graph_destroy(r);
+    if (!ref.pixels)
+        return;
+    double e_in = denoised_mse("atrous.skip_variance=1000000", &ref), e_den = denoised_mse(NULL, &ref);
+    printf("denoise_atrous: accumulated mean %.3g, filtered %.3g (%.2fx) after 4 frames\n", e_in, e_den, e_in / e_den);
+    CHECK(e_den < 0.6 * e_in, "filtered MSE %.3g against the unfiltered %.3g", e_den, e_in);
+    free(ref.pixels);
+
+    const char *sets[] = {"atrous.long_history=1", "atrous.long_iterations=0"};
+    vrg_graph *g = load_with("denoise_blocks.ini", sets, 2, reads, 3);
+    if (!g)
+        return;
+    CHECK(vrg_graph_frame(g) == 0 && vrg_graph_frame(g) == 0 && vrg_graph_frame(g) == 0, "frame failed");
+    vrg_image_data in, out, len;
+    CHECK(vrg_graph_read(g, "variance.color", &in) == 0 && vrg_graph_read(g, "atrous.color", &out) == 0 &&
+              vrg_graph_read(g, "reproject.length", &len) == 0,
+          "readback failed");
+    int kept = 0, changed = 0;
+    for (uint32_t i = 0; in.pixels && out.pixels && len.pixels && i < in.width * in.height; i++) {
+        if (len.pixels[4 * i] < 1)
+            continue;
+        kept++;
+        for (int c = 0; c < 4; c++)
+            /* through a packed half and back: exact */
+            changed += in.pixels[4 * i + c] != out.pixels[4 * i + c];
+    }
+    CHECK(kept > 5000 && changed == 0, "long history: %d of %d pixels' values changed", changed, kept);
+    free(in.pixels), free(out.pixels), free(len.pixels);
+    vrg_graph_destroy(g);
+}
+
+/* Bad settings are errors naming the parameter: feedback past the last
+ * iteration, an even window. */
+static void test_denoise_settings(void)
+{
+    static const struct {
+        const char *set, *want;
+    } cases[] = {
+        {"atrous.feedback=9", "feedback = 9: there are only 3 iterations"},
+        {"variance.size=4", "size = 4: the window needs a centre"},
+    };
+    for (unsigned c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        char *buf = NULL;
+        size_t len = 0;
+        FILE *diag = open_memstream(&buf, &len);
+        vrg_graph_desc d = {.path = TEST_DIR "/graphs/denoise_blocks.ini", .diag = diag, .overrides = &cases[c].set, .override_count = 1};
+        vrg_graph *g = NULL;
+        int rc = vrg_graph_load(ctx, &d, &g);
+        fclose(diag);
+        CHECK(rc != 0 && buf && strstr(buf, cases[c].want), "%s: not refused with '%s':\n%s", cases[c].set, cases[c].want, buf ? buf : "");
+        free(buf);
+        vrg_graph_destroy(g);
+    }
+}
+
+int main(int argc, char **argv)
+{
+    static const test_case cases[] = {
+        {"denoise_clamp", test_denoise_clamp, 1},
+        {"denoise_antilag", test_denoise_antilag, 1},
+        {"denoise_variance", test_denoise_variance, 1},
+        {"denoise_atrous", test_denoise_atrous, 1},
+        {"denoise_settings", test_denoise_settings, 1},
+    };
+    return run_case(argc, argv, cases, sizeof cases / sizeof cases[0]);
+}
