@@ -78,7 +78,8 @@ typedef struct window_state {
     vrg_overlay_layer layer;
     vrg_panel panel;
     int save_requested;  /* Ctrl+S */
-    int panel_select, panel_step, panel_fine, panel_switch; /* pending keys */
+    int s_saves;         /* S went down with Ctrl: no flying back until it is up */
+    vrg_graph *g, *gb;   /* this frame's graphs, for the panel's keys */
     int mouse_was_down, mouse_on_panel; /* a left press that fell on the panel drags there, not the divider */
     /* showing a resource other than the output: Tab / Shift+Tab / 0-9 */
     int shown;                /* index into vrg_graph_image_name, -1: the output */
@@ -210,9 +211,14 @@ static void fly(window_state *w, vrg_camera *cam, float dt)
     right[0] = cosf(yaw), right[1] = 0, right[2] = -sinf(yaw);
     /* yaw 0 looks down -z and + turns left: right is +x at yaw 0 */
     float move[3] = {0, 0, 0};
-    float f = (float)(glfwGetKey(win, GLFW_KEY_W) == GLFW_PRESS) - (float)(glfwGetKey(win, GLFW_KEY_S) == GLFW_PRESS);
+    /* Ctrl+S saves: its S does not fly, up to its release */
+    float f = w->s_saves ? 0.0f : (float)(glfwGetKey(win, GLFW_KEY_W) == GLFW_PRESS) - (float)(glfwGetKey(win, GLFW_KEY_S) == GLFW_PRESS);
     float r = (float)(glfwGetKey(win, GLFW_KEY_D) == GLFW_PRESS) - (float)(glfwGetKey(win, GLFW_KEY_A) == GLFW_PRESS);
-    float u = (float)(glfwGetKey(win, GLFW_KEY_SPACE) == GLFW_PRESS) - (float)(glfwGetKey(win, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS);
+    /* Shift with an arrow is the panel's fine step, not a descent */
+    int arrow = glfwGetKey(win, GLFW_KEY_LEFT) == GLFW_PRESS || glfwGetKey(win, GLFW_KEY_RIGHT) == GLFW_PRESS ||
+                glfwGetKey(win, GLFW_KEY_UP) == GLFW_PRESS || glfwGetKey(win, GLFW_KEY_DOWN) == GLFW_PRESS;
+    float u = (float)(glfwGetKey(win, GLFW_KEY_SPACE) == GLFW_PRESS) -
+              (float)(glfwGetKey(win, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS && !(w->panel.open && arrow));
     for (int i = 0; i < 3; i++)
         move[i] = f * fwd[i] + r * right[i];
     move[1] += u;
@@ -238,18 +244,22 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
     (void)scancode;
     window_state *w = glfwGetWindowUserPointer(win);
     int arrow = key == GLFW_KEY_UP || key == GLFW_KEY_DOWN || key == GLFW_KEY_LEFT || key == GLFW_KEY_RIGHT;
+    if (key == GLFW_KEY_S && action == GLFW_RELEASE)
+        w->s_saves = 0;
     if (action != GLFW_PRESS && !(action == GLFW_REPEAT && arrow))
         return;
-    if (w->panel.open && arrow) { /* applied in the loop, on the graph of that frame */
-        w->panel_select += key == GLFW_KEY_DOWN ? 1 : key == GLFW_KEY_UP ? -1 : 0;
-        w->panel_step += key == GLFW_KEY_RIGHT ? 1 : key == GLFW_KEY_LEFT ? -1 : 0;
-        w->panel_fine = (mods & GLFW_MOD_SHIFT) != 0;
-    } else if (key == GLFW_KEY_S && (mods & GLFW_MOD_CONTROL))
-        w->save_requested = 1;
+    /* the panel's keys act at once, in order (several may come in one poll) */
+    vrg_graph *edited = w->panel.side && w->gb ? w->gb : w->g;
+    if (w->panel.open && (key == GLFW_KEY_UP || key == GLFW_KEY_DOWN))
+        vrg_panel_select(&w->panel, edited, key == GLFW_KEY_DOWN ? 1 : -1);
+    else if (w->panel.open && arrow)
+        vrg_panel_step(&w->panel, edited, key == GLFW_KEY_RIGHT ? 1 : -1, (mods & GLFW_MOD_SHIFT) != 0);
+    else if (key == GLFW_KEY_S && (mods & GLFW_MOD_CONTROL))
+        w->save_requested = w->s_saves = 1;
     else if (key == GLFW_KEY_M || key == GLFW_KEY_F2)
         w->panel.open = !w->panel.open;
-    else if (key == GLFW_KEY_B && w->panel.open)
-        w->panel_switch = 1;
+    else if (key == GLFW_KEY_B && w->panel.open && w->gb)
+        w->panel.side = !w->panel.side;
     else if (key == GLFW_KEY_F1)
         w->details = !w->details;
     else if (key == GLFW_KEY_N)
@@ -654,18 +664,10 @@ static VkExtent2D render_size(const window_state *w, uint32_t width, uint32_t he
     return (VkExtent2D){rw ? rw : 1, rh ? rh : 1};
 }
 
-/* The panel's pending keys and mouse, on the graph it edits; Ctrl+S saves. */
+/* The panel's mouse, on the graph it edits; Ctrl+S saves. */
 static void drive_panel(window_state *w, const vrg_run_options *o, vrg_graph *g, vrg_graph *gb)
 {
-    if (w->panel_switch && gb)
-        w->panel.side = !w->panel.side;
-    w->panel_switch = 0;
     vrg_graph *x = w->panel.side && gb ? gb : g;
-    if (w->panel_select)
-        vrg_panel_select(&w->panel, x, w->panel_select);
-    if (w->panel_step)
-        vrg_panel_step(&w->panel, x, w->panel_step > 0 ? 1 : -1, w->panel_fine);
-    w->panel_select = w->panel_step = 0;
     int held = glfwGetMouseButton(w->window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
     double mx, my;
     glfwGetCursorPos(w->window, &mx, &my);
@@ -802,7 +804,18 @@ int vrg_cli_run(const vrg_run_options *o)
     int frames = 0, shots = 0;
     rc = 0;
     while (!glfwWindowShouldClose(w.window) && (!o->frames || (uint32_t)frames < o->frames)) {
+        w.g = g, w.gb = gb;
         glfwPollEvents();
+        /* a saved graph reloads before this frame: the new graph renders
+         * before anything reads its images */
+        int changed = vrg_graph_source_changed(g) || (gb && vrg_graph_source_changed(gb));
+        if (vrg_graph_source_changed(g))
+            (void)vrg_graph_reload(&g); /* a broken graph or plugin is reported; the running one stays */
+        if (gb && vrg_graph_source_changed(gb))
+            (void)vrg_graph_reload(&gb);
+        char why[1024];
+        if (changed && gb && vrg_graph_same_world(g, gb, why, sizeof why) != 0) /* an edit may part them: say so, keep going */
+            fprintf(stderr, "warning: --ab: %s: the sides no longer show the same frames\n", why);
         double t = now_s();
         float dt = (float)(t - last);
         last = t;
@@ -849,14 +862,6 @@ int vrg_cli_run(const vrg_run_options *o)
         w.time_step = 0;
         if (rc)
             break;
-        int changed = vrg_graph_source_changed(g) || (gb && vrg_graph_source_changed(gb));
-        if (vrg_graph_source_changed(g))
-            (void)vrg_graph_reload(&g); /* a broken graph or plugin is reported; the running one stays */
-        if (gb && vrg_graph_source_changed(gb))
-            (void)vrg_graph_reload(&gb);
-        char why[1024];
-        if (changed && gb && vrg_graph_same_world(g, gb, why, sizeof why) != 0) /* an edit may part them: say so, keep going */
-            fprintf(stderr, "warning: --ab: %s: the sides no longer show the same frames\n", why);
         if (vrg_graph_reload_ms(g) != reloaded) {
             reloaded = vrg_graph_reload_ms(g);
             fprintf(stderr, "reloaded: %.0f ms from save to frame\n", reloaded);
