@@ -387,6 +387,28 @@ sky = [px(x, 24) for x in range(0, 60)]  # below the band
 assert white > 100 and max(map(max, band)) < min(map(max, sky)) and len(set(band)) > 1, (white, band[:4], sky[:4])
 PY
     then ok; else bad "window screenshot shows the scene and the overlay"; fi
+    # render scale: the window's size, the graph at half of it, upscaled
+    # nearest (2x2 blocks of one colour) or bilinear (blended)
+    for filter in nearest bilinear; do
+        expect_rc 0 "run --scale 0.5 --filter $filter" "$voxrg" run "$tests/graphs/blocks_wall.ini" --validate --window 192x128 --scale 0.5 \
+            --filter $filter --frames 2 --screenshot "$out/scaled_$filter.png"
+    done
+    if python3 - "$out" "$tests/cli" <<'PY'
+import sys
+sys.dont_write_bytecode = True
+sys.path.insert(0, sys.argv[2])
+from png_pixels import load
+def blocks(name):  # below the overlay: how many 2x2 blocks hold one colour, of how many
+    w, h, px = load(sys.argv[1] + "/scaled_%s.png" % name)
+    assert (w, h) == (192, 128), (w, h)
+    cells = [(x, y) for y in range(40, h, 2) for x in range(0, w, 2)]
+    return sum(len({px(x + i, y + j) for i in (0, 1) for j in (0, 1)}) == 1 for x, y in cells), len(cells)
+same, cells = blocks("nearest")
+assert same == cells, (same, cells)
+same, cells = blocks("bilinear")
+assert same < cells * 0.95, (same, cells)
+PY
+    then ok; else bad "--scale 0.5 renders at half the window, upscaled as --filter says"; fi
     # another image than the output, through the display stage: normals as colours
     expect_rc 0 "run --show gbuffer.normal" "$voxrg" run "$tests/graphs/gbuffer_blocks.ini" --show gbuffer.normal --validate \
         --size 192x128 --frames 3 --screenshot "$out/normals.png"
@@ -456,6 +478,25 @@ assert math.dist((x0, y0, z0), (x1, y1, z1)) > 0.5, (rows[0], rows[-1])   # W fl
 assert abs(yaw1 - yaw0) > 1, (yaw0, yaw1)                               # the drag turned the view
 PY
         then ok; else bad "the driven window: resized screenshot, flight and turn in the recorded path"; fi
+        # a resize keeps the scale: a window of 160x100 at 0.5 renders 80x50
+        cat >"$out/scale.sh" <<'SH'
+#!/usr/bin/env bash
+set -u
+voxrg=$1 graph=$2 out=$3
+cd "$out"
+"$voxrg" run "$graph" --validate --window 192x128 --scale 0.5 >scale.stdout 2>scale.stderr &
+pid=$!
+fail() { kill $pid; echo "scale step $1 failed; voxrg's stderr:" >&2; tail -20 scale.stderr >&2; exit "$1"; }
+wid=$(timeout 120 xdotool search --sync --name '^voxrg' | head -1)
+[ -n "$wid" ] || fail 3
+for _ in $(seq 600); do xdotool getwindowname "$wid" | grep -q fps && break; sleep 0.1; done
+xdotool windowsize "$wid" 160 100
+for _ in $(seq 600); do grep -q "window resized: graph now 80x50" scale.stderr && break; sleep 0.1; done
+grep -q "window resized: graph now 80x50" scale.stderr || fail 4
+xdotool windowfocus --sync "$wid" && xdotool key Escape
+wait $pid || { rc=$?; tail -20 scale.stderr >&2; exit $rc; }
+SH
+        expect_rc 0 "a resized window keeps the render scale" timeout 300 bash "$out/scale.sh" "$voxrg" "$tests/graphs/blocks_wall.ini" "$out"
         # the parameter panel driven by keys: open it (M), hide the overlay
         # (H: the screenshots show the picture alone), scene.time_of_day
         # 10 -> 12 and view.exposure (absent from the file) 0.35 -> 0.4, a
