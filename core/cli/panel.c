@@ -191,10 +191,10 @@ void vrg_panel_draw(vrg_panel *p, vrg_graph *g, const char *file, vrg_overlay_la
     p->line_row[0] = -1;
     /* the rows that fit, scrolled to keep the selected one in view (4 lines
      * go to the title, help, status and a "more" note) */
-    int fit = ((int)l->height - 8 - 2 * VRG_OVERLAY_PAD) / VRG_OVERLAY_LINE_H - 4, first = 0;
+    int fit = ((int)l->height - 8 - 2 * VRG_OVERLAY_PAD) / VRG_OVERLAY_LINE_H - 4;
     fit = fit > VRG_OVERLAY_LINES - 4 ? VRG_OVERLAY_LINES - 4 : fit;
-    while (first < p->selected && p->selected - first >= fit / 2 && first + fit < n + (int)vrg_graph_pass_count(g))
-        first++;
+    /* a third of the rows above the selected one: with a title each, it still fits */
+    int first = p->selected - fit / 3 > 0 ? p->selected - fit / 3 : 0;
     int highlight = -1;
     for (int i = 0, shown_pass = -1; i < n && ov.lines < fit + 1; i++) {
         if (i < first)

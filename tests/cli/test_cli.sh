@@ -545,6 +545,29 @@ assert diff(live, reloaded) == 0, "the reload after the save changed the image: 
 assert diff(live, render) <= 1, "the saved graph renders otherwise than the live tweak: %d" % diff(live, render)
 PY
         then ok; else bad "the panel's tweak shows, and the saved graph renders it the same"; fi
+        # with --ab, B switches the panel to B's graph: the save edits b.ini alone
+        cp "$tests/graphs/blocks_wall.ini" "$out/panel/a.ini" && cp "$tests/graphs/blocks_wall.ini" "$out/panel/b.ini"
+        cat >"$out/panel_ab.sh" <<'SH'
+#!/usr/bin/env bash
+set -u
+voxrg=$1 out=$2
+cd "$out"
+"$voxrg" run a.ini --ab b.ini --validate --window 192x128 >ab.stdout 2>ab.stderr &
+pid=$!
+fail() { kill $pid; echo "--ab panel step $1 failed; voxrg's stderr:" >&2; tail -20 ab.stderr >&2; exit "$1"; }
+wid=$(timeout 120 xdotool search --sync --name '^voxrg' | head -1)
+[ -n "$wid" ] || fail 3
+for _ in $(seq 600); do xdotool getwindowname "$wid" | grep -q fps && break; sleep 0.1; done
+xdotool windowfocus --sync "$wid"
+xdotool key m b Down Down Down Down Down Down Right ctrl+s
+for _ in $(seq 600); do grep -q "saved 1 value to b.ini" ab.stderr && break; sleep 0.1; done
+grep -q "saved 1 value to b.ini" ab.stderr || fail 4
+xdotool key Escape
+wait $pid || { rc=$?; tail -20 ab.stderr >&2; exit $rc; }
+SH
+        expect_rc 0 "the --ab panel edits B" timeout 300 bash "$out/panel_ab.sh" "$voxrg" "$out/panel"
+        cmp -s "$tests/graphs/blocks_wall.ini" "$out/panel/a.ini" && ok || bad "--ab: the panel on B changed a.ini"
+        diff "$tests/graphs/blocks_wall.ini" "$out/panel/b.ini" | grep -qx "> exposure = 0.36" && ok || bad "--ab: b.ini did not get B's exposure"
     else
         echo "skip: xdotool not installed (scripts/setup.sh installs it)"
     fi
