@@ -96,6 +96,9 @@ typedef struct options {
     int dump_count;
     char dump_buf[4096];
     uint32_t width, height, frames; /* frames 0: until interrupted */
+    uint32_t window_w, window_h;    /* run: the window's size */
+    double scale;                   /* run: render size / window size; 0: not given */
+    int filter;                     /* run: the upscale, 0 nearest, 1 bilinear, -1 not given */
     uint32_t json_frames;           /* per-frame timings kept for --json: the last N */
     double interval_ms, gpu_timeout_s;
     int validate, no_device, help, watch, sequence;
@@ -113,16 +116,23 @@ static int usage_error(const char *usage, const char *fmt, const char *arg)
 static int is_valued_option(const char *a)
 {
     static const char *valued[] = {"--dot", "--out", "--json", "--device", "--set", "--size", "--frames", "--dump", "--camera",
-                                   "--screenshot", "--ab", "--record", "--show", "--interval", "--json-frames", "--gpu-timeout"};
+                                   "--screenshot", "--ab", "--record", "--show", "--interval", "--json-frames", "--gpu-timeout",
+                                   "--window", "--scale", "--filter"};
     for (size_t i = 0; i < sizeof valued / sizeof valued[0]; i++)
         if (!strcmp(a, valued[i]))
             return 1;
     return 0;
 }
 
+static const char *usage_run;
+
+/* The window's options: given to another command they would do nothing. */
+static int run_only(const char *a) { return !strcmp(a, "--window") || !strcmp(a, "--scale") || !strcmp(a, "--filter"); }
+
 static int parse_options(int argc, char **argv, options *o, const char *usage)
 {
     memset(o, 0, sizeof *o);
+    o->filter = -1;
     o->frames = 1;
     o->json_frames = JSON_FRAMES_DEFAULT;
     o->out = "out";
@@ -145,6 +155,8 @@ static int parse_options(int argc, char **argv, options *o, const char *usage)
             return usage_error(usage, "unknown option '%s'", a);
         else if (a[0] == '-' && !next)
             return usage_error(usage, "%s needs a value", a);
+        else if (run_only(a) && usage != usage_run)
+            return usage_error(usage, "%s is an option of `voxrg run` (the window)", a);
         else if (!strcmp(a, "--dot"))
             o->dot = next;
         else if (!strcmp(a, "--out"))
@@ -170,6 +182,18 @@ static int parse_options(int argc, char **argv, options *o, const char *usage)
         } else if (!strcmp(a, "--size")) {
             if (vrg_cli_parse_size(next, &o->width, &o->height) != 0)
                 return usage_error(usage, "--size '%s': expected WxH, " VRG_CLI_SIZE_RANGE ", e.g. 320x180", next);
+        } else if (!strcmp(a, "--window")) {
+            if (vrg_cli_parse_size(next, &o->window_w, &o->window_h) != 0)
+                return usage_error(usage, "--window '%s': expected WxH, " VRG_CLI_SIZE_RANGE ", e.g. 1280x720", next);
+        } else if (!strcmp(a, "--scale")) {
+            char *end;
+            o->scale = strtod(next, &end);
+            if (*end || end == next || !(o->scale > 0 && o->scale <= 1))
+                return usage_error(usage, "--scale '%s': expected a number in (0, 1], e.g. 0.5", next);
+        } else if (!strcmp(a, "--filter")) {
+            o->filter = !strcmp(next, "nearest") ? 0 : !strcmp(next, "bilinear") ? 1 : -2;
+            if (o->filter == -2)
+                return usage_error(usage, "--filter '%s': expected nearest or bilinear", next);
         } else if (!strcmp(a, "--frames")) {
             char *end;
             long n = strtol(next, &end, 10);
@@ -515,14 +539,26 @@ static int cmd_render(int argc, char **argv)
 }
 
 static const char *usage_run =
-    "usage: voxrg run GRAPH [--ab GRAPH_B] [--size WxH] [--frames N] [--set PASS.PARAM=VALUE]...\n"
+    "usage: voxrg run GRAPH [--ab GRAPH_B] [--window WxH] [--scale S | --size WxH] [--filter nearest|bilinear]\n"
+    "                       [--frames N] [--set PASS.PARAM=VALUE]...\n"
     "                       [--camera PATH] [--record PATH] [--show RESOURCE] [--screenshot FILE] [--validate]\n"
     "                       [--gpu-timeout S] [--device NAME|INDEX]\n"
     "Renders GRAPH in a window until it is closed (or for N frames), presenting its output.\n"
+    "The window is --window WxH (default 1280x720, at most the screen; with --size\n"
+    "alone, that size). The graph renders at the window's size times --scale S\n"
+    "(0 < S <= 1; default 0.5, 1 with --size) or at a fixed --size WxH, and is\n"
+    "upscaled to the window (--filter, default bilinear; N toggles); resizing the\n"
+    "window resizes the graph at the same scale.\n"
     "W/A/S/D move, Space up, Shift down, hold the right mouse button to look around,\n"
     "scroll or +/- change the speed, T starts or stops the day cycle, [ and ] step the\n"
-    "time of day, F or Pause pauses, H hides the overlay, P or F12 saves\n"
-    "screenshot-NNN.png, Esc quits. --ab renders GRAPH_B\n"
+    "time of day, F or Pause pauses, H hides the overlay, F1 shows per-pass times and\n"
+    "the keys, P or F12 saves screenshot-NNN.png, Esc quits.\n"
+    "M or F2 opens the parameter panel: Up/Down (or a click) select a parameter,\n"
+    "Left/Right (or a drag) change it within its range, Shift for fine steps; it\n"
+    "applies at once (those marked 'reload' on save); Ctrl+S writes the changed\n"
+    "values into the graph file (only their text changes), which then reloads;\n"
+    "with --ab, B switches the side the panel edits.\n"
+    "--ab renders GRAPH_B\n"
     "every frame with the same camera and shows it right of a divider (drag it with the\n"
     "left mouse button) at A's size; both need the same [scene], [graph] seed and fps.\n"
     "--record writes the flight as a\n"
@@ -548,10 +584,16 @@ static int cmd_run(int argc, char **argv)
         frames_given |= !strcmp(argv[i], "--frames");
     if (o.screenshot && !frames_given)
         return usage_error(usage_run, "--screenshot needs --frames N (the frame it is taken after)%s", "");
+    if (o.scale > 0 && o.width)
+        return usage_error(usage_run, "--scale and --size both set the render size: give one%s", "");
+    /* --size alone: a window that shows the render pixel for pixel */
     vrg_run_options r = {.graph = o.graph, .device = o.device, .camera = o.camera, .screenshot = o.screenshot, .ab = o.ab, .record = o.record,
                          .show = o.show,
                          .sets = o.sets,
-                         .set_count = (uint32_t)o.set_count, .width = o.width ? o.width : 960, .height = o.height ? o.height : 540,
+                         .set_count = (uint32_t)o.set_count,
+                         .window_w = o.window_w ? o.window_w : o.width, .window_h = o.window_h ? o.window_h : o.height,
+                         .width = o.width, .height = o.height,
+                         .scale = o.scale > 0 ? o.scale : o.width ? 1.0 : 0.5, .filter = o.filter < 0 ? 1 : o.filter,
                          .frames = frames_given ? o.frames : 0, .validate = o.validate, .gpu_timeout_s = o.gpu_timeout_s};
     return vrg_cli_run(&r);
 }

@@ -1,10 +1,10 @@
-/* The window's overlay: lines of text drawn on the CPU with a built-in 3x5
- * pixel font (upper case; lower case is drawn as upper case), doubled, onto
- * a dark panel that run.c copies into the top-left corner of each
- * presented image. */
+/* The window's overlay: text drawn on the CPU with a built-in 3x5 pixel
+ * font (upper case; lower case is drawn as upper case), doubled, on
+ * translucent boxes, into a window-sized RGBA layer that the display stage
+ * (shaders/display.comp) blends over the picture: drawn at the window's
+ * resolution, whatever the render scale. */
 #include <string.h>
 #include "overlay.h"
-
 /* Each glyph: 5 rows of 3 pixels, '#' set. */
 static const char *glyph(char c)
 {
@@ -84,40 +84,42 @@ void vrg_overlay_line(vrg_overlay *o, const char *text)
         snprintf(o->text[o->lines++], sizeof o->text[0], "%s", text);
 }
 
-/* Rasterises the lines at 2x onto a dark panel of 4-byte pixels (grey and
- * white: the same in RGBA and BGRA), its size in *w and *h (at most the
- * given maximum). */
-void vrg_overlay_draw(const vrg_overlay *o, uint8_t *pixels, uint32_t max_w, uint32_t max_h, uint32_t *w, uint32_t *h)
+void vrg_overlay_layer_clear(vrg_overlay_layer *l) { memset(l->pixels, 0, (size_t)l->width * l->height * 4); }
+
+void vrg_overlay_box(vrg_overlay_layer *l, int x, int y, int w, int h, const uint8_t rgba[4])
 {
-    const uint32_t scale = 2, cell_w = 4 * scale, cell_h = 6 * scale, pad = 4;
-    size_t longest = 0;
-    for (int i = 0; i < o->lines; i++)
-        longest = strlen(o->text[i]) > longest ? strlen(o->text[i]) : longest;
-    uint32_t pw = (uint32_t)longest * cell_w + 2 * pad, ph = (uint32_t)o->lines * cell_h + 2 * pad;
-    pw = pw > max_w ? max_w : pw;
-    ph = ph > max_h ? max_h : ph;
-    for (uint32_t i = 0; i < pw * ph; i++) {
-        uint8_t *p = pixels + 4 * i;
-        p[0] = p[1] = p[2] = 24;
-        p[3] = 255;
+    for (int j = y < 0 ? 0 : y; j < y + h && j < (int)l->height; j++)
+        for (int i = x < 0 ? 0 : x; i < x + w && i < (int)l->width; i++)
+            memcpy(l->pixels + 4 * ((size_t)j * l->width + (size_t)i), rgba, 4);
+}
+
+void vrg_overlay_text(vrg_overlay_layer *l, int x, int y, const char *text, const uint8_t rgba[4])
+{
+    const int s = VRG_OVERLAY_GLYPH_SCALE;
+    for (int c = 0; text[c]; c++) {
+        const char *g = glyph(text[c]);
+        for (int gy = 0; gy < 5; gy++)
+            for (int gx = 0; gx < 3; gx++)
+                if (g[gy * 3 + gx] == '#')
+                    vrg_overlay_box(l, x + c * VRG_OVERLAY_CELL_W + gx * s, y + gy * s, s, s, rgba);
     }
-    for (int l = 0; l < o->lines; l++)
-        for (size_t c = 0; o->text[l][c]; c++) {
-            const char *g = glyph(o->text[l][c]);
-            for (uint32_t gy = 0; gy < 5; gy++)
-                for (uint32_t gx = 0; gx < 3; gx++) {
-                    if (g[gy * 3 + gx] != '#')
-                        continue;
-                    for (uint32_t sy = 0; sy < scale; sy++)
-                        for (uint32_t sx = 0; sx < scale; sx++) {
-                            uint32_t x = pad + (uint32_t)c * cell_w + gx * scale + sx, y = pad + (uint32_t)l * cell_h + gy * scale + sy;
-                            if (x >= pw || y >= ph)
-                                continue;
-                            uint8_t *p = pixels + 4 * ((size_t)y * pw + x);
-                            p[0] = p[1] = p[2] = 255;
-                        }
-                }
-        }
-    *w = pw;
-    *h = ph;
+}
+
+int vrg_overlay_text_width(const char *text) { return (int)strlen(text) * VRG_OVERLAY_CELL_W; }
+
+void vrg_overlay_draw(const vrg_overlay *o, vrg_overlay_layer *l, int x, int y, int highlight, int *w, int *h)
+{
+    static const uint8_t back[4] = {0, 0, 0, 140}, lit[4] = {70, 90, 140, 200}, white[4] = {255, 255, 255, 255};
+    int longest = 0;
+    for (int i = 0; i < o->lines; i++)
+        longest = vrg_overlay_text_width(o->text[i]) > longest ? vrg_overlay_text_width(o->text[i]) : longest;
+    *w = longest + 2 * VRG_OVERLAY_PAD;
+    *h = o->lines * VRG_OVERLAY_LINE_H + 2 * VRG_OVERLAY_PAD;
+    vrg_overlay_box(l, x, y, *w, *h, back);
+    for (int i = 0; i < o->lines; i++) {
+        int ty = y + VRG_OVERLAY_PAD + i * VRG_OVERLAY_LINE_H;
+        if (i == highlight)
+            vrg_overlay_box(l, x, ty - 2, *w, VRG_OVERLAY_LINE_H, lit);
+        vrg_overlay_text(l, x + VRG_OVERLAY_PAD, ty, o->text[i], white);
+    }
 }

@@ -2,12 +2,30 @@
 #define VOXRG_CLI_OVERLAY_H
 #include <stdint.h>
 #include <stdio.h>
-#define VRG_OVERLAY_LINES 40
+#define VRG_OVERLAY_LINES 64
+#define VRG_OVERLAY_GLYPH_SCALE 2
+#define VRG_OVERLAY_CELL_W (4 * VRG_OVERLAY_GLYPH_SCALE)
+#define VRG_OVERLAY_LINE_H (6 * VRG_OVERLAY_GLYPH_SCALE)
+#define VRG_OVERLAY_PAD 4
+/* Lines of text for one box. */
 typedef struct vrg_overlay {
     char text[VRG_OVERLAY_LINES][160];
     int lines;
 } vrg_overlay;
+/* What the display stage blends over the picture: RGBA, alpha 0 where the
+ * picture shows, at the window's size. */
+typedef struct vrg_overlay_layer {
+    uint8_t *pixels;
+    uint32_t width, height;
+} vrg_overlay_layer;
 void vrg_overlay_clear(vrg_overlay *o);
+/* Lines past VRG_OVERLAY_LINES are not kept: callers leave room. */
 void vrg_overlay_line(vrg_overlay *o, const char *text);
-void vrg_overlay_draw(const vrg_overlay *o, uint8_t *pixels, uint32_t max_w, uint32_t max_h, uint32_t *w, uint32_t *h);
+void vrg_overlay_layer_clear(vrg_overlay_layer *l);
+void vrg_overlay_box(vrg_overlay_layer *l, int x, int y, int w, int h, const uint8_t rgba[4]);
+void vrg_overlay_text(vrg_overlay_layer *l, int x, int y, const char *text, const uint8_t rgba[4]);
+int vrg_overlay_text_width(const char *text);
+/* The lines in white on a translucent box with its top-left at (x, y), line
+ * `highlight` (-1: none) on a lighter band; the box's size in *w, *h. */
+void vrg_overlay_draw(const vrg_overlay *o, vrg_overlay_layer *l, int x, int y, int highlight, int *w, int *h);
 #endif

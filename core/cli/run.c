@@ -12,6 +12,7 @@
 #include <time.h>
 #include "bench.h"
 #include "overlay.h"
+#include "panel.h"
 #include "run.h"
 #include "util.h"
 #include "voxrg/camera.h"
@@ -28,6 +29,20 @@ typedef struct swapchain {
     uint32_t count;
     VkImage images[8];
 } swapchain;
+
+typedef struct display_image {
+    VkImage image;
+    VkDeviceMemory memory;
+    VkImageView view;
+    VkExtent2D extent;
+} display_image;
+
+/* display.comp's push constants */
+typedef struct display_push {
+    int32_t mode, channel;
+    float scale;
+    int32_t linear_out, bilinear, split, overlay_on;
+} display_push;
 
 typedef struct window_state {
     vrg_context *ctx;
@@ -48,23 +63,31 @@ typedef struct window_state {
     float time_step;     /* [ and ]: hours to step the time of day */
     float divider;       /* --ab: where A ends, 0..1 of the width */
     int hide_overlay;    /* H */
+    int details;         /* F1: per-pass times and the keys */
     int paused;          /* Pause or F: no new frames, the last one stays shown */
     int srgb;            /* the output holds linear values: let the swapchain encode them */
-    /* host-visible staging: the overlay panel, and screenshots of what is shown */
+    int bilinear;        /* the upscale to the window: N toggles */
+    double scale;        /* render size / window size, unless fixed */
+    uint32_t fixed_w, fixed_h; /* --size: the render size whatever the window */
+    /* host-visible staging: the overlay layer (window-sized RGBA, read by the
+     * display stage), then a screenshot of what is shown */
     VkBuffer staging;
     VkDeviceMemory staging_memory;
     uint8_t *staging_map;
     VkDeviceSize staging_size;
-    vrg_overlay overlay;
+    vrg_overlay_layer layer;
+    vrg_panel panel;
+    int save_requested;  /* Ctrl+S */
+    int s_saves;         /* S went down with Ctrl: no flying back until it is up */
+    vrg_graph *g, *gb;   /* this frame's graphs, for the panel's keys */
+    int mouse_was_down, mouse_on_panel; /* a left press that fell on the panel drags there, not the divider */
     /* showing a resource other than the output: Tab / Shift+Tab / 0-9 */
     int shown;                /* index into vrg_graph_image_name, -1: the output */
     int shown_step;           /* pending key */
     char shown_name[160];
+    /* the display stage (shaders/display.comp): sources, result, pipeline */
     struct {
-        VkExtent2D extent;
-        VkImage tmp, out;     /* the resource as rgba32f (blit), the visualisation */
-        VkDeviceMemory tmp_mem, out_mem;
-        VkImageView tmp_view, out_view;
+        display_image a, b, out;
         VkSampler sampler;
         VkDescriptorSetLayout set_layout;
         VkPipelineLayout layout;
@@ -76,10 +99,9 @@ typedef struct window_state {
     } disp;
 } window_state;
 
-#define OVERLAY_MAX_W 1024u
-#define OVERLAY_MAX_H 512u
+static VkDeviceSize overlay_bytes(const window_state *w) { return (VkDeviceSize)w->sc.extent.width * w->sc.extent.height * 4; }
 
-/* The staging buffer holds the overlay panel first, then a screenshot. */
+/* The staging buffer holds the overlay layer first, then a screenshot. */
 static int ensure_staging(window_state *w, VkDeviceSize size)
 {
     if (w->staging_size >= size)
@@ -91,7 +113,7 @@ static int ensure_staging(window_state *w, VkDeviceSize size)
         vkFreeMemory(dev, w->staging_memory, NULL);
     }
     VkBufferCreateInfo bi = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = size,
-                             .usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT};
+                             .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT};
     vkCreateBuffer(dev, &bi, NULL, &w->staging);
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(dev, w->staging, &req);
@@ -189,9 +211,14 @@ static void fly(window_state *w, vrg_camera *cam, float dt)
     right[0] = cosf(yaw), right[1] = 0, right[2] = -sinf(yaw);
     /* yaw 0 looks down -z and + turns left: right is +x at yaw 0 */
     float move[3] = {0, 0, 0};
-    float f = (float)(glfwGetKey(win, GLFW_KEY_W) == GLFW_PRESS) - (float)(glfwGetKey(win, GLFW_KEY_S) == GLFW_PRESS);
+    /* Ctrl+S saves: its S does not fly, up to its release */
+    float f = w->s_saves ? 0.0f : (float)(glfwGetKey(win, GLFW_KEY_W) == GLFW_PRESS) - (float)(glfwGetKey(win, GLFW_KEY_S) == GLFW_PRESS);
     float r = (float)(glfwGetKey(win, GLFW_KEY_D) == GLFW_PRESS) - (float)(glfwGetKey(win, GLFW_KEY_A) == GLFW_PRESS);
-    float u = (float)(glfwGetKey(win, GLFW_KEY_SPACE) == GLFW_PRESS) - (float)(glfwGetKey(win, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS);
+    /* Shift with an arrow is the panel's fine step, not a descent */
+    int arrow = glfwGetKey(win, GLFW_KEY_LEFT) == GLFW_PRESS || glfwGetKey(win, GLFW_KEY_RIGHT) == GLFW_PRESS ||
+                glfwGetKey(win, GLFW_KEY_UP) == GLFW_PRESS || glfwGetKey(win, GLFW_KEY_DOWN) == GLFW_PRESS;
+    float u = (float)(glfwGetKey(win, GLFW_KEY_SPACE) == GLFW_PRESS) -
+              (float)(glfwGetKey(win, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS && !(w->panel.open && arrow));
     for (int i = 0; i < 3; i++)
         move[i] = f * fwd[i] + r * right[i];
     move[1] += u;
@@ -216,9 +243,28 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
 {
     (void)scancode;
     window_state *w = glfwGetWindowUserPointer(win);
-    if (action != GLFW_PRESS)
+    int arrow = key == GLFW_KEY_UP || key == GLFW_KEY_DOWN || key == GLFW_KEY_LEFT || key == GLFW_KEY_RIGHT;
+    if (key == GLFW_KEY_S && action == GLFW_RELEASE)
+        w->s_saves = 0;
+    if (action != GLFW_PRESS && !(action == GLFW_REPEAT && arrow))
         return;
-    if (key == GLFW_KEY_ESCAPE)
+    /* the panel's keys act at once, in order (several may come in one poll) */
+    vrg_graph *edited = w->panel.side && w->gb ? w->gb : w->g;
+    if (w->panel.open && (key == GLFW_KEY_UP || key == GLFW_KEY_DOWN))
+        vrg_panel_select(&w->panel, edited, key == GLFW_KEY_DOWN ? 1 : -1);
+    else if (w->panel.open && arrow)
+        vrg_panel_step(&w->panel, edited, key == GLFW_KEY_RIGHT ? 1 : -1, (mods & GLFW_MOD_SHIFT) != 0);
+    else if (key == GLFW_KEY_S && (mods & GLFW_MOD_CONTROL))
+        w->save_requested = w->s_saves = 1;
+    else if (key == GLFW_KEY_M || key == GLFW_KEY_F2)
+        w->panel.open = !w->panel.open;
+    else if (key == GLFW_KEY_B && w->panel.open && w->gb)
+        w->panel.side = !w->panel.side;
+    else if (key == GLFW_KEY_F1)
+        w->details = !w->details;
+    else if (key == GLFW_KEY_N)
+        w->bilinear = !w->bilinear;
+    else if (key == GLFW_KEY_ESCAPE)
         glfwSetWindowShouldClose(win, 1);
     else if (key == GLFW_KEY_F12 || key == GLFW_KEY_P)
         w->screenshot_requested = 1;
@@ -267,90 +313,123 @@ static int image_memory(window_state *w, VkImage image, VkDeviceMemory *mem)
     return -1;
 }
 
-static void display_free_images(window_state *w)
+static void free_image(window_state *w, display_image *im)
 {
     VkDevice dev = w->dev->device;
-    vkDestroyImageView(dev, w->disp.tmp_view, NULL);
-    vkDestroyImageView(dev, w->disp.out_view, NULL);
-    vkDestroyImage(dev, w->disp.tmp, NULL);
-    vkDestroyImage(dev, w->disp.out, NULL);
-    vkFreeMemory(dev, w->disp.tmp_mem, NULL);
-    vkFreeMemory(dev, w->disp.out_mem, NULL);
-    w->disp.tmp = w->disp.out = VK_NULL_HANDLE;
-    w->disp.tmp_view = w->disp.out_view = VK_NULL_HANDLE;
-    w->disp.tmp_mem = w->disp.out_mem = VK_NULL_HANDLE;
-    w->disp.extent = (VkExtent2D){0, 0};
+    vkDestroyImageView(dev, im->view, NULL);
+    vkDestroyImage(dev, im->image, NULL);
+    vkFreeMemory(dev, im->memory, NULL);
+    *im = (display_image){0};
 }
 
-/* The display stage's pipeline (shaders/display.comp) and, for this size,
- * its two images. */
-static int display_prepare(window_state *w, VkExtent2D ext, const char *source_dir)
+static int make_image(window_state *w, display_image *im, VkExtent2D ext, VkFormat format, VkImageUsageFlags usage)
 {
     VkDevice dev = w->dev->device;
-    if (!w->disp.pipeline) {
-        char path[1100];
-        snprintf(path, sizeof path, "%s/shaders/display.comp", source_dir);
-        VkShaderModule sm = vrg_compile_compute_shader(w->ctx, path, NULL);
-        if (!sm)
-            return -1;
-        VkDescriptorSetLayoutBinding b[2] = {
-            {.binding = 0, .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, .descriptorCount = 1, .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT},
-            {.binding = 1, .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, .descriptorCount = 1, .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT},
-        };
-        VkDescriptorSetLayoutCreateInfo sli = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO, .bindingCount = 2, .pBindings = b};
-        vkCreateDescriptorSetLayout(dev, &sli, NULL, &w->disp.set_layout);
-        VkPushConstantRange range = {VK_SHADER_STAGE_COMPUTE_BIT, 0, 16};
-        VkPipelineLayoutCreateInfo pli = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, .setLayoutCount = 1,
-                                          .pSetLayouts = &w->disp.set_layout, .pushConstantRangeCount = 1, .pPushConstantRanges = &range};
-        vkCreatePipelineLayout(dev, &pli, NULL, &w->disp.layout);
-        VkComputePipelineCreateInfo ci = {
-            .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
-            .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_COMPUTE_BIT, .module = sm, .pName = "main"},
-            .layout = w->disp.layout,
-        };
-        VkResult res = vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &ci, NULL, &w->disp.pipeline);
-        vkDestroyShaderModule(dev, sm, NULL);
-        if (res != VK_SUCCESS)
-            return -1;
-        VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}};
-        VkDescriptorPoolCreateInfo dpi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, .maxSets = 1, .poolSizeCount = 2, .pPoolSizes = sizes};
-        vkCreateDescriptorPool(dev, &dpi, NULL, &w->disp.pool);
-        VkDescriptorSetAllocateInfo dai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO, .descriptorPool = w->disp.pool,
-                                           .descriptorSetCount = 1, .pSetLayouts = &w->disp.set_layout};
-        vkAllocateDescriptorSets(dev, &dai, &w->disp.set);
-        VkSamplerCreateInfo si = {.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO, .magFilter = VK_FILTER_NEAREST, .minFilter = VK_FILTER_NEAREST,
-                                  .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-                                  .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE};
-        vkCreateSampler(dev, &si, NULL, &w->disp.sampler);
-    }
-    if (w->disp.extent.width == ext.width && w->disp.extent.height == ext.height)
-        return 0;
-    display_free_images(w);
-    VkImageCreateInfo ii = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, .imageType = VK_IMAGE_TYPE_2D, .format = VK_FORMAT_R32G32B32A32_SFLOAT,
+    free_image(w, im);
+    VkImageCreateInfo ii = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, .imageType = VK_IMAGE_TYPE_2D, .format = format,
                             .extent = {ext.width, ext.height, 1}, .mipLevels = 1, .arrayLayers = 1, .samples = VK_SAMPLE_COUNT_1_BIT,
-                            .tiling = VK_IMAGE_TILING_OPTIMAL, .usage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT};
-    if (vkCreateImage(dev, &ii, NULL, &w->disp.tmp) != VK_SUCCESS || image_memory(w, w->disp.tmp, &w->disp.tmp_mem) != 0)
+                            .tiling = VK_IMAGE_TILING_OPTIMAL, .usage = usage};
+    if (vkCreateImage(dev, &ii, NULL, &im->image) != VK_SUCCESS || image_memory(w, im->image, &im->memory) != 0)
         return -1;
-    ii.format = VK_FORMAT_R8G8B8A8_UNORM;
-    ii.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    if (vkCreateImage(dev, &ii, NULL, &w->disp.out) != VK_SUCCESS || image_memory(w, w->disp.out, &w->disp.out_mem) != 0)
+    VkImageViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, .image = im->image, .viewType = VK_IMAGE_VIEW_TYPE_2D,
+                                .format = format, .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
+    if (vkCreateImageView(dev, &vi, NULL, &im->view) != VK_SUCCESS)
         return -1;
-    VkImageViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, .image = w->disp.tmp, .viewType = VK_IMAGE_VIEW_TYPE_2D,
-                                .format = VK_FORMAT_R32G32B32A32_SFLOAT, .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
-    vkCreateImageView(dev, &vi, NULL, &w->disp.tmp_view);
-    vi.image = w->disp.out;
-    vi.format = VK_FORMAT_R8G8B8A8_UNORM;
-    vkCreateImageView(dev, &vi, NULL, &w->disp.out_view);
-    VkDescriptorImageInfo src = {.sampler = w->disp.sampler, .imageView = w->disp.tmp_view, .imageLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkDescriptorImageInfo dst = {.imageView = w->disp.out_view, .imageLayout = VK_IMAGE_LAYOUT_GENERAL};
-    VkWriteDescriptorSet wr[2] = {
-        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = w->disp.set, .dstBinding = 0, .descriptorCount = 1,
-         .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, .pImageInfo = &src},
-        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = w->disp.set, .dstBinding = 1, .descriptorCount = 1,
-         .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, .pImageInfo = &dst},
+    im->extent = ext;
+    return 0;
+}
+
+static void display_free(window_state *w)
+{
+    VkDevice dev = w->dev->device;
+    free_image(w, &w->disp.a);
+    free_image(w, &w->disp.b);
+    free_image(w, &w->disp.out);
+    vkDestroyPipeline(dev, w->disp.pipeline, NULL);
+    vkDestroyPipelineLayout(dev, w->disp.layout, NULL);
+    vkDestroyDescriptorSetLayout(dev, w->disp.set_layout, NULL);
+    vkDestroyDescriptorPool(dev, w->disp.pool, NULL);
+    vkDestroySampler(dev, w->disp.sampler, NULL);
+}
+
+static int display_pipeline(window_state *w, const char *data_dir)
+{
+    VkDevice dev = w->dev->device;
+    char path[1100];
+    snprintf(path, sizeof path, "%s/shaders/display.comp", data_dir);
+    VkShaderModule sm = vrg_compile_compute_shader(w->ctx, path, NULL);
+    if (!sm)
+        return -1;
+    VkDescriptorSetLayoutBinding b[4] = {
+        {.binding = 0, .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, .descriptorCount = 1, .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT},
+        {.binding = 1, .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, .descriptorCount = 1, .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT},
+        {.binding = 2, .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, .descriptorCount = 1, .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT},
+        {.binding = 3, .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .descriptorCount = 1, .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT},
     };
-    vkUpdateDescriptorSets(dev, 2, wr, 0, NULL);
-    w->disp.extent = ext;
+    VkDescriptorSetLayoutCreateInfo sli = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO, .bindingCount = 4, .pBindings = b};
+    vkCreateDescriptorSetLayout(dev, &sli, NULL, &w->disp.set_layout);
+    VkPushConstantRange range = {VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(display_push)};
+    VkPipelineLayoutCreateInfo pli = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, .setLayoutCount = 1,
+                                      .pSetLayouts = &w->disp.set_layout, .pushConstantRangeCount = 1, .pPushConstantRanges = &range};
+    vkCreatePipelineLayout(dev, &pli, NULL, &w->disp.layout);
+    VkComputePipelineCreateInfo ci = {
+        .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+        .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_COMPUTE_BIT, .module = sm, .pName = "main"},
+        .layout = w->disp.layout,
+    };
+    VkResult res = vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &ci, NULL, &w->disp.pipeline);
+    vkDestroyShaderModule(dev, sm, NULL);
+    if (res != VK_SUCCESS)
+        return -1;
+    VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1},
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};
+    VkDescriptorPoolCreateInfo dpi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, .maxSets = 1, .poolSizeCount = 3, .pPoolSizes = sizes};
+    vkCreateDescriptorPool(dev, &dpi, NULL, &w->disp.pool);
+    VkDescriptorSetAllocateInfo dai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO, .descriptorPool = w->disp.pool,
+                                       .descriptorSetCount = 1, .pSetLayouts = &w->disp.set_layout};
+    vkAllocateDescriptorSets(dev, &dai, &w->disp.set);
+    /* the shader filters itself (texelFetch): rgba32f need not be filterable */
+    VkSamplerCreateInfo si = {.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO, .magFilter = VK_FILTER_NEAREST, .minFilter = VK_FILTER_NEAREST,
+                              .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                              .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE};
+    return vkCreateSampler(dev, &si, NULL, &w->disp.sampler) == VK_SUCCESS ? 0 : -1;
+}
+
+/* The display stage for these sizes: A's and B's sources as rgba32f at
+ * their render sizes, the window-sized result, and the descriptors (written
+ * each frame: the previous frame has ended, and the staging buffer may have
+ * grown). */
+static int display_prepare(window_state *w, VkExtent2D ext_a, VkExtent2D ext_b)
+{
+    const VkImageUsageFlags src_usage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    if (!w->disp.pipeline && display_pipeline(w, vrg_data_dir()) != 0)
+        return -1;
+    if ((w->disp.a.extent.width != ext_a.width || w->disp.a.extent.height != ext_a.height) &&
+        make_image(w, &w->disp.a, ext_a, VK_FORMAT_R32G32B32A32_SFLOAT, src_usage) != 0)
+        return -1;
+    if (ext_b.width && (w->disp.b.extent.width != ext_b.width || w->disp.b.extent.height != ext_b.height) &&
+        make_image(w, &w->disp.b, ext_b, VK_FORMAT_R32G32B32A32_SFLOAT, src_usage) != 0)
+        return -1;
+    if ((w->disp.out.extent.width != w->sc.extent.width || w->disp.out.extent.height != w->sc.extent.height) &&
+        make_image(w, &w->disp.out, w->sc.extent, VK_FORMAT_R16G16B16A16_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT) != 0)
+        return -1;
+    VkDescriptorImageInfo a = {.sampler = w->disp.sampler, .imageView = w->disp.a.view, .imageLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkDescriptorImageInfo b = a;
+    if (ext_b.width)
+        b.imageView = w->disp.b.view;
+    VkDescriptorImageInfo out = {.imageView = w->disp.out.view, .imageLayout = VK_IMAGE_LAYOUT_GENERAL};
+    VkDescriptorBufferInfo layer = {.buffer = w->staging, .offset = 0, .range = overlay_bytes(w)};
+    VkWriteDescriptorSet wr[4] = {
+        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = w->disp.set, .dstBinding = 0, .descriptorCount = 1,
+         .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, .pImageInfo = &a},
+        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = w->disp.set, .dstBinding = 1, .descriptorCount = 1,
+         .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, .pImageInfo = &b},
+        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = w->disp.set, .dstBinding = 2, .descriptorCount = 1,
+         .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, .pImageInfo = &out},
+        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = w->disp.set, .dstBinding = 3, .descriptorCount = 1,
+         .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .pBufferInfo = &layer},
+    };
+    vkUpdateDescriptorSets(w->dev->device, 4, wr, 0, NULL);
     return 0;
 }
 
@@ -364,31 +443,38 @@ static void image_barrier(VkCommandBuffer cmd, VkImage image, VkPipelineStageFla
     vkCmdPipelineBarrier2(cmd, &dep);
 }
 
-/* Records the display of src (in TRANSFER_SRC, left so): blit to rgba32f,
- * visualise into disp.out, which ends in TRANSFER_SRC for the swapchain blit. */
-static void display_record(window_state *w, VkImage src, VkExtent2D ext)
+/* src (in TRANSFER_SRC, left so) to an rgba32f image the shader reads. */
+static void to_float(VkCommandBuffer cmd, VkImage src, VkExtent2D ext, VkImage dst)
 {
-    VkCommandBuffer cmd = w->cmd;
     const VkPipelineStageFlags2 xfer = VK_PIPELINE_STAGE_2_TRANSFER_BIT, cs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    image_barrier(cmd, w->disp.tmp, cs, 0, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    image_barrier(cmd, dst, cs, 0, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     VkImageBlit blit = {.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                         .srcOffsets = {{0, 0, 0}, {(int32_t)ext.width, (int32_t)ext.height, 1}},
                         .dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                         .dstOffsets = {{0, 0, 0}, {(int32_t)ext.width, (int32_t)ext.height, 1}}};
-    vkCmdBlitImage(cmd, src, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, w->disp.tmp, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
-    image_barrier(cmd, w->disp.tmp, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, cs, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+    vkCmdBlitImage(cmd, src, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
+    image_barrier(cmd, dst, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, cs, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    image_barrier(cmd, w->disp.out, xfer, 0, cs, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+}
+
+/* Records the display stage: A (and B) upscaled to the window with the
+ * overlay over them, into disp.out, left in TRANSFER_SRC for the swapchain. */
+static void display_record(window_state *w, VkImage src, VkExtent2D ext, VkImage src_b, VkExtent2D ext_b, int as_is)
+{
+    VkCommandBuffer cmd = w->cmd;
+    const VkPipelineStageFlags2 xfer = VK_PIPELINE_STAGE_2_TRANSFER_BIT, cs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    to_float(cmd, src, ext, w->disp.a.image);
+    if (src_b)
+        to_float(cmd, src_b, ext_b, w->disp.b.image);
+    image_barrier(cmd, w->disp.out.image, xfer, 0, cs, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, w->disp.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, w->disp.layout, 0, 1, &w->disp.set, 0, NULL);
-    struct {
-        int32_t mode, channel;
-        float scale;
-        int32_t linear_out;
-    } pc = {w->disp.mode, w->disp.channel, w->disp.scale, w->srgb};
+    uint32_t width = w->sc.extent.width, height = w->sc.extent.height;
+    display_push pc = {as_is ? 6 : w->disp.mode, w->disp.channel, w->disp.scale, w->srgb, w->bilinear,
+                       src_b ? (int32_t)(w->divider * (float)width) : (int32_t)width, !w->hide_overlay};
     vkCmdPushConstants(cmd, w->disp.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pc, &pc);
-    vkCmdDispatch(cmd, (ext.width + 7) / 8, (ext.height + 7) / 8, 1);
-    image_barrier(cmd, w->disp.out, cs, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, xfer, VK_ACCESS_2_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
+    vkCmdDispatch(cmd, (width + 7) / 8, (height + 7) / 8, 1);
+    image_barrier(cmd, w->disp.out.image, cs, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, xfer, VK_ACCESS_2_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
 }
 
@@ -410,9 +496,29 @@ static void display_mode(window_state *w, const char *name)
         w->disp.mode = 5;
 }
 
-/* One presentation: the graph's output blitted onto the next swapchain
- * image; with a second source (--ab), A left of the divider and B right. */
-static int present(window_state *w, VkImage src, VkExtent2D src_ext, VkImage src_b, VkExtent2D ext_b, const char *screenshot, int via_display)
+/* A screenshot of what the window showed, from the staging buffer. */
+static void write_screenshot(window_state *w, const char *screenshot)
+{
+    uint32_t sw = w->sc.extent.width, sh = w->sc.extent.height;
+    int bgr = w->sc.format == VK_FORMAT_B8G8R8A8_UNORM || w->sc.format == VK_FORMAT_B8G8R8A8_SRGB;
+    vrg_image_data img = {.width = sw, .height = sh, .channels = 4, .format = VK_FORMAT_R8G8B8A8_UNORM,
+                          .pixels = malloc(sizeof(float) * 4 * sw * sh)};
+    const uint8_t *px = w->staging_map + overlay_bytes(w);
+    for (size_t i = 0; img.pixels && i < (size_t)sw * sh; i++)
+        for (int c = 0; c < 4; c++)
+            img.pixels[4 * i + c] = (float)px[4 * i + (bgr && c < 3 ? 2 - c : c)] / 255.0f;
+    if (!img.pixels)
+        fprintf(stderr, "error: cannot write %s: out of memory\n", screenshot);
+    if (img.pixels && vrg_write_png(screenshot, &img) == 0)
+        fprintf(stderr, "wrote %s\n", screenshot);
+    else
+        w->screenshot_failed = 1; /* the run's exit status says so */
+    free(img.pixels);
+}
+
+/* One presentation: the display stage's result copied onto the next
+ * swapchain image (a blit: it converts to the swapchain's format). */
+static int present(window_state *w, VkImage src, VkExtent2D src_ext, VkImage src_b, VkExtent2D ext_b, const char *screenshot, int as_is)
 {
     VkDevice dev = w->dev->device;
     uint32_t index;
@@ -421,90 +527,33 @@ static int present(window_state *w, VkImage src, VkExtent2D src_ext, VkImage src
         return 1;
     if (res != VK_SUCCESS && res != VK_SUBOPTIMAL_KHR)
         return -1;
+    if (display_prepare(w, src_ext, src_b ? ext_b : (VkExtent2D){0, 0}) != 0)
+        return -1;
     VkImage dst = w->sc.images[index];
     vkResetCommandBuffer(w->cmd, 0);
     VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
     vkBeginCommandBuffer(w->cmd, &bi);
-    if (via_display) { /* a resource other than the output: visualised first */
-        display_record(w, src, src_ext);
-        src = w->disp.out;
-    }
-    VkImageSubresourceRange range = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    VkImageMemoryBarrier2 to_dst = {
-        .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
-        .srcStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-        .srcAccessMask = 0,
-        .dstStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-        .dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
-        .oldLayout = VK_IMAGE_LAYOUT_UNDEFINED,
-        .newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-        .image = dst,
-        .subresourceRange = range,
-    };
-    VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .imageMemoryBarrierCount = 1, .pImageMemoryBarriers = &to_dst};
-    vkCmdPipelineBarrier2(w->cmd, &dep);
-    float split = src_b ? w->divider : 1.0f;
-    int32_t dw = (int32_t)w->sc.extent.width, dh = (int32_t)w->sc.extent.height, dsplit = (int32_t)(split * (float)dw);
-    if (dsplit > 0) {
-        VkImageBlit blit = {
-            .srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-            .srcOffsets = {{0, 0, 0}, {(int32_t)(split * (float)src_ext.width), (int32_t)src_ext.height, 1}},
-            .dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-            .dstOffsets = {{0, 0, 0}, {dsplit, dh, 1}},
-        };
-        if (blit.srcOffsets[1].x > 0)
-            vkCmdBlitImage(w->cmd, src, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
-    }
-    if (src_b && dsplit < dw) {
-        VkImageBlit blit = {
-            .srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-            .srcOffsets = {{(int32_t)(split * (float)ext_b.width), 0, 0}, {(int32_t)ext_b.width, (int32_t)ext_b.height, 1}},
-            .dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-            .dstOffsets = {{dsplit, 0, 0}, {dw, dh, 1}},
-        };
-        if (blit.srcOffsets[0].x < blit.srcOffsets[1].x)
-            vkCmdBlitImage(w->cmd, src_b, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit,
-                           VK_FILTER_LINEAR);
-    }
-    /* the overlay panel over the top-left corner (after the blits: a write
-     * after a write) */
-    uint32_t pw = 0, ph = 0;
-    if (!w->hide_overlay && w->overlay.lines) {
-        uint32_t max_w = w->sc.extent.width < OVERLAY_MAX_W ? w->sc.extent.width : OVERLAY_MAX_W;
-        uint32_t max_h = w->sc.extent.height < OVERLAY_MAX_H ? w->sc.extent.height : OVERLAY_MAX_H;
-        vrg_overlay_draw(&w->overlay, w->staging_map, max_w, max_h, &pw, &ph);
-        VkImageMemoryBarrier2 waw = to_dst;
-        waw.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        waw.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-        dep.pImageMemoryBarriers = &waw;
-        vkCmdPipelineBarrier2(w->cmd, &dep);
-        VkBufferImageCopy region = {.bufferRowLength = pw, .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {pw, ph, 1}};
-        vkCmdCopyBufferToImage(w->cmd, w->staging, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-    }
+    display_record(w, src, src_ext, src_b, ext_b, as_is);
+    const VkPipelineStageFlags2 xfer = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+    image_barrier(w->cmd, dst, xfer, 0, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    int32_t dw = (int32_t)w->sc.extent.width, dh = (int32_t)w->sc.extent.height;
+    VkImageBlit blit = {.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                        .srcOffsets = {{0, 0, 0}, {dw, dh, 1}},
+                        .dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                        .dstOffsets = {{0, 0, 0}, {dw, dh, 1}}};
+    vkCmdBlitImage(w->cmd, w->disp.out.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit,
+                   VK_FILTER_NEAREST);
     VkImageLayout layout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-    VkDeviceSize shot_at = (VkDeviceSize)OVERLAY_MAX_W * OVERLAY_MAX_H * 4;
     if (screenshot) { /* what the window shows: both halves and the overlay */
-        VkImageMemoryBarrier2 to_src = to_dst;
-        to_src.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        to_src.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
-        to_src.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-        to_src.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-        dep.pImageMemoryBarriers = &to_src;
-        vkCmdPipelineBarrier2(w->cmd, &dep);
-        VkBufferImageCopy region = {.bufferOffset = shot_at, .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+        image_barrier(w->cmd, dst, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, xfer, VK_ACCESS_2_TRANSFER_READ_BIT, layout,
+                      VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        VkBufferImageCopy region = {.bufferOffset = overlay_bytes(w), .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                                     .imageExtent = {w->sc.extent.width, w->sc.extent.height, 1}};
         vkCmdCopyImageToBuffer(w->cmd, dst, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, w->staging, 1, &region);
         layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
     }
-    VkImageMemoryBarrier2 to_present = to_dst;
-    to_present.srcStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
-    to_present.srcAccessMask = screenshot ? 0 : VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    to_present.dstStageMask = VK_PIPELINE_STAGE_2_NONE;
-    to_present.dstAccessMask = 0;
-    to_present.oldLayout = layout;
-    to_present.newLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
-    dep.pImageMemoryBarriers = &to_present;
-    vkCmdPipelineBarrier2(w->cmd, &dep);
+    image_barrier(w->cmd, dst, xfer, screenshot ? 0 : VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_NONE, 0, layout,
+                  VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
     vkEndCommandBuffer(w->cmd);
     VkSemaphoreSubmitInfo wait = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO, .semaphore = w->acquired,
                                   .stageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT};
@@ -519,72 +568,123 @@ static int present(window_state *w, VkImage src, VkExtent2D src_ext, VkImage src
     VkPresentInfoKHR pi = {.sType = VK_STRUCTURE_TYPE_PRESENT_INFO_KHR, .waitSemaphoreCount = 1, .pWaitSemaphores = &w->rendered,
                            .swapchainCount = 1, .pSwapchains = &w->sc.handle, .pImageIndices = &index};
     res = vkQueuePresentKHR(w->dev->queue, &pi);
-    /* the blit reads the graph's output: done before the graph writes it again */
+    /* the display reads the graph's output: done before the graph writes it again */
     vkWaitForFences(dev, 1, &w->done, VK_TRUE, UINT64_MAX);
-    if (screenshot) {
-        uint32_t sw = w->sc.extent.width, sh = w->sc.extent.height;
-        int bgr = w->sc.format == VK_FORMAT_B8G8R8A8_UNORM || w->sc.format == VK_FORMAT_B8G8R8A8_SRGB;
-        vrg_image_data img = {.width = sw, .height = sh, .channels = 4, .format = VK_FORMAT_R8G8B8A8_UNORM,
-                              .pixels = malloc(sizeof(float) * 4 * sw * sh)};
-        const uint8_t *px = w->staging_map + shot_at;
-        for (size_t i = 0; img.pixels && i < (size_t)sw * sh; i++)
-            for (int c = 0; c < 4; c++)
-                img.pixels[4 * i + c] = (float)px[4 * i + (bgr && c < 3 ? 2 - c : c)] / 255.0f;
-        if (!img.pixels)
-            fprintf(stderr, "error: cannot write %s: out of memory\n", screenshot);
-        if (img.pixels && vrg_write_png(screenshot, &img) == 0)
-            fprintf(stderr, "wrote %s\n", screenshot);
-        else
-            w->screenshot_failed = 1; /* the run's exit status says so */
-        free(img.pixels);
-    }
+    if (screenshot)
+        write_screenshot(w, screenshot);
     return res == VK_ERROR_OUT_OF_DATE_KHR || res == VK_SUBOPTIMAL_KHR ? 1 : res == VK_SUCCESS ? 0 : -1;
 }
 
-/* The overlay's lines: rates, per-pass GPU ms, what is shown, reloads. */
-static void fill_overlay(window_state *w, const vrg_run_options *o, vrg_graph *g, vrg_graph *gb, float dt)
+static double gpu_ms(vrg_graph *g)
 {
-    static double smooth_ms = 0;
-    smooth_ms = smooth_ms > 0 ? 0.9 * smooth_ms + 0.1 * dt * 1e3 : dt * 1e3;
-    vrg_overlay *ov = &w->overlay;
+    double sum = 0;
+    for (uint32_t i = 0; i < vrg_graph_pass_count(g); i++)
+        sum += vrg_graph_pass_ms(g, i) > 0 ? vrg_graph_pass_ms(g, i) : 0;
+    return sum;
+}
+
+/* F1: per-pass GPU ms of each graph, and the keys. */
+static void fill_details(vrg_overlay *ov, const vrg_run_options *o, vrg_graph *g, vrg_graph *gb)
+{
     char line[160];
-    vrg_overlay_clear(ov);
-    snprintf(line, sizeof line, "%s   %.1f fps   frame %.1f ms", o->graph, smooth_ms > 0 ? 1e3 / smooth_ms : 0.0, smooth_ms);
-    vrg_overlay_line(ov, line);
-    for (int k = 0; k < 2; k++) {
-        vrg_graph *x = k ? gb : g;
-        if (!x)
-            continue;
-        double sum = 0;
-        for (uint32_t i = 0; i < vrg_graph_pass_count(x); i++)
-            sum += vrg_graph_pass_ms(x, i) > 0 ? vrg_graph_pass_ms(x, i) : 0;
-        snprintf(line, sizeof line, "%s%s: gpu %.1f ms, shown: %s", k ? "B " : gb ? "A " : "", k ? o->ab : "graph", sum,
-                 k ? vrg_graph_output(x) : w->shown_name);
+    for (int k = 0; k < 2 && both_graphs(g, gb, k); k++) {
+        vrg_graph *x = both_graphs(g, gb, k);
+        snprintf(line, sizeof line, "%s%.100s: gpu %.1f ms", gb ? (k ? "B " : "A ") : "", k ? o->ab : o->graph, gpu_ms(x));
         vrg_overlay_line(ov, line);
-        for (uint32_t i = 0; i < vrg_graph_pass_count(x) && ov->lines < VRG_OVERLAY_LINES - 6; i++)
+        for (uint32_t i = 0; i < vrg_graph_pass_count(x) && ov->lines < VRG_OVERLAY_LINES - 12; i++)
             if (vrg_graph_pass_ms(x, i) >= 0) {
                 snprintf(line, sizeof line, "  %-18s %7.2f ms", vrg_graph_pass_name(x, i), vrg_graph_pass_ms(x, i));
                 vrg_overlay_line(ov, line);
             }
     }
-    if (vrg_graph_reload_ms(g) >= 0) {
-        snprintf(line, sizeof line, "reloaded: %.0f ms from save to frame", vrg_graph_reload_ms(g));
-        vrg_overlay_line(ov, line);
-    }
+    static const char *keys[] = {
+        "wasd space shift: fly, right mouse: look, scroll + -: speed",
+        "tab 0-9: show an image, t [ ]: day, f: pause, p: screenshot",
+        "n: nearest/bilinear, h: hide, f1: these details, esc: quit",
+        "m f2: parameters (ctrl+s: save, b: edit a or b)",
+    };
+    for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
+        vrg_overlay_line(ov, keys[i]);
+}
+
+/* The overlay layer: one compact line (rates, what is shown, the last
+ * reload), the reload error if any, --ab's labels over their halves, the
+ * details on F1 and the panel on M. */
+static void fill_overlay(window_state *w, const vrg_run_options *o, vrg_graph *g, vrg_graph *gb, float dt)
+{
+    static double smooth_ms = 0;
+    smooth_ms = smooth_ms > 0 ? 0.9 * smooth_ms + 0.1 * dt * 1e3 : dt * 1e3;
+    static const uint8_t white[4] = {255, 255, 255, 255}, back[4] = {0, 0, 0, 140};
+    vrg_overlay_layer *l = &w->layer;
+    vrg_overlay_layer_clear(l);
+    vrg_overlay ov;
+    char line[160], reload[64] = "";
+    uint32_t rw, rh;
+    vrg_graph_size(g, &rw, &rh);
+    if (vrg_graph_reload_error(g) || (gb && vrg_graph_reload_error(gb)))
+        snprintf(reload, sizeof reload, "  reload failed");
+    else if (vrg_graph_reload_ms(g) >= 0)
+        snprintf(reload, sizeof reload, "  reloaded %.0f ms", vrg_graph_reload_ms(g));
+    vrg_overlay_clear(&ov);
+    snprintf(line, sizeof line, "%.1f fps %.1f ms  %ux%u  %.60s%s%s", smooth_ms > 0 ? 1e3 / smooth_ms : 0.0, smooth_ms, rw, rh, w->shown_name,
+             reload, w->paused ? "  paused" : "");
+    vrg_overlay_line(&ov, line);
     const char *err = vrg_graph_reload_error(g) ? vrg_graph_reload_error(g) : gb ? vrg_graph_reload_error(gb) : NULL;
-    if (err) { /* its first lines: FILE:LINE: error: ... */
-        vrg_overlay_line(ov, "reload error (the last good version runs):");
-        for (int n = 0; *err && n < 3; n++) {
-            const char *end = strchr(err, '\n');
-            size_t len = end ? (size_t)(end - err) : strlen(err);
-            snprintf(line, sizeof line, "  %.*s", (int)(len < 150 ? len : 150), err);
-            vrg_overlay_line(ov, line);
-            err += len + (end ? 1 : 0);
-        }
+    for (int n = 0; err && *err && n < 3; n++) { /* its first lines: FILE:LINE: error: ... */
+        const char *end = strchr(err, '\n');
+        size_t len = end ? (size_t)(end - err) : strlen(err);
+        snprintf(line, sizeof line, "%.*s", (int)(len < 150 ? len : 150), err);
+        vrg_overlay_line(&ov, line);
+        err += len + (end ? 1 : 0);
     }
-    if (w->paused)
-        vrg_overlay_line(ov, "paused (f or pause to go on)");
-    vrg_overlay_line(ov, "wasd space shift, right mouse: look, tab 0-9: show, t [ ]: day, f: pause, p: shot, h: hide, esc");
+    if (w->details)
+        fill_details(&ov, o, g, gb);
+    int bw, bh;
+    if (gb) { /* each side's label at the top of its own half */
+        int split = (int)(w->divider * (float)l->width), y = 4;
+        snprintf(line, sizeof line, "A: %.70s", o->graph);
+        vrg_overlay_box(l, split - vrg_overlay_text_width(line) - 12, y, vrg_overlay_text_width(line) + 8, VRG_OVERLAY_LINE_H + 4, back);
+        vrg_overlay_text(l, split - vrg_overlay_text_width(line) - 8, y + 2, line, white);
+        snprintf(line, sizeof line, "B: %.70s", o->ab);
+        vrg_overlay_box(l, split + 4, y, vrg_overlay_text_width(line) + 8, VRG_OVERLAY_LINE_H + 4, back);
+        vrg_overlay_text(l, split + 8, y + 2, line, white);
+    }
+    vrg_overlay_draw(&ov, l, 0, gb ? VRG_OVERLAY_LINE_H + 8 : 0, -1, &bw, &bh);
+    if (w->panel.open)
+        vrg_panel_draw(&w->panel, w->panel.side && gb ? gb : g, w->panel.side && gb ? o->ab : o->graph, l);
+}
+
+/* The graph's size for a window: fixed (--size), or the window's times the
+ * scale (at least a pixel). */
+static VkExtent2D render_size(const window_state *w, uint32_t width, uint32_t height)
+{
+    if (w->fixed_w)
+        return (VkExtent2D){w->fixed_w, w->fixed_h};
+    uint32_t rw = (uint32_t)lround(width * w->scale), rh = (uint32_t)lround(height * w->scale);
+    return (VkExtent2D){rw ? rw : 1, rh ? rh : 1};
+}
+
+/* The panel's mouse, on the graph it edits; Ctrl+S saves. */
+static void drive_panel(window_state *w, const vrg_run_options *o, vrg_graph *g, vrg_graph *gb)
+{
+    vrg_graph *x = w->panel.side && gb ? gb : g;
+    int held = glfwGetMouseButton(w->window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    double mx, my;
+    glfwGetCursorPos(w->window, &mx, &my);
+    int fw, fh, ww, wh; /* the panel is laid out in framebuffer pixels */
+    glfwGetFramebufferSize(w->window, &fw, &fh);
+    glfwGetWindowSize(w->window, &ww, &wh);
+    mx *= ww > 0 ? (double)fw / ww : 1, my *= wh > 0 ? (double)fh / wh : 1;
+    if (held && !w->mouse_was_down)
+        w->mouse_on_panel = vrg_panel_press(&w->panel, x, mx, my);
+    else if (held && w->panel.dragging)
+        vrg_panel_drag(&w->panel, x, mx, glfwGetKey(w->window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS);
+    if (!held)
+        w->panel.dragging = w->mouse_on_panel = 0;
+    w->mouse_was_down = held;
+    if (w->save_requested)
+        (void)vrg_panel_save(&w->panel, x, x == gb ? o->ab : o->graph);
+    w->save_requested = 0;
 }
 
 int vrg_cli_run(const vrg_run_options *o)
@@ -598,7 +698,8 @@ int vrg_cli_run(const vrg_run_options *o)
         glfwTerminate();
         return 1;
     }
-    window_state w = {.speed = 8.0f, .divider = 0.5f, .shown = -1};
+    window_state w = {.speed = 8.0f, .divider = 0.5f, .shown = -1, .bilinear = o->filter, .scale = o->scale, .fixed_w = o->width,
+                      .fixed_h = o->height};
     uint32_t next = 0;
     const char **exts = glfwGetRequiredInstanceExtensions(&next);
     vrg_context_desc cd = {.validate = o->validate, .device = o->device, .gpu_timeout_s = o->gpu_timeout_s, .instance_extensions = exts, .instance_extension_count = next,
@@ -611,7 +712,13 @@ int vrg_cli_run(const vrg_run_options *o)
         goto out;
     w.dev = vrg_context_device(w.ctx);
     glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
-    w.window = glfwCreateWindow((int)o->width, (int)o->height, "voxrg", NULL, NULL);
+    int win_w = (int)o->window_w, win_h = (int)o->window_h;
+    if (!win_w) { /* the default fits the screen */
+        const GLFWvidmode *mode = glfwGetPrimaryMonitor() ? glfwGetVideoMode(glfwGetPrimaryMonitor()) : NULL;
+        win_w = mode && mode->width < 1280 ? mode->width : 1280;
+        win_h = mode && mode->height < 720 ? mode->height : 720;
+    }
+    w.window = glfwCreateWindow(win_w, win_h, "voxrg", NULL, NULL);
     if (!w.window) {
         fprintf(stderr, "error: cannot open a window: use `voxrg render %s`\n", o->graph);
         goto out;
@@ -641,7 +748,10 @@ int vrg_cli_run(const vrg_run_options *o)
     VkFenceCreateInfo fci = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     vkCreateFence(w.dev->device, &fci, NULL, &w.done);
 
-    vrg_graph_desc d = {.path = o->graph, .overrides = o->sets, .override_count = o->set_count, .width = o->width, .height = o->height,
+    int fb_w, fb_h;
+    glfwGetFramebufferSize(w.window, &fb_w, &fb_h);
+    VkExtent2D render = render_size(&w, fb_w > 0 ? (uint32_t)fb_w : (uint32_t)win_w, fb_h > 0 ? (uint32_t)fb_h : (uint32_t)win_h);
+    vrg_graph_desc d = {.path = o->graph, .overrides = o->sets, .override_count = o->set_count, .width = render.width, .height = render.height,
                         .keep_images = 1};
     if (vrg_graph_load(w.ctx, &d, &g) != 0)
         goto out;
@@ -694,7 +804,18 @@ int vrg_cli_run(const vrg_run_options *o)
     int frames = 0, shots = 0;
     rc = 0;
     while (!glfwWindowShouldClose(w.window) && (!o->frames || (uint32_t)frames < o->frames)) {
+        w.g = g, w.gb = gb;
         glfwPollEvents();
+        /* a saved graph reloads before this frame: the new graph renders
+         * before anything reads its images */
+        int changed = vrg_graph_source_changed(g) || (gb && vrg_graph_source_changed(gb));
+        if (vrg_graph_source_changed(g))
+            (void)vrg_graph_reload(&g); /* a broken graph or plugin is reported; the running one stays */
+        if (gb && vrg_graph_source_changed(gb))
+            (void)vrg_graph_reload(&gb);
+        char why[1024];
+        if (changed && gb && vrg_graph_same_world(g, gb, why, sizeof why) != 0) /* an edit may part them: say so, keep going */
+            fprintf(stderr, "warning: --ab: %s: the sides no longer show the same frames\n", why);
         double t = now_s();
         float dt = (float)(t - last);
         last = t;
@@ -705,7 +826,8 @@ int vrg_cli_run(const vrg_run_options *o)
         if (record)
             fprintf(record, "%.4f  %.3f %.3f %.3f  %.2f %.2f\n", frames * vrg_graph_frame_seconds(g), cam.position[0], cam.position[1],
                     cam.position[2], cam.yaw, cam.pitch);
-        if (gb && glfwGetMouseButton(w.window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) { /* drag the divider */
+        drive_panel(&w, o, g, gb);
+        if (gb && !w.mouse_on_panel && glfwGetMouseButton(w.window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) { /* drag the divider */
             int ww, wh;
             double mx, my;
             glfwGetWindowSize(w.window, &ww, &wh);
@@ -740,14 +862,6 @@ int vrg_cli_run(const vrg_run_options *o)
         w.time_step = 0;
         if (rc)
             break;
-        int changed = vrg_graph_source_changed(g) || (gb && vrg_graph_source_changed(gb));
-        if (vrg_graph_source_changed(g))
-            (void)vrg_graph_reload(&g); /* a broken graph or plugin is reported; the running one stays */
-        if (gb && vrg_graph_source_changed(gb))
-            (void)vrg_graph_reload(&gb);
-        char why[1024];
-        if (changed && gb && vrg_graph_same_world(g, gb, why, sizeof why) != 0) /* an edit may part them: say so, keep going */
-            fprintf(stderr, "warning: --ab: %s: the sides no longer show the same frames\n", why);
         if (vrg_graph_reload_ms(g) != reloaded) {
             reloaded = vrg_graph_reload_ms(g);
             fprintf(stderr, "reloaded: %.0f ms from save to frame\n", reloaded);
@@ -760,32 +874,33 @@ int vrg_cli_run(const vrg_run_options *o)
         else if (w.screenshot_requested)
             snprintf(file, sizeof file, "screenshot-%03d.png", shots++);
         w.screenshot_requested = 0;
-        fill_overlay(&w, o, g, gb, dt);
+        if (ensure_staging(&w, 2 * overlay_bytes(&w)) != 0) {
+            rc = 1;
+            break;
+        }
+        w.layer = (vrg_overlay_layer){w.staging_map, w.sc.extent.width, w.sc.extent.height};
         VkImage src, src_b = VK_NULL_HANDLE;
         VkExtent2D ext, ext_b = {0, 0};
         VkFormat fmt;
-        int via_display = 0;
+        int as_is = 1; /* the output goes to the swapchain as it is */
         if (show && vrg_graph_image(g, show, &src, &ext, &fmt) == 0) {
             /* integer images (ids) cannot be blitted: say so, show the output */
             int integer = fmt == VK_FORMAT_R32_UINT || fmt == VK_FORMAT_R32G32_UINT || fmt == VK_FORMAT_R32G32B32A32_UINT ||
                           fmt == VK_FORMAT_R16_UINT || fmt == VK_FORMAT_R8_UINT || fmt == VK_FORMAT_R32_SINT;
             if (integer)
                 snprintf(w.shown_name, sizeof w.shown_name, "%s (an integer image: showing %s)", show, vrg_graph_output(g));
-            else if (display_prepare(&w, ext, vrg_data_dir()) == 0) {
+            else {
                 display_mode(&w, show);
-                via_display = 1;
+                as_is = 0;
             }
         }
-        if ((!via_display && vrg_graph_image(g, vrg_graph_output(g), &src, &ext, &fmt) != 0) ||
+        fill_overlay(&w, o, g, gb, dt);
+        if ((as_is && vrg_graph_image(g, vrg_graph_output(g), &src, &ext, &fmt) != 0) ||
             (gb && vrg_graph_image(gb, vrg_graph_output(gb), &src_b, &ext_b, &fmt) != 0)) {
             rc = 1;
             break;
         }
-        if (ensure_staging(&w, (VkDeviceSize)OVERLAY_MAX_W * OVERLAY_MAX_H * 4 + (VkDeviceSize)w.sc.extent.width * w.sc.extent.height * 4) != 0) {
-            rc = 1;
-            break;
-        }
-        int pr = present(&w, src, ext, src_b, ext_b, file[0] ? file : NULL, via_display);
+        int pr = present(&w, src, ext, src_b, ext_b, file[0] ? file : NULL, as_is);
         if (pr < 0) {
             fprintf(stderr, "error: presenting to the window failed\n");
             rc = 1;
@@ -797,8 +912,14 @@ int vrg_cli_run(const vrg_run_options *o)
             vkDeviceWaitIdle(w.dev->device);
             uint32_t was_w, was_h, now_w, now_h;
             vrg_graph_size(g, &was_w, &was_h);
-            if (create_swapchain(&w, w.sc.handle) < 0 || vrg_graph_resize(g, w.sc.extent.width, w.sc.extent.height) != 0 ||
-                (gb && vrg_graph_resize(gb, w.sc.extent.width, w.sc.extent.height) != 0)) {
+            if (create_swapchain(&w, w.sc.handle) < 0) {
+                rc = 1;
+                break;
+            }
+            /* the same scale of the new size (a fixed --size stays) */
+            VkExtent2D want = render_size(&w, w.sc.extent.width, w.sc.extent.height);
+            if ((want.width != was_w || want.height != was_h) &&
+                (vrg_graph_resize(g, want.width, want.height) != 0 || (gb && vrg_graph_resize(gb, want.width, want.height) != 0))) {
                 rc = 1;
                 break;
             }
@@ -842,12 +963,7 @@ out:
         vkDestroyCommandPool(w.dev->device, w.pool, NULL);
         if (w.sc.handle)
             vkDestroySwapchainKHR(w.dev->device, w.sc.handle, NULL);
-        display_free_images(&w);
-        vkDestroyPipeline(w.dev->device, w.disp.pipeline, NULL);
-        vkDestroyPipelineLayout(w.dev->device, w.disp.layout, NULL);
-        vkDestroyDescriptorSetLayout(w.dev->device, w.disp.set_layout, NULL);
-        vkDestroyDescriptorPool(w.dev->device, w.disp.pool, NULL);
-        vkDestroySampler(w.dev->device, w.disp.sampler, NULL);
+        display_free(&w);
         if (w.staging) {
             vkUnmapMemory(w.dev->device, w.staging_memory);
             vkDestroyBuffer(w.dev->device, w.staging, NULL);

@@ -8,7 +8,10 @@ typedef struct vrg_run_options {
     const char *show;   /* a resource to show instead of the output */
     const char *const *sets;
     uint32_t set_count;
-    uint32_t width, height; /* window size */
+    uint32_t window_w, window_h; /* 0: 1280x720, at most the screen */
+    uint32_t width, height;      /* a fixed render size; 0: the window's times scale */
+    double scale;                /* render size / window size, (0, 1] */
+    int filter;                  /* the upscale to the window: 0 nearest, 1 bilinear */
     uint32_t frames;        /* 0: until the window closes */
     int validate;
     double gpu_timeout_s;   /* 0: the default (vrg_context_desc) */

@@ -16,7 +16,8 @@
 #include "voxrg/plugin.h"
 
 static const vrg_param_desc params[] = {
-    {"samples_per_frame", VRG_PARAM_INT, 1, 1, 1000000, "graph frames per output frame, camera held (hosts render them)"},
+    {"samples_per_frame", VRG_PARAM_INT, 1, 1, 1000000, "graph frames per output frame, camera held (hosts render them)",
+     VRG_PARAM_RELOAD},
     {"max_frames", VRG_PARAM_INT, 0, 0, 100000000, "cap on the frames averaged (0: no cap)"},
 };
 

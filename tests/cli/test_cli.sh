@@ -35,6 +35,15 @@ has "$out/stderr" "from 1 to 16384" "bench --size range in the message"
 expect_rc 2 "bad --interval" "$voxrg" render "$tests/graphs/alias.ini" --interval soon
 has "$out/stderr" "--interval .soon.: expected milliseconds" "--interval message"
 expect_rc 2 "negative --frames" "$voxrg" render "$tests/graphs/alias.ini" --frames -1
+# the window's options: checked before any window opens, refused elsewhere
+expect_rc 2 "run --scale over 1" "$voxrg" run "$tests/graphs/alias.ini" --scale 2
+has "$out/stderr" "--scale '2': expected a number in \(0, 1\]" "--scale range in the message"
+expect_rc 2 "run --scale with --size" "$voxrg" run "$tests/graphs/alias.ini" --scale 0.5 --size 64x64
+has "$out/stderr" "--scale and --size both set the render size" "--scale and --size message"
+expect_rc 2 "run --filter unknown" "$voxrg" run "$tests/graphs/alias.ini" --filter cubic
+has "$out/stderr" "--filter 'cubic': expected nearest or bilinear" "--filter message"
+expect_rc 2 "render --window" "$voxrg" render "$tests/graphs/alias.ini" --window 64x64
+has "$out/stderr" "--window is an option of .voxrg run." "a window option given to render"
 expect_rc 1 "missing graph file" "$voxrg" check "$tests/graphs/does-not-exist.ini" --no-device
 has "$out/stderr" "cannot open graph file" "missing graph message"
 # any number of plugin folders: every one searched, none left out
@@ -368,14 +377,38 @@ sys.path.insert(0, sys.argv[2])
 from png_pixels import load
 w, h, px = load(sys.argv[1])
 assert (w, h) == (192, 128), (w, h)
-# what the window showed: the scene below, the overlay panel (dark, white text) on top
+# what the window showed: the scene below, the overlay's line (white text
+# on a translucent band: the sky shows through, darkened) on top
 colours = {px(x, y) for y in range(40, h) for x in range(w)}
 assert len(colours) > 20, len(colours)
 white = sum(px(x, y) == (255, 255, 255) for y in range(0, 30) for x in range(w))
-panel = sum(px(x, y) == (24, 24, 24) for y in range(0, 30) for x in range(w))
-assert white > 100 and panel > 1000, (white, panel)
+band = [px(x, 1) for x in range(0, 60)] + [px(x, 15) for x in range(0, 60)]  # above and below the text
+sky = [px(x, 24) for x in range(0, 60)]  # below the band
+assert white > 100 and max(map(max, band)) < min(map(max, sky)) and len(set(band)) > 1, (white, band[:4], sky[:4])
 PY
     then ok; else bad "window screenshot shows the scene and the overlay"; fi
+    # render scale: the window's size, the graph at half of it, upscaled
+    # nearest (2x2 blocks of one colour) or bilinear (blended)
+    for filter in nearest bilinear; do
+        expect_rc 0 "run --scale 0.5 --filter $filter" "$voxrg" run "$tests/graphs/blocks_wall.ini" --validate --window 192x128 --scale 0.5 \
+            --filter $filter --frames 2 --screenshot "$out/scaled_$filter.png"
+    done
+    if python3 - "$out" "$tests/cli" <<'PY'
+import sys
+sys.dont_write_bytecode = True
+sys.path.insert(0, sys.argv[2])
+from png_pixels import load
+def blocks(name):  # below the overlay: how many 2x2 blocks hold one colour, of how many
+    w, h, px = load(sys.argv[1] + "/scaled_%s.png" % name)
+    assert (w, h) == (192, 128), (w, h)
+    cells = [(x, y) for y in range(40, h, 2) for x in range(0, w, 2)]
+    return sum(len({px(x + i, y + j) for i in (0, 1) for j in (0, 1)}) == 1 for x, y in cells), len(cells)
+same, cells = blocks("nearest")
+assert same == cells, (same, cells)
+same, cells = blocks("bilinear")
+assert same < cells * 0.95, (same, cells)
+PY
+    then ok; else bad "--scale 0.5 renders at half the window, upscaled as --filter says"; fi
     # another image than the output, through the display stage: normals as colours
     expect_rc 0 "run --show gbuffer.normal" "$voxrg" run "$tests/graphs/gbuffer_blocks.ini" --show gbuffer.normal --validate \
         --size 192x128 --frames 3 --screenshot "$out/normals.png"
@@ -408,7 +441,7 @@ PY
 set -u
 voxrg=$1 graph=$2 out=$3
 cd "$out" && rm -f screenshot-000.png
-"$voxrg" run "$graph" --validate --size 192x128 --record drive.path >drive.stdout 2>drive.stderr &
+"$voxrg" run "$graph" --validate --window 192x128 --scale 1 --record drive.path >drive.stdout 2>drive.stderr &
 pid=$!
 # a failing step shows what the window said (expect_rc prints stderr)
 fail() { kill $pid; echo "drive step $1 failed; voxrg's stderr:" >&2; tail -20 drive.stderr >&2; exit "$1"; }
@@ -445,6 +478,96 @@ assert math.dist((x0, y0, z0), (x1, y1, z1)) > 0.5, (rows[0], rows[-1])   # W fl
 assert abs(yaw1 - yaw0) > 1, (yaw0, yaw1)                               # the drag turned the view
 PY
         then ok; else bad "the driven window: resized screenshot, flight and turn in the recorded path"; fi
+        # a resize keeps the scale: a window of 160x100 at 0.5 renders 80x50
+        cat >"$out/scale.sh" <<'SH'
+#!/usr/bin/env bash
+set -u
+voxrg=$1 graph=$2 out=$3
+cd "$out"
+"$voxrg" run "$graph" --validate --window 192x128 --scale 0.5 >scale.stdout 2>scale.stderr &
+pid=$!
+fail() { kill $pid; echo "scale step $1 failed; voxrg's stderr:" >&2; tail -20 scale.stderr >&2; exit "$1"; }
+wid=$(timeout 120 xdotool search --sync --name '^voxrg' | head -1)
+[ -n "$wid" ] || fail 3
+for _ in $(seq 600); do xdotool getwindowname "$wid" | grep -q fps && break; sleep 0.1; done
+xdotool windowsize "$wid" 160 100
+for _ in $(seq 600); do grep -q "window resized: graph now 80x50" scale.stderr && break; sleep 0.1; done
+grep -q "window resized: graph now 80x50" scale.stderr || fail 4
+xdotool windowfocus --sync "$wid" && xdotool key Escape
+wait $pid || { rc=$?; tail -20 scale.stderr >&2; exit $rc; }
+SH
+        expect_rc 0 "a resized window keeps the render scale" timeout 300 bash "$out/scale.sh" "$voxrg" "$tests/graphs/blocks_wall.ini" "$out"
+        # the parameter panel driven by keys: open it (M), hide the overlay
+        # (H: the screenshots show the picture alone), scene.time_of_day
+        # 10 -> 12 and view.exposure (absent from the file) 0.35 -> 0.4, a
+        # screenshot of the live tweak, Ctrl+S, the reload, a screenshot
+        mkdir -p "$out/panel" && cp "$tests/graphs/blocks_wall.ini" "$out/panel/panel.ini"
+        cat >"$out/panel.sh" <<'SH'
+#!/usr/bin/env bash
+set -u
+voxrg=$1 out=$2
+cd "$out" && rm -f screenshot-00[0-2].png
+"$voxrg" run panel.ini --validate --window 192x128 --scale 1 --record panel.path >panel.stdout 2>panel.stderr &
+pid=$!
+fail() { kill $pid; echo "panel step $1 failed; voxrg's stderr:" >&2; tail -20 panel.stderr >&2; exit "$1"; }
+wid=$(timeout 120 xdotool search --sync --name '^voxrg' | head -1)
+[ -n "$wid" ] || fail 3
+wait_for() { for _ in $(seq 600); do grep -q "$1" panel.stderr && return 0; sleep 0.1; done; return 1; }
+for _ in $(seq 600); do xdotool getwindowname "$wid" | grep -q fps && break; sleep 0.1; done
+xdotool windowfocus --sync "$wid"
+xdotool key m h p && wait_for "wrote screenshot-000.png" || fail 4
+# rows: scene's box, time_of_day, day_length, traversal, then view's mode, shadows, exposure
+xdotool key Down Right Right Down Down Down Down Down Right Right Right Right Right p && wait_for "wrote screenshot-001.png" || fail 5
+xdotool key ctrl+s && wait_for "saved 2 values to panel.ini" && wait_for "reloaded:" || fail 6
+xdotool key p && wait_for "wrote screenshot-002.png" || fail 7
+xdotool key Escape
+wait $pid || { rc=$?; tail -20 panel.stderr >&2; exit $rc; }
+SH
+        expect_rc 0 "the parameter panel driven by xdotool" timeout 300 bash "$out/panel.sh" "$voxrg" "$out/panel"
+        diff "$tests/graphs/blocks_wall.ini" "$out/panel/panel.ini" >"$out/panel/diff"
+        printf '18c18\n< time_of_day = 10\n---\n> time_of_day = 12\n24a25\n> exposure = 0.4\n' >"$out/panel/diff.want"
+        cmp -s "$out/panel/diff" "$out/panel/diff.want" && ok || { bad "the panel's save changed more than the two values"; cat "$out/panel/diff"; }
+        expect_rc 0 "the saved graph renders" "$voxrg" render "$out/panel/panel.ini" --size 192x128 --out "$out/panel/render"
+        if python3 - "$out/panel" "$tests/cli" <<'PY'
+import sys
+sys.dont_write_bytecode = True
+sys.path.insert(0, sys.argv[2])
+from png_pixels import load
+d = sys.argv[1]
+before, live, reloaded, render = (load(d + f) for f in ("/screenshot-000.png", "/screenshot-001.png", "/screenshot-002.png", "/render/view.png"))
+def diff(a, b):
+    (w, h, pa), (w2, h2, pb) = a, b
+    assert (w, h) == (w2, h2), ((w, h), (w2, h2))
+    return max(abs(p - q) for y in range(h) for x in range(w) for p, q in zip(pa(x, y), pb(x, y)))
+assert diff(before, live) > 30, "the tweak did not change the image"
+assert diff(live, reloaded) == 0, "the reload after the save changed the image: %d" % diff(live, reloaded)
+# the PNG writer and the swapchain each encode sRGB: a level apart at most
+assert diff(live, render) <= 1, "the saved graph renders otherwise than the live tweak: %d" % diff(live, render)
+PY
+        then ok; else bad "the panel's tweak shows, and the saved graph renders it the same"; fi
+        # with --ab, B switches the panel to B's graph: the save edits b.ini alone
+        cp "$tests/graphs/blocks_wall.ini" "$out/panel/a.ini" && cp "$tests/graphs/blocks_wall.ini" "$out/panel/b.ini"
+        cat >"$out/panel_ab.sh" <<'SH'
+#!/usr/bin/env bash
+set -u
+voxrg=$1 out=$2
+cd "$out"
+"$voxrg" run a.ini --ab b.ini --validate --window 192x128 >ab.stdout 2>ab.stderr &
+pid=$!
+fail() { kill $pid; echo "--ab panel step $1 failed; voxrg's stderr:" >&2; tail -20 ab.stderr >&2; exit "$1"; }
+wid=$(timeout 120 xdotool search --sync --name '^voxrg' | head -1)
+[ -n "$wid" ] || fail 3
+for _ in $(seq 600); do xdotool getwindowname "$wid" | grep -q fps && break; sleep 0.1; done
+xdotool windowfocus --sync "$wid"
+xdotool key m b Down Down Down Down Down Down Right ctrl+s
+for _ in $(seq 600); do grep -q "saved 1 value to b.ini" ab.stderr && break; sleep 0.1; done
+grep -q "saved 1 value to b.ini" ab.stderr || fail 4
+xdotool key Escape
+wait $pid || { rc=$?; tail -20 ab.stderr >&2; exit $rc; }
+SH
+        expect_rc 0 "the --ab panel edits B" timeout 300 bash "$out/panel_ab.sh" "$voxrg" "$out/panel"
+        cmp -s "$tests/graphs/blocks_wall.ini" "$out/panel/a.ini" && ok || bad "--ab: the panel on B changed a.ini"
+        diff "$tests/graphs/blocks_wall.ini" "$out/panel/b.ini" | grep -qx "> exposure = 0.36" && ok || bad "--ab: b.ini did not get B's exposure"
     else
         echo "skip: xdotool not installed (scripts/setup.sh installs it)"
     fi

@@ -422,7 +422,8 @@ static void test_validation_live(void)
 }
 
 /* Parameters set while the graph runs: the next frame uses them and
- * accumulations restart; bad names, ranges and kinds are refused. */
+ * accumulations restart; bad names, ranges and kinds are refused, and so
+ * are parameters only create() reads (VRG_PARAM_RELOAD). */
 static void test_set_param(void)
 {
     static const char *reads[] = {"mean.color"};
@@ -444,6 +445,8 @@ static void test_set_param(void)
     CHECK(vrg_graph_set_param(g, "counter.nope", 1) != 0, "unknown parameter accepted");
     CHECK(vrg_graph_set_param(g, "nobody.step", 1) != 0, "unknown pass accepted");
     CHECK(vrg_graph_set_param(g, "mean.max_frames", 2.5) != 0, "a fraction for an integer accepted");
+    /* read only in create(): setting it would change nothing until a reload */
+    CHECK(vrg_graph_set_param(g, "mean.samples_per_frame", 2) != 0, "a VRG_PARAM_RELOAD parameter accepted");
     vrg_graph_destroy(g);
 }
 

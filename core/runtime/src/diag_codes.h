@@ -59,7 +59,7 @@
     X(VRG_E_CYCLE, "VRG-E042", "cycle", "passes read each other's outputs in a cycle")                                                      \
     X(VRG_E_BAD_OVERRIDE, "VRG-E043", "bad-override", "a --set override is not PASS.PARAM=VALUE")                                           \
     X(VRG_E_UNKNOWN_PARAMETER, "VRG-E044", "unknown-parameter", "an override names no pass, or no parameter of its pass")                  \
-    X(VRG_E_PARAM_NOT_SETTABLE, "VRG-E045", "param-not-settable", "a string parameter is set while the graph runs")                       \
+    X(VRG_E_PARAM_NOT_SETTABLE, "VRG-E045", "param-not-settable", "a string parameter, or one read only at creation, is set while the graph runs")                       \
     X(VRG_E_UNKNOWN_RESOURCE, "VRG-E046", "unknown-resource", "a read-back, dump or view names no resource of the graph")                   \
     X(VRG_E_NOT_A_CHOICE, "VRG-E047", "not-a-choice", "a string parameter's value is not one of the choices its plugin takes")              \
     /* plugins */                                                                                                                           \

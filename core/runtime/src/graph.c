@@ -425,8 +425,9 @@ int vrg_graph_set_param(vrg_graph *g, const char *pass_param, double value)
     int i = find_param(g, pass_param, &p);
     if (i >= 0) {
         const vrg_param_desc *pd = &p->plugin->desc->params[i];
-        if (pd->type == VRG_PARAM_STRING) {
-            _vrg_error(&g->diag, VRG_E_PARAM_NOT_SETTABLE, "set %s: a string parameter; edit the graph file (it reloads)", pass_param);
+        if (pd->type == VRG_PARAM_STRING || (pd->flags & VRG_PARAM_RELOAD)) {
+            _vrg_error(&g->diag, VRG_E_PARAM_NOT_SETTABLE, "set %s: %s; edit the graph file (it reloads)", pass_param,
+                       pd->type == VRG_PARAM_STRING ? "a string parameter" : "read only when the pass is created");
             return -1;
         }
         if (value != value || (pd->type != VRG_PARAM_FLOAT && value != floor(value)) || ((pd->min != 0 || pd->max != 0) && (value < pd->min || value > pd->max))) {
@@ -687,6 +688,7 @@ uint32_t vrg_graph_pass_count(const vrg_graph *g) { return (uint32_t)g->pass_cou
 double vrg_graph_cpu_ms(const vrg_graph *g) { return g->cpu_ms; }
 double vrg_graph_pass_cpu_ms(const vrg_graph *g, uint32_t i) { return i < (uint32_t)g->pass_count ? g->pass_cpu_ms[i] : -1; }
 const char *vrg_graph_pass_name(const vrg_graph *g, uint32_t i) { return i < (uint32_t)g->pass_count ? g->passes[i].name : NULL; }
+const vrg_plugin_desc *vrg_graph_pass_plugin(const vrg_graph *g, uint32_t i) { return i < (uint32_t)g->pass_count ? g->passes[i].plugin->desc : NULL; }
 double vrg_graph_pass_ms(const vrg_graph *g, uint32_t i) { return i < (uint32_t)g->pass_count ? g->pass_ms[i] : -1; }
 const char *vrg_graph_output(const vrg_graph *g) { return g->output_name; }
 uint32_t vrg_graph_subframes(const vrg_graph *g) { return g->subframes > 1 ? g->subframes : 1; }

@@ -705,8 +705,9 @@ static const char *param_problem(const vrg_param_desc *pd, char *why, size_t cap
         return snprintf(why, cap, "type %d is none of VRG_PARAM_FLOAT, _INT, _BOOL, _STRING", (int)pd->type), why;
     if ((pd->flags & VRG_PARAM_REPEATABLE) && pd->type != VRG_PARAM_STRING)
         return "is repeatable but not a string";
-    if (pd->flags & ~(uint32_t)VRG_PARAM_REPEATABLE)
-        return snprintf(why, cap, "has unknown flags 0x%x", pd->flags & ~(uint32_t)VRG_PARAM_REPEATABLE), why;
+    const uint32_t known = VRG_PARAM_REPEATABLE | VRG_PARAM_RELOAD;
+    if (pd->flags & ~known)
+        return snprintf(why, cap, "has unknown flags 0x%x", pd->flags & ~known), why;
     if (pd->type == VRG_PARAM_STRING)
         return NULL;
     if (!isfinite(pd->default_value) || !isfinite(pd->min) || !isfinite(pd->max))

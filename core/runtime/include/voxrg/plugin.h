@@ -45,6 +45,9 @@ typedef enum vrg_param_type {
 
 enum vrg_param_flags {
     VRG_PARAM_REPEATABLE = 1u << 0, /* the key may appear many times: a list (e.g. box = ...) */
+    /* Read only when the pass is created: vrg_graph_set_param refuses it (it
+     * would change nothing), a viewer's panel says it takes a reload. */
+    VRG_PARAM_RELOAD = 1u << 1,
 };
 
 typedef struct vrg_param_desc {

@@ -192,6 +192,9 @@ int vrg_graph_check_shaders(vrg_graph *g, FILE *report);
  * that ended; vrg_graph_wait makes it the last one); -1 where not measured. */
 uint32_t vrg_graph_pass_count(const vrg_graph *g);
 const char *vrg_graph_pass_name(const vrg_graph *g, uint32_t i);
+/* Pass i's plugin descriptor (its parameters for a settings UI), NULL past
+ * the end. Valid until the graph is destroyed or reloaded. */
+const vrg_plugin_desc *vrg_graph_pass_plugin(const vrg_graph *g, uint32_t i);
 double vrg_graph_pass_ms(const vrg_graph *g, uint32_t i);
 const char *vrg_graph_output(const vrg_graph *g);
 /* Graph frames per output frame: the largest vrg_pass_set_subframes request,
@@ -214,8 +217,9 @@ double vrg_graph_reload_ms(const vrg_graph *g);
 /* Sets a numeric parameter while the graph runs ("pass.param", the --set
  * syntax), checked against its type and range; passes see it from the next
  * frame on, with frame params_changed set once (history stays valid,
- * accumulations restart). Passes that read a parameter only in create()
- * (e.g. the terrain's radius) need a reload instead: edit the file. */
+ * accumulations restart). String parameters and those flagged
+ * VRG_PARAM_RELOAD (read only in create(), e.g. the terrain's radius) are
+ * refused (VRG-E045): they need a reload, edit the file. */
 int vrg_graph_set_param(vrg_graph *g, const char *pass_param, double value);
 /* The value in effect (numeric parameters; strings read as 0). */
 int vrg_graph_get_param(vrg_graph *g, const char *pass_param, double *value);
