@@ -3,6 +3,7 @@
  * translucent boxes, into a window-sized RGBA layer that the display stage
  * (shaders/display.comp) blends over the picture: drawn at the window's
  * resolution, whatever the render scale. */
+#include <math.h>
 #include <string.h>
 #include "overlay.h"
 /* Each glyph: 5 rows of 3 pixels, '#' set. */
@@ -121,5 +122,44 @@ void vrg_overlay_draw(const vrg_overlay *o, vrg_overlay_layer *l, int x, int y, 
         if (i == highlight)
             vrg_overlay_box(l, x, ty - 2, *w, VRG_OVERLAY_LINE_H, lit);
         vrg_overlay_text(l, x + VRG_OVERLAY_PAD, ty, o->text[i], white);
+    }
+}
+
+/* Liang-Barsky: the part of the segment inside [0, w) x [0, h), so a line
+ * from far off screen costs only its visible pixels. */
+static int clip_segment(double *x0, double *y0, double *x1, double *y1, double w, double h)
+{
+    double t0 = 0, t1 = 1, dx = *x1 - *x0, dy = *y1 - *y0;
+    double p[4] = {-dx, dx, -dy, dy}, q[4] = {*x0, w - 1 - *x0, *y0, h - 1 - *y0};
+    for (int i = 0; i < 4; i++) {
+        if (p[i] == 0) {
+            if (q[i] < 0)
+                return 0;
+            continue;
+        }
+        double t = q[i] / p[i];
+        if (p[i] < 0 && t > t0)
+            t0 = t;
+        else if (p[i] > 0 && t < t1)
+            t1 = t;
+    }
+    if (t0 > t1)
+        return 0;
+    double ax = *x0 + t0 * dx, ay = *y0 + t0 * dy;
+    *x1 = *x0 + t1 * dx, *y1 = *y0 + t1 * dy;
+    *x0 = ax, *y0 = ay;
+    return 1;
+}
+
+void vrg_overlay_segment(vrg_overlay_layer *l, double x0, double y0, double x1, double y1, int thickness, const uint8_t rgba[4])
+{
+    if (!clip_segment(&x0, &y0, &x1, &y1, l->width, l->height))
+        return;
+    double dx = x1 - x0, dy = y1 - y0;
+    int steps = (int)(fabs(dx) > fabs(dy) ? fabs(dx) : fabs(dy)) + 1;
+    for (int i = 0; i <= steps; i++) {
+        double t = (double)i / steps;
+        int x = (int)floor(x0 + t * dx), y = (int)floor(y0 + t * dy);
+        vrg_overlay_box(l, x - thickness / 2, y - thickness / 2, thickness, thickness, rgba);
     }
 }

@@ -25,6 +25,9 @@ void vrg_overlay_layer_clear(vrg_overlay_layer *l);
 void vrg_overlay_box(vrg_overlay_layer *l, int x, int y, int w, int h, const uint8_t rgba[4]);
 void vrg_overlay_text(vrg_overlay_layer *l, int x, int y, const char *text, const uint8_t rgba[4]);
 int vrg_overlay_text_width(const char *text);
+/* A line from (x0, y0) to (x1, y1), window pixels, thickness pixels wide;
+ * the part outside the layer is skipped. */
+void vrg_overlay_segment(vrg_overlay_layer *l, double x0, double y0, double x1, double y1, int thickness, const uint8_t rgba[4]);
 /* The lines in white on a translucent box with its top-left at (x, y), line
  * `highlight` (-1: none) on a lighter band; the box's size in *w, *h. */
 void vrg_overlay_draw(const vrg_overlay *o, vrg_overlay_layer *l, int x, int y, int highlight, int *w, int *h);

@@ -129,9 +129,14 @@ void vrg_panel_step(vrg_panel *p, vrg_graph *g, int dir, int fine)
     apply(p, g, r, v);
 }
 
+int vrg_panel_contains(const vrg_panel *p, double x, double y)
+{
+    return p->open && x >= p->x && x < p->x + p->w && y >= p->y && y < p->y + p->lines * VRG_OVERLAY_LINE_H + 2 * VRG_OVERLAY_PAD;
+}
+
 int vrg_panel_press(vrg_panel *p, vrg_graph *g, double x, double y)
 {
-    if (!p->open || x < p->x || x >= p->x + p->w || y < p->y || y >= p->y + p->lines * VRG_OVERLAY_LINE_H + 2 * VRG_OVERLAY_PAD)
+    if (!vrg_panel_contains(p, x, y))
         return 0;
     int line = (int)((y - p->y - VRG_OVERLAY_PAD) / VRG_OVERLAY_LINE_H);
     if (line >= 0 && line < p->lines && p->line_row[line] >= 0) {

@@ -29,6 +29,8 @@ void vrg_panel_select(vrg_panel *p, vrg_graph *g, int delta);
 /* The selected parameter a step down (-1) or up (+1), a tenth of one when
  * fine; booleans flip. */
 void vrg_panel_step(vrg_panel *p, vrg_graph *g, int dir, int fine);
+/* Whether (x, y), framebuffer pixels, lies on the open panel. */
+int vrg_panel_contains(const vrg_panel *p, double x, double y);
 /* A press of the left button at (x, y): 1 if it fell on the panel (the row
  * under it is selected and a drag starts), else 0. */
 int vrg_panel_press(vrg_panel *p, vrg_graph *g, double x, double y);

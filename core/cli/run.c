@@ -11,6 +11,7 @@
 #include <string.h>
 #include <time.h>
 #include "bench.h"
+#include "edit.h"
 #include "overlay.h"
 #include "panel.h"
 #include "run.h"
@@ -85,6 +86,12 @@ typedef struct window_state {
     int shown;                /* index into vrg_graph_image_name, -1: the output */
     int shown_step;           /* pending key */
     char shown_name[160];
+    /* block editing (edit.h): a right press that moves less than
+     * CLICK_SLOP pixels before its release places; more is a look */
+    vrg_cli_edit edit;
+    double right_moved;
+    int right_hit;
+    vrg_world_hit right_at; /* what was under the cursor at the right press */
     /* the display stage (shaders/display.comp): sources, result, pipeline */
     struct {
         display_image a, b, out;
@@ -200,7 +207,7 @@ static int create_swapchain(window_state *w, VkSwapchainKHR old)
  * of a still axis; at the top the world is crossed in a second. */
 static float capped_speed(float speed) { return speed > VRG_WORLD_LIMIT ? VRG_WORLD_LIMIT : speed; }
 
-/* W/A/S/D move, Space up, Shift down, right mouse button held: look,
+/* W/A/S/D move, Space up, Shift down, right mouse button dragged: look,
  * scroll or +/-: speed. */
 static void fly(window_state *w, vrg_camera *cam, float dt)
 {
@@ -229,6 +236,7 @@ static void fly(window_state *w, vrg_camera *cam, float dt)
     double mx, my;
     glfwGetCursorPos(win, &mx, &my);
     if (look && w->looking) {
+        w->right_moved += fabs(mx - w->mouse_x) + fabs(my - w->mouse_y);
         cam->yaw -= (float)(mx - w->mouse_x) * 0.15f;
         cam->pitch -= (float)(my - w->mouse_y) * 0.15f;
         cam->pitch = cam->pitch > 89 ? 89 : cam->pitch < -89 ? -89 : cam->pitch;
@@ -237,6 +245,65 @@ static void fly(window_state *w, vrg_camera *cam, float dt)
         glfwSetInputMode(win, GLFW_CURSOR, look ? GLFW_CURSOR_DISABLED : GLFW_CURSOR_NORMAL);
     w->looking = look;
     w->mouse_x = mx, w->mouse_y = my;
+}
+
+/* Pixels a right press may move and still be a click (a place), not a look. */
+#define CLICK_SLOP 4.0
+
+/* The cursor in framebuffer pixels, as the panel and the picture are laid out. */
+static void cursor_fb(window_state *w, double *x, double *y, int *fw, int *fh)
+{
+    int ww, wh;
+    glfwGetCursorPos(w->window, x, y);
+    glfwGetFramebufferSize(w->window, fw, fh);
+    glfwGetWindowSize(w->window, &ww, &wh);
+    *x *= ww > 0 ? (double)*fw / ww : 1, *y *= wh > 0 ? (double)*fh / wh : 1;
+}
+
+/* The block under the cursor of the picture shown (A's: --ab's sides are
+ * separate worlds and the left button drags the divider, so no editing). */
+static int hovered(window_state *w, vrg_world_hit *hit)
+{
+    double x, y;
+    int fw, fh;
+    if (!w->g || w->gb || w->looking)
+        return 0;
+    cursor_fb(w, &x, &y, &fw, &fh);
+    return !vrg_panel_contains(&w->panel, x, y) && vrg_cli_edit_pick(w->g, x, y, fw, fh, hit);
+}
+
+/* Edits apply at once, between frames (events are polled then), on the
+ * graph whose last frame the window shows. */
+static void edit_action(window_state *w, vrg_cli_edit_action action, const vrg_world_hit *hit)
+{
+    if (!w->g)
+        return;
+    if (w->gb) {
+        snprintf(w->edit.status, sizeof w->edit.status, "no editing with --ab (each side has its own world)");
+        fprintf(stderr, "edit: %s\n", w->edit.status);
+        return;
+    }
+    vrg_cli_edit_apply(&w->edit, w->g, action, hit);
+}
+
+/* Left press: remove; right press and release without a drag: place.
+ * Buttons come as events so that a click within one poll is not missed. */
+static void on_mouse_button(GLFWwindow *win, int button, int action, int mods)
+{
+    (void)mods;
+    window_state *w = glfwGetWindowUserPointer(win);
+    vrg_world_hit hit;
+    double x, y;
+    int fw, fh;
+    cursor_fb(w, &x, &y, &fw, &fh);
+    if (button == GLFW_MOUSE_BUTTON_LEFT && action == GLFW_PRESS && !vrg_panel_contains(&w->panel, x, y) && !w->gb) {
+        int got = hovered(w, &hit);
+        edit_action(w, VRG_CLI_EDIT_REMOVE, got ? &hit : NULL);
+    } else if (button == GLFW_MOUSE_BUTTON_RIGHT && action == GLFW_PRESS) {
+        w->right_moved = 0;
+        w->right_hit = hovered(w, &w->right_at);
+    } else if (button == GLFW_MOUSE_BUTTON_RIGHT && action == GLFW_RELEASE && w->right_moved < CLICK_SLOP)
+        edit_action(w, VRG_CLI_EDIT_PLACE, w->right_hit ? &w->right_at : NULL);
 }
 
 static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
@@ -256,6 +323,12 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
         vrg_panel_step(&w->panel, edited, key == GLFW_KEY_RIGHT ? 1 : -1, (mods & GLFW_MOD_SHIFT) != 0);
     else if (key == GLFW_KEY_S && (mods & GLFW_MOD_CONTROL))
         w->save_requested = w->s_saves = 1;
+    else if (key == GLFW_KEY_Z && (mods & GLFW_MOD_CONTROL))
+        edit_action(w, mods & GLFW_MOD_SHIFT ? VRG_CLI_EDIT_REDO : VRG_CLI_EDIT_UNDO, NULL);
+    else if (key == GLFW_KEY_Y && (mods & GLFW_MOD_CONTROL))
+        edit_action(w, VRG_CLI_EDIT_REDO, NULL);
+    else if ((key == GLFW_KEY_E || key == GLFW_KEY_Q) && w->g)
+        vrg_cli_edit_cycle(&w->edit, w->g, key == GLFW_KEY_E ? 1 : -1);
     else if (key == GLFW_KEY_M || key == GLFW_KEY_F2)
         w->panel.open = !w->panel.open;
     else if (key == GLFW_KEY_B && w->panel.open && w->gb)
@@ -598,7 +671,9 @@ static void fill_details(vrg_overlay *ov, const vrg_run_options *o, vrg_graph *g
             }
     }
     static const char *keys[] = {
-        "wasd space shift: fly, right mouse: look, scroll + -: speed",
+        "wasd space shift: fly, right drag: look, scroll + -: speed",
+        "left click: remove block, right click: place, e q: block type",
+        "ctrl+z: undo, ctrl+y ctrl+shift+z: redo",
         "tab 0-9: show an image, t [ ]: day, f: pause, p: screenshot",
         "n: nearest/bilinear, h: hide, f1: these details, esc: quit",
         "m f2: parameters (ctrl+s: save, b: edit a or b)",
@@ -637,6 +712,14 @@ static void fill_overlay(window_state *w, const vrg_run_options *o, vrg_graph *g
         vrg_overlay_line(&ov, line);
         err += len + (end ? 1 : 0);
     }
+    vrg_world_hit hover;
+    int hover_on = hovered(w, &hover);
+    if (!gb && vrg_graph_world(g)) {
+        vrg_cli_edit_describe(&w->edit, g, hover_on ? &hover : NULL, line, sizeof line);
+        vrg_overlay_line(&ov, line);
+    }
+    if (hover_on)
+        vrg_cli_edit_outline(g, &hover, l);
     if (w->details)
         fill_details(&ov, o, g, gb);
     int bw, bh;
@@ -698,7 +781,7 @@ int vrg_cli_run(const vrg_run_options *o)
         glfwTerminate();
         return 1;
     }
-    window_state w = {.speed = 8.0f, .divider = 0.5f, .shown = -1, .bilinear = o->filter, .scale = o->scale, .fixed_w = o->width,
+    window_state w = {.speed = 8.0f, .divider = 0.5f, .shown = -1, .edit = {.type = VRG_BLOCK_STONE}, .bilinear = o->filter, .scale = o->scale, .fixed_w = o->width,
                       .fixed_h = o->height};
     uint32_t next = 0;
     const char **exts = glfwGetRequiredInstanceExtensions(&next);
@@ -726,6 +809,7 @@ int vrg_cli_run(const vrg_run_options *o)
     glfwSetWindowUserPointer(w.window, &w);
     glfwSetKeyCallback(w.window, on_key);
     glfwSetScrollCallback(w.window, on_scroll);
+    glfwSetMouseButtonCallback(w.window, on_mouse_button);
     if (glfwCreateWindowSurface(w.dev->instance, w.window, NULL, &w.surface) != VK_SUCCESS) {
         fprintf(stderr, "error: cannot make a Vulkan surface for the window\n");
         goto out;

@@ -1,0 +1,207 @@
+#!/usr/bin/env python3
+"""Block editing in `voxrg run`, driven like a user (xdotool under Xvfb):
+the cursor over the terrain, a left click removes the block (the journal
+beside the graph gains a record, the picture changes), Ctrl+Z restores the
+picture, a right click places the selected type against the face hit (the
+block beside the restored one), a right drag still turns the view and
+places nothing; a graph without a journal edits in memory and says so.
+Usage: test_run_edit.py VOXRG TESTS_DIR OUT_DIR"""
+import os
+import re
+import shutil
+import struct
+import subprocess
+import sys
+import time
+
+sys.dont_write_bytecode = True
+voxrg, tests, out = sys.argv[1:4]
+sys.path.insert(0, os.path.join(tests, "cli"))
+from png_pixels import load  # noqa: E402
+
+TERRAIN = """[graph]
+name   = edit_terrain
+output = view
+width  = 160
+height = 100
+
+[camera]
+position = 8 44 8
+yaw      = 30
+pitch    = -50
+
+[scene]
+plugin     = terrain
+seed       = 7
+radius     = 1
+threads    = 2
+
+[pass view]
+plugin    = world_debug
+in.world  = world
+in.frame  = frame
+out.color = view
+mode      = 0
+"""
+
+
+def xdo(*args):
+    subprocess.run(["xdotool", *args], check=True, timeout=60)
+
+
+class Window:
+    def __init__(self, graph, cwd):
+        self.cwd, self.log = cwd, os.path.join(cwd, "run.stderr")
+        self.err = open(self.log, "w")
+        self.proc = subprocess.Popen([voxrg, "run", graph, "--validate", "--window", "160x100", "--scale", "1"], cwd=cwd,
+                                     stdout=subprocess.DEVNULL, stderr=self.err)
+        self.wid = subprocess.run(["xdotool", "search", "--sync", "--name", "^voxrg"], capture_output=True, text=True,
+                                  timeout=120).stdout.split()[0]
+        self.wait(lambda: "fps" in subprocess.run(["xdotool", "getwindowname", self.wid], capture_output=True, text=True).stdout,
+                  "frames shown")
+        xdo("windowfocus", "--sync", self.wid)
+        self.shots = 0
+
+    def wait(self, cond, what, seconds=60):
+        end = time.time() + seconds
+        while time.time() < end:
+            if cond():
+                return
+            if self.proc.poll() is not None:
+                break
+            time.sleep(0.1)
+        sys.exit(f"FAIL: waiting for {what}; voxrg said:\n" + open(self.log).read()[-3000:])
+
+    def stderr_has(self, pattern, count=1):
+        self.wait(lambda: len(re.findall(pattern, open(self.log).read())) >= count, f"'{pattern}' x{count}")
+        return re.findall(pattern, open(self.log).read())[count - 1]
+
+    def screenshot(self):
+        name = f"screenshot-{self.shots:03d}.png"
+        self.shots += 1
+        xdo("key", "p")
+        self.stderr_has("wrote " + name)
+        return load(os.path.join(self.cwd, name))
+
+    def settled(self):
+        """A screenshot equal to the one before: streaming has loaded what the camera sees."""
+        last = self.screenshot()
+        for _ in range(30):
+            shot = self.screenshot()
+            if pixels(shot) == pixels(last):
+                return shot
+            last = shot
+        sys.exit("FAIL: the picture never settled")
+
+    def close(self):
+        xdo("key", "Escape")
+        rc = self.proc.wait(timeout=120)
+        self.err.close()
+        if rc != 0:
+            sys.exit(f"FAIL: voxrg run exited {rc}:\n" + open(self.log).read()[-3000:])
+
+
+def pixels(shot):
+    w, h, px = shot
+    return [px(x, y) for y in range(h) for x in range(w)]
+
+
+def changed(a, b):
+    return sum(1 for p, q in zip(pixels(a), pixels(b)) if max(abs(i - j) for i, j in zip(p, q)) > 8)
+
+
+def records(journal):
+    data = open(journal, "rb").read()
+    n = struct.unpack("<I", data[8:12])[0]
+    body = data[8 + 4 + n + 4:]
+    assert len(body) % 20 == 0, len(body)
+    return [(chr(body[i]), body[i + 1], body[i + 2], struct.unpack("<iii", body[i + 4:i + 16])) for i in range(0, len(body), 20)]
+
+
+def main():
+    if not shutil.which("Xvfb") or not shutil.which("xdotool"):
+        print("skip: Xvfb or xdotool not installed (scripts/setup.sh installs them)")
+        return 77
+    shutil.rmtree(out, ignore_errors=True)
+    os.makedirs(out)
+    display_file = os.path.join(out, "xvfb.display")
+    with open(display_file, "w") as f:
+        xvfb = subprocess.Popen(["Xvfb", "-displayfd", str(f.fileno()), "-screen", "0", "640x480x24", "-nolisten", "tcp"],
+                                pass_fds=(f.fileno(),), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        for _ in range(100):
+            if open(display_file).read().strip():
+                break
+            time.sleep(0.1)
+        os.environ["DISPLAY"] = ":" + open(display_file).read().split()[0]
+        terrain(os.path.join(out, "terrain"))
+        no_journal(os.path.join(out, "blocks"))
+    finally:
+        xvfb.kill()
+        xvfb.wait()
+    print("ok")
+    return 0
+
+
+def terrain(d):
+    os.makedirs(d)
+    with open(os.path.join(d, "terrain.ini"), "w") as f:
+        f.write(TERRAIN)
+    journal = os.path.join(d, "terrain.ini.edits")
+    win = Window("terrain.ini", d)
+    xdo("key", "h")  # the picture alone (the overlay's rates change every frame)
+    xdo("mousemove", "--window", win.wid, "80", "50")
+    win.settled()
+    # the block under the cursor is outlined (edit.c's colour) around the cursor
+    xdo("key", "h")
+    w, h, px = win.screenshot()
+    outline = [(x, y) for y in range(20, 80) for x in range(50, 110) if max(abs(a - b) for a, b in zip(px(x, y), (255, 230, 60))) < 12]
+    assert len(outline) >= 8, f"no outline near the cursor: {len(outline)} pixels"
+    xdo("key", "h")  # the picture alone again
+    before = win.screenshot()
+    xdo("click", "1")
+    removed = win.stderr_has(r"edit: removed (?!air)\w+ at (-?\d+) (-?\d+) (-?\d+)\n")
+    removed = tuple(map(int, removed))
+    assert records(journal) == [("E", records(journal)[0][1], 0, removed)], records(journal)
+    assert records(journal)[0][1] != 0, "the removed block was air"
+    after = win.screenshot()
+    assert changed(before, after) > 0, "the removal did not change the picture"
+    xdo("key", "ctrl+z")
+    win.stderr_has("edit: undo done")
+    undone = win.screenshot()
+    assert changed(before, undone) == 0, f"undo left {changed(before, undone)} pixels changed"
+    xdo("click", "3")
+    placed = tuple(map(int, win.stderr_has(r"edit: placed stone at (-?\d+) (-?\d+) (-?\d+)\n")))
+    assert sum(abs(a - b) for a, b in zip(placed, removed)) == 1, (placed, removed)
+    rec = records(journal)
+    assert [r[0] for r in rec] == ["E", "U", "E"] and rec[2][1:] == (0, 3, placed), rec
+    assert changed(before, win.screenshot()) > 0, "the placed block is not drawn"
+    # a right drag turns the view and places nothing
+    xdo("mousedown", "3")
+    for _ in range(8):
+        xdo("mousemove_relative", "--", "8", "0")
+        time.sleep(0.05)
+    xdo("mouseup", "3")
+    win.screenshot()
+    assert len(records(journal)) == 3, records(journal)
+    win.close()
+
+
+def no_journal(d):
+    """blocks has no journal: the click edits the world in memory, undo says why it cannot."""
+    os.makedirs(d)
+    win = Window(os.path.join(tests, "graphs", "blocks_wall.ini"), d)
+    xdo("key", "h")
+    xdo("mousemove", "--window", win.wid, "80", "50")
+    before = win.settled()
+    xdo("click", "1")
+    win.stderr_has(r"edit: removed (?!air)\w+ at -?\d+ -?\d+ -?\d+ \(no journal: in memory only, no undo\)")
+    assert changed(before, win.screenshot()) > 0, "the in-memory removal did not change the picture"
+    xdo("key", "ctrl+z")
+    win.stderr_has(r"edit: no journal \(a graph from text, or edits = none\): nothing to undo")
+    win.close()
+    assert not [f for f in os.listdir(os.path.join(tests, "graphs")) if f.endswith(".edits")], "a journal appeared beside blocks_wall.ini"
+
+
+if __name__ == "__main__":
+    sys.exit(main())
