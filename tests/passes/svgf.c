@@ -6,6 +6,9 @@
 #include "harness.h"
 #include "voxrg/world.h"
 #include "voxrg/camera.h"
+#include "voxrg/edits.h"
+#include <stdlib.h>
+#include <unistd.h>
 
 /* svgf_reproject's test of whether previous pixel t shows the surface at
  * x with normal n in chunk `chunk` (the shader's same_surface, defaults). */
@@ -87,6 +90,63 @@ static void test_svgf_disocclusion(void)
     for (unsigned i = 0; i < sizeof all / sizeof all[0]; i++)
         free(all[i]->pixels);
     vrg_graph_destroy(g);
+}
+
+/* The pillar of svgf_ghost.ini (x 22..24, y 1..10, z 11..12) removed
+ * through an edit journal, as `voxrg run` removes blocks: 0, or -1. */
+static int remove_pillar(vrg_graph *g, vrg_edits *e)
+{
+    char err[512];
+    for (int y = 1; y <= 10; y++)
+        for (int z = 11; z <= 12; z++)
+            for (int x = 22; x <= 24; x++)
+                if (vrg_edits_set(e, vrg_graph_world(g), x, y, z, VRG_BLOCK_AIR, err, sizeof err) != 0) {
+                    fprintf(stderr, "%s\n", err);
+                    return -1;
+                }
+    return 0;
+}
+
+/* A still camera, history built on the pillar, then the pillar removed by
+ * edits: from the first frame after the edit the reprojected colour is the
+ * fresh render of the edited world (a new graph, the same edits, no
+ * history), so no ghost of the removed blocks survives in the history. */
+static void test_svgf_edit_removal(void)
+{
+    static const char *reads[] = {"reproject.color"};
+    char dir[] = "/tmp/vrg_edit_ghost_XXXXXX", path[64], err[512];
+    vrg_graph *g = load_with("svgf_ghost.ini", NULL, 0, reads, 1), *fresh = load_with("svgf_ghost.ini", NULL, 0, reads, 1);
+    CHECK(mkdtemp(dir) != NULL, "mkdtemp failed");
+    snprintf(path, sizeof path, "%s/ghost.edits", dir);
+    vrg_edits *e = vrg_edits_open(path, "svgf_ghost", err, sizeof err);
+    CHECK(e != NULL, "%s", err);
+    if (!g || !fresh || !e)
+        return;
+    vrg_image_data before, after[2], want;
+    for (int i = 0; i < 4; i++)
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    CHECK(vrg_graph_read(g, "reproject.color", &before) == 0, "readback failed");
+    CHECK(remove_pillar(g, e) == 0 && remove_pillar(fresh, e) == 0, "the edits failed");
+    for (int i = 0; i < 2; i++)
+        CHECK(vrg_graph_frame(g) == 0 && vrg_graph_read(g, "reproject.color", &after[i]) == 0, "frame after the edit failed");
+    CHECK(vrg_graph_frame(fresh) == 0 && vrg_graph_read(fresh, "reproject.color", &want) == 0, "fresh frame failed");
+    int uncovered = 0, ghosts[2] = {0, 0};
+    for (uint32_t p = 0; p < want.width * want.height; p++)
+        for (int c = 0; c < 3; c++) {
+            uncovered += c == 0 && fabsf(before.pixels[4 * p] - want.pixels[4 * p]) > 0.05f;
+            for (int k = 0; k < 2; k++)
+                ghosts[k] += fabsf(after[k].pixels[4 * p + c] - want.pixels[4 * p + c]) > 0.01f;
+        }
+    printf("svgf_edit_removal: %d pixels uncovered, %d and %d channels off the fresh render\n", uncovered, ghosts[0], ghosts[1]);
+    CHECK(uncovered > 100, "removing the pillar changed only %d pixels: the test would not see a ghost", uncovered);
+    CHECK(ghosts[0] == 0 && ghosts[1] == 0, "%d, %d colour channels differ from the fresh render: a ghost of the removed pillar", ghosts[0],
+          ghosts[1]);
+    free(before.pixels), free(after[0].pixels), free(after[1].pixels), free(want.pixels);
+    vrg_edits_close(e);
+    unlink(path);
+    rmdir(dir);
+    vrg_graph_destroy(g);
+    vrg_graph_destroy(fresh);
 }
 
 /* Mean squared error of colour images a and b over all pixels and channels. */
@@ -453,6 +513,7 @@ int main(int argc, char **argv)
 {
     static const test_case cases[] = {
         {"svgf_disocclusion", test_svgf_disocclusion, 1},
+        {"svgf_edit_removal", test_svgf_edit_removal, 1},
         {"svgf_mse", test_svgf_mse, 1},
         {"svgf_history_reset", test_svgf_history_reset, 1},
         {"svgf_variance", test_svgf_variance, 1},
