@@ -100,6 +100,7 @@ void vrg_cli_edit_cycle(vrg_cli_edit *e, const vrg_graph *g, int dir)
         return;
     int t = e->type >= 1 && e->type <= solid ? e->type : 1;
     e->type = (vrg_block)((t - 1 + dir + solid) % solid + 1);
+    snprintf(e->status, sizeof e->status, "type: %s", type_name(w, e->type));
 }
 
 /* Clip-space point of world position p. */

@@ -714,7 +714,8 @@ static void fill_overlay(window_state *w, const vrg_run_options *o, vrg_graph *g
     }
     vrg_world_hit hover;
     int hover_on = hovered(w, &hover);
-    if (!gb && vrg_graph_world(g)) {
+    /* only while there is something to say: the rates' line stays alone otherwise */
+    if (!gb && vrg_graph_world(g) && (hover_on || w->edit.status[0])) {
         vrg_cli_edit_describe(&w->edit, g, hover_on ? &hover : NULL, line, sizeof line);
         vrg_overlay_line(&ov, line);
     }
