@@ -156,8 +156,9 @@ static int place(vrg_pass *pass, placed *p)
         return vrg_pass_error_at(pass, vrg_param_line(pass, "position"), "position = '%s': expected 'X Y Z' (integers, blocks)", ps);
     }
     const char *ground = vrg_param_string(pass, "ground");
-    p->ground = strcmp(ground, "none") == 0 ? 0 : vrg_block_by_name(ground);
-    if (p->ground <= 0) {
+    int no_ground = strcmp(ground, "none") == 0;
+    p->ground = no_ground ? 0 : vrg_block_by_name(ground);
+    if (!no_ground && p->ground <= 0) {
         placed_free(p);
         return vrg_pass_error_at(pass, vrg_param_line(pass, "ground"), "ground = '%s': expected none or a block name (stone, grass, white, ...)", ground);
     }
@@ -171,10 +172,11 @@ static int place(vrg_pass *pass, placed *p)
         hi[a] = lo[a] + extent;
     }
     if (lo[1] < 0 || hi[1] > WORLD_HEIGHT || lo[0] < -WORLD_XZ || hi[0] > WORLD_XZ || lo[2] < -WORLD_XZ || hi[2] > WORLD_XZ) {
-        placed_free(p);
-        return vrg_pass_error_at(pass, file_line,
-                                 "%s: the model spans blocks %lld..%lld x %lld..%lld x %lld..%lld (scale %d, position %s); the world holds 0 <= y < %d and |x|, |z| <= %d",
-                                 p->path, lo[0], hi[0] - 1, lo[1], hi[1] - 1, lo[2], hi[2] - 1, scale, ps, WORLD_HEIGHT, WORLD_XZ);
+        int rc = vrg_pass_error_at(pass, file_line,
+                                   "%s: the model spans blocks %lld..%lld x %lld..%lld x %lld..%lld (scale %d, position %s); the world holds 0 <= y < %d and |x|, |z| <= %d",
+                                   p->path, lo[0], hi[0] - 1, lo[1], hi[1] - 1, lo[2], hi[2] - 1, scale, ps, WORLD_HEIGHT, WORLD_XZ);
+        placed_free(p); /* after the message: it names p->path */
+        return rc;
     }
     int r = 0;
     for (int a = 0; a < 3; a++) {

@@ -640,7 +640,44 @@ static void test_terrain_edits(void)
     vrg_graph_destroy(g);
 }
 
+static void write_seed(const char *dir, const char *name, buf f);
+
+/* A model placed outside the world's limits (|x|, |z| <= 512, 0 <= y < 256)
+ * is an error at the file's line naming the file and the blocks it spans,
+ * not a world of that size. */
+static void test_too_large(void)
+{
+    make_tmpdir();
+    static const uint8_t voxel[4] = {0, 0, 0, 1};
+    char path[600];
+    snprintf(path, sizeof path, "%s/small.vox", tmpdir);
+    write_seed(tmpdir, "small.vox", one_model(4, 4, 4, 1, voxel));
+    static const struct {
+        const char *position, *scale;
+    } outside[] = {{"600 1 0", "1"}, {"0 1 -700", "1"}, {"0 254 0", "1"}, {"500 1 0", "16"}};
+    for (size_t i = 0; i < sizeof outside / sizeof outside[0]; i++) {
+        char text[1600], *log = NULL;
+        size_t len = 0;
+        snprintf(text, sizeof text,
+                 "[graph]\noutput = ldr\nwidth = 16\nheight = 16\n[scene]\nplugin = vox\nfile = %s\nposition = %s\nscale = %s\nedits = none\n"
+                 "[pass gbuffer]\nplugin = gbuffer\nin.world = world\nin.frame = frame\nin.atlas = atlas\n"
+                 "[pass tonemap]\nplugin = tonemap\nin.color = gbuffer.albedo\nout.ldr = ldr\n",
+                 path, outside[i].position, outside[i].scale);
+        FILE *diag = open_memstream(&log, &len);
+        vrg_graph_desc d = {.path = "too_large.ini", .text = text, .diag = diag};
+        vrg_graph *g = NULL;
+        int rc = vrg_graph_load(ctx, &d, &g);
+        fclose(diag);
+        CHECK(rc != 0, "position %s scale %s: a model outside the world loaded", outside[i].position, outside[i].scale);
+        CHECK(log && strstr(log, "too_large.ini:7: error") && strstr(log, "small.vox: the model spans blocks") && strstr(log, "the world holds 0 <= y < 256"),
+              "position %s scale %s: %s", outside[i].position, outside[i].scale, log ? log : "(no message)");
+        vrg_graph_destroy(g);
+        free(log);
+    }
+}
+
 static const test_case cases[] = {
+    {"vox_too_large", test_too_large, 1, NULL},
     {"terrain_edits", test_terrain_edits, 1, NULL},
     {"vox_scene_graph", test_scene_graph, 0, NULL},
     {"vox_bad_files", test_bad_files, 0, NULL},
