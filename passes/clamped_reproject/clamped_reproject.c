@@ -77,6 +77,17 @@ static const vrg_slot_desc slots[] = {
      .help = "history length in frames after anti-lag (0: restarted this frame)"},
 };
 
+typedef struct clamped_reproject_push {
+    float alpha, fast_alpha, clamp_k, antilag, antilag_threshold, normal_threshold, plane_distance, footprints;
+    int32_t max_length, cubic, nearest, fallback, history_valid;
+} clamped_reproject_push;
+
+/* the one dispatch execute() records (every slot, in order): checked by
+ * `voxrg check`; the parameters are all push constants */
+static const vrg_dispatch_desc dispatches[] = {
+    {.shader = "clamped_reproject.comp", .push_size = sizeof(clamped_reproject_push), .pixel_loop = 1},
+};
+
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     /* the history images are read at reprojected positions: all at one size */
@@ -89,10 +100,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     int valid = 1;
     for (unsigned i = 0; i < sizeof past / sizeof past[0]; i++)
         valid &= vrg_res_history_valid(pass, vrg_pass_res(pass, past[i]));
-    struct {
-        float alpha, fast_alpha, clamp_k, antilag, antilag_threshold, normal_threshold, plane_distance, footprints;
-        int32_t max_length, cubic, nearest, fallback, history_valid;
-    } pc = {
+    clamped_reproject_push pc = {
         (float)vrg_param(pass, "alpha"),
         (float)vrg_param(pass, "fast_alpha"),
         (float)vrg_param(pass, "clamp_k"),
@@ -107,7 +115,9 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         vrg_param_int(pass, "fallback"),
         valid,
     };
-    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "clamped_reproject.comp", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1});
+    vrg_dispatch_desc d = dispatches[0];
+    d.push = &pc;
+    (void)vrg_dispatch(pass, cmd, &d);
 }
 
 static const vrg_plugin_desc desc = {
@@ -121,6 +131,8 @@ static const vrg_plugin_desc desc = {
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,
+    .dispatches = dispatches,
+    .dispatch_count = sizeof dispatches / sizeof dispatches[0],
 };
 
 VRG_PLUGIN(desc)

@@ -36,15 +36,25 @@ static int check(vrg_pass *pass)
     return 0;
 }
 
+typedef struct mean_variance_push {
+    int32_t radius, min_history;
+} mean_variance_push;
+
+/* the one dispatch execute() records (every slot, in order): checked by
+ * `voxrg check`; size and min_history are push constants */
+static const vrg_dispatch_desc dispatches[] = {
+    {.shader = "mean_variance.comp", .push_size = sizeof(mean_variance_push), .pixel_loop = 1},
+};
+
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     static const char *same[] = {"illumination", "moments", "length", "position", "normal"};
     if (vrg_pass_require_same_size(pass, "color", same, sizeof same / sizeof same[0]) != 0)
         return;
-    struct {
-        int32_t radius, min_history;
-    } pc = {vrg_param_int(pass, "size") / 2, vrg_param_int(pass, "min_history")};
-    (void)vrg_dispatch(pass, cmd, &(vrg_dispatch_desc){.shader = "mean_variance.comp", .push = &pc, .push_size = sizeof pc, .pixel_loop = 1});
+    mean_variance_push pc = {vrg_param_int(pass, "size") / 2, vrg_param_int(pass, "min_history")};
+    vrg_dispatch_desc d = dispatches[0];
+    d.push = &pc;
+    (void)vrg_dispatch(pass, cmd, &d);
 }
 
 static const vrg_plugin_desc desc = {
@@ -59,6 +69,8 @@ static const vrg_plugin_desc desc = {
     .slot_count = sizeof slots / sizeof slots[0],
     .check = check,
     .execute = execute,
+    .dispatches = dispatches,
+    .dispatch_count = sizeof dispatches / sizeof dispatches[0],
 };
 
 VRG_PLUGIN(desc)

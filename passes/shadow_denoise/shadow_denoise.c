@@ -57,35 +57,55 @@ static int create(vrg_pass *pass)
     return 0;
 }
 
+typedef struct shadow_denoise_push {
+    float sun_radius, radius_scale, max_radius, sigma_z; /* sun_radius in radians */
+    int32_t taps, iteration;
+} shadow_denoise_push;
+
+/* Every dispatch execute() records, which `voxrg check` compiles: the pack
+ * with and without the radius output, and the blurs. These run pong -> ping
+ * -> pong ... -> out.visibility, so iteration i reads pong when i is even
+ * and ping when odd: a pair's entry i & 1 is the one for iteration i. */
+enum {
+    PACK,
+    PACK_RADIUS, /* radius is read: write it */
+    BLUR_PACKED, /* + (i & 1): pong -> ping, ping -> pong */
+    BLUR_LAST = BLUR_PACKED + 2, /* + (i & 1): pong, ping -> out.visibility */
+};
+#define PACK_INTO_PONG(defs)                                                                                                                     \
+    {.shader = "shadow_denoise.comp", .defines = defs, .push_size = sizeof(shadow_denoise_push), .pixel_loop = 1, .domain = "pong",            \
+     .bindings = {{"in.visibility"}, {"occluder"}, {"position"}, {"normal"}, {"frame"}, {"pong", VRG_ACCESS_STORAGE_WRITE}, {"radius"}}}
+#define BLUR(defs, src, dst)                                                                                                                     \
+    {.shader = "shadow_denoise.comp", .defines = defs, .push_size = sizeof(shadow_denoise_push), .pixel_loop = 1, .domain = dst,               \
+     .bindings = {{src, VRG_ACCESS_STORAGE_READ}, {"frame"}, {dst, VRG_ACCESS_STORAGE_WRITE}}}
+static const vrg_dispatch_desc dispatches[] = {
+    [PACK] = PACK_INTO_PONG("PACK"),
+    [PACK_RADIUS] = PACK_INTO_PONG("PACK RADIUS_OUT"),
+    [BLUR_PACKED] = BLUR("BLUR TO_PACKED", "pong", "ping"),
+    [BLUR_PACKED + 1] = BLUR("BLUR TO_PACKED", "ping", "pong"),
+    [BLUR_LAST] = BLUR("BLUR", "pong", "out.visibility"),
+    [BLUR_LAST + 1] = BLUR("BLUR", "ping", "out.visibility"),
+};
+
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     static const char *same[] = {"in.visibility", "occluder", "position", "normal"};
     if (vrg_pass_require_same_size(pass, "out.visibility", same, 4) != 0)
         return;
-    struct {
-        float sun_radius, radius_scale, max_radius, sigma_z; /* sun_radius in radians */
-        int32_t taps, iteration;
-    } pc = {(float)(vrg_param(pass, "sun_radius") * 3.14159265358979323846 / 180.0), (float)vrg_param(pass, "radius_scale"),
+    shadow_denoise_push pc = {(float)(vrg_param(pass, "sun_radius") * 3.14159265358979323846 / 180.0), (float)vrg_param(pass, "radius_scale"),
             (float)vrg_param(pass, "max_radius"), (float)vrg_param(pass, "sigma_z"), vrg_param_int(pass, "taps"), 0};
-    int radius_out = vrg_res_connected(vrg_pass_res(pass, "radius"));
-    vrg_dispatch_desc pack = {.shader = "shadow_denoise.comp", .defines = radius_out ? "PACK RADIUS_OUT" : "PACK", .push = &pc,
-                              .push_size = sizeof pc, .pixel_loop = 1, .domain = "pong",
-                              .bindings = {{"in.visibility"}, {"occluder"}, {"position"}, {"normal"}, {"frame"},
-                                           {"pong", VRG_ACCESS_STORAGE_WRITE}, {"radius"}}};
+    /* an unread radius is a 1x1 stand-in: the shader leaves it alone */
+    vrg_dispatch_desc pack = dispatches[vrg_res_connected(vrg_pass_res(pass, "radius")) ? PACK_RADIUS : PACK];
+    pack.push = &pc;
     if (vrg_dispatch(pass, cmd, &pack) != 0)
         return;
     int n = vrg_param_int(pass, "iterations");
-    const char *src = "pong", *spare[2] = {"ping", "pong"};
     for (int i = 0; i < n; i++) {
-        int last = i == n - 1;
-        const char *dst = last ? "out.visibility" : spare[i & 1];
+        vrg_dispatch_desc d = dispatches[(i == n - 1 ? BLUR_LAST : BLUR_PACKED) + (i & 1)];
+        d.push = &pc;
         pc.iteration = i;
-        vrg_dispatch_desc d = {.shader = "shadow_denoise.comp", .defines = last ? "BLUR" : "BLUR TO_PACKED", .push = &pc,
-                               .push_size = sizeof pc, .pixel_loop = 1, .domain = dst,
-                               .bindings = {{src, VRG_ACCESS_STORAGE_READ}, {"frame"}, {dst, VRG_ACCESS_STORAGE_WRITE}}};
         if (vrg_dispatch(pass, cmd, &d) != 0)
             return;
-        src = dst;
     }
 }
 
@@ -101,6 +121,8 @@ static const vrg_plugin_desc desc = {
     .slot_count = sizeof slots / sizeof slots[0],
     .create = create,
     .execute = execute,
+    .dispatches = dispatches,
+    .dispatch_count = sizeof dispatches / sizeof dispatches[0],
 };
 
 VRG_PLUGIN(desc)

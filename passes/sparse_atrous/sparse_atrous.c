@@ -67,23 +67,45 @@ static int create(vrg_pass *pass)
     return 0;
 }
 
-/* feedback from the input, the (unpacked) output or a packed iteration */
-static int copy(vrg_pass *pass, VkCommandBuffer cmd, const char *from, int packed)
-{
-    vrg_dispatch_desc d = {.shader = "sparse_atrous.comp", .defines = packed ? "COPY FROM_PACKED" : "COPY", .pixel_loop = 1, .domain = "feedback",
-                           .bindings = {{from, packed ? VRG_ACCESS_STORAGE_READ : VRG_ACCESS_SAMPLED}, {"feedback", VRG_ACCESS_STORAGE_WRITE}}};
-    return vrg_dispatch(pass, cmd, &d);
-}
+typedef struct sparse_atrous_push {
+    float sigma_z, sigma_l, skip_variance;
+    int32_t step, long_history;
+} sparse_atrous_push;
 
-static int pack(vrg_pass *pass, VkCommandBuffer cmd)
-{
-    int with_length = vrg_res_connected(vrg_pass_res(pass, "length"));
-    vrg_dispatch_desc d = {.shader = "sparse_atrous.comp", .defines = with_length ? "PACK WITH_LENGTH" : "PACK", .pixel_loop = 1,
-                           .domain = "pong", .bindings = {{"illumination"}, {"position"}, {"normal"}, {"pong", VRG_ACCESS_STORAGE_WRITE}}};
-    if (with_length)
-        d.bindings[4] = (vrg_binding){"length"};
-    return vrg_dispatch(pass, cmd, &d);
-}
+/* Every dispatch execute() records, which `voxrg check` compiles. The
+ * iterations run pong -> ping -> pong ... -> color, so iteration i reads
+ * pong when i is even and ping when odd: a pair's entry i & 1 is the one
+ * for iteration i, and its copy to feedback reads that iteration's
+ * destination. */
+enum {
+    COPY_INPUT,
+    COPY_COLOR,
+    COPY_PACKED, /* + (i & 1): after iteration i wrote ping, pong */
+    PACK = COPY_PACKED + 2,
+    PACK_LENGTH,
+    FILTER_PACKED, /* + (i & 1): pong -> ping, ping -> pong */
+    FILTER_LAST = FILTER_PACKED + 2, /* + (i & 1): pong, ping -> color */
+};
+#define COPY_FROM(defs, src, access)                                                                                                             \
+    {.shader = "sparse_atrous.comp", .defines = defs, .pixel_loop = 1, .domain = "feedback",                                                    \
+     .bindings = {{src, access}, {"feedback", VRG_ACCESS_STORAGE_WRITE}}}
+#define ITERATION(defs, src, dst)                                                                                                                \
+    {.shader = "sparse_atrous.comp", .defines = defs, .push_size = sizeof(sparse_atrous_push), .pixel_loop = 1, .domain = dst,                 \
+     .bindings = {{src, VRG_ACCESS_STORAGE_READ}, {"position"}, {"frame"}, {dst, VRG_ACCESS_STORAGE_WRITE}}}
+static const vrg_dispatch_desc dispatches[] = {
+    [COPY_INPUT] = COPY_FROM("COPY", "illumination", VRG_ACCESS_SAMPLED),
+    [COPY_COLOR] = COPY_FROM("COPY", "color", VRG_ACCESS_SAMPLED),
+    [COPY_PACKED] = COPY_FROM("COPY FROM_PACKED", "ping", VRG_ACCESS_STORAGE_READ),
+    [COPY_PACKED + 1] = COPY_FROM("COPY FROM_PACKED", "pong", VRG_ACCESS_STORAGE_READ),
+    [PACK] = {.shader = "sparse_atrous.comp", .defines = "PACK", .pixel_loop = 1, .domain = "pong",
+              .bindings = {{"illumination"}, {"position"}, {"normal"}, {"pong", VRG_ACCESS_STORAGE_WRITE}}},
+    [PACK_LENGTH] = {.shader = "sparse_atrous.comp", .defines = "PACK WITH_LENGTH", .pixel_loop = 1, .domain = "pong",
+                     .bindings = {{"illumination"}, {"position"}, {"normal"}, {"pong", VRG_ACCESS_STORAGE_WRITE}, {"length"}}},
+    [FILTER_PACKED] = ITERATION("FILTER TO_PACKED", "pong", "ping"),
+    [FILTER_PACKED + 1] = ITERATION("FILTER TO_PACKED", "ping", "pong"),
+    [FILTER_LAST] = ITERATION("FILTER", "pong", "color"),
+    [FILTER_LAST + 1] = ITERATION("FILTER", "ping", "color"),
+};
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
@@ -92,30 +114,22 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         return;
     int n = vrg_param_int(pass, "iterations"), fb = vrg_param_int(pass, "feedback");
     int long_history = vrg_param_int(pass, "long_history");
-    struct {
-        float sigma_z, sigma_l, skip_variance;
-        int32_t step, long_history;
-    } pc = {(float)vrg_param(pass, "sigma_z"), (float)vrg_param(pass, "sigma_l"), (float)vrg_param(pass, "skip_variance"), 1, 0};
-    if (fb == 0 && copy(pass, cmd, "illumination", 0) != 0)
+    sparse_atrous_push pc = {(float)vrg_param(pass, "sigma_z"), (float)vrg_param(pass, "sigma_l"), (float)vrg_param(pass, "skip_variance"), 1, 0};
+    if (fb == 0 && vrg_dispatch(pass, cmd, &dispatches[COPY_INPUT]) != 0)
         return;
-    if (pack(pass, cmd) != 0)
+    if (vrg_dispatch(pass, cmd, &dispatches[vrg_res_connected(vrg_pass_res(pass, "length")) ? PACK_LENGTH : PACK]) != 0)
         return;
-    /* pong -> ping -> pong ... -> color */
-    const char *src = "pong", *spare[2] = {"ping", "pong"};
     for (int i = 0; i < n; i++) {
         int last = i == n - 1;
-        const char *dst = last ? "color" : spare[i & 1];
+        vrg_dispatch_desc d = dispatches[(last ? FILTER_LAST : FILTER_PACKED) + (i & 1)];
+        d.push = &pc;
         pc.step = 1 << i;
         /* from this iteration on, long-history pixels are copied through */
         pc.long_history = long_history > 0 && i >= vrg_param_int(pass, "long_iterations") ? long_history : 0;
-        vrg_dispatch_desc d = {.shader = "sparse_atrous.comp", .defines = last ? "FILTER" : "FILTER TO_PACKED", .push = &pc,
-                               .push_size = sizeof pc, .pixel_loop = 1, .domain = dst,
-                               .bindings = {{src, VRG_ACCESS_STORAGE_READ}, {"position"}, {"frame"}, {dst, VRG_ACCESS_STORAGE_WRITE}}};
         if (vrg_dispatch(pass, cmd, &d) != 0)
             return;
-        if (i + 1 == fb && copy(pass, cmd, dst, !last) != 0)
+        if (i + 1 == fb && vrg_dispatch(pass, cmd, &dispatches[last ? COPY_COLOR : COPY_PACKED + (i & 1)]) != 0)
             return;
-        src = dst;
     }
 }
 
@@ -132,6 +146,8 @@ static const vrg_plugin_desc desc = {
     .check = check,
     .create = create,
     .execute = execute,
+    .dispatches = dispatches,
+    .dispatch_count = sizeof dispatches / sizeof dispatches[0],
 };
 
 VRG_PLUGIN(desc)
