@@ -898,6 +898,7 @@ int vrg_cli_run(const vrg_run_options *o)
             (void)vrg_graph_reload(&g); /* a broken graph or plugin is reported; the running one stays */
         if (gb && vrg_graph_source_changed(gb))
             (void)vrg_graph_reload(&gb);
+        w.g = g, w.gb = gb; /* a reload freed the graphs they pointed to */
         char why[1024];
         if (changed && gb && vrg_graph_same_world(g, gb, why, sizeof why) != 0) /* an edit may part them: say so, keep going */
             fprintf(stderr, "warning: --ab: %s: the sides no longer show the same frames\n", why);

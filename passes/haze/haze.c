@@ -7,7 +7,7 @@
 static const vrg_param_desc params[] = {
     {.name = "density", .type = VRG_PARAM_FLOAT, .default_value = 0.0015, .min = 0, .max = 1,
      .help = "aerial haze per block: a hit at distance d keeps exp(-density * d) of its colour"},
-    {.name = "start", .type = VRG_PARAM_FLOAT, .default_value = 0.6, .min = 0, .max = 1,
+    {.name = "start", .type = VRG_PARAM_FLOAT, .default_value = 0.6, .min = 0, .max = 0.99,
      .help = "streamed worlds: fraction of the view radius where the edge haze begins (full haze at the radius)"},
 };
 

@@ -48,6 +48,7 @@ static const char *const stream_modes[] = {"wait", "budget"};
  * instance's destroy() releases its share. */
 typedef struct terrain_world {
     int refs;
+    char journal[4096]; /* the edit journal applied to it ("": none) */
     terrain_params gen;
     int radius, hysteresis, threads;
     vrg_world *world;
@@ -144,8 +145,9 @@ static terrain_world *previous_world(vrg_pass *pass, const terrain_world *want)
     vrg_pass *prev = vrg_pass_previous_instance(pass);
     scene *old = prev ? vrg_pass_user(prev) : NULL;
     terrain_world *tw = old ? old->tw : NULL;
+    /* its chunks hold its journal's edits: kept only with the same journal */
     if (!tw || memcmp(&tw->gen, &want->gen, sizeof want->gen) != 0 || tw->radius != want->radius || tw->hysteresis != want->hysteresis ||
-        tw->threads != want->threads)
+        tw->threads != want->threads || strcmp(tw->journal, want->journal) != 0)
         return NULL;
     tw->refs++;
     return tw;
@@ -176,19 +178,28 @@ static terrain_world *new_world(const terrain_world *want)
     return tw;
 }
 
+/* The edit journal's path ("": none; a graph from text has no folder to
+ * keep edits in). */
+static void journal_path(vrg_pass *pass, char *path, size_t cap)
+{
+    const char *param = vrg_param_string(pass, "edits"), *graph = vrg_pass_graph_path(pass), *slash = strrchr(graph, '/');
+    if (strcmp(param, "none") == 0 || (!param[0] && !graph[0]))
+        snprintf(path, cap, "%s", "");
+    else if (!param[0])
+        snprintf(path, cap, "%s.edits", graph);
+    else if (param[0] == '/' || !slash)
+        snprintf(path, cap, "%s", param);
+    else
+        snprintf(path, cap, "%.*s/%s", (int)(slash - graph), graph, param);
+}
+
 /* The journal, keyed by every parameter the blocks depend on. */
 static int open_edits(vrg_pass *pass, scene *s)
 {
-    const char *param = vrg_param_string(pass, "edits"), *graph = vrg_pass_graph_path(pass), *slash = strrchr(graph, '/');
-    char path[4096], key[VRG_EDITS_KEY_MAX], err[1024];
-    if (strcmp(param, "none") == 0 || (!param[0] && !graph[0]))
-        return 0; /* a graph from text has no folder to keep edits in */
-    if (!param[0])
-        snprintf(path, sizeof path, "%s.edits", graph);
-    else if (param[0] == '/' || !slash)
-        snprintf(path, sizeof path, "%s", param);
-    else
-        snprintf(path, sizeof path, "%.*s/%s", (int)(slash - graph), graph, param);
+    const char *path = s->tw->journal;
+    char key[VRG_EDITS_KEY_MAX], err[1024];
+    if (!path[0])
+        return 0;
     const terrain_params *g = &s->tw->gen;
     snprintf(key, sizeof key, "terrain seed=%u octaves=%d scale=%g falloff=%g base_height=%g amplitude=%g height_chunks=%d biome_size=%g tree_density=%g sea_level=%d",
              g->seed, g->octaves, g->scale, g->falloff, g->base_height, g->amplitude, g->height_chunks, g->biome_size, g->tree_density, g->sea_level);
@@ -202,6 +213,8 @@ static int open_edits(vrg_pass *pass, scene *s)
     return vrg_pass_share(pass, VRG_EDITS_SHARED_NAME, s->edits);
 }
 
+static void destroy(vrg_pass *pass);
+
 static int create(vrg_pass *pass)
 {
     scene *s = calloc(1, sizeof *s);
@@ -211,6 +224,7 @@ static int create(vrg_pass *pass)
     s->wait = vrg_param_choice(pass, "stream", stream_modes, 2) == 0;
     terrain_world want = {0};
     world_params(pass, &want);
+    journal_path(pass, want.journal, sizeof want.journal);
     s->tw = previous_world(pass, &want);
     int shared = s->tw != NULL;
     if (!shared)
@@ -218,8 +232,11 @@ static int create(vrg_pass *pass)
     if (!s->tw)
         return vrg_pass_error(pass, "cannot create the world (out of memory?)");
     s->world_kept = shared;
-    if (vrg_scene_create(pass, &s->gpu, s->tw->world) != 0 || open_edits(pass, s) != 0)
+    if (vrg_scene_create(pass, &s->gpu, s->tw->world) != 0 || open_edits(pass, s) != 0) {
+        /* destroy() runs only after a create() that succeeded: free here */
+        destroy(pass);
         return -1;
+    }
     if (shared && s->gpu.accel) /* the new backend has no BLAS yet: every chunk's faces again */
         vrg_world_invalidate_meshes(s->tw->world);
     return 0;
@@ -264,6 +281,7 @@ static void destroy(vrg_pass *pass)
     vrg_scene_destroy(pass, &s->gpu);
     release_world(s->tw);
     free(s);
+    vrg_pass_set_user(pass, NULL);
 }
 
 static const vrg_plugin_desc desc = {

@@ -32,6 +32,7 @@ static const vrg_param_desc params[] = {
 static const vrg_slot_desc slots[] = {VRG_SCENE_SLOTS};
 
 #define WORLD_XZ 512     /* |x|, |z| of any block: keeps the toroidal grid (and its GPU buffer) bounded */
+#define VOX_MAX_PLACED (1 << 26) /* blocks written by all instances: a bound on the work, beside the world's */
 #define WORLD_HEIGHT 256 /* y in [0, 256): 16 chunks, the terrain's largest height */
 #define GROUND_MARGIN 2  /* chunks of ground around the model: its shadow lands on it */
 #define EMISSIVE_SCALE 4.0f /* MagicaVoxel's _emit 1 shines like the lamp block */
@@ -161,6 +162,22 @@ static int place(vrg_pass *pass, placed *p)
     if (!no_ground && p->ground <= 0) {
         placed_free(p);
         return vrg_pass_error_at(pass, vrg_param_line(pass, "ground"), "ground = '%s': expected none or a block name (stone, grass, white, ...)", ground);
+    }
+    /* every object or layer hidden: nothing to place (and no box) */
+    if (p->vox.instance_count == 0) {
+        int rc = vrg_pass_error_at(pass, file_line, "%s: nothing is visible: every object or layer of the scene is hidden", p->path);
+        placed_free(p);
+        return rc;
+    }
+    /* the work is instances x voxels x scale^3 however small the file: bound it */
+    long long placed_blocks = 0;
+    for (int i = 0; i < p->vox.instance_count; i++)
+        placed_blocks += (long long)p->vox.models[p->vox.instances[i].model].count * scale * scale * scale;
+    if (placed_blocks > VOX_MAX_PLACED) {
+        int rc = vrg_pass_error_at(pass, file_line, "%s: %d instances place %lld blocks at scale %d, more than %d: lower scale, or show fewer instances",
+                                   p->path, p->vox.instance_count, placed_blocks, scale, VOX_MAX_PLACED);
+        placed_free(p);
+        return rc;
     }
     int mlo[3], mhi[3];
     model_box(&p->vox, mlo, mhi);
@@ -349,6 +366,8 @@ static int open_edits(vrg_pass *pass, scene *s, const placed *p)
     return vrg_pass_share(pass, VRG_EDITS_SHARED_NAME, s->edits);
 }
 
+static void destroy(vrg_pass *pass);
+
 static int create(vrg_pass *pass)
 {
     scene *s = calloc(1, sizeof *s);
@@ -356,20 +375,21 @@ static int create(vrg_pass *pass)
         return vrg_pass_error(pass, "out of memory");
     vrg_pass_set_user(pass, s);
     placed p;
-    if (place(pass, &p) != 0)
-        return -1;
-    vrg_world *w = build_world(pass, &p);
-    if (!w) {
+    int placed_ok = place(pass, &p) == 0, rc = -1; /* place() frees p when it fails */
+    vrg_world *w = placed_ok ? build_world(pass, &p) : NULL;
+    if (w) {
+        s->gpu.world = w;
+        rc = open_edits(pass, s, &p);
+    }
+    if (placed_ok)
         placed_free(&p);
+    /* after the edits: the world's first upload has them */
+    if (!w || rc != 0 || vrg_scene_create(pass, &s->gpu, w) != 0) {
+        /* destroy() runs only after a create() that succeeded: free here */
+        destroy(pass);
         return -1;
     }
-    s->gpu.world = w;
-    int rc = open_edits(pass, s, &p);
-    placed_free(&p);
-    if (rc != 0)
-        return -1;
-    /* after the edits: the world's first upload has them */
-    return vrg_scene_create(pass, &s->gpu, w);
+    return 0;
 }
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
@@ -389,6 +409,7 @@ static void destroy(vrg_pass *pass)
     if (s->gpu.world)
         vrg_scene_destroy(pass, &s->gpu); /* frees the world too */
     free(s);
+    vrg_pass_set_user(pass, NULL);
 }
 
 static const vrg_plugin_desc desc = {

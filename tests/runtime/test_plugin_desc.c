@@ -71,6 +71,15 @@ int main(void)
     expect("slot with a NULL name", &desc, "slot 0 is malformed");
     desc.slot_count = VRG_MAX_SLOTS + 1;
     expect("too many slots", &desc, "33 slots, more than the 32");
+    desc = (vrg_plugin_desc){.abi_version = VRG_ABI_VERSION, .name = "p", .kind = VRG_PLUGIN_PASS, .execute = noop, .dispatch_count = 2};
+    expect("listed dispatches NULL", &desc, "dispatch_count is set but dispatches is NULL");
+    const vrg_dispatch_desc listed[] = {{.shader = "a.comp"}, {.shader = NULL}};
+    desc.dispatches = listed;
+    expect("a listed dispatch without a shader", &desc, "listed dispatch 1 names no shader");
+    desc.dispatch_count = 1;
+    expect("listed dispatches", &desc, NULL);
+    desc.dispatch_count = VRG_MAX_DISPATCHES + 1;
+    expect("too many listed dispatches", &desc, "257 listed dispatches, more than the 256");
     desc = (vrg_plugin_desc){.abi_version = VRG_ABI_VERSION, .name = "q", .kind = VRG_PLUGIN_PASS, .execute = noop};
     expect("name differs from the file's", &desc, "its descriptor's name differs from its file name");
     desc.name = NULL;

@@ -265,20 +265,20 @@ static void test_terrain_world(void)
 
 /* A small terrain graph with a hard ray-query shadow (no random numbers, so
  * frame counters do not matter): seed and exposure vary between saves. */
-static const char *keep_world_text(int seed, float exposure)
+static const char *keep_world_text(int seed, float exposure, int journal)
 {
-    static char text[1200];
+    static char text[1300];
     snprintf(text, sizeof text,
              "[graph]\noutput = ldr\nwidth = 64\nheight = 36\n"
              "[camera]\nposition = -20 45 20\nyaw = -40\npitch = -30\n"
-             "[scene]\nplugin = terrain\nseed = %d\nradius = 1\ntraversal = rayquery\nthreads = 2\n"
+             "[scene]\nplugin = terrain\nseed = %d\nradius = 1\ntraversal = rayquery\nthreads = 2\n%s"
              "[pass gbuffer]\nplugin = gbuffer\nin.world = world\nin.frame = frame\nin.atlas = atlas\nin.tlas = tlas\n"
              "[pass shadow]\nplugin = sun_shadow\nin.world = world\nin.frame = frame\nin.position = gbuffer.position\n"
              "in.normal = gbuffer.normal\nin.tlas = tlas\nout.visibility = sun\nrays = 1\nsun_radius = 0\n"
              "[pass combine]\nplugin = combine\nin.normal = gbuffer.normal\nin.frame = frame\nin.visibility = sun\nout.illumination = light\n"
              "[pass modulate]\nplugin = modulate\nin.illumination = light\nin.albedo = gbuffer.albedo\nout.color = color\n"
              "[pass tonemap]\nplugin = tonemap\nin.color = color\nout.ldr = ldr\nexposure = %g\n",
-             seed, exposure);
+             seed, journal ? "" : "edits = none\n", exposure);
     return text;
 }
 
@@ -300,7 +300,7 @@ static int same_pixels(const vrg_image_data *a, const vrg_image_data *b)
     return a->width == b->width && a->height == b->height && memcmp(a->pixels, b->pixels, (size_t)a->width * a->height * 4 * sizeof(float)) == 0;
 }
 
-/* A graph reload whose world parameters are unchanged shares the generated
+/* A graph reload whose world parameters (and edit journal) are unchanged shares the generated
  * world with the new graph (terrain's world_kept) instead of generating it
  * again, and renders what a freshly loaded graph renders: the new
  * ray-query backend gets every chunk's faces (else no shadows), the new
@@ -314,7 +314,7 @@ static void test_terrain_reload_keeps_world(void)
     }
     char path[1100];
     snprintf(path, sizeof path, "%s/keep.ini", dir);
-    save_file(path, keep_world_text(7, 0.5f));
+    save_file(path, keep_world_text(7, 0.5f, 1));
     static const char *reads[] = {"ldr"};
     vrg_graph_desc d = {.path = path, .readback = reads, .readback_count = 1};
     vrg_graph *g = NULL;
@@ -327,10 +327,10 @@ static void test_terrain_reload_keeps_world(void)
     struct {
         int seed;
         float exposure;
-        int kept;
-    } steps[] = {{7, 0.8f, 1}, {9, 0.8f, 0}, {9, 0.3f, 1}};
-    for (int s = 0; s < 3; s++) {
-        save_file(path, keep_world_text(steps[s].seed, steps[s].exposure));
+        int journal, kept;
+    } steps[] = {{7, 0.8f, 1, 1}, {9, 0.8f, 1, 0}, {9, 0.3f, 1, 1}, {9, 0.3f, 0, 0}}; /* the last: its chunks held the journal's edits */
+    for (int s = 0; s < 4; s++) {
+        save_file(path, keep_world_text(steps[s].seed, steps[s].exposure, steps[s].journal));
         CHECK(vrg_graph_reload(&g) == 0, "step %d: reload failed", s);
         CHECK((vrg_graph_world(g) == before) == steps[s].kept, "step %d: the world %s", s, steps[s].kept ? "was generated again" : "was kept");
         before = vrg_graph_world(g);
@@ -344,6 +344,8 @@ static void test_terrain_reload_keeps_world(void)
         free(want.pixels);
     }
     vrg_graph_destroy(g);
+    unlink(path);
+    strcat(path, ".edits"); /* the terrain's journal beside the graph */
     unlink(path);
     rmdir(dir);
 }

@@ -752,6 +752,13 @@ int _vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const 
     else if (desc->param_count > VRG_MAX_PARAMS || (desc->param_count && !desc->params))
         why = desc->param_count > VRG_MAX_PARAMS ? (snprintf(buf, sizeof buf, "%u parameters, more than the %d a plugin may have", desc->param_count, VRG_MAX_PARAMS), buf)
                                                  : "param_count is set but params is NULL";
+    else if (desc->dispatch_count > VRG_MAX_DISPATCHES || (desc->dispatch_count && !desc->dispatches))
+        why = desc->dispatch_count > VRG_MAX_DISPATCHES
+                  ? (snprintf(buf, sizeof buf, "%u listed dispatches, more than the %d a plugin may list", desc->dispatch_count, VRG_MAX_DISPATCHES), buf)
+                  : "dispatch_count is set but dispatches is NULL";
+    for (uint32_t i = 0; !why && i < desc->dispatch_count; i++)
+        if (!desc->dispatches[i].shader)
+            why = (snprintf(buf, sizeof buf, "listed dispatch %u names no shader", i), buf);
     if (why) {
         fail(d, line, VRG_E_PLUGIN_BAD_DESC, NULL, "plugin '%s' (%s): %s", name, path, why);
         return -1;

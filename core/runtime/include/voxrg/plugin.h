@@ -181,8 +181,10 @@ typedef struct vrg_plugin_desc {
      * (another one fails with VRG-E061). May be NULL: the shaders are then
      * checked at their first dispatch only. */
     const struct vrg_dispatch_desc *dispatches;
-    uint32_t dispatch_count;
+    uint32_t dispatch_count; /* at most VRG_MAX_DISPATCHES */
 } vrg_plugin_desc;
+
+#define VRG_MAX_DISPATCHES 256
 
 /* What a plugin exports: its entry (host_abi is the runtime's
  * VRG_ABI_VERSION) and the size of vrg_plugin_desc in the headers it was
