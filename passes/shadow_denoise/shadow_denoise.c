@@ -8,7 +8,7 @@
  *
  * Two kinds of dispatch (shadow_denoise.comp):
  *   PACK   per pixel: the mean occluder distance over the same plane's
- *          pixels in a 9x9 window (every other pixel; pixels whose rays all
+ *          pixels in a 5x5 window (every other pixel; pixels whose rays all
  *          missed have no distance, so a lit pixel at a penumbra's edge
  *          takes its neighbours'), the radius
  *          r = radius_scale * penumbra width / 2 / s, capped at max_radius
