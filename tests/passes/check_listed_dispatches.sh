@@ -3,14 +3,27 @@
 # (vrg_plugin_desc.dispatches), so `voxrg check` compiles and reflects its
 # shaders before any frame: no "lists no dispatches" line names a plugin of
 # passes/. Plugins of other folders (scenes) are not held to it here.
-# usage: check_listed_dispatches.sh VOXRG PASSES_DIR GRAPHS_DIR
-voxrg=$1 passes=$2 graphs=$3
+# A graph of the vox scene reads its model from VOX_DIR (VRG_VOX_DIR); where
+# that file is missing the graph is skipped, saying so (its passes are in
+# the other graphs too).
+# usage: check_listed_dispatches.sh VOXRG PASSES_DIR GRAPHS_DIR VOX_DIR
+voxrg=$1 passes=$2 graphs=$3 voxdir=$4
 fail=0 count=0
 out=$(mktemp) || exit 1
 trap 'rm -f "$out"' EXIT
 for graph in "$graphs"/*.ini; do
     count=$((count + 1))
-    if ! "$voxrg" check "$graph" --no-device >"$out" 2>&1; then
+    vox=$(sed -n 's#^file *= *.*/\([^/]*\.vox\) *$#\1#p' "$graph")
+    set --
+    if [ -n "$vox" ]; then
+        if [ ! -f "$voxdir/$vox" ]; then
+            echo "skipped $graph: $voxdir/$vox is missing (VRG_VOX_DIR)"
+            count=$((count - 1))
+            continue
+        fi
+        set -- --set "scene.file=$voxdir/$vox"
+    fi
+    if ! "$voxrg" check "$graph" --no-device "$@" >"$out" 2>&1; then
         echo "FAIL $graph: voxrg check --no-device failed"
         cat "$out"
         fail=1
