@@ -294,7 +294,13 @@ if python3 - "$out/bench.json" "$tests/../graphs" <<'PY'
 import json, os, sys
 d = json.load(open(sys.argv[1]))
 figs = d["figures"]
-graphs = sorted(f for f in os.listdir(sys.argv[2]) if f.endswith(".ini"))
+def model_missing(g):  # bench skips a vox graph whose model is not beside the project (docs/world.md)
+    for line in open(os.path.join(sys.argv[2], g)):
+        k, _, v = line.partition("=")
+        if k.strip() == "file" and v.strip().endswith(".vox"):
+            return not os.path.exists(os.path.join(sys.argv[2], v.strip()))
+    return False
+graphs = sorted(f for f in os.listdir(sys.argv[2]) if f.endswith(".ini") and not model_missing(f))
 assert d["device"] and d["smoke"] is True and d["size"] == [64, 36], d
 assert d["suites"] == ["rays", "graph", "memory", "terrain", "reload", "frame"], d["suites"]
 for f in figs:
