@@ -221,6 +221,26 @@ static int same_bindings(const bound_set *a, const bound_set *b)
            memcmp(a->access, b->access, n * sizeof *a->access) == 0;
 }
 
+/* The file of a shader the pass names; -1 after reporting where it looked. */
+static int shader_path(vrg_pass *p, const char *shader, char *path, size_t cap)
+{
+    if (_vrg_shader_resolve(p, shader, path, cap) == 0)
+        return 0;
+    return _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "shader '%s' not found (searched the plugin's folder, $VOXRG_SHADER_PATH, shaders/)", shader);
+}
+
+/* pixel.glsl's vrg_pixel: a group shades a tile of the device's shape, so a
+ * pixel loop's local size is the device's group (-1 after reporting). */
+static int pixel_loop_fits(vrg_pass *p, const char *shader, const uint32_t local[3])
+{
+    uint32_t group[2];
+    _vrg_shader_group_size(p->graph->ctx, group);
+    if (local[0] == group[0] && local[1] == group[1] && local[2] == 1)
+        return 0;
+    return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "pixel_loop dispatch of %s: local size %ux%ux%u, a pixel loop needs VRG_GROUP_X x VRG_GROUP_Y (%ux%u)", shader,
+                          local[0], local[1], local[2], group[0], group[1]);
+}
+
 static _vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *defines, const bound_set *bs)
 {
     if (!defines)
@@ -236,10 +256,8 @@ static _vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *
         if (strcmp(pl->shader, shader) == 0 && strcmp(pl->defines, defines) == 0 && same_bindings(&pl->bs, bs))
             return pl;
     char path[VRG_PATH_MAX];
-    if (_vrg_shader_resolve(p, shader, path, sizeof path) != 0) {
-        _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "shader '%s' not found (searched the plugin's folder, $VOXRG_SHADER_PATH, shaders/)", shader);
+    if (shader_path(p, shader, path, sizeof path) != 0)
         return NULL;
-    }
     _vrg_pipeline *pl = calloc(1, sizeof *pl);
     if (!pl) {
         _vrg_pass_fail(p, VRG_E_OUT_OF_MEMORY, "out of memory for a pipeline of %s", shader);
@@ -562,10 +580,8 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
         }
         uint32_t tile[2] = {pl->local[0], pl->local[1]};
         if (d->pixel_loop) {
-            /* pixel.glsl's vrg_pixel: a group shades a tile of the device's shape */
-            if (pl->local[0] != g->ctx->group_size[0] || pl->local[1] != g->ctx->group_size[1] || pl->local[2] != 1)
-                return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "pixel_loop dispatch of %s: local size %ux%ux%u, a pixel loop needs VRG_GROUP_X x VRG_GROUP_Y (%ux%u)",
-                                      d->shader, pl->local[0], pl->local[1], pl->local[2], g->ctx->group_size[0], g->ctx->group_size[1]);
+            if (pixel_loop_fits(p, d->shader, pl->local) != 0)
+                return -1;
             tile[0] = g->ctx->pixel_tile[0], tile[1] = g->ctx->pixel_tile[1];
         }
         gx = (g->res[dom].width + tile[0] - 1) / tile[0];
@@ -605,8 +621,8 @@ static int check_declared(vrg_pass *p, const vrg_dispatch_desc *d, shader_check_
         return -1;
     for (uint32_t i = 0; i < bs.count; i++)
         count->unknown += bs.unknown[i];
-    if (_vrg_shader_resolve(p, d->shader, path, sizeof path) != 0)
-        return _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "shader '%s' not found (searched the plugin's folder, $VOXRG_SHADER_PATH, shaders/)", d->shader);
+    if (shader_path(p, d->shader, path, sizeof path) != 0)
+        return -1;
     _vrg_shader_module sm;
     if (_vrg_shader_compile(g->ctx, path, defines, &sm, diag) != 0)
         return _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "shader %s failed to compile", path);
@@ -615,10 +631,8 @@ static int check_declared(vrg_pass *p, const vrg_dispatch_desc *d, shader_check_
     free(sm.deps);
     int rc = check_reflection(p, path, &bs, &sm.refl, diag);
     _vrg_reflection_free(&sm.refl);
-    const uint32_t group[2] = {g->ctx ? g->ctx->group_size[0] : 8, g->ctx ? g->ctx->group_size[1] : 8};
-    if (rc == 0 && d->pixel_loop && (sm.local_size[0] != group[0] || sm.local_size[1] != group[1] || sm.local_size[2] != 1))
-        return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "pixel_loop dispatch of %s: local size %ux%ux%u, a pixel loop needs VRG_GROUP_X x VRG_GROUP_Y (%ux%u)", path,
-                              sm.local_size[0], sm.local_size[1], sm.local_size[2], group[0], group[1]);
+    if (rc == 0 && d->pixel_loop)
+        return pixel_loop_fits(p, path, sm.local_size);
     if (rc != 0)
         return _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "shader %s does not match what the pass binds", path);
     return 0;

@@ -469,6 +469,8 @@ typedef struct _vrg_shader_module {
 /* vrg_graph_load for a reload: passes may look at `predecessor`'s
  * (vrg_pass_previous_instance) until the reload ends. */
 int _vrg_graph_load_replacing(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph *predecessor, vrg_graph **out);
+/* VRG_GROUP_X/Y shaders are compiled with: the device's, or a GPU's without one. */
+void _vrg_shader_group_size(const vrg_context *ctx, uint32_t out[2]);
 /* ctx NULL: compiled and reflected for a GPU's workgroup shape, no module made. */
 int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, _vrg_shader_module *out, FILE *diag);
 int _vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t cap);

@@ -324,6 +324,13 @@ VkShaderModule vrg_compile_compute_shader(vrg_context *ctx, const char *path, co
     return sm.module;
 }
 
+void _vrg_shader_group_size(const vrg_context *ctx, uint32_t out[2])
+{
+    /* without a device (vrg_graph_check_shaders offline): a GPU's shape */
+    out[0] = ctx ? ctx->group_size[0] : 8;
+    out[1] = ctx ? ctx->group_size[1] : 8;
+}
+
 int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, _vrg_shader_module *out, FILE *diag)
 {
     pthread_once(&glslang_once, glslang_init);
@@ -342,8 +349,8 @@ int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines,
      * 32 tiles over 8 rows on ray passes, and 4x2 tiles over rows of 8
      * pixels (the lanes' rays are more alike); docs/benchmarks.md has each
      * step's figure. On a GPU: 8x8 groups, one pixel per invocation. */
-    /* without a device (vrg_graph_check_shaders offline): a GPU's shape */
-    const uint32_t group[2] = {ctx ? ctx->group_size[0] : 8, ctx ? ctx->group_size[1] : 8};
+    uint32_t group[2];
+    _vrg_shader_group_size(ctx, group);
     const uint32_t tile[2] = {ctx ? ctx->pixel_tile[0] : 8, ctx ? ctx->pixel_tile[1] : 8};
     char all_defines[1200];
     snprintf(all_defines, sizeof all_defines, "VRG_GROUP_X=%u VRG_GROUP_Y=%u VRG_TILE_W=%uu VRG_TILE_H=%uu VRG_PIXEL_ROWS=%uu %s", group[0], group[1], tile[0],
