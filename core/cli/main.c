@@ -230,7 +230,7 @@ static int parse_options(int argc, char **argv, options *o, const char *usage)
             return usage_error(usage, "--dump: more than %s resources", VRG_STR(MAX_DUMPS));
         o->dumps[o->dump_count++] = tok;
     }
-    if (!o->help && !o->graph)
+    if (!o->help && !o->graph && usage != usage_run) /* run has a default graph */
         return usage_error(usage, "no graph file given%s", "");
     return 0;
 }
@@ -539,11 +539,12 @@ static int cmd_render(int argc, char **argv)
 }
 
 static const char *usage_run =
-    "usage: voxrg run GRAPH [--ab GRAPH_B] [--window WxH] [--scale S | --size WxH] [--filter nearest|bilinear]\n"
+    "usage: voxrg run [GRAPH] [--ab GRAPH_B] [--window WxH] [--scale S | --size WxH] [--filter nearest|bilinear]\n"
     "                       [--frames N] [--set PASS.PARAM=VALUE]...\n"
     "                       [--camera PATH] [--record PATH] [--show RESOURCE] [--screenshot FILE] [--validate]\n"
     "                       [--gpu-timeout S] [--device NAME|INDEX]\n"
-    "Renders GRAPH in a window until it is closed (or for N frames), presenting its output.\n"
+    "Renders GRAPH (default: the shipped graphs/interactive.ini) in a window until it is\n"
+    "closed (or for N frames), presenting its output.\n"
     "The window is --window WxH (default 1280x720, at most the screen; with --size\n"
     "alone, that size). The graph renders at the window's size times --scale S\n"
     "(0 < S <= 1; default 0.5, 1 with --size) or at a fixed --size WxH, and is\n"
@@ -577,8 +578,12 @@ static int cmd_run(int argc, char **argv)
     int rc = parse_options(argc, argv, &o, usage_run);
     if (rc || o.help)
         return rc ? rc : (fputs(usage_run, stdout), 0);
-    if (!o.graph)
-        return usage_error(usage_run, "no graph file given%s", "");
+    char default_graph[1100];
+    if (!o.graph) { /* the shipped graph made to be interactive on a CPU */
+        snprintf(default_graph, sizeof default_graph, "%s/graphs/interactive.ini", vrg_data_dir());
+        o.graph = default_graph;
+        fprintf(stderr, "voxrg: no graph given: running %s\n", default_graph);
+    }
     int frames_given = 0;
     for (int i = 0; i < argc; i++)
         frames_given |= !strcmp(argv[i], "--frames");

@@ -393,6 +393,9 @@ sky = [px(x, 24) for x in range(0, 60)]  # below the band
 assert white > 100 and max(map(max, band)) < min(map(max, sky)) and len(set(band)) > 1, (white, band[:4], sky[:4])
 PY
     then ok; else bad "window screenshot shows the scene and the overlay"; fi
+    # no graph: the shipped interactive graph (issue 19), at half the window
+    expect_rc 0 "run without a graph" "$voxrg" run --validate --window 192x108 --frames 2 --screenshot "$out/default.png"
+    has "$out/stderr" "no graph given: running .*/graphs/interactive.ini" "run without a graph opens interactive.ini"
     # render scale: the window's size, the graph at half of it, upscaled
     # nearest (2x2 blocks of one colour) or bilinear (blended)
     for filter in nearest bilinear; do

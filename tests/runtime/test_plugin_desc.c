@@ -51,6 +51,10 @@ int main(void)
     with_params("64-char name", PARAMS({.name = "aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa", .type = VRG_PARAM_FLOAT}),
                 "parameter 0 has an invalid name");
     with_params("duplicate", PARAMS({.name = "a", .type = VRG_PARAM_FLOAT}, {.name = "a", .type = VRG_PARAM_INT}), "two parameters named 'a' (0 and 1)");
+    with_params("named plugin", PARAMS({.name = "plugin", .type = VRG_PARAM_FLOAT}), "parameter 'plugin' has a name the graph file keeps for itself");
+    with_params("named output_scale", PARAMS({.name = "output_scale", .type = VRG_PARAM_FLOAT}), "parameter 'output_scale' has a name the graph file keeps");
+    with_params("named in.x", PARAMS({.name = "in.x", .type = VRG_PARAM_FLOAT}), "parameter 'in.x' has a name the graph file keeps");
+    with_params("named out.x", PARAMS({.name = "out.x", .type = VRG_PARAM_FLOAT}), "parameter 'out.x' has a name the graph file keeps");
     with_params("min > max", PARAMS({.name = "a", .type = VRG_PARAM_FLOAT, .default_value = 1, .min = 2, .max = 1}), "parameter 'a' min 2 is greater than max 1");
     with_params("unknown type", PARAMS({.name = "a", .type = (vrg_param_type)9}), "parameter 'a' type 9 is none of");
     with_params("type 0", PARAMS({.name = "a"}), "parameter 'a' type 0 is none of");

@@ -51,7 +51,7 @@
     X(VRG_E_INPUT_NOT_CONNECTED, "VRG-E034", "input-not-connected", "a required input of a pass is not connected")                          \
     X(VRG_E_NEVER_WRITTEN, "VRG-E035", "never-written", "a pass reads a resource that no pass writes")                                      \
     X(VRG_E_KIND_MISMATCH, "VRG-E036", "kind-mismatch", "a slot takes another kind (image, buffer, acceleration structure) than it gets")   \
-    X(VRG_E_KEY_WRONG_KIND, "VRG-E037", "key-wrong-kind", "a [resource] key does not apply to the kind of resource it is")                 \
+    X(VRG_E_KEY_WRONG_KIND, "VRG-E037", "key-wrong-kind", "a [resource] key does not apply to the kind of resource it is, or output_scale to a pass with no relative-size image output")                 \
     X(VRG_E_FORMAT_MISMATCH, "VRG-E038", "format-mismatch", "a resource's format or texel format is not the one a slot needs")             \
     X(VRG_E_BUFFER_SIZE, "VRG-E039", "buffer-size", "a buffer has size 0 or is not a whole number of its texels")                           \
     X(VRG_E_SIZE_MISMATCH, "VRG-E040", "size-mismatch", "a resource's size is not the one a slot or pass needs")                           \

@@ -234,6 +234,7 @@ struct vrg_pass {
     const _vrg_plugin *plugin;
     double params[VRG_MAX_PARAMS];
     _vrg_binding_ref slots[VRG_MAX_SLOTS];
+    float output_scale;       /* [pass] output_scale: its relative-size image outputs' scale factor (0: 1) */
     int culled;
     int order;                /* position in schedule, -1 culled */
     vrg_graph *graph;

@@ -770,6 +770,12 @@ int _vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const 
                          "plugin '%s' (%s): parameter %u has %s name", name, path, i, pd->name ? "an invalid" : "a NULL");
             return -1;
         }
+        if (strcmp(pd->name, "plugin") == 0 || strcmp(pd->name, "output_scale") == 0 || strncmp(pd->name, "in.", 3) == 0 ||
+            strncmp(pd->name, "out.", 4) == 0) {
+            fail(d, line, VRG_E_PLUGIN_BAD_DESC, "plugin, output_scale, in.* and out.* are the graph's keys in a [pass] section",
+                 "plugin '%s' (%s): parameter '%s' has a name the graph file keeps for itself", name, path, pd->name);
+            return -1;
+        }
         for (uint32_t j = 0; j < i; j++)
             if (strcmp(desc->params[j].name, pd->name) == 0) {
                 fail(d, line, VRG_E_PLUGIN_BAD_DESC, NULL, "plugin '%s' (%s): two parameters named '%s' (%u and %u)", name, path, pd->name, j, i);

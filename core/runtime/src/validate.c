@@ -399,6 +399,26 @@ static void bind_slot(vrg_graph *g, vrg_pass *p, const _vrg_key *k, const char *
         res->history = 1;
 }
 
+/* Falcor's per-pass output size: the pass's image outputs that are sized
+ * relative to the graph get this factor (a [resource] section still wins),
+ * e.g. lighting at half resolution without a section per output. */
+static void output_scale(vrg_graph *g, vrg_pass *p, const _vrg_key *k)
+{
+    double v;
+    if (parse_double(k->value, &v) != 0)
+        _vrg_error_at(&g->diag, k->line, VRG_E_NOT_A_NUMBER, "a factor of the outputs' size, e.g. 0.5", "'output_scale = %s' is not a number", k->value);
+    else if (!(v > 0) || v > 16)
+        _vrg_error_at(&g->diag, k->line, VRG_E_OUT_OF_RANGE, "a factor in (0, 16]", "'output_scale = %s' must be > 0 (and at most 16)", k->value);
+    else
+        p->output_scale = (float)v;
+    const vrg_plugin_desc *desc = p->plugin->desc;
+    for (uint32_t i = 0; i < desc->slot_count; i++)
+        if (desc->slots[i].dir == VRG_OUT && desc->slots[i].kind == VRG_IMAGE && !desc->slots[i].width)
+            return;
+    _vrg_error_at(&g->diag, k->line, VRG_E_KEY_WRONG_KIND, "it scales image outputs sized relative to the graph", "pass '%s' (plugin '%s') has no image output that output_scale could scale",
+                 p->name, desc->name);
+}
+
 static void pass_section(vrg_graph *g, const _vrg_ast *a, int si, vrg_pass *p)
 {
     char hint[1024];
@@ -421,7 +441,9 @@ static void pass_section(vrg_graph *g, const _vrg_ast *a, int si, vrg_pass *p)
             continue;
         }
         const vrg_plugin_desc *desc = p->plugin->desc;
-        if (strncmp(k->name, "in.", 3) == 0)
+        if (strcmp(k->name, "output_scale") == 0)
+            output_scale(g, p, k);
+        else if (strncmp(k->name, "in.", 3) == 0)
             bind_slot(g, p, k, k->name + 3, VRG_IN);
         else if (strncmp(k->name, "out.", 4) == 0)
             bind_slot(g, p, k, k->name + 4, VRG_OUT);
@@ -671,7 +693,8 @@ static void resolve_resources(vrg_graph *g)
         if (sd->kind == VRG_BUFFER || !r->format_line)
             r->format = def.format;
         if (!r->size_line) {
-            r->scale = def.scale;
+            const vrg_pass *w = &g->passes[r->writer];
+            r->scale = def.scale * (sd->kind == VRG_IMAGE && !sd->width && w->output_scale > 0 ? w->output_scale : 1.0f);
             r->abs_width = sd->width;
             r->abs_height = sd->height;
             if (sd->kind != VRG_IMAGE)

@@ -1,0 +1,75 @@
+/* bilateral_upsample: demodulated illumination computed on a low-resolution
+ * G-buffer (gbuffer_downsample) brought back to the full G-buffer. Each
+ * full-resolution pixel blends the 2x2 low-resolution texels around it with
+ * bilinear weights, keeping only texels on its own surface: the same normal
+ * and within `plane_tolerance` of its plane per block of distance between
+ * the two points (voxel faces are planes, so this test is exact where
+ * bilinear filtering would bleed light across a silhouette or a step).
+ * Where none of the four qualifies (a thin feature no low-resolution pixel
+ * hit) it takes the nearest of them in space. Sky pixels get 1, the
+ * illumination combine writes for sky (modulate passes the sky through).
+ * mode = bilinear or nearest turn the surface test off, for comparison. */
+#include "voxrg/plugin.h"
+
+static const char *const modes[] = {"bilateral", "bilinear", "nearest"};
+
+static const vrg_param_desc params[] = {
+    {.name = "mode", .type = VRG_PARAM_STRING, .default_string = "bilateral",
+     .help = "bilateral (only texels on the pixel's surface), bilinear or nearest"},
+    {.name = "plane_tolerance", .type = VRG_PARAM_FLOAT, .default_value = 0.1, .min = 0, .max = 1,
+     .help = "a texel is on the pixel's plane when its offset from it is at most this per block of distance"},
+};
+
+static const vrg_slot_desc slots[] = {
+    {.name = "illumination", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED,
+     .help = "low-resolution illumination (any filter's output), the size of low_position"},
+    {.name = "low_position", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED,
+     .help = "the low-resolution G-buffer position it was computed on"},
+    {.name = "low_normal", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "the low-resolution G-buffer normal"},
+    {.name = "position", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "full-resolution G-buffer position"},
+    {.name = "normal", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "full-resolution G-buffer normal"},
+    {.name = "illumination", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
+     .help = "illumination at the size of position (the graph's unless its [resource] section says otherwise)"},
+};
+
+typedef struct upsample_push {
+    int32_t mode;
+    float plane_tolerance;
+} upsample_push;
+
+/* the one dispatch execute() records (every slot, in order): checked by
+ * `voxrg check`; mode and tolerance are push constants */
+static const vrg_dispatch_desc dispatches[] = {
+    {.shader = "bilateral_upsample.comp", .push_size = sizeof(upsample_push), .pixel_loop = 1},
+};
+
+static int check(vrg_pass *pass) { return vrg_param_choice(pass, "mode", modes, 3) < 0 ? -1 : 0; }
+
+static void execute(vrg_pass *pass, VkCommandBuffer cmd)
+{
+    static const char *low[] = {"low_position", "low_normal"}, *full[] = {"in.normal", "out.illumination"};
+    if (vrg_pass_require_same_size(pass, "in.illumination", low, 2) != 0 || vrg_pass_require_same_size(pass, "in.position", full, 2) != 0)
+        return;
+    upsample_push pc = {vrg_param_choice(pass, "mode", modes, 3), (float)vrg_param(pass, "plane_tolerance")};
+    vrg_dispatch_desc d = dispatches[0];
+    d.push = &pc;
+    (void)vrg_dispatch(pass, cmd, &d);
+}
+
+static const vrg_plugin_desc desc = {
+    .abi_version = VRG_ABI_VERSION,
+    .name = "bilateral_upsample",
+    .kind = VRG_PLUGIN_PASS,
+    .help = "low-resolution illumination to the full G-buffer: bilinear over the texels on each pixel's surface",
+    .shader_dir = VRG_PLUGIN_DIR,
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .slots = slots,
+    .slot_count = sizeof slots / sizeof slots[0],
+    .check = check,
+    .execute = execute,
+    .dispatches = dispatches,
+    .dispatch_count = sizeof dispatches / sizeof dispatches[0],
+};
+
+VRG_PLUGIN(desc)

@@ -1,0 +1,69 @@
+#version 460
+// Joint bilateral upsampling of demodulated illumination: bilateral_upsample.c
+// says what counts as the pixel's surface and why.
+#include "pixel.glsl"
+
+// The device's workgroup shape and rows per invocation: pixel.glsl.
+layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
+layout(binding = 0) uniform sampler2D in_illumination;
+layout(binding = 1) uniform sampler2D in_low_position;
+layout(binding = 2) uniform sampler2D in_low_normal;
+layout(binding = 3) uniform sampler2D in_position;
+layout(binding = 4) uniform sampler2D in_normal;
+layout(binding = 5, rgba16f) uniform writeonly image2D out_illumination;
+
+layout(push_constant) uniform Params
+{
+    int mode; // 0 bilateral, 1 bilinear, 2 nearest
+    float plane_tolerance;
+} params;
+
+void shade(ivec2 p)
+{
+    ivec2 size = imageSize(out_illumination), low = textureSize(in_illumination, 0);
+    if (any(greaterThanEqual(p, size)))
+        return;
+    vec4 x = texelFetch(in_position, p, 0);
+    if (x.w == 0.0) {
+        imageStore(out_illumination, p, vec4(1.0));
+        return;
+    }
+    if (params.mode == 2) {
+        imageStore(out_illumination, p, texelFetch(in_illumination, vrg_pixel_in(p, size, low), 0));
+        return;
+    }
+    vec3 n = texelFetch(in_normal, p, 0).xyz;
+    // this pixel's centre in low-resolution texel units, and its 2x2 texels
+    vec2 c = (vec2(p) + 0.5) * vec2(low) / vec2(size) - 0.5;
+    ivec2 base = ivec2(floor(c));
+    vec2 f = c - vec2(base);
+    vec4 sum = vec4(0.0);
+    float wsum = 0.0, nearest_d = 1e30;
+    vec4 nearest = vec4(1.0);
+    for (int j = 0; j < 4; j++) {
+        ivec2 o = ivec2(j & 1, j >> 1);
+        ivec2 q = clamp(base + o, ivec2(0), low - 1);
+        float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+        vec4 xq = texelFetch(in_low_position, q, 0);
+        vec4 l = texelFetch(in_illumination, q, 0);
+        if (params.mode == 0) {
+            if (xq.w == 0.0)
+                continue;
+            vec3 d = xq.xyz - x.xyz;
+            float dist = length(d);
+            if (dist < nearest_d)
+                nearest_d = dist, nearest = l;
+            if (dot(texelFetch(in_low_normal, q, 0).xyz, n) < 0.9 || abs(dot(d, n)) > params.plane_tolerance * dist + 1e-3)
+                continue;
+        }
+        sum += w * l;
+        wsum += w;
+    }
+    imageStore(out_illumination, p, wsum > 1e-6 ? sum / wsum : nearest);
+}
+
+void main()
+{
+    for (uint k = 0u; k < VRG_PIXEL_ROWS; k++)
+        shade(vrg_pixel(k));
+}

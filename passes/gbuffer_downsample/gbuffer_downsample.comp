@@ -1,0 +1,35 @@
+#version 460
+// One full-resolution G-buffer pixel per low-resolution pixel (the one
+// vrg_pixel_in picks, as the lighting passes do for a G-buffer of another
+// size), its motion vector rescaled: gbuffer_downsample.c says why.
+#include "pixel.glsl"
+
+// The device's workgroup shape and rows per invocation: pixel.glsl.
+layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
+layout(binding = 0, rgba32f) uniform readonly image2D in_position;
+layout(binding = 1, rgba16f) uniform readonly image2D in_normal;
+layout(binding = 2, rg32ui) uniform readonly uimage2D in_ids;
+layout(binding = 3, rg16f) uniform readonly image2D in_motion;
+layout(binding = 4, rgba32f) uniform writeonly image2D out_position;
+layout(binding = 5, rgba16f) uniform writeonly image2D out_normal;
+layout(binding = 6, rg32ui) uniform writeonly uimage2D out_ids;
+layout(binding = 7, rg16f) uniform writeonly image2D out_motion;
+
+void shade(ivec2 p)
+{
+    ivec2 size = imageSize(out_position), full = imageSize(in_position);
+    if (any(greaterThanEqual(p, size)))
+        return;
+    ivec2 g = vrg_pixel_in(p, size, full);
+    imageStore(out_position, p, imageLoad(in_position, g));
+    imageStore(out_normal, p, imageLoad(in_normal, g));
+    imageStore(out_ids, p, imageLoad(in_ids, g));
+    // a point that moved m full-resolution pixels moved m * size / full of these
+    imageStore(out_motion, p, vec4(imageLoad(in_motion, g).xy * vec2(size) / vec2(full), 0.0, 0.0));
+}
+
+void main()
+{
+    for (uint k = 0u; k < VRG_PIXEL_ROWS; k++)
+        shade(vrg_pixel(k));
+}
