@@ -56,11 +56,18 @@ int vrg_bench_shipped_graphs(const vrg_bench_opts *o, char **names, int max)
     DIR *d = opendir(dir);
     int n = 0;
     struct dirent *e;
-    while (d && (e = readdir(d)) && n < max) {
+    while (d && (e = readdir(d))) {
         size_t len = strlen(e->d_name);
         char missing[2400];
         if (len <= 4 || strcmp(e->d_name + len - 4, ".ini") != 0 || !listed(o->graphs, e->d_name))
             continue;
+        if (n == max) { /* never a graph silently left out */
+            fprintf(stderr, "error: %s holds more than the %d graphs bench measures in one run; name some with --graphs\n", dir, max);
+            for (int i = 0; i < n; i++)
+                free(names[i]);
+            closedir(d);
+            return -1;
+        }
         if (!o->graphs && model_missing(dir, e->d_name, missing, sizeof missing)) /* named in --graphs: its load error says it */
             fprintf(stderr, "bench: skipping %s: its model %s is missing (the vox test models, docs/world.md)\n", e->d_name, missing);
         else
