@@ -405,12 +405,15 @@ static void bind_slot(vrg_graph *g, vrg_pass *p, const _vrg_key *k, const char *
 static void output_scale(vrg_graph *g, vrg_pass *p, const _vrg_key *k)
 {
     double v;
-    if (parse_double(k->value, &v) != 0)
+    if (parse_double(k->value, &v) != 0) {
         _vrg_error_at(&g->diag, k->line, VRG_E_NOT_A_NUMBER, "a factor of the outputs' size, e.g. 0.5", "'output_scale = %s' is not a number", k->value);
-    else if (!(v > 0) || v > 16)
+        return;
+    }
+    if (!(v > 0) || v > 16) {
         _vrg_error_at(&g->diag, k->line, VRG_E_OUT_OF_RANGE, "a factor in (0, 16]", "'output_scale = %s' must be > 0 (and at most 16)", k->value);
-    else
-        p->output_scale = (float)v;
+        return;
+    }
+    p->output_scale = (float)v;
     const vrg_plugin_desc *desc = p->plugin->desc;
     for (uint32_t i = 0; i < desc->slot_count; i++)
         if (desc->slots[i].dir == VRG_OUT && desc->slots[i].kind == VRG_IMAGE && !desc->slots[i].width)
