@@ -14,8 +14,9 @@
 #include "internal.h"
 
 /* @prev copies on every history reset (but those a reload carried over);
- * persistent resources only when new (but those a reload kept). Returns how many history resources
- * were cleared: history is valid this frame when none was. */
+ * persistent resources only when new (but those a reload kept). Returns
+ * how many history resources were cleared: history is valid this frame
+ * when none was. */
 static int clear_kept(vrg_graph *g, VkCommandBuffer cmd)
 {
     _vrg_barrier_rec b[2 * VRG_MAX_RESOURCES] = {0}; /* both copies of every resource */

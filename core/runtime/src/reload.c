@@ -118,38 +118,50 @@ static int copy_history(vrg_graph *old, vrg_graph *g)
     return 0;
 }
 
+/* Same kind, format, size and mips, both persistent (one copy, never
+ * history) with memory of their own (an aliased block is shared). */
+static int can_keep(const _vrg_resource *to, const _vrg_resource *from)
+{
+    return to->kind == from->kind && to->format == from->format && to->width == from->width && to->height == from->height &&
+           to->size == from->size && to->mips == from->mips && to->first_use >= 0 && from->first_use >= 0 && to->persistent &&
+           from->persistent && !to->history && !from->history && to->block < 0 && from->block < 0;
+}
+
+/* The Vulkan objects and sync state of a and b change places. */
+static void swap_objects(_vrg_resource *a, _vrg_resource *b)
+{
+    _vrg_resource t = *a;
+    memcpy(a->image, b->image, sizeof a->image);
+    memcpy(a->view, b->view, sizeof a->view);
+    memcpy(a->buffer, b->buffer, sizeof a->buffer);
+    memcpy(a->texel_view, b->texel_view, sizeof a->texel_view);
+    memcpy(a->own_memory, b->own_memory, sizeof a->own_memory);
+    memcpy(a->sync, b->sync, sizeof a->sync);
+    memcpy(b->image, t.image, sizeof t.image);
+    memcpy(b->view, t.view, sizeof t.view);
+    memcpy(b->buffer, t.buffer, sizeof t.buffer);
+    memcpy(b->texel_view, t.texel_view, sizeof t.texel_view);
+    memcpy(b->own_memory, t.own_memory, sizeof t.own_memory);
+    memcpy(b->sync, t.sync, sizeof t.sync);
+}
+
 /* The resources new passes asked to keep (vrg_pass_keep_resource) take
  * over the Vulkan objects of their previous instances' (and the old graph
- * frees the new, unused ones with itself). Called once the reload cannot
- * fail and the old graph's frames have ended: the old graph never runs
- * again, and no frame of it still reads what the new one writes. */
+ * frees the new, unused ones with itself); the sync state goes with them,
+ * so the new graph's first barrier waits for the old graph's last use.
+ * Called once the reload cannot fail and the old graph's frames have
+ * ended: the old graph never runs again, and no frame of it still reads
+ * what the new one writes. */
 static void keep_resources(vrg_graph *old, vrg_graph *g)
 {
     for (int i = 0; i < g->pass_count; i++) {
         vrg_pass *q = &g->passes[i], *p = vrg_pass_previous_instance(q);
         for (uint32_t s = 0; p && s < q->plugin->desc->slot_count; s++) {
             int ri = q->slots[s].res, rj = p->slots[s].res;
-            if (!(q->keep_slots >> s & 1) || ri < 0 || rj < 0 || q->slots[s].dummy || p->slots[s].dummy)
+            if (!(q->keep_slots >> s & 1) || ri < 0 || rj < 0 || q->slots[s].dummy || p->slots[s].dummy || !can_keep(&g->res[ri], &old->res[rj]))
                 continue;
-            _vrg_resource *to = &g->res[ri], *from = &old->res[rj];
-            if (to->kind != from->kind || to->format != from->format || to->width != from->width || to->height != from->height ||
-                to->size != from->size || to->mips != from->mips || to->first_use < 0 || from->first_use < 0 || !to->persistent || !from->persistent || to->history || from->history ||
-                to->block >= 0 || from->block >= 0) /* own memory only: an aliased block is shared with others */
-                continue;
-            _vrg_resource mine = *to;
-            memcpy(to->image, from->image, sizeof to->image);
-            memcpy(to->view, from->view, sizeof to->view);
-            memcpy(to->buffer, from->buffer, sizeof to->buffer);
-            memcpy(to->texel_view, from->texel_view, sizeof to->texel_view);
-            memcpy(to->own_memory, from->own_memory, sizeof to->own_memory);
-            memcpy(to->sync, from->sync, sizeof to->sync); /* the old graph's last use: the new one's first barrier waits for it */
-            memcpy(from->image, mine.image, sizeof mine.image);
-            memcpy(from->view, mine.view, sizeof mine.view);
-            memcpy(from->buffer, mine.buffer, sizeof mine.buffer);
-            memcpy(from->texel_view, mine.texel_view, sizeof mine.texel_view);
-            memcpy(from->own_memory, mine.own_memory, sizeof mine.own_memory);
-            memcpy(from->sync, mine.sync, sizeof mine.sync);
-            to->carried = 1;
+            swap_objects(&g->res[ri], &old->res[rj]);
+            g->res[ri].carried = 1;
         }
     }
 }
