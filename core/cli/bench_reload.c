@@ -140,9 +140,9 @@ int vrg_bench_reload(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure
     else
         ok = 0;
     /* a parameter of the thesis graph (320x180): reparse, revalidate, a new
-     * graph instance sharing the generated world (the [scene] is unchanged;
-     * the world buffer and BLASes are new), history carried over, pipelines
-     * kept */
+     * graph instance sharing the generated world and its GPU side (the
+     * [scene] is unchanged: the world buffer, atlas and BLASes are kept),
+     * history carried over, pipelines kept */
     char src[1100];
     snprintf(src, sizeof src, "%s/graphs/thesis.ini", vrg_data_dir());
     FILE *f = fopen(src, "r");

@@ -138,9 +138,9 @@ static void world_params(vrg_pass *pass, terrain_world *tw)
     tw->threads = threads;
 }
 
-/* The world of the instance a reload replaces, when its parameters are
- * these (terrain_params holds only 4-byte fields: memcmp sees no padding). */
-static terrain_world *previous_world(vrg_pass *pass, const terrain_world *want)
+/* The instance a reload replaces, when its world's parameters are these
+ * (terrain_params holds only 4-byte fields: memcmp sees no padding). */
+static scene *previous_scene(vrg_pass *pass, const terrain_world *want)
 {
     vrg_pass *prev = vrg_pass_previous_instance(pass);
     scene *old = prev ? vrg_pass_user(prev) : NULL;
@@ -149,8 +149,7 @@ static terrain_world *previous_world(vrg_pass *pass, const terrain_world *want)
     if (!tw || memcmp(&tw->gen, &want->gen, sizeof want->gen) != 0 || tw->radius != want->radius || tw->hysteresis != want->hysteresis ||
         tw->threads != want->threads || strcmp(tw->journal, want->journal) != 0)
         return NULL;
-    tw->refs++;
-    return tw;
+    return old;
 }
 
 static terrain_world *new_world(const terrain_world *want)
@@ -225,20 +224,19 @@ static int create(vrg_pass *pass)
     terrain_world want = {0};
     world_params(pass, &want);
     journal_path(pass, want.journal, sizeof want.journal);
-    s->tw = previous_world(pass, &want);
-    int shared = s->tw != NULL;
-    if (!shared)
-        s->tw = new_world(&want);
+    scene *old = previous_scene(pass, &want);
+    if (old)
+        old->tw->refs++;
+    s->tw = old ? old->tw : new_world(&want);
     if (!s->tw)
         return vrg_pass_error(pass, "cannot create the world (out of memory?)");
-    s->world_kept = shared;
-    if (vrg_scene_create(pass, &s->gpu, s->tw->world) != 0 || open_edits(pass, s) != 0) {
+    s->world_kept = old != NULL;
+    /* with the world, what the GPU holds of it (buffer, atlas, BLASes) */
+    if (vrg_scene_create_from(pass, &s->gpu, s->tw->world, old ? &old->gpu : NULL) != 0 || open_edits(pass, s) != 0) {
         /* destroy() runs only after a create() that succeeded: free here */
         destroy(pass);
         return -1;
     }
-    if (shared && s->gpu.accel) /* the new backend has no BLAS yet: every chunk's faces again */
-        vrg_world_invalidate_meshes(s->tw->world);
     return 0;
 }
 

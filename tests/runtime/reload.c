@@ -201,6 +201,90 @@ static void test_hot_reload_graph(void)
     remove(path), rmdir(dir);
 }
 
+/* keep_probe's graph: `keep` the output its create() asks to keep (NULL:
+ * none); limited adds a pass whose resize() refuses the graph's width, so
+ * the load fails after every create() and the allocation. */
+static const char *keep_graph_text(int value, const char *keep, int limited)
+{
+    static char text[512];
+    snprintf(text, sizeof text,
+             "[graph]\noutput = %s\nwidth = 8\nheight = 8\n"
+             "[pass probe]\nplugin = keep_probe\nout.data = data\nout.color = color\nvalue = %d\n%s%s%s%s",
+             limited ? "grey" : "color", value, keep ? "keep = " : "", keep ? keep : "", keep ? "\n" : "",
+             limited ? "[pass limit]\nplugin = resize_limit\nout.color = grey\nmax_width = 4\n" : "");
+    return text;
+}
+
+/* vrg_pass_keep_resource: a reload whose pass asks to keep its persistent
+ * output hands the old contents over (vrg_res_fresh 0, nothing cleared);
+ * without the request the output starts anew. A reload that fails after
+ * create() leaves the old graph's resource as it was; a resize makes it
+ * new. Asking for an output that is not persistent, or none, is an error
+ * naming it. */
+static void test_hot_reload_keep_resource(void)
+{
+    char dir[] = "/tmp/voxrg-keep-XXXXXX", path[1100];
+    if (!mkdtemp(dir)) {
+        CHECK(0, "mkdtemp failed");
+        return;
+    }
+    snprintf(path, sizeof path, "%s/keep.ini", dir);
+    save_file(path, keep_graph_text(1, "data", 0));
+    char *log = NULL;
+    size_t len = 0;
+    FILE *diag = open_memstream(&log, &len);
+    static const char *reads[] = {"data"};
+    vrg_graph_desc d = {.path = path, .diag = diag, .readback = reads, .readback_count = 1};
+    vrg_graph *g = NULL;
+    if (vrg_graph_load(ctx, &d, &g) != 0) {
+        CHECK(0, "cannot load the keep graph");
+        fclose(diag);
+        free(log);
+        return;
+    }
+    struct {
+        int value;
+        const char *keep;
+        int limited, resize;
+        const char *error; /* the reload fails with it */
+        uint32_t data;
+        double fresh;
+    } steps[] = {
+        {1, "data", 0, 0, NULL, 1, 1},                       /* as loaded */
+        {2, "data", 0, 0, NULL, 1, 0},                       /* kept: the old value */
+        {3, NULL, 0, 0, NULL, 3, 1},                         /* not asked: anew */
+        {4, "data", 1, 0, "max_width 4", 3, 0},              /* fails after create(): the old graph's, untouched */
+        {5, "data", 0, 1, NULL, 5, 1},                       /* kept, then resized: anew */
+        {6, "color", 0, 0, "output 'color' is not a persistent", 5, 0},
+        {7, "nothing", 0, 0, "no output 'nothing'", 5, 0},
+    };
+    for (int s = 0; s < (int)(sizeof steps / sizeof steps[0]); s++) {
+        if (s > 0) {
+            save_file(path, keep_graph_text(steps[s].value, steps[s].keep, steps[s].limited));
+            int rc = vrg_graph_reload(&g);
+            CHECK((rc == 0) == !steps[s].error, "step %d: reload returned %d", s, rc);
+            const char *err = vrg_graph_reload_error(g);
+            if (steps[s].error)
+                CHECK(err && strstr(err, steps[s].error) && strstr(err, "keep.ini:"), "step %d: reload error %s", s, err ? err : "(none)");
+        }
+        if (steps[s].resize)
+            CHECK(vrg_graph_resize(g, 8, 8) == 0, "step %d: resize failed", s);
+        void *data = NULL;
+        uint64_t size = 0;
+        double fresh = -1;
+        CHECK(vrg_graph_frame(g) == 0 && vrg_graph_read_buffer(g, "data", &data, &size) == 0 && size == 16, "step %d: frame failed", s);
+        CHECK(vrg_graph_stat(g, "probe", "fresh", &fresh) == 0 && fresh == steps[s].fresh, "step %d: fresh %g", s, fresh);
+        const uint32_t *u = data;
+        CHECK(u && u[0] == steps[s].data && u[3] == steps[s].data, "step %d: data %u, want %u", s, u ? u[0] : 0, steps[s].data);
+        free(data);
+    }
+    vrg_graph_destroy(g);
+    fclose(diag);
+    free(log);
+    unlink(path);
+    rmdir(dir);
+}
+
 static const char *reloadme_source =
     "#include <stdlib.h>\n#include <string.h>\n#include \"voxrg/plugin.h\"\n"
     "static const vrg_slot_desc slots[] = {{.name = \"color\", .dir = VRG_OUT, .kind = VRG_IMAGE,\n"
@@ -560,6 +644,7 @@ int main(int argc, char **argv)
         {"hot_reload_shader", test_hot_reload_shader, 1},
         {"hot_reload_shader_in_flight", test_hot_reload_shader_in_flight, 1},
         {"hot_reload_graph", test_hot_reload_graph, 1},
+        {"hot_reload_keep_resource", test_hot_reload_keep_resource, 1},
         {"hot_reload_plugin", test_hot_reload_plugin, 1},
         {"hot_reload_many_plugins", test_hot_reload_many_plugins, 1},
         {"hot_reload_many_files", test_hot_reload_many_files, 1},

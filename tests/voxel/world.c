@@ -264,10 +264,13 @@ static void test_terrain_world(void)
 }
 
 /* A small terrain graph with a hard ray-query shadow (no random numbers, so
- * frame counters do not matter): seed and exposure vary between saves. */
-static const char *keep_world_text(int seed, float exposure, int journal)
+ * frame counters do not matter): seed and exposure vary between saves;
+ * broken makes modulate read a pass (tests/plugins/resize_limit) whose
+ * resize() refuses the graph's width: the load fails after every pass's
+ * create() ran and the resources were allocated. */
+static const char *keep_world_text(int seed, float exposure, int journal, int broken)
 {
-    static char text[1300];
+    static char text[1400];
     snprintf(text, sizeof text,
              "[graph]\noutput = ldr\nwidth = 64\nheight = 36\n"
              "[camera]\nposition = -20 45 20\nyaw = -40\npitch = -30\n"
@@ -276,9 +279,10 @@ static const char *keep_world_text(int seed, float exposure, int journal)
              "[pass shadow]\nplugin = sun_shadow\nin.world = world\nin.frame = frame\nin.position = gbuffer.position\n"
              "in.normal = gbuffer.normal\nin.tlas = tlas\nout.visibility = sun\nrays = 1\nsun_radius = 0\n"
              "[pass combine]\nplugin = combine\nin.normal = gbuffer.normal\nin.frame = frame\nin.visibility = sun\nout.illumination = light\n"
-             "[pass modulate]\nplugin = modulate\nin.illumination = light\nin.albedo = gbuffer.albedo\nout.color = color\n"
-             "[pass tonemap]\nplugin = tonemap\nin.color = color\nout.ldr = ldr\nexposure = %g\n",
-             seed, journal ? "" : "edits = none\n", exposure);
+             "[pass modulate]\nplugin = modulate\nin.illumination = light\nin.albedo = %s\nout.color = color\n"
+             "[pass tonemap]\nplugin = tonemap\nin.color = color\nout.ldr = ldr\nexposure = %g\n%s",
+             seed, journal ? "" : "edits = none\n", broken ? "limit.color" : "gbuffer.albedo", exposure,
+             broken ? "[pass limit]\nplugin = resize_limit\nmax_width = 8\n" : "");
     return text;
 }
 
@@ -300,11 +304,21 @@ static int same_pixels(const vrg_image_data *a, const vrg_image_data *b)
     return a->width == b->width && a->height == b->height && memcmp(a->pixels, b->pixels, (size_t)a->width * a->height * 4 * sizeof(float)) == 0;
 }
 
-/* A graph reload whose world parameters (and edit journal) are unchanged shares the generated
- * world with the new graph (terrain's world_kept) instead of generating it
- * again, and renders what a freshly loaded graph renders: the new
- * ray-query backend gets every chunk's faces (else no shadows), the new
- * world buffer every chunk. A changed seed generates a new world. */
+static double scene_stat(vrg_graph *g, const char *name)
+{
+    double v = -1;
+    return vrg_graph_stat(g, "scene", name, &v) == 0 ? v : -1;
+}
+
+/* A graph reload whose world parameters (and edit journal) are unchanged
+ * shares the generated world with the new graph (terrain's world_kept)
+ * instead of generating it again, and what the GPU holds of it: its first
+ * frame uploads no chunk (gpu_world_kept) and builds no BLAS. Each renders
+ * what a freshly loaded graph renders. A changed seed generates a new
+ * world, uploaded and built whole. A reload that fails after the scene's
+ * create() leaves the old graph rendering as before, and the next reload
+ * keeps the world still; a resize before the first frame of a reload that
+ * kept the world buffer makes a new one, which is uploaded whole. */
 static void test_terrain_reload_keeps_world(void)
 {
     char dir[] = "/tmp/voxrg-keep-XXXXXX";
@@ -314,7 +328,7 @@ static void test_terrain_reload_keeps_world(void)
     }
     char path[1100];
     snprintf(path, sizeof path, "%s/keep.ini", dir);
-    save_file(path, keep_world_text(7, 0.5f, 1));
+    save_file(path, keep_world_text(7, 0.5f, 1, 0));
     static const char *reads[] = {"ldr"};
     vrg_graph_desc d = {.path = path, .readback = reads, .readback_count = 1};
     vrg_graph *g = NULL;
@@ -327,17 +341,31 @@ static void test_terrain_reload_keeps_world(void)
     struct {
         int seed;
         float exposure;
-        int journal, kept;
-    } steps[] = {{7, 0.8f, 1, 1}, {9, 0.8f, 1, 0}, {9, 0.3f, 1, 1}, {9, 0.3f, 0, 0}}; /* the last: its chunks held the journal's edits */
-    for (int s = 0; s < 4; s++) {
-        save_file(path, keep_world_text(steps[s].seed, steps[s].exposure, steps[s].journal));
-        CHECK(vrg_graph_reload(&g) == 0, "step %d: reload failed", s);
+        int journal, kept, broken, resize;
+    } steps[] = {{7, 0.8f, 1, 1, 0, 0}, {7, 0.6f, 1, 1, 1, 0}, {7, 0.5f, 1, 1, 0, 0}, {9, 0.8f, 1, 0, 0, 0},
+                 {9, 0.3f, 1, 1, 0, 1}, {9, 0.3f, 0, 0, 0, 0}}; /* the last: its chunks held the journal's edits */
+    float exposure = 0.5f;
+    for (int s = 0; s < (int)(sizeof steps / sizeof steps[0]); s++) {
+        save_file(path, keep_world_text(steps[s].seed, steps[s].exposure, steps[s].journal, steps[s].broken));
+        CHECK((vrg_graph_reload(&g) == 0) == !steps[s].broken, "step %d: reload %s", s, steps[s].broken ? "succeeded" : "failed");
         CHECK((vrg_graph_world(g) == before) == steps[s].kept, "step %d: the world %s", s, steps[s].kept ? "was generated again" : "was kept");
         before = vrg_graph_world(g);
+        if (steps[s].broken) /* the old graph runs on: what a fresh graph of its file renders */
+            save_file(path, keep_world_text(steps[s].seed, exposure, steps[s].journal, 0));
+        else
+            exposure = steps[s].exposure;
+        if (steps[s].resize)
+            CHECK(vrg_graph_resize(g, 64, 36) == 0, "step %d: resize failed", s);
         vrg_image_data img, want;
-        double kept = -1;
         CHECK(vrg_graph_frame(g) == 0 && vrg_graph_read(g, "ldr", &img) == 0, "step %d: frame failed", s);
-        CHECK(vrg_graph_stat(g, "scene", "world_kept", &kept) == 0 && kept == steps[s].kept, "step %d: world_kept %g", s, kept);
+        double kept = scene_stat(g, "world_kept"), gpu_kept = scene_stat(g, "gpu_world_kept");
+        double uploaded = scene_stat(g, "chunks_uploaded"), built = scene_stat(g, "blas_built");
+        CHECK(kept == steps[s].kept, "step %d: world_kept %g", s, kept);
+        /* the old graph after a failed reload: its next frame, nothing new */
+        int whole_gpu = steps[s].kept && !steps[s].resize && !steps[s].broken;
+        CHECK(gpu_kept == whole_gpu, "step %d: gpu_world_kept %g", s, gpu_kept);
+        CHECK(steps[s].kept && !steps[s].resize ? uploaded == 0 : uploaded > 0, "step %d: %g chunks uploaded", s, uploaded);
+        CHECK(steps[s].kept ? built == 0 : built > 0, "step %d: %g BLASes built", s, built);
         CHECK(fresh_image(path, &want) == 0, "step %d: the fresh graph failed", s);
         CHECK(same_pixels(&img, &want), "step %d: the reloaded graph's image differs from a fresh graph's", s);
         free(img.pixels);

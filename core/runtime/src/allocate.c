@@ -217,6 +217,7 @@ int _vrg_allocate(vrg_graph *g)
     for (int i = 0; i < g->res_count; i++) {
         _vrg_resource *r = &g->res[i];
         memset(r->sync, 0, sizeof r->sync);
+        r->carried = 0;
         if (r->first_use < 0)
             continue;
         if (!g->ctx)

@@ -195,6 +195,8 @@ typedef struct _vrg_resource {
     int history_kept;        /* a reload copied it over: survives the next history reset */
     int history_cleared;     /* cleared at the start of this frame: @prev holds no past */
     int persistent;          /* written by a VRG_SLOT_PERSISTENT slot: kept, not aliased */
+    int carried;             /* a reload handed over the previous instance's (vrg_pass_keep_resource): not cleared */
+    int fresh;               /* this frame: just allocated and cleared (vrg_res_fresh) */
     int is_output, readback;
     int internal_owner;      /* pass index for internal resources, -1 otherwise (a pass's internal resources: no table of their own) */
     vrg_access internal_first_access;
@@ -245,6 +247,7 @@ struct vrg_pass {
     int failed;               /* an error during execute: frame fails */
     int plugin_rebuilt;       /* its plugin's file was rebuilt: vrg_graph_reload loads it */
     uint64_t buffer_size[VRG_MAX_SLOTS]; /* vrg_pass_set_buffer_size, 0 if not set */
+    uint32_t keep_slots;      /* vrg_pass_keep_resource: bit s, slot s */
     struct _vrg_param_value *strings;     /* string parameter values, in file order */
     int string_count;
     struct _vrg_host_buffer *host_buffers;

@@ -550,6 +550,33 @@ int vrg_res_history_valid(const vrg_pass *p, vrg_res h)
     return r->history ? !r->history_cleared : p->graph->frame.history_valid;
 }
 
+int vrg_res_fresh(const vrg_pass *p, vrg_res h)
+{
+    if (h.id < 0 || (h.id >> 1) >= p->graph->res_count)
+        return 0;
+    return p->graph->res[h.id >> 1].fresh;
+}
+
+/* Only a request: the new instance's resources exist only after every
+ * create(), and the hand-over happens once the reload can no longer fail
+ * (reload.c: keep_resources). */
+int vrg_pass_keep_resource(vrg_pass *p, const char *slot)
+{
+    const vrg_plugin_desc *d = p->plugin->desc;
+    if (p->created)
+        return _vrg_pass_fail(p, VRG_E_PASS_API_MISUSE, "vrg_pass_keep_resource('%s') outside create()", slot);
+    for (uint32_t s = 0; s < d->slot_count; s++) {
+        if (strcmp(d->slots[s].name, slot) != 0 || d->slots[s].dir != VRG_OUT)
+            continue;
+        if (!(d->slots[s].flags & VRG_SLOT_PERSISTENT) || d->slots[s].kind == VRG_ACCEL)
+            return _vrg_pass_fail(p, VRG_E_PASS_API_MISUSE, "vrg_pass_keep_resource: output '%s' is not a persistent buffer or image", slot);
+        if (p->graph->predecessor)
+            p->keep_slots |= 1u << s;
+        return 0;
+    }
+    return _vrg_pass_fail(p, VRG_E_PASS_API_MISUSE, "vrg_pass_keep_resource: no output '%s'", slot);
+}
+
 static const _vrg_resource *res_of(const vrg_pass *p, vrg_res h, int *copy)
 {
     if (h.id < 0 || (h.id >> 1) >= p->graph->res_count)

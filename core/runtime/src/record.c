@@ -14,8 +14,9 @@
 #include "internal.h"
 
 /* @prev copies on every history reset (but those a reload carried over);
- * persistent resources only when new. Returns how many history resources
- * were cleared: history is valid this frame when none was. */
+ * persistent resources only when new (but those a reload kept). Returns
+ * how many history resources were cleared: history is valid this frame
+ * when none was. */
 static int clear_kept(vrg_graph *g, VkCommandBuffer cmd)
 {
     _vrg_barrier_rec b[2 * VRG_MAX_RESOURCES] = {0}; /* both copies of every resource */
@@ -24,8 +25,10 @@ static int clear_kept(vrg_graph *g, VkCommandBuffer cmd)
         _vrg_resource *r = &g->res[i];
         r->history_cleared = r->history && g->history_reset && !r->history_kept;
         r->history_kept = 0;
+        r->fresh = g->fresh && !r->carried;
+        r->carried = 0;
         cleared += r->history_cleared && r->first_use >= 0;
-        if (r->first_use < 0 || r->kind == VRG_ACCEL || !(r->history_cleared || (r->persistent && g->fresh)))
+        if (r->first_use < 0 || r->kind == VRG_ACCEL || !(r->history_cleared || (r->persistent && r->fresh)))
             continue;
         for (int c = 0; c < (r->history ? 2 : 1); c++) {
             /* old contents are garbage: start from UNDEFINED */

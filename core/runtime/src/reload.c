@@ -118,6 +118,54 @@ static int copy_history(vrg_graph *old, vrg_graph *g)
     return 0;
 }
 
+/* Same kind, format, size and mips, both persistent (one copy, never
+ * history) with memory of their own (an aliased block is shared). */
+static int can_keep(const _vrg_resource *to, const _vrg_resource *from)
+{
+    return to->kind == from->kind && to->format == from->format && to->width == from->width && to->height == from->height &&
+           to->size == from->size && to->mips == from->mips && to->first_use >= 0 && from->first_use >= 0 && to->persistent &&
+           from->persistent && !to->history && !from->history && to->block < 0 && from->block < 0;
+}
+
+/* The Vulkan objects and sync state of a and b change places. */
+static void swap_objects(_vrg_resource *a, _vrg_resource *b)
+{
+    _vrg_resource t = *a;
+    memcpy(a->image, b->image, sizeof a->image);
+    memcpy(a->view, b->view, sizeof a->view);
+    memcpy(a->buffer, b->buffer, sizeof a->buffer);
+    memcpy(a->texel_view, b->texel_view, sizeof a->texel_view);
+    memcpy(a->own_memory, b->own_memory, sizeof a->own_memory);
+    memcpy(a->sync, b->sync, sizeof a->sync);
+    memcpy(b->image, t.image, sizeof t.image);
+    memcpy(b->view, t.view, sizeof t.view);
+    memcpy(b->buffer, t.buffer, sizeof t.buffer);
+    memcpy(b->texel_view, t.texel_view, sizeof t.texel_view);
+    memcpy(b->own_memory, t.own_memory, sizeof t.own_memory);
+    memcpy(b->sync, t.sync, sizeof t.sync);
+}
+
+/* The resources new passes asked to keep (vrg_pass_keep_resource) take
+ * over the Vulkan objects of their previous instances' (and the old graph
+ * frees the new, unused ones with itself); the sync state goes with them,
+ * so the new graph's first barrier waits for the old graph's last use.
+ * Called once the reload cannot fail and the old graph's frames have
+ * ended: the old graph never runs again, and no frame of it still reads
+ * what the new one writes. */
+static void keep_resources(vrg_graph *old, vrg_graph *g)
+{
+    for (int i = 0; i < g->pass_count; i++) {
+        vrg_pass *q = &g->passes[i], *p = vrg_pass_previous_instance(q);
+        for (uint32_t s = 0; p && s < q->plugin->desc->slot_count; s++) {
+            int ri = q->slots[s].res, rj = p->slots[s].res;
+            if (!(q->keep_slots >> s & 1) || ri < 0 || rj < 0 || q->slots[s].dummy || p->slots[s].dummy || !can_keep(&g->res[ri], &old->res[rj]))
+                continue;
+            swap_objects(&g->res[ri], &old->res[rj]);
+            g->res[ri].carried = 1;
+        }
+    }
+}
+
 /* A pass whose plugin was rebuilt hands its state from the old instance to
  * the new one, where both versions offer it. */
 static void carry_state(vrg_graph *old, vrg_graph *g)
@@ -243,6 +291,7 @@ int vrg_graph_reload(vrg_graph **pg)
         vrg_graph_destroy(g);
         return -1;
     }
+    keep_resources(old, g); /* nothing fails from here on */
     g->predecessor = NULL; /* the reload is done: old goes below */
     if (same_structure(old, g)) /* every history resource carried over */
         g->history_reset = 0;

@@ -3,7 +3,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "voxrg/world.h"
+#include "voxel_internal.h"
 
 static void fill_camera(const vrg_camera *c, float aspect, float vp[16], float pos[4])
 {
@@ -96,41 +96,83 @@ int vrg_scene_check(vrg_pass *pass, int grid_radius, int height_chunks)
     return vrg_pass_set_buffer_size(pass, "world", bytes);
 }
 
-int vrg_scene_create(vrg_pass *pass, vrg_scene_gpu *s, vrg_world *world)
+/* The ray-query backend: the previous instance's BLASes when it has them
+ * for this world; else new ones, which need every chunk's faces (a kept
+ * world holds chunks already). */
+static int create_accel(vrg_pass *pass, vrg_scene_gpu *s, const vrg_scene_gpu *previous)
+{
+    const vrg_device *dev = vrg_pass_device(pass);
+    if (!dev->features.ray_query || !dev->features.acceleration_structure)
+        return vrg_pass_error_at(pass, vrg_param_line(pass, "traversal"), "traversal = rayquery needs VK_KHR_ray_query, which device '%s' lacks (use traversal = dda)",
+                                 dev->name);
+    if (previous && previous->accel) {
+        s->accel = _vrg_world_accel_share(pass, previous->accel);
+        return s->accel ? 0 : -1;
+    }
+    s->accel = vrg_world_accel_create(pass, s->world);
+    if (!s->accel)
+        return -1;
+    if (previous)
+        vrg_world_invalidate_meshes(s->world);
+    return 0;
+}
+
+int vrg_scene_create_from(vrg_pass *pass, vrg_scene_gpu *s, vrg_world *world, const vrg_scene_gpu *previous)
 {
     s->world = world;
     vrg_pass_share(pass, VRG_WORLD_SHARED_NAME, world);
+    if (previous && previous->world != world)
+        previous = NULL;
     int dims[3];
     vrg_world_grid(world, dims);
     /* room to upload the whole grid in one frame (the first, or after a
      * teleport or reallocation); later only changed chunks go up */
     s->staging_bytes = vrg_world_gpu_bytes((dims[0] - 1) / 2, dims[1]);
     s->staging = vrg_pass_host_ring(pass, "world staging", s->staging_bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
-    /* written once, here, before any frame: a plain host buffer */
-    void *atlas = vrg_pass_host_buffer(pass, "atlas staging", vrg_atlas_bytes(), &s->atlas_staging);
-    if (!s->staging || !atlas)
+    if (!s->staging)
         return -1;
-    vrg_world_atlas_generate(world, atlas);
-    if (vrg_param_choice(pass, "traversal", traversals, 2) == 1) {
-        const vrg_device *dev = vrg_pass_device(pass);
-        if (!dev->features.ray_query || !dev->features.acceleration_structure) {
-            return vrg_pass_error_at(pass, vrg_param_line(pass, "traversal"), "traversal = rayquery needs VK_KHR_ray_query, which device '%s' lacks (use traversal = dda)",
-                                     dev->name);
-        }
-        s->accel = vrg_world_accel_create(pass, world);
-        if (!s->accel)
-            return -1;
-    }
+    /* the GPU copy of a kept world stays valid: its buffer and atlas go to
+     * the new instance with the world's record of what they hold */
+    if (previous && (vrg_pass_keep_resource(pass, "world") != 0 || vrg_pass_keep_resource(pass, "atlas") != 0))
+        return -1;
+    if (vrg_param_choice(pass, "traversal", traversals, 2) == 1)
+        return create_accel(pass, s, previous);
+    return 0;
+}
+
+int vrg_scene_create(vrg_pass *pass, vrg_scene_gpu *s, vrg_world *world) { return vrg_scene_create_from(pass, s, world, NULL); }
+
+/* Is the slot's resource new and cleared this frame? */
+static int slot_fresh(vrg_pass *pass, const char *slot)
+{
+    vrg_res r = vrg_pass_res(pass, slot);
+    return vrg_res_connected(r) ? vrg_res_fresh(pass, r) : vrg_pass_frame(pass)->resources_new;
+}
+
+/* The atlas, generated for the frames that need it (a new atlas image):
+ * the staging memory goes once this frame has copied it. */
+static int upload_atlas(vrg_pass *pass, vrg_scene_gpu *s, VkCommandBuffer cmd)
+{
+    VkBuffer staging;
+    vrg_buffer_desc d = {.name = "atlas staging", .size = vrg_atlas_bytes(), .usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT, .host_visible = 1};
+    void *map = vrg_pass_buffer(pass, &d, &staging, NULL);
+    if (!map)
+        return -1;
+    vrg_world_atlas_generate(s->world, map);
+    vrg_atlas_record_upload(pass, cmd, "atlas", staging);
+    vrg_pass_free_buffer(pass, staging);
     return 0;
 }
 
 void vrg_scene_record(vrg_pass *pass, vrg_scene_gpu *s, VkCommandBuffer cmd)
 {
-    if (vrg_pass_frame(pass)->resources_new) {
-        /* the buffers are new and cleared: everything goes up again */
+    /* new and cleared (not kept by a reload): everything goes up again */
+    int world_fresh = slot_fresh(pass, "world");
+    if (world_fresh)
         vrg_world_invalidate_gpu(s->world);
-        vrg_atlas_record_upload(pass, cmd, "atlas", s->atlas_staging);
-    }
+    if (slot_fresh(pass, "atlas") && upload_atlas(pass, s, cmd) != 0)
+        return;
+    vrg_pass_stat(pass, "gpu_world_kept", vrg_pass_frame(pass)->resources_new && !world_fresh);
     int uploaded = 0;
     if (vrg_world_dirty_count(s->world)) {
         /* this frame's slice: earlier frames may still copy from theirs */

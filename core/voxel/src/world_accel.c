@@ -3,21 +3,39 @@
  * one with an instance per chunk. See voxrg/world.h. */
 #include <stdlib.h>
 #include <string.h>
-#include "voxrg/world.h"
+#include "voxel_internal.h"
 
 typedef struct chunk_blas {
     VkAccelerationStructureKHR as;
     VkBuffer buffer;
+    VkDeviceMemory memory;
     VkDeviceAddress address;
     int quads;
     int chunk[3];
 } chunk_blas;
 
-struct vrg_world_accel {
-    vrg_pass *pass;
+/* The BLASes of a world's chunks. Their memory is their own, not a pass's:
+ * the backends of the graph instances a hot reload keeps the world across
+ * share them (reference-counted), and the last to go frees them. */
+typedef struct blas_set {
+    int refs;
     vrg_world *world;
     int slots;
     chunk_blas *blas; /* per slot */
+    VkDevice device;
+    VkPhysicalDeviceMemoryProperties memory;
+    /* VK_KHR_acceleration_structure's commands, from the pass's device */
+    PFN_vkCreateAccelerationStructureKHR create_as;
+    PFN_vkDestroyAccelerationStructureKHR destroy_as;
+    PFN_vkGetAccelerationStructureBuildSizesKHR build_sizes;
+    PFN_vkCmdBuildAccelerationStructuresKHR cmd_build;
+    PFN_vkGetAccelerationStructureDeviceAddressKHR as_address;
+} blas_set;
+
+/* One graph instance's backend: what it builds with, per frame. */
+struct vrg_world_accel {
+    vrg_pass *pass;
+    blas_set *set;
     int *changed;
     /* per-frame host data, rings (earlier frames may still build from
      * theirs): triangle vertices of rebuilt chunks, instances */
@@ -26,13 +44,6 @@ struct vrg_world_accel {
     VkDeviceAddress scratch_address;
     uint64_t scratch_bytes;
     VkDeviceSize scratch_align;
-    /* VK_KHR_acceleration_structure's commands, from the pass's device */
-    VkDevice device;
-    PFN_vkCreateAccelerationStructureKHR create_as;
-    PFN_vkDestroyAccelerationStructureKHR destroy_as;
-    PFN_vkGetAccelerationStructureBuildSizesKHR build_sizes;
-    PFN_vkCmdBuildAccelerationStructuresKHR cmd_build;
-    PFN_vkGetAccelerationStructureDeviceAddressKHR as_address;
 };
 
 static void *buffer(vrg_world_accel *a, const char *name, uint64_t size, VkBufferUsageFlags usage, int host, VkBuffer *b, VkDeviceAddress *addr)
@@ -41,18 +52,88 @@ static void *buffer(vrg_world_accel *a, const char *name, uint64_t size, VkBuffe
     return vrg_pass_buffer(a->pass, &d, b, addr);
 }
 
-/* A replaced BLAS, destroyed once no frame in flight traces it. */
+/* A BLAS and its storage, destroyed at once (the GPU is idle) or once no
+ * frame in flight traces it. */
 typedef struct retired_blas {
     PFN_vkDestroyAccelerationStructureKHR destroy;
     VkDevice device;
-    VkAccelerationStructureKHR as;
+    chunk_blas blas;
 } retired_blas;
+
+static void destroy_blas(PFN_vkDestroyAccelerationStructureKHR destroy, VkDevice device, const chunk_blas *b)
+{
+    if (b->as)
+        destroy(device, b->as, NULL);
+    vkDestroyBuffer(device, b->buffer, NULL);
+    vkFreeMemory(device, b->memory, NULL);
+}
 
 static void destroy_retired_blas(void *user)
 {
     retired_blas *r = user;
-    r->destroy(r->device, r->as, NULL);
+    destroy_blas(r->destroy, r->device, &r->blas);
     free(r);
+}
+
+static blas_set *blas_set_create(const vrg_device *dev, vrg_world *world)
+{
+    blas_set *t = calloc(1, sizeof *t);
+    if (!t)
+        return NULL;
+    t->refs = 1;
+    t->device = dev->device;
+    vkGetPhysicalDeviceMemoryProperties(dev->physical_device, &t->memory);
+    t->create_as = (PFN_vkCreateAccelerationStructureKHR)vkGetDeviceProcAddr(dev->device, "vkCreateAccelerationStructureKHR");
+    t->destroy_as = (PFN_vkDestroyAccelerationStructureKHR)vkGetDeviceProcAddr(dev->device, "vkDestroyAccelerationStructureKHR");
+    t->build_sizes = (PFN_vkGetAccelerationStructureBuildSizesKHR)vkGetDeviceProcAddr(dev->device, "vkGetAccelerationStructureBuildSizesKHR");
+    t->cmd_build = (PFN_vkCmdBuildAccelerationStructuresKHR)vkGetDeviceProcAddr(dev->device, "vkCmdBuildAccelerationStructuresKHR");
+    t->as_address = (PFN_vkGetAccelerationStructureDeviceAddressKHR)vkGetDeviceProcAddr(dev->device, "vkGetAccelerationStructureDeviceAddressKHR");
+    t->world = world;
+    t->slots = vrg_world_slot_count(world);
+    t->blas = calloc((size_t)t->slots, sizeof *t->blas);
+    if (!t->blas) {
+        free(t);
+        return NULL;
+    }
+    return t;
+}
+
+/* The last user's destroy(): the graph waited for the GPU before it. */
+static void blas_set_release(blas_set *t)
+{
+    if (!t || --t->refs > 0)
+        return;
+    for (int s = 0; s < t->slots; s++)
+        destroy_blas(t->destroy_as, t->device, &t->blas[s]);
+    free(t->blas);
+    free(t);
+}
+
+/* A backend of `pass` building into `set` (whose reference it takes over). */
+static vrg_world_accel *accel_for(vrg_pass *pass, blas_set *set)
+{
+    const vrg_device *dev = vrg_pass_device(pass);
+    vrg_world_accel *a = calloc(1, sizeof *a);
+    if (!a) {
+        blas_set_release(set);
+        vrg_pass_error(pass, "out of memory for the ray-query backend");
+        return NULL;
+    }
+    a->pass = pass;
+    a->set = set;
+    a->changed = calloc((size_t)set->slots, sizeof *a->changed);
+    VkPhysicalDeviceAccelerationStructurePropertiesKHR asp = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
+    VkPhysicalDeviceProperties2 p2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &asp};
+    vkGetPhysicalDeviceProperties2(dev->physical_device, &p2);
+    a->scratch_align = asp.minAccelerationStructureScratchOffsetAlignment ? asp.minAccelerationStructureScratchOffsetAlignment : 256;
+    const VkBufferUsageFlags input = VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+    a->instances = vrg_pass_host_ring(pass, "tlas instances", (uint64_t)set->slots * sizeof(VkAccelerationStructureInstanceKHR), input);
+    a->vertices = a->instances ? vrg_pass_host_ring(pass, "blas vertices", 16, input) : NULL; /* grows with the first frame's chunks */
+    if (!a->vertices || !a->changed) {
+        vrg_world_accel_destroy(a);
+        return NULL;
+    }
+    return a;
 }
 
 vrg_world_accel *vrg_world_accel_create(vrg_pass *pass, vrg_world *world)
@@ -63,43 +144,51 @@ vrg_world_accel *vrg_world_accel_create(vrg_pass *pass, vrg_world *world)
                        dev ? dev->name : "(no device)");
         return NULL;
     }
-    vrg_world_accel *a = calloc(1, sizeof *a);
-    a->device = dev->device;
-    a->create_as = (PFN_vkCreateAccelerationStructureKHR)vkGetDeviceProcAddr(dev->device, "vkCreateAccelerationStructureKHR");
-    a->destroy_as = (PFN_vkDestroyAccelerationStructureKHR)vkGetDeviceProcAddr(dev->device, "vkDestroyAccelerationStructureKHR");
-    a->build_sizes = (PFN_vkGetAccelerationStructureBuildSizesKHR)vkGetDeviceProcAddr(dev->device, "vkGetAccelerationStructureBuildSizesKHR");
-    a->cmd_build = (PFN_vkCmdBuildAccelerationStructuresKHR)vkGetDeviceProcAddr(dev->device, "vkCmdBuildAccelerationStructuresKHR");
-    a->as_address = (PFN_vkGetAccelerationStructureDeviceAddressKHR)vkGetDeviceProcAddr(dev->device, "vkGetAccelerationStructureDeviceAddressKHR");
-    a->pass = pass;
-    a->world = world;
-    a->slots = vrg_world_slot_count(world);
-    a->blas = calloc((size_t)a->slots, sizeof *a->blas);
-    a->changed = calloc((size_t)a->slots, sizeof *a->changed);
-    VkPhysicalDeviceAccelerationStructurePropertiesKHR asp = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
-    VkPhysicalDeviceProperties2 p2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &asp};
-    vkGetPhysicalDeviceProperties2(dev->physical_device, &p2);
-    a->scratch_align = asp.minAccelerationStructureScratchOffsetAlignment ? asp.minAccelerationStructureScratchOffsetAlignment : 256;
-    const VkBufferUsageFlags input = VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
-    a->instances = vrg_pass_host_ring(pass, "tlas instances", (uint64_t)a->slots * sizeof(VkAccelerationStructureInstanceKHR), input);
-    a->vertices = a->instances ? vrg_pass_host_ring(pass, "blas vertices", 16, input) : NULL; /* grows with the first frame's chunks */
-    if (!a->vertices) {
-        vrg_world_accel_destroy(a);
+    blas_set *set = blas_set_create(dev, world);
+    if (!set) {
+        vrg_pass_error(pass, "out of memory for the ray-query backend");
         return NULL;
     }
-    return a;
+    return accel_for(pass, set);
+}
+
+vrg_world_accel *_vrg_world_accel_share(vrg_pass *pass, vrg_world_accel *previous)
+{
+    previous->set->refs++;
+    return accel_for(pass, previous->set);
 }
 
 void vrg_world_accel_destroy(vrg_world_accel *a)
 {
     if (!a)
         return;
-    for (int s = 0; s < a->slots; s++)
-        if (a->blas[s].as)
-            a->destroy_as(a->device, a->blas[s].as, NULL);
-    /* the buffers belong to the pass: the runtime frees them with it */
-    free(a->blas);
+    /* the rings and scratch belong to the pass: the runtime frees them with it */
+    blas_set_release(a->set);
     free(a->changed);
     free(a);
+}
+
+/* Storage for a BLAS: device-local, with a device address. */
+static int blas_storage(vrg_world_accel *a, VkDeviceSize bytes, chunk_blas *b, const char *name)
+{
+    blas_set *t = a->set;
+    VkBufferCreateInfo bi = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
+                             .size = bytes,
+                             .usage = VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_STORAGE_BIT_KHR | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT};
+    if (vkCreateBuffer(t->device, &bi, NULL, &b->buffer) != VK_SUCCESS)
+        return vrg_pass_error(a->pass, "cannot create the buffer of %s (%llu bytes)", name, (unsigned long long)bytes);
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(t->device, b->buffer, &req);
+    int type = -1;
+    for (uint32_t i = 0; i < t->memory.memoryTypeCount && type < 0; i++)
+        if ((req.memoryTypeBits >> i & 1) && (t->memory.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT))
+            type = (int)i;
+    VkMemoryAllocateFlagsInfo flags = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO, .flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT};
+    VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .pNext = &flags, .allocationSize = req.size, .memoryTypeIndex = (uint32_t)type};
+    if (type < 0 || vkAllocateMemory(t->device, &ai, NULL, &b->memory) != VK_SUCCESS || vkBindBufferMemory(t->device, b->buffer, b->memory, 0) != VK_SUCCESS)
+        return vrg_pass_error(a->pass, "out of device memory for %s (%llu bytes)", name, (unsigned long long)bytes);
+    vrg_pass_name_object(a->pass, VK_OBJECT_TYPE_BUFFER, (uint64_t)b->buffer, name);
+    return 0;
 }
 
 /* Morton order of a voxel inside its chunk (4 bits per axis). */
@@ -170,16 +259,18 @@ static VkDeviceSize align_up(VkDeviceSize v, VkDeviceSize a) { return (v + a - 1
 
 int vrg_world_accel_quads(const vrg_world_accel *a, int cx, int cy, int cz)
 {
-    for (int s = 0; s < a->slots; s++)
-        if (a->blas[s].as && a->blas[s].chunk[0] == cx && a->blas[s].chunk[1] == cy && a->blas[s].chunk[2] == cz)
-            return a->blas[s].quads;
+    const blas_set *t = a->set;
+    for (int s = 0; s < t->slots; s++)
+        if (t->blas[s].as && t->blas[s].chunk[0] == cx && t->blas[s].chunk[1] == cy && t->blas[s].chunk[2] == cz)
+            return t->blas[s].quads;
     return -1;
 }
 
 int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *tlas_slot)
 {
-    VkDevice dev = a->device;
-    int nchanged = vrg_world_take_mesh_changes(a->world, a->changed, a->slots);
+    blas_set *t = a->set;
+    VkDevice dev = t->device;
+    int nchanged = vrg_world_take_mesh_changes(t->world, a->changed, t->slots);
     size_t cap = nchanged > 0 ? (size_t)nchanged : 1;
     uint32_t *keys = malloc(16 * 16 * 16 * 6 * sizeof *keys);
 
@@ -188,12 +279,12 @@ int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *
     uint64_t total = 0;
     for (int i = 0; i < nchanged; i++) {
         int c[3];
-        quads[i] = vrg_world_slot_chunk(a->world, a->changed[i], c) ? chunk_quads(a->world, c, keys) : 0;
+        quads[i] = vrg_world_slot_chunk(t->world, a->changed[i], c) ? chunk_quads(t->world, c, keys) : 0;
         total += (uint64_t)quads[i];
     }
     uint64_t vbytes = total * 18 * sizeof(float);
     vrg_ring_slice vslice = vrg_pass_ring_slice(a->pass, a->vertices, vbytes);
-    vrg_ring_slice islice = vrg_pass_ring_slice(a->pass, a->instances, (uint64_t)a->slots * sizeof(VkAccelerationStructureInstanceKHR));
+    vrg_ring_slice islice = vrg_pass_ring_slice(a->pass, a->instances, (uint64_t)t->slots * sizeof(VkAccelerationStructureInstanceKHR));
     if (!vslice.map || !islice.map) {
         free(keys);
         free(quads);
@@ -210,22 +301,25 @@ int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *
     int nbuild = 0, rc = 0;
     for (int i = 0; i < nchanged && rc == 0; i++) {
         int s = a->changed[i];
-        chunk_blas *b = &a->blas[s];
-        if (b->as) { /* earlier frames in flight may still trace it */
+        chunk_blas *b = &t->blas[s];
+        if (b->as || b->buffer) { /* earlier frames in flight may still trace it */
             retired_blas *r = malloc(sizeof *r); /* before anything is freed: a failure leaves the BLAS whole */
             if (!r) {
                 rc = vrg_pass_error(a->pass, "out of memory retiring the BLAS of chunk slot %d", s);
                 break;
             }
-            vrg_pass_free_buffer(a->pass, b->buffer);
-            *r = (retired_blas){a->destroy_as, dev, b->as};
-            vrg_pass_defer(a->pass, destroy_retired_blas, r); /* deferred last: destroyed before its buffer */
+            *r = (retired_blas){t->destroy_as, dev, *b};
+            if (vrg_pass_defer(a->pass, destroy_retired_blas, r) != 0) {
+                free(r);
+                rc = -1;
+                break;
+            }
             memset(b, 0, sizeof *b);
         }
         int c[3];
-        if (!quads[i] || !vrg_world_slot_chunk(a->world, s, c))
+        if (!quads[i] || !vrg_world_slot_chunk(t->world, s, c))
             continue;
-        int n = chunk_quads(a->world, c, keys);
+        int n = chunk_quads(t->world, c, keys);
         float *v = (float *)vslice.map + voff / sizeof(float);
         for (int q = 0; q < n; q++)
             quad_vertices(keys[q], v + 18 * q);
@@ -252,10 +346,10 @@ int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *
         };
         uint32_t tris = (uint32_t)(2 * n);
         VkAccelerationStructureBuildSizesInfoKHR sizes = {.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
-        a->build_sizes(dev, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, info, &tris, &sizes);
+        t->build_sizes(dev, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, info, &tris, &sizes);
         char name[64];
         snprintf(name, sizeof name, "blas %d %d %d", c[0], c[1], c[2]);
-        if (!buffer(a, name, sizes.accelerationStructureSize, VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_STORAGE_BIT_KHR, 0, &b->buffer, NULL)) {
+        if (blas_storage(a, sizes.accelerationStructureSize, b, name) != 0) {
             rc = -1;
             break;
         }
@@ -263,13 +357,13 @@ int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *
                                                    .buffer = b->buffer,
                                                    .size = sizes.accelerationStructureSize,
                                                    .type = VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR};
-        if (a->create_as(dev, &ci, NULL, &b->as) != VK_SUCCESS) {
+        if (t->create_as(dev, &ci, NULL, &b->as) != VK_SUCCESS) {
             rc = vrg_pass_error(a->pass, "cannot create the BLAS of chunk %d %d %d", c[0], c[1], c[2]);
             break;
         }
         vrg_pass_name_object(a->pass, VK_OBJECT_TYPE_ACCELERATION_STRUCTURE_KHR, (uint64_t)b->as, name);
         VkAccelerationStructureDeviceAddressInfoKHR ai = {.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_DEVICE_ADDRESS_INFO_KHR, .accelerationStructure = b->as};
-        b->address = a->as_address(dev, &ai);
+        b->address = t->as_address(dev, &ai);
         b->quads = n;
         memcpy(b->chunk, c, sizeof c);
         info->dstAccelerationStructure = b->as;
@@ -283,8 +377,8 @@ int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *
 
     /* 3. TLAS: every slot with a BLAS, translated to its chunk */
     uint32_t ninst = 0;
-    for (int s = 0; s < a->slots; s++) {
-        chunk_blas *b = &a->blas[s];
+    for (int s = 0; s < t->slots; s++) {
+        chunk_blas *b = &t->blas[s];
         if (!b->as)
             continue;
         VkAccelerationStructureInstanceKHR *in = (VkAccelerationStructureInstanceKHR *)islice.map + ninst++;
@@ -313,8 +407,8 @@ int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *
         .pGeometries = &tgeom,
     };
     VkAccelerationStructureBuildSizesInfoKHR tsizes = {.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
-    uint32_t max_inst = (uint32_t)a->slots;
-    a->build_sizes(dev, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &tinfo, &max_inst, &tsizes);
+    uint32_t max_inst = (uint32_t)t->slots;
+    t->build_sizes(dev, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &tinfo, &max_inst, &tsizes);
     VkDeviceSize tlas_scratch = 0;
     VkDeviceSize need = align_up(scratch_total, a->scratch_align) + tsizes.buildScratchSize + a->scratch_align;
     if (rc == 0 && need > a->scratch_bytes) {
@@ -337,7 +431,7 @@ int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *
         if (nbuild) {
             for (int i = 0; i < nbuild; i++)
                 infos[i].scratchData.deviceAddress = base + scratch_offsets[i];
-            a->cmd_build(cmd, (uint32_t)nbuild, infos, range_ptrs);
+            t->cmd_build(cmd, (uint32_t)nbuild, infos, range_ptrs);
             /* the TLAS build reads the BLASes just written */
             vkCmdPipelineBarrier2(cmd, &dep);
         }
@@ -345,7 +439,7 @@ int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *
         tinfo.scratchData.deviceAddress = base + tlas_scratch;
         VkAccelerationStructureBuildRangeInfoKHR trange = {.primitiveCount = ninst};
         const VkAccelerationStructureBuildRangeInfoKHR *tr = &trange;
-        a->cmd_build(cmd, 1, &tinfo, &tr);
+        t->cmd_build(cmd, 1, &tinfo, &tr);
     }
     free(keys);
     free(quads);
@@ -357,8 +451,8 @@ int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *
     vrg_pass_stat(a->pass, "blas_built", nbuild);
     vrg_pass_stat(a->pass, "tlas_instances", ninst);
     double all = 0;
-    for (int s2 = 0; s2 < a->slots; s2++)
-        all += a->blas[s2].quads;
+    for (int s2 = 0; s2 < t->slots; s2++)
+        all += t->blas[s2].quads;
     vrg_pass_stat(a->pass, "blas_quads", all);
     return rc;
 }

@@ -233,7 +233,8 @@ typedef struct vrg_frame_info {
     vrg_camera camera;      /* this frame's camera ([camera] section, --camera path, or the host) */
     vrg_camera prev_camera; /* last frame's; equal to camera when history is not valid */
     int resources_new;      /* every resource was just (re)allocated: persistent ones are
-                             * cleared, so upload their contents again */
+                             * cleared, so upload their contents again (but those a
+                             * reload kept: vrg_res_fresh tells each) */
     int params_changed;     /* first frame after a reload of the graph (new parameter
                              * values or structure) or vrg_graph_set_param: history
                              * carried over stays valid, but accumulations restart */
@@ -391,6 +392,23 @@ VkImage vrg_res_image(const vrg_pass *pass, vrg_res res);
 VkImageView vrg_res_view(const vrg_pass *pass, vrg_res res);
 VkBuffer vrg_res_buffer(const vrg_pass *pass, vrg_res res);
 VkExtent2D vrg_res_extent(const vrg_pass *pass, vrg_res res);
+/* In execute(): 1 when the resource was allocated and cleared at the start
+ * of this frame (the graph's first frame, after a resize, or after a reload
+ * that did not keep it: vrg_pass_keep_resource), so what it held is to be
+ * written again; 0 when it holds what earlier frames wrote. Per resource,
+ * where frame->resources_new is the graph's. 0 when not connected. */
+int vrg_res_fresh(const vrg_pass *pass, vrg_res res);
+/* In create(), while a hot reload builds this instance: the resource of
+ * persistent output `slot` (a buffer or image) is to continue the one the
+ * same slot of vrg_pass_previous_instance wrote, contents, layout and all,
+ * instead of starting cleared. For contents derived from state the pass
+ * shares with its previous instance (a scene's world buffer). The hand-over
+ * happens only when the reload succeeds, after the previous instance's
+ * frames have ended, and only when both resources have the same kind,
+ * format, size and mip levels; vrg_res_fresh on the first frame tells
+ * whether it did. Outside a reload nothing is kept. 0, or -1 after
+ * reporting an error (not in create(), no such persistent output). */
+int vrg_pass_keep_resource(vrg_pass *pass, const char *slot);
 /* For an @prev input: 1 when it holds last frame's value, 0 when it was
  * cleared this frame (first frame, resize, reset, or a structural reload
  * that could not carry this resource over). Finer than the frame's

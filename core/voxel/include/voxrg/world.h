@@ -133,7 +133,8 @@ void vrg_world_invalidate_gpu(vrg_world *w);
 int vrg_world_dirty_count(const vrg_world *w);
 
 /* A new ray-query backend on a world that holds chunks (a world shared
- * across a hot reload): every slot's faces are to be taken again. */
+ * across a hot reload from an instance without one): every slot's faces
+ * are to be taken again. */
 void vrg_world_invalidate_meshes(vrg_world *w);
 /* Slots whose exposed faces changed since the last call (at most max). */
 int vrg_world_take_mesh_changes(vrg_world *w, int *slots, int max);
@@ -252,7 +253,6 @@ typedef struct vrg_scene_gpu {
     vrg_world *world;
     vrg_ring *staging; /* world uploads: a slice per frame in flight */
     uint64_t staging_bytes;
-    VkBuffer atlas_staging;
     vrg_world_accel *accel; /* traversal = rayquery */
 } vrg_scene_gpu;
 
@@ -262,6 +262,16 @@ int vrg_scene_check(vrg_pass *pass, int grid_radius, int height_chunks);
 /* create(): takes the world; staging, the atlas, the ray-query structures if
  * asked for; hands the world to the runtime for host queries. */
 int vrg_scene_create(vrg_pass *pass, vrg_scene_gpu *s, vrg_world *world);
+/* create() of an instance a hot reload builds on its previous instance's
+ * world (the same vrg_world, shared: previous is that instance's
+ * vrg_scene_gpu): also keeps what the GPU holds of it. The world buffer and
+ * atlas carry over when the reload succeeds (vrg_pass_keep_resource: no
+ * chunk is uploaded again) and the ray-query backend shares the previous
+ * one's BLASes (none is built again); the previous instance keeps working
+ * until then, and on if the reload fails. previous NULL, or with another
+ * world: vrg_scene_create. The frame stat gpu_world_kept is 1 on a first
+ * frame whose world buffer was kept. */
+int vrg_scene_create_from(vrg_pass *pass, vrg_scene_gpu *s, vrg_world *world, const vrg_scene_gpu *previous);
 /* execute(): everything again after a reallocation, changed chunks, BLAS and
  * TLAS, and this frame's uniforms (sun and sky from the scene parameters). */
 void vrg_scene_record(vrg_pass *pass, vrg_scene_gpu *s, VkCommandBuffer cmd);
