@@ -26,9 +26,9 @@ static void save_text(const char *path, const char *text)
 static double frames_until_reload(vrg_graph **g, double before)
 {
     for (int i = 0; i < 2000; i++) {
-        if (vrg_graph_frame(*g) != 0)
+        if (vrg_graph_poll_changes(*g) && vrg_graph_reload(g) != 0)
             return -1;
-        if (vrg_graph_source_changed(*g) && vrg_graph_reload(g) != 0)
+        if (vrg_graph_frame(*g) != 0)
             return -1;
         double ms = vrg_graph_reload_ms(*g);
         if (ms >= 0 && ms != before)
@@ -83,15 +83,17 @@ static int ray_shader_reload(vrg_context *ctx, const char *dir, int runs, double
     size_t head = (size_t)(salt - src);
     const char *tail = strchr(salt, '\n');
     unsigned unique = (unsigned)(getpid() % 100000) * 100;
-    for (int r = 0; r < runs && rc == 0; r++) {
+    for (int r = -1; r < runs && rc == 0; r++) { /* r = -1: warm-up, not counted */
         size_t cap = strlen(src) + 64;
         char *text = malloc(cap);
-        snprintf(text, cap, "%.*sconst uint SALT = 0x%08xu;%s", (int)head, src, 0x414f0000u + unique + (unsigned)r + 1, tail);
+        snprintf(text, cap, "%.*sconst uint SALT = 0x%08xu;%s", (int)head, src, 0x414f0000u + unique + (unsigned)(r + 2), tail);
         double before = vrg_graph_reload_ms(g);
         save_text(shader, text);
         free(text);
-        ms[r] = frames_until_reload(&g, before);
-        rc = ms[r] < 0 ? -1 : 0;
+        double t = frames_until_reload(&g, before);
+        rc = t < 0 ? -1 : 0;
+        if (r >= 0)
+            ms[r] = t;
     }
     vrg_graph_destroy(g);
     unsetenv("VOXRG_SHADER_OVERRIDE");
@@ -124,12 +126,14 @@ int vrg_bench_reload(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure
     }
     /* a constant never compiled before: Mesa's disk cache must not hold it */
     int unique = (int)(getpid() % 100000) * 100;
-    for (int r = 0; ok && r < runs; r++) {
-        snprintf(text, sizeof text, reload_shader, unique + r + 1);
+    for (int r = -1; ok && r < runs; r++) { /* r = -1: warm-up, not counted */
+        snprintf(text, sizeof text, reload_shader, unique + r + 2);
         double before = vrg_graph_reload_ms(g);
         save_text(shader, text);
-        ms[r] = frames_until_reload(&g, before);
-        ok = ms[r] >= 0;
+        double t = frames_until_reload(&g, before);
+        ok = t >= 0;
+        if (r >= 0)
+            ms[r] = t;
     }
     if (ok)
         out[n++] = vrg_bench_summarise("reload: shader saved -> first frame using it (small compute shader)", "ms", ms, runs);
@@ -158,12 +162,14 @@ int vrg_bench_reload(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure
         vrg_graph_desc td = {.path = graph, .width = 320, .height = 180};
         if (vrg_graph_load(ctx, &td, &g) != 0 || vrg_graph_watch(g, 1) != 0 || vrg_graph_frame(g) != 0)
             ok = 0;
-        for (int r = 0; ok && r < runs; r++) {
+        for (int r = -1; ok && r < runs; r++) { /* r = -1: warm-up, not counted */
             iter[18] = r % 2 ? '7' : '5';
             double before = vrg_graph_reload_ms(g);
             save_text(graph, text);
-            ms[r] = frames_until_reload(&g, before);
-            ok = ms[r] >= 0;
+            double t = frames_until_reload(&g, before);
+            ok = t >= 0;
+            if (r >= 0)
+                ms[r] = t;
         }
         if (ok)
             out[n++] = vrg_bench_summarise("reload: thesis.ini parameter saved -> first frame (320x180, world kept)", "ms", ms, runs);

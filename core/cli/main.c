@@ -474,6 +474,11 @@ static int cmd_render(int argc, char **argv)
     double reloaded = -1;
     for (uint32_t k = 0; (o.frames == 0 || k < o.frames) && rc == 0 && !interrupted; k++) {
         double frame_start = vrg_cli_now_ms();
+        /* a saved graph file or rebuilt plugin: load it beside the running
+         * graph, swap on success, before this frame (no frame of the old
+         * graph after the save); errors are printed, the running graph stays */
+        if (o.watch && vrg_graph_poll_changes(g) && vrg_graph_reload(&g) == 0)
+            sub = vrg_graph_subframes(g);
         if (path.count) {
             vrg_camera_path_eval(&path, (float)(k * vrg_graph_frame_seconds(g)), &camera);
             vrg_graph_set_camera(g, &camera);
@@ -504,10 +509,6 @@ static int cmd_render(int argc, char **argv)
             fprintf(stderr, "\nframe %u: reloaded, %.0f ms from save to frame\n", k, reloaded);
         }
         double total = timings_add(&times, g);
-        /* a saved graph file or rebuilt plugin: load it beside the running
-         * graph, swap on success (the pass timings above are the old graph's) */
-        if (o.watch && vrg_graph_source_changed(g))
-            (void)vrg_graph_reload(&g); /* errors are printed; the running graph stays */
         if (isatty_err || k + 1 == o.frames) {
             char of[16] = "";
             if (o.frames)

@@ -893,7 +893,7 @@ int vrg_cli_run(const vrg_run_options *o)
         glfwPollEvents();
         /* a saved graph reloads before this frame: the new graph renders
          * before anything reads its images */
-        int changed = vrg_graph_source_changed(g) || (gb && vrg_graph_source_changed(gb));
+        int changed = vrg_graph_poll_changes(g) + (gb ? vrg_graph_poll_changes(gb) : 0);
         if (vrg_graph_source_changed(g))
             (void)vrg_graph_reload(&g); /* a broken graph or plugin is reported; the running one stays */
         if (gb && vrg_graph_source_changed(gb))

@@ -195,6 +195,15 @@ static void test_hot_reload_graph(void)
               s, px(&img, 2, 3, 0), px(&img, 2, 3, 3), steps[s].mean, steps[s].frames);
         free(img.pixels);
     }
+    /* a host that polls before its frame reloads with no frame of the old
+     * graph after the save: 6 + 3 = 9, the mean restarted */
+    save_file(path, reload_graph_text(3, 2, 0));
+    CHECK(vrg_graph_poll_changes(g) == 1, "the save was not noticed before a frame");
+    CHECK(vrg_graph_reload(&g) == 0, "reload failed");
+    CHECK(vrg_graph_poll_changes(g) == 0, "the new graph reports the save it was loaded from");
+    CHECK(vrg_graph_frame(g) == 0 && vrg_graph_read(g, "mean.color", &img) == 0, "frame failed");
+    CHECK(px(&img, 2, 3, 0) == 9 && px(&img, 2, 3, 3) == 1, "mean %g over %g frames, want 9 over 1", px(&img, 2, 3, 0), px(&img, 2, 3, 3));
+    free(img.pixels);
     vrg_graph_destroy(g);
     fclose(diag);
     free(log);

@@ -366,6 +366,13 @@ static void apply_reloads(vrg_graph *g)
     free(changed);
 }
 
+int vrg_graph_poll_changes(vrg_graph *g)
+{
+    if (g->watch)
+        apply_reloads(g);
+    return g->source_changed;
+}
+
 int vrg_graph_frame(vrg_graph *g)
 {
     if (!g->ctx || !g->allocated) {
@@ -379,7 +386,11 @@ int vrg_graph_frame(vrg_graph *g)
     if (g->watch)
         apply_reloads(g);
     int rc = _vrg_record_frame(g);
-    if (g->pending_since > 0) { /* this frame used the change: it is on screen now */
+    /* this frame used the change: the save-to-frame time ends when it has
+     * ended on the GPU (a wait on this frame only; the others overlap) */
+    if (rc == 0 && g->pending_since > 0)
+        rc = vrg_graph_wait(g);
+    if (g->pending_since > 0) {
         struct timespec now;
         clock_gettime(CLOCK_REALTIME, &now);
         g->reload_ms = ((double)now.tv_sec + 1e-9 * (double)now.tv_nsec - g->pending_since) * 1e3;

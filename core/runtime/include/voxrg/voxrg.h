@@ -229,6 +229,12 @@ int vrg_graph_get_param(vrg_graph *g, const char *pass_param, double *value);
 void vrg_graph_sources(const vrg_graph *g, void (*fn)(void *user, const char *path), void *user);
 /* While watching: the graph file was saved since it was loaded. */
 int vrg_graph_source_changed(const vrg_graph *g);
+/* While watching: reads the files' change events now (vrg_graph_frame
+ * does so before it records) and applies saved shaders; returns
+ * vrg_graph_source_changed. A host that calls it before each frame and
+ * reloads when it returns 1 renders no frame of the old graph after the
+ * save, and its reload waits for one frame in flight fewer. */
+int vrg_graph_poll_changes(vrg_graph *g);
 /* Loads the graph's file again. On any error the running graph stays (*g is
  * unchanged; the messages are printed and kept for vrg_graph_reload_error).
  * On success *g is the new graph and the old one is destroyed: with the same
