@@ -61,6 +61,10 @@ int vrg_bench_shipped_graphs(const vrg_bench_opts *o, char **names, int max)
         char missing[2400];
         if (len <= 4 || strcmp(e->d_name + len - 4, ".ini") != 0 || !listed(o->graphs, e->d_name))
             continue;
+        if (!o->graphs && model_missing(dir, e->d_name, missing, sizeof missing)) { /* named in --graphs: its load error says it */
+            fprintf(stderr, "bench: skipping %s: its model %s is missing (the vox test models, docs/world.md)\n", e->d_name, missing);
+            continue;
+        }
         if (n == max) { /* never a graph silently left out */
             fprintf(stderr, "error: %s holds more than the %d graphs bench measures in one run; name some with --graphs\n", dir, max);
             for (int i = 0; i < n; i++)
@@ -68,10 +72,7 @@ int vrg_bench_shipped_graphs(const vrg_bench_opts *o, char **names, int max)
             closedir(d);
             return -1;
         }
-        if (!o->graphs && model_missing(dir, e->d_name, missing, sizeof missing)) /* named in --graphs: its load error says it */
-            fprintf(stderr, "bench: skipping %s: its model %s is missing (the vox test models, docs/world.md)\n", e->d_name, missing);
-        else
-            names[n++] = strdup(e->d_name);
+        names[n++] = strdup(e->d_name);
     }
     if (d)
         closedir(d);

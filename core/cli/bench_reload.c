@@ -163,7 +163,7 @@ int vrg_bench_reload(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure
         if (vrg_graph_load(ctx, &td, &g) != 0 || vrg_graph_watch(g, 1) != 0 || vrg_graph_frame(g) != 0)
             ok = 0;
         for (int r = -1; ok && r < runs; r++) { /* r = -1: warm-up, not counted */
-            iter[18] = r % 2 ? '7' : '5';
+            iter[18] = r & 1 ? '5' : '7'; /* the warm-up (r = -1) saves 5: the loaded file has 7 */
             double before = vrg_graph_reload_ms(g);
             save_text(graph, text);
             double t = frames_until_reload(&g, before);

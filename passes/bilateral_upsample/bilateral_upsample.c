@@ -5,9 +5,13 @@
  * and within `plane_tolerance` of its plane per block of distance between
  * the two points (voxel faces are planes, so this test is exact where
  * bilinear filtering would bleed light across a silhouette or a step).
- * Where none of the four qualifies (a thin feature no low-resolution pixel
- * hit) it takes the nearest of them in space. Sky pixels get 1, the
- * illumination combine writes for sky (modulate passes the sky through).
+ * Texel q is placed where its sample lies: gbuffer_downsample copies the
+ * full-resolution pixel vrg_pixel_in() picks, a quarter texel past q's
+ * centre at half size. Where none of the four qualifies (a thin feature no
+ * low-resolution pixel hit) it takes the nearest of them in space that is
+ * a hit, else the nearest hit of the 4x4 around them, else 1. Sky pixels
+ * get 1, the illumination combine writes for sky (modulate passes the sky
+ * through).
  * mode = bilinear or nearest turn the surface test off, for comparison. */
 #include "voxrg/plugin.h"
 

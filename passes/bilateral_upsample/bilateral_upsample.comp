@@ -33,27 +33,37 @@ void shade(ivec2 p)
         return;
     }
     vec3 n = texelFetch(in_normal, p, 0).xyz;
-    // this pixel's centre in low-resolution texel units, and its 2x2 texels
-    vec2 c = (vec2(p) + 0.5) * vec2(low) / vec2(size) - 0.5;
+    // Texel q holds the full-resolution pixel vrg_pixel_in picked for it,
+    // whose centre lies `shift` texels past q's own centre (a quarter texel
+    // at half size): this pixel's centre in those units, and its 2x2 texels.
+    vec2 ratio = vec2(size) / vec2(low), shift = (floor(0.5 * ratio) + 0.5) / ratio - 0.5;
+    vec2 c = (vec2(p) + 0.5) / ratio - 0.5 - shift;
     ivec2 base = ivec2(floor(c));
     vec2 f = c - vec2(base);
     vec4 sum = vec4(0.0);
     float wsum = 0.0, nearest_d = 1e30;
     vec4 nearest = vec4(1.0);
-    for (int j = 0; j < 4; j++) {
-        ivec2 o = ivec2(j & 1, j >> 1);
+    // the 2x2 texels, then (for the fallback only, when none of them is a
+    // hit) the ring of the 4x4 around them
+    for (int j = 0; j < 20; j++) {
+        bool inner = j < 4;
+        ivec2 o = inner ? ivec2(j & 1, j >> 1) : ivec2((j - 4) % 4 - 1, (j - 4) / 4 - 1);
+        if (j == 4 && (wsum > 1e-6 || nearest_d < 1e30))
+            break; // a texel of the 2x2 was a hit: no need to look further
+        if (!inner && o.x >= 0 && o.x <= 1 && o.y >= 0 && o.y <= 1)
+            continue;
         ivec2 q = clamp(base + o, ivec2(0), low - 1);
-        float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
         vec4 xq = texelFetch(in_low_position, q, 0);
         vec4 l = texelFetch(in_illumination, q, 0);
-        if (params.mode == 0) {
+        float w = inner ? (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y) : 0.0;
+        if (params.mode == 0 || !inner) {
             if (xq.w == 0.0)
                 continue;
             vec3 d = xq.xyz - x.xyz;
             float dist = length(d);
             if (dist < nearest_d)
                 nearest_d = dist, nearest = l;
-            if (dot(texelFetch(in_low_normal, q, 0).xyz, n) < 0.9 || abs(dot(d, n)) > params.plane_tolerance * dist + 1e-3)
+            if (!inner || dot(texelFetch(in_low_normal, q, 0).xyz, n) < 0.9 || abs(dot(d, n)) > params.plane_tolerance * dist + 1e-3)
                 continue;
         }
         sum += w * l;

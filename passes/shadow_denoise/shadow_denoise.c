@@ -89,8 +89,8 @@ static const vrg_dispatch_desc dispatches[] = {
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    static const char *same[] = {"in.visibility", "occluder", "position", "normal"};
-    if (vrg_pass_require_same_size(pass, "out.visibility", same, 4) != 0)
+    static const char *same[] = {"in.visibility", "occluder", "position", "normal", "ping", "pong"};
+    if (vrg_pass_require_same_size(pass, "out.visibility", same, 6) != 0)
         return;
     shadow_denoise_push pc = {(float)(vrg_param(pass, "sun_radius") * 3.14159265358979323846 / 180.0), (float)vrg_param(pass, "radius_scale"),
             (float)vrg_param(pass, "max_radius"), (float)vrg_param(pass, "sigma_z"), vrg_param_int(pass, "taps"), 0};

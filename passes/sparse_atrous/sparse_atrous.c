@@ -109,8 +109,8 @@ static const vrg_dispatch_desc dispatches[] = {
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    static const char *same[] = {"illumination", "position", "normal"};
-    if (vrg_pass_require_same_size(pass, "color", same, 3) != 0)
+    static const char *same[] = {"illumination", "position", "normal", "ping", "pong"};
+    if (vrg_pass_require_same_size(pass, "color", same, 5) != 0)
         return;
     int n = vrg_param_int(pass, "iterations"), fb = vrg_param_int(pass, "feedback");
     int long_history = vrg_param_int(pass, "long_history");

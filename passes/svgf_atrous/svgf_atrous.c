@@ -107,8 +107,8 @@ static int copy(vrg_pass *pass, VkCommandBuffer cmd, const char *from, int packe
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    static const char *same[] = {"illumination", "position", "normal"};
-    if (vrg_pass_require_same_size(pass, "color", same, 3) != 0)
+    static const char *same[] = {"illumination", "position", "normal", "ping", "pong"};
+    if (vrg_pass_require_same_size(pass, "color", same, 5) != 0)
         return;
     int n = vrg_param_int(pass, "iterations"), fb = vrg_param_int(pass, "feedback");
     atrous_push pc = {(float)vrg_param(pass, "sigma_z"), (float)vrg_param(pass, "sigma_n"), (float)vrg_param(pass, "sigma_l"),

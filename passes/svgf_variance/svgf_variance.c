@@ -70,6 +70,9 @@ static const vrg_dispatch_desc dispatches[] = {
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
+    static const char *scratch[] = {"rows"};
+    if (vrg_pass_require_same_size(pass, "color", scratch, 1) != 0)
+        return;
     int mode = vrg_param_choice(pass, "mode", modes, 2);
     variance_push pc = {vrg_param_int(pass, "size") / 2, vrg_param_int(pass, "min_history")};
     vrg_dispatch_desc d[3] = {dispatches[TEMPORAL], dispatches[ROWS], dispatches[COLUMNS]};

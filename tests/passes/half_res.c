@@ -1,3 +1,4 @@
+#define _POSIX_C_SOURCE 200809L /* open_memstream */
 /* Half-resolution lighting: gbuffer_downsample against the full G-buffer,
  * bilateral_upsample against each pixel's known answer (the half G-buffer's
  * own normals and positions upsampled), and a [pass]'s output_scale. */
@@ -5,8 +6,8 @@
 
 static const char *const reads[] = {"gbuffer.position", "gbuffer.normal", "gbuffer.ids", "gbuffer.motion", "half.position", "half.normal",
                                     "half.ids",         "half.motion",    "up_normal",   "up_position",    "up_bilinear",  "vis_half",
-                                    "vis_quarter"};
-enum { FULL_POS, FULL_N, FULL_IDS, FULL_MOTION, HALF_POS, HALF_N, HALF_IDS, HALF_MOTION, UP_N, UP_POS, UP_BILINEAR, VIS_HALF, VIS_QUARTER, COUNT };
+                                    "vis_quarter",      "atrous.color"};
+enum { FULL_POS, FULL_N, FULL_IDS, FULL_MOTION, HALF_POS, HALF_N, HALF_IDS, HALF_MOTION, UP_N, UP_POS, UP_BILINEAR, VIS_HALF, VIS_QUARTER, ATROUS, COUNT };
 
 /* Two frames, the camera stepped sideways in between (motion vectors). */
 static vrg_graph *render_two(vrg_image_data img[COUNT])
@@ -54,6 +55,22 @@ static void test_gbuffer_downsample(void)
           img[VIS_HALF].width, img[VIS_HALF].height);
     CHECK(img[VIS_QUARTER].width * 4 == full->width && img[VIS_QUARTER].height * 4 == full->height,
           "[resource] scale 0.25 over output_scale 0.5: vis_quarter is %ux%u", img[VIS_QUARTER].width, img[VIS_QUARTER].height);
+    CHECK(img[ATROUS].width * 2 == full->width && img[ATROUS].height * 2 == full->height, "output_scale 0.5: atrous.color is %ux%u",
+          img[ATROUS].width, img[ATROUS].height);
+    /* its scratch images (vrg_pass_request_image) follow output_scale: what check prints */
+    char *report = NULL;
+    size_t report_len = 0;
+    FILE *f = open_memstream(&report, &report_len);
+    if (f) {
+        vrg_graph_report(g, f);
+        fclose(f);
+    }
+    for (int i = 0; i < 2; i++) {
+        const char *line = report ? strstr(report, i ? "atrous.pong " : "atrous.ping ") : NULL;
+        CHECK(line && strstr(line, "48x32") && strstr(line, "48x32") < strchr(line, '\n'), "sparse_atrous's %s is not 48x32 in the report: %.80s",
+              i ? "pong" : "ping", line ? line : "(missing)");
+    }
+    free(report);
     int differ = 0, moving = 0, hits = 0;
     for (uint32_t y = 0; y < img[HALF_POS].height; y++)
         for (uint32_t x = 0; x < img[HALF_POS].width; x++) {
@@ -89,11 +106,24 @@ static int on_surface(const vrg_image_data img[COUNT], uint32_t x, uint32_t y, i
     return ndot >= 0.9f && fabsf(along) <= 0.1f * *dist + 1e-3f;
 }
 
+static float dist3(const vrg_image_data *a, uint32_t ax, uint32_t ay, const vrg_image_data *b, uint32_t bx, uint32_t by)
+{
+    float d = 0;
+    for (int c = 0; c < 3; c++)
+        d += (px(a, ax, ay, c) - px(b, bx, by, c)) * (px(a, ax, ay, c) - px(b, bx, by, c));
+    return sqrtf(d);
+}
+
 /* Upsampling the half G-buffer's own normals and positions, where each
- * pixel's answer is known: a pixel with a texel of its surface among its
- * 2x2 gets exactly its normal and a position on its plane; one without gets
- * the nearest texel's; plain bilinear leaves pixels off their plane at the
- * wall's steps and silhouettes. Sky pixels get 1. */
+ * pixel's answer is known. Half texel q holds full pixel 2q+1 (checked by
+ * gbuffer_downsample), so full pixel x lies between texels (x - 1) / 2
+ * rounded down and the next. A pixel with a texel of its surface among
+ * those 2x2 gets exactly its normal and a position on its plane, and where
+ * all four are on it, its own position (bilinear on a plane, samples in
+ * the right place); one without (weight-0 texels do not count) gets the
+ * nearest hit texel's values (of
+ * the 2x2, else of the 4x4 around them); plain bilinear leaves pixels off
+ * their plane at the wall's steps and silhouettes. Sky pixels get 1. */
 static void test_upsample_edges(void)
 {
     vrg_image_data img[COUNT];
@@ -101,7 +131,8 @@ static void test_upsample_edges(void)
     if (!g)
         return;
     const vrg_image_data *pos = &img[FULL_POS], *n = &img[FULL_N], *low = &img[HALF_POS];
-    int hits = 0, wrong = 0, nearest_wrong = 0, fallbacks = 0, off_plane_bilinear = 0, sky_wrong = 0, sky = 0;
+    int hits = 0, wrong = 0, nearest_wrong = 0, fallbacks = 0, off_plane_bilinear = 0, sky_wrong = 0, sky = 0, interior = 0;
+    double shift_sum = 0, shift_max = 0;
     for (uint32_t y = 0; y < pos->height; y++)
         for (uint32_t x = 0; x < pos->width; x++) {
             if (px(pos, x, y, 3) == 0.0f) {
@@ -111,16 +142,29 @@ static void test_upsample_edges(void)
                 continue;
             }
             hits++;
-            int bx = (int)floorf((x + 0.5f) * low->width / pos->width - 0.5f), by = (int)floorf((y + 0.5f) * low->height / pos->height - 0.5f);
-            int qualified = 0, nx = -1, ny = -1;
+            int bx = (int)floorf(((float)x - 1.0f) / 2.0f), by = (int)floorf(((float)y - 1.0f) / 2.0f);
+            /* bilinear weights: an odd pixel sits on a texel's sample (weight 1 there) */
+            float fx = ((float)x - 1.0f) / 2.0f - (float)bx, fy = ((float)y - 1.0f) / 2.0f - (float)by;
+            int qualified = 0, weighted = 0, nx = -1, ny = -1;
             float nearest = 1e30f;
-            for (int j = 0; j < 4; j++) {
-                int qx = bx + (j & 1), qy = by + (j >> 1), hit;
+            for (int j = 0; j < 20; j++) {
+                int inner = j < 4, ox = inner ? (j & 1) : (j - 4) % 4 - 1, oy = inner ? (j >> 1) : (j - 4) / 4 - 1;
+                if (j == 4 && nx >= 0)
+                    break; /* a hit among the 2x2 */
+                if (!inner && ox >= 0 && ox <= 1 && oy >= 0 && oy <= 1)
+                    continue;
+                int qx = bx + ox, qy = by + oy;
                 qx = qx < 0 ? 0 : qx >= (int)low->width ? (int)low->width - 1 : qx;
                 qy = qy < 0 ? 0 : qy >= (int)low->height ? (int)low->height - 1 : qy;
                 float dist = 1e30f;
-                hit = px(low, (uint32_t)qx, (uint32_t)qy, 3) != 0.0f;
-                qualified += on_surface(img, x, y, qx, qy, &dist);
+                int hit = px(low, (uint32_t)qx, (uint32_t)qy, 3) != 0.0f;
+                if (inner) {
+                    int w = (ox ? fx : 1.0f - fx) * (oy ? fy : 1.0f - fy) > 0.0f, on = on_surface(img, x, y, qx, qy, &dist);
+                    qualified += w && on; /* a texel of weight 0 counts only as the nearest */
+                    weighted += w;
+                }
+                else if (hit)
+                    dist = dist3(low, (uint32_t)qx, (uint32_t)qy, pos, x, y);
                 if (hit && dist < nearest)
                     nearest = dist, nx = qx, ny = qy;
             }
@@ -129,18 +173,28 @@ static void test_upsample_edges(void)
                 float nc = px(n, x, y, c);
                 d += nc * (px(&img[UP_POS], x, y, c) - px(pos, x, y, c));
                 db += nc * (px(&img[UP_BILINEAR], x, y, c) - px(pos, x, y, c));
-                dn += fabsf(px(&img[UP_N], x, y, c) - (qualified ? nc : px(&img[HALF_N], (uint32_t)nx, (uint32_t)ny, c)));
+                dn += fabsf(px(&img[UP_N], x, y, c) - (qualified ? nc : nx >= 0 ? px(&img[HALF_N], (uint32_t)nx, (uint32_t)ny, c) : 1.0f));
             }
             off_plane_bilinear += fabsf(db) > 0.05f;
+            if (qualified == weighted && bx >= 0 && by >= 0 && bx + 1 < (int)low->width && by + 1 < (int)low->height) {
+                /* all four on its plane: its own position, to a fraction of the texel spacing */
+                float step = dist3(low, (uint32_t)bx, (uint32_t)by, low, (uint32_t)bx + 1, (uint32_t)by);
+                double r = dist3(&img[UP_POS], x, y, pos, x, y) / (step > 1e-6f ? step : 1e-6f);
+                shift_sum += r, interior++;
+                shift_max = r > shift_max ? r : shift_max;
+            }
             if (qualified)
                 wrong += dn > 1e-3f || fabsf(d) > 0.05f; /* f16 positions: 0.016 at 32..64 */
             else
-                fallbacks++, nearest_wrong += nx < 0 || dn > 1e-3f;
+                fallbacks++, nearest_wrong += nx < 0 || dn > 1e-3f || dist3(&img[UP_POS], x, y, low, (uint32_t)nx, (uint32_t)ny) > 0.05f;
         }
     CHECK(sky > 100 && hits > 2000, "the view does not test it: %d sky, %d hits", sky, hits);
     CHECK(sky_wrong == 0, "%d sky channels are not 1", sky_wrong);
     CHECK(wrong == 0, "%d of %d pixels with a texel of their surface got another surface's normal or left their plane", wrong, hits);
-    CHECK(nearest_wrong == 0, "%d of %d pixels without one did not get the nearest texel's value", nearest_wrong, fallbacks);
+    CHECK(nearest_wrong == 0, "%d of %d pixels without one did not get the nearest hit texel's value", nearest_wrong, fallbacks);
+    CHECK(interior > 1000 && shift_sum / interior < 0.03 && shift_max < 0.1,
+          "%d pixels inside their surface lie %.3f texel steps from their own position on average (at most %.3f): the texels are misplaced",
+          interior, interior ? shift_sum / interior : 0.0, shift_max);
     CHECK(off_plane_bilinear > 100, "bilinear leaves only %d pixels off their plane: the view has no edges", off_plane_bilinear);
     release(g, img);
 }

@@ -387,7 +387,7 @@ int vrg_graph_frame(vrg_graph *g)
         apply_reloads(g);
     int rc = _vrg_record_frame(g);
     /* this frame used the change: the save-to-frame time ends when it has
-     * ended on the GPU (a wait on this frame only; the others overlap) */
+     * ended on the GPU (the wait drains the frames in flight, once) */
     if (rc == 0 && g->pending_since > 0)
         rc = vrg_graph_wait(g);
     if (g->pending_since > 0) {

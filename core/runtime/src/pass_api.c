@@ -482,7 +482,8 @@ vrg_res vrg_pass_request_image(vrg_pass *p, const char *name, VkFormat format, f
         _vrg_resource *r = &p->graph->res[h.id >> 1];
         const vrg_slot_desc def = _vrg_slot_desc_defaults(&(vrg_slot_desc){.kind = VRG_IMAGE, .format = format, .scale = scale});
         r->format = def.format;
-        r->scale = def.scale;
+        /* a pass's output_scale sizes its scratch images as its outputs */
+        r->scale = def.scale * (p->output_scale > 0 ? p->output_scale : 1.0f);
         r->internal_first_access = first_access ? first_access : VRG_ACCESS_STORAGE_WRITE;
     }
     return h;

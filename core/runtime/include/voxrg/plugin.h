@@ -392,9 +392,10 @@ VkImage vrg_res_image(const vrg_pass *pass, vrg_res res);
 VkImageView vrg_res_view(const vrg_pass *pass, vrg_res res);
 VkBuffer vrg_res_buffer(const vrg_pass *pass, vrg_res res);
 VkExtent2D vrg_res_extent(const vrg_pass *pass, vrg_res res);
-/* In execute(): 1 when the resource was allocated and cleared at the start
- * of this frame (the graph's first frame, after a resize, or after a reload
- * that did not keep it: vrg_pass_keep_resource), so what it held is to be
+/* In execute(): 1 when the resource was allocated at the start of this
+ * frame (the graph's first frame, after a resize, or after a reload that
+ * did not keep it: vrg_pass_keep_resource; persistent resources are then
+ * cleared, transient ones hold nothing defined), so what it held is to be
  * written again; 0 when it holds what earlier frames wrote. Per resource,
  * where frame->resources_new is the graph's. 0 when not connected. */
 int vrg_res_fresh(const vrg_pass *pass, vrg_res res);
@@ -407,7 +408,7 @@ int vrg_res_fresh(const vrg_pass *pass, vrg_res res);
  * frames have ended, and only when both resources have the same kind,
  * format, size and mip levels; vrg_res_fresh on the first frame tells
  * whether it did. Outside a reload nothing is kept. 0, or -1 after
- * reporting an error (not in create(), no such persistent output). */
+ * reporting an error (after create(), no such persistent output). */
 int vrg_pass_keep_resource(vrg_pass *pass, const char *slot);
 /* For an @prev input: 1 when it holds last frame's value, 0 when it was
  * cleared this frame (first frame, resize, reset, or a structural reload

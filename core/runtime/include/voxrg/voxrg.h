@@ -104,6 +104,8 @@ void vrg_graph_destroy(vrg_graph *g);
  *  - GPU timings (vrg_graph_pass_ms) are of the newest frame known to have
  *    ended, vrg_graph_timed_frame; after vrg_graph_wait (or a readback)
  *    that is the last frame submitted. */
+/* The first frame that uses a reload or a saved shader waits for the GPU
+ * before it returns (vrg_graph_reload_ms ends there). */
 int vrg_graph_frame(vrg_graph *g);
 /* Waits for every frame in flight: 0, or -1 after reporting a GPU timeout
  * (naming the frame and pass) or an earlier one. */
