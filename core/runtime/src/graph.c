@@ -383,8 +383,7 @@ int vrg_graph_frame(vrg_graph *g)
         _vrg_error(&g->diag, VRG_E_GPU_BUSY, "graph '%s': the GPU is still busy with a frame that timed out or was interrupted", g->name);
         return -1;
     }
-    if (g->watch)
-        apply_reloads(g);
+    (void)vrg_graph_poll_changes(g); /* saved shaders swap in before recording */
     int rc = _vrg_record_frame(g);
     /* this frame used the change: the save-to-frame time ends when it has
      * ended on the GPU (the wait drains the frames in flight, once) */
