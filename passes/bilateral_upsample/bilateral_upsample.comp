@@ -34,10 +34,9 @@ void shade(ivec2 p)
     }
     vec3 n = texelFetch(in_normal, p, 0).xyz;
     // Texel q holds the full-resolution pixel vrg_pixel_in picked for it,
-    // whose centre lies `shift` texels past q's own centre (a quarter texel
-    // at half size): this pixel's centre in those units, and its 2x2 texels.
-    vec2 ratio = vec2(size) / vec2(low), shift = (floor(0.5 * ratio) + 0.5) / ratio - 0.5;
-    vec2 c = (vec2(p) + 0.5) / ratio - 0.5 - shift;
+    // whose centre lies vrg_pixel_in_offset texels past q's own centre: this
+    // pixel's centre in those units, and its 2x2 texels.
+    vec2 c = (vec2(p) + 0.5) * vec2(low) / vec2(size) - 0.5 - vrg_pixel_in_offset(low, size);
     ivec2 base = ivec2(floor(c));
     vec2 f = c - vec2(base);
     vec4 sum = vec4(0.0);

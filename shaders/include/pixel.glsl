@@ -41,4 +41,14 @@ ivec2 vrg_pixel_in(ivec2 p, ivec2 dst, ivec2 src)
 {
     return clamp(ifloor((vec2(p) + 0.5) * vec2(src) / vec2(dst)), ivec2(0), src - 1);
 }
+
+// Where the src pixel vrg_pixel_in picks for dst pixel q has its centre,
+// in dst pixels past q's own centre (exact when src / dst is a whole
+// number; a quarter pixel at half size): an upsampler that reads back
+// values computed at vrg_pixel_in's pixels places them there.
+vec2 vrg_pixel_in_offset(ivec2 dst, ivec2 src)
+{
+    vec2 ratio = vec2(src) / vec2(dst);
+    return (floor(0.5 * ratio) + 0.5) / ratio - 0.5;
+}
 #endif
