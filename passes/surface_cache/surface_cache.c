@@ -1,0 +1,214 @@
+/* surface_cache: a signal averaged over the surfaces it lights, in world
+ * space, across frames: the path-space filtering of a hashed grid.
+ * Every pixel's sample goes to the cell of a grid over the surfaces that
+ * holds its G-buffer point; each cell keeps a running mean of everything
+ * it was given; every pixel reads back the bilinear blend of the 2x2 cells
+ * around its point. For lighting that depends on the point alone (diffuse
+ * irradiance, sun visibility: not on the view) and a static scene this is
+ * the whole denoiser: nothing is reprojected, so nothing is resampled and
+ * blurred frame after frame, a surface seen again finds its history, and a
+ * cell averages the samples of all the pixels it covers.
+ *
+ * Cells. A cell is a square of side s = 2^L blocks on one face direction
+ * (the normal's dominant axis and sign) and one layer along that axis,
+ * where L makes s the smallest power of two of at least cell_pixels
+ * pixels at the point's distance: near the camera cells are small, far
+ * away large, so a cell covers about cell_pixels^2 pixels wherever it is.
+ * Cells sit in a hash table of `cells` slots (a power of two) found by
+ * linear probing over at most 32 slots; a 32-bit check value tells cells
+ * in one slot apart.
+ *
+ * Per frame, three dispatches (surface_cache.comp):
+ *   insert:  each pixel finds or claims its cell and adds its sample, in
+ *            fixed point, with integer atomics: the sums do not depend on
+ *            the order threads run in, so neither does the image;
+ *   resolve: each cell given samples this frame blends their mean into its
+ *            own with weight count / n, n = min(n_before, (max_frames - 1)
+ *            * count) + count, so the history is worth at most max_frames
+ *            frames of this frame's samples; a cell not given any for
+ *            evict_frames frames is freed;
+ *   gather:  each pixel blends the 2x2 cells around its point (bilinear,
+ *            over the cells that exist).
+ * A sample that finds no free slot in 32 probes is not cached (its pixel
+ * shows its own sample); the count of those is read back a few frames
+ * later and reported as the stat `uncached` and a warning naming `cells`.
+ * A reload with new parameters or a reset empties the table. */
+#include <stdlib.h>
+#include <string.h>
+#include "voxrg/plugin.h"
+
+#define HEADER_WORDS 16u /* [0]: samples not cached this frame, [1]: cells listed */
+
+static const vrg_param_desc params[] = {
+    {"cell_pixels", VRG_PARAM_FLOAT, 2, 0.25, 64, "least side of a cell, in pixels at the point's distance"},
+    {"max_frames", VRG_PARAM_INT, 32, 1, 4096, "frames of samples a cell's history is worth at most"},
+    {"evict_frames", VRG_PARAM_INT, 32, 1, 1 << 20, "frames without samples after which a cell is freed"},
+    {"cells", VRG_PARAM_INT, 1 << 21, 1 << 10, 1 << 26, "hash table slots (a power of two)"},
+    {"channels", VRG_PARAM_INT, 4, 1, 4, "the signal's channels that are cached (the first ones; the rest pass through)"},
+};
+
+static const vrg_slot_desc slots[] = {
+    {.name = "signal", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED,
+     .help = "this frame's samples (non-negative; rgba)"},
+    {.name = "position", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "G-buffer world position; w = 0 on sky"},
+    {.name = "normal", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "G-buffer normal"},
+    {.name = "frame", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_UNIFORM, .help = "the scene's per-frame uniforms (camera)"},
+    {.name = "color", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
+     .help = "the cached signal; sky pixels and uncached samples: the signal itself"},
+    {.name = "table", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_STORAGE_READ_WRITE, .flags = VRG_SLOT_PERSISTENT,
+     .help = "the hash table of cells (kept across frames)"},
+};
+
+static uint64_t table_bytes(const vrg_pass *pass)
+{
+    /* per slot: its check word, an entry of 2 words per channel + 3, and a
+     * word of the list of cells given samples this frame (surface_cache.comp) */
+    uint64_t entry_words = 2u * (uint64_t)vrg_param_int(pass, "channels") + 3u;
+    return 4u * (HEADER_WORDS + (uint64_t)vrg_param_int(pass, "cells") * (2u + entry_words));
+}
+
+static int check(vrg_pass *pass)
+{
+    int cells = vrg_param_int(pass, "cells");
+    /* sized first, so that a bad value is the only error */
+    if (vrg_pass_set_buffer_size(pass, "table", table_bytes(pass)) != 0)
+        return -1;
+    if (cells & (cells - 1))
+        return vrg_pass_error(pass, "cells = %d: the hash table needs a power of two (e.g. %d)", cells, 1 << (31 - __builtin_clz((unsigned)cells)));
+    /* the shaders bind the whole table as one storage buffer */
+    const vrg_device *dev = vrg_pass_device(pass);
+    if (dev) {
+        VkPhysicalDeviceProperties props;
+        vkGetPhysicalDeviceProperties(dev->physical_device, &props);
+        if (table_bytes(pass) > props.limits.maxStorageBufferRange)
+            return vrg_pass_error(pass, "cells = %d needs a table of %llu bytes, more than this device binds as one storage buffer (%u): lower cells",
+                                  cells, (unsigned long long)table_bytes(pass), props.limits.maxStorageBufferRange);
+    }
+    return 0;
+}
+
+typedef struct surface_cache_state {
+    vrg_ring *readback;   /* each frame slot's copy of the table's header, for `uncached` */
+    uint64_t slots_read;  /* frame slots whose ring slice the GPU has written */
+    int warned;
+} surface_cache_state;
+
+static int create(vrg_pass *pass)
+{
+    surface_cache_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return vrg_pass_error(pass, "out of memory");
+    vrg_pass_set_user(pass, s);
+    s->readback = vrg_pass_host_ring(pass, "uncached readback", 4 * HEADER_WORDS, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    return s->readback ? 0 : -1;
+}
+
+typedef struct surface_cache_push {
+    float cell_pixels;
+    uint32_t max_frames, evict_frames, mask, frame, channels;
+    uint32_t evict_first, evict_slots;
+} surface_cache_push;
+
+enum { EVICT, INSERT, RESOLVE, GATHER };
+#define GROUP 64u          /* RESOLVE and EVICT's local size */
+#define SLOTS_PER_INVOCATION 16u /* EVICT's; surface_cache.comp's SLOTS_PER_INVOCATION */
+#define EVICT_SHARES 16u   /* each frame looks at one share of the table for cells to free */
+#define RESOLVE_GROUPS 256u /* invocations striding through the listed cells */
+#define TABLE_BINDINGS {"signal"}, {"position"}, {"normal"}, {"frame"}, {"table"}
+static const vrg_dispatch_desc dispatches[] = {
+    [EVICT] = {.shader = "surface_cache.comp", .defines = "EVICT", .push_size = sizeof(surface_cache_push), .groups_x = 1, .groups_y = 1,
+               .groups_z = 1, .bindings = {TABLE_BINDINGS}},
+    [INSERT] = {.shader = "surface_cache.comp", .defines = "INSERT", .push_size = sizeof(surface_cache_push), .pixel_loop = 1,
+                .domain = "color", .bindings = {TABLE_BINDINGS}},
+    [RESOLVE] = {.shader = "surface_cache.comp", .defines = "RESOLVE", .push_size = sizeof(surface_cache_push), .groups_x = RESOLVE_GROUPS,
+                 .groups_y = 1, .groups_z = 1, .bindings = {TABLE_BINDINGS}},
+    [GATHER] = {.shader = "surface_cache.comp", .defines = "GATHER", .push_size = sizeof(surface_cache_push), .pixel_loop = 1,
+                .domain = "color", .bindings = {TABLE_BINDINGS, {"color"}}},
+};
+
+/* the count the GPU wrote into this ring slice when it last ran this frame
+ * slot (none yet on a slot's first frame: the slice holds nothing defined) */
+static void report_uncached(vrg_pass *pass, surface_cache_state *s, const vrg_ring_slice *slice)
+{
+    uint64_t bit = 1ull << vrg_pass_frame(pass)->frame_slot;
+    uint32_t uncached = 0;
+    if (s->slots_read & bit)
+        memcpy(&uncached, slice->map, sizeof uncached);
+    s->slots_read |= bit;
+    vrg_pass_stat(pass, "uncached", uncached);
+    if (uncached > 0 && !s->warned) {
+        s->warned = 1;
+        vrg_pass_warn_at(pass, 0, "%u samples of a frame found no free cell in 32 probes of the hash table (cells = %d): raise cells", uncached,
+                         vrg_param_int(pass, "cells"));
+    }
+}
+
+static void execute(vrg_pass *pass, VkCommandBuffer cmd)
+{
+    static const char *same[] = {"signal", "position", "normal"};
+    if (vrg_pass_require_same_size(pass, "color", same, 3) != 0)
+        return;
+    surface_cache_state *s = vrg_pass_user(pass);
+    vrg_ring_slice slice = vrg_pass_ring_slice(pass, s->readback, 4 * HEADER_WORDS);
+    if (!slice.map)
+        return;
+    report_uncached(pass, s, &slice);
+    const vrg_frame_info *f = vrg_pass_frame(pass);
+    vrg_res table = vrg_pass_res(pass, "table");
+    VkBuffer buf = vrg_res_buffer(pass, table);
+    if (!vrg_res_fresh(pass, table) && (f->params_changed || !f->history_valid)) {
+        /* the history is of other parameters, or the host asked for a restart */
+        vrg_use clear = {table, VRG_ACCESS_TRANSFER_DST};
+        vrg_pass_use(pass, cmd, &clear, 1);
+        vkCmdFillBuffer(cmd, buf, 0, VK_WHOLE_SIZE, 0);
+    }
+    uint32_t cells = (uint32_t)vrg_param_int(pass, "cells"), share = cells / EVICT_SHARES;
+    surface_cache_push pc = {(float)vrg_param(pass, "cell_pixels"),
+                             (uint32_t)vrg_param_int(pass, "max_frames"),
+                             (uint32_t)vrg_param_int(pass, "evict_frames"),
+                             cells - 1,
+                             (uint32_t)f->frame_index,
+                             (uint32_t)vrg_param_int(pass, "channels"),
+                             (uint32_t)(f->frame_index % EVICT_SHARES) * share,
+                             share};
+    for (int i = EVICT; i <= GATHER; i++) {
+        vrg_dispatch_desc d = dispatches[i];
+        d.push = &pc;
+        if (i == EVICT)
+            d.groups_x = (share + GROUP * SLOTS_PER_INVOCATION - 1) / (GROUP * SLOTS_PER_INVOCATION);
+        if (vrg_dispatch(pass, cmd, &d) != 0)
+            return;
+    }
+    /* the header to this slice (read when the slice comes round again), then zeroed */
+    vrg_use copy = {table, VRG_ACCESS_TRANSFER_SRC};
+    vrg_pass_use(pass, cmd, &copy, 1);
+    vkCmdCopyBuffer(cmd, buf, slice.buffer, 1, &(VkBufferCopy){0, 0, 4 * HEADER_WORDS});
+    /* the host reads the copy after the frame's fence: make it visible there */
+    VkMemoryBarrier to_host = {VK_STRUCTURE_TYPE_MEMORY_BARRIER, NULL, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0, NULL, 0, NULL);
+    vrg_use zero = {table, VRG_ACCESS_TRANSFER_DST};
+    vrg_pass_use(pass, cmd, &zero, 1);
+    vkCmdFillBuffer(cmd, buf, 0, 4 * HEADER_WORDS, 0);
+}
+
+static void destroy(vrg_pass *pass) { free(vrg_pass_user(pass)); }
+
+static const vrg_plugin_desc desc = {
+    .abi_version = VRG_ABI_VERSION,
+    .name = "surface_cache",
+    .kind = VRG_PLUGIN_PASS,
+    .help = "world-space cache: samples averaged per cell of a hashed grid over the surfaces, across frames",
+    .shader_dir = VRG_PLUGIN_DIR,
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .slots = slots,
+    .slot_count = sizeof slots / sizeof slots[0],
+    .check = check,
+    .create = create,
+    .execute = execute,
+    .destroy = destroy,
+    .dispatches = dispatches,
+    .dispatch_count = sizeof dispatches / sizeof dispatches[0],
+};
+
+VRG_PLUGIN(desc)

@@ -1,0 +1,248 @@
+#version 460
+// The surface cache's four dispatches (EVICT, INSERT, RESOLVE, GATHER); the
+// cells, the table and the weights are described in surface_cache.c.
+#include "pixel.glsl"
+#include "random.glsl"
+#define FRAME_BINDING 3
+#include "frame.glsl"
+
+#if defined(RESOLVE) || defined(EVICT)
+layout(local_size_x = 64) in;
+#else
+layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
+#endif
+layout(binding = 0) uniform sampler2D in_signal;
+layout(binding = 1) uniform sampler2D in_position;
+layout(binding = 2) uniform sampler2D in_normal;
+// the header, the check words of all slots, the entries, the list of the
+// slots given samples this frame
+layout(std430, binding = 4) buffer Table { uint words[]; } table;
+#ifdef GATHER
+layout(binding = 5, rgba16f) uniform writeonly image2D out_color;
+#endif
+layout(push_constant) uniform Params {
+    float cell_pixels;
+    uint max_frames, evict_frames, mask, frame_index, channels;
+    uint evict_first, evict_slots; // this frame's share of the table to look at for eviction
+} params;
+
+// header words
+const uint UNCACHED = 0u, LISTED = 1u, HEADER = 16u;
+// check words: a free slot, a freed one (lookups go on past it), else a cell's check value
+const uint EMPTY = 0u, FREED = 1u;
+const uint PROBES = 32u;
+const uint SLOTS_PER_INVOCATION = 16u; // RESOLVE and EVICT: fewer, longer invocations cost less on a CPU
+const float FIXED = 1024.0;      // fixed-point scale of the sums
+const float MAX_SAMPLE = 1024.0; // a sample's largest value (keeps 4096 of them in 32 bits)
+
+// An entry, C = channels: C fixed-point sums, the count, the last frame
+// with samples, n (float bits), C means (float bits).
+uint cells() { return params.mask + 1u; }
+uint entry_size() { return 2u * params.channels + 3u; }
+uint check_word(uint slot) { return HEADER + slot; }
+uint entry_word(uint slot) { return HEADER + cells() + slot * entry_size(); }
+uint list_word(uint i) { return HEADER + cells() * (1u + entry_size()) + i; }
+uint count_word(uint e) { return e + params.channels; }
+uint last_word(uint e) { return e + params.channels + 1u; }
+uint n_word(uint e) { return e + params.channels + 2u; }
+uint mean_word(uint e) { return e + params.channels + 3u; }
+
+// A point's cell: its level, face and the cell's integer coordinates, with
+// the continuous coordinates in the face's plane (in cells) for the gather.
+struct Cell {
+    int level, face;
+    int layer;  // along the face's axis
+    vec2 plane; // in the plane, in cells
+};
+
+Cell cell_of(vec3 x, vec3 n)
+{
+    Cell c;
+    float depth = max(dot(x - frame.camera_pos.xyz, frame.camera_forward.xyz), 1e-3);
+    float pixel = depth * 2.0 * length(frame.camera_up.xyz) / float(frame.frame_info.z);
+    c.level = clamp(int(ceil(log2(params.cell_pixels * pixel))), -8, 8);
+    float s = exp2(float(c.level));
+    vec3 a = abs(n);
+    int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
+    c.face = axis * 2 + (n[axis] < 0.0 ? 1 : 0);
+    // a quarter cell into the surface: a face on a cell boundary (voxel
+    // faces lie on whole numbers) gets one layer however its position rounds
+    vec3 p = (x - n * (0.25 * s)) / s;
+    c.layer = ifloor(p[axis]);
+    c.plane = axis == 0 ? p.yz : (axis == 1 ? p.xz : p.xy);
+    return c;
+}
+
+uvec2 hash_of(Cell c, ivec2 cell)
+{
+    uint tag = uint(c.level + 16) | uint(c.face) << 5;
+    uint h = pcg_hash(uint(c.layer) ^ pcg_hash(uint(cell.x) ^ pcg_hash(uint(cell.y) ^ pcg_hash(tag))));
+    // a second, independent hash tells apart the cells that share slots
+    uint check = pcg_hash(uint(cell.y) + pcg_hash(uint(c.layer) + pcg_hash(uint(cell.x) + pcg_hash(tag ^ 0x5bd1e995u))));
+    return uvec2(h, max(check, 2u)); // 0 and 1 mark free slots
+}
+
+// The slot holding the cell, or ~0u. A cell lies within PROBES slots of its
+// hash with no EMPTY slot before it (FREED ones keep the run going).
+uint find(uvec2 h)
+{
+    for (uint i = 0u; i < PROBES; i++) {
+        uint slot = (h.x + i) & params.mask;
+        uint c = table.words[check_word(slot)];
+        if (c == h.y)
+            return slot;
+        if (c == EMPTY)
+            break;
+    }
+    return ~0u;
+}
+
+#ifdef EVICT
+// Cells without samples for evict_frames frames are freed. A freed slot
+// right before an EMPTY one ends no run that reaches further, so it becomes
+// EMPTY too; within an invocation's slots, walked from the last, that
+// carries backwards (the next invocation's first slot is not looked at:
+// another invocation may be changing it).
+void main()
+{
+    uint first = params.evict_first + gl_GlobalInvocationID.x * SLOTS_PER_INVOCATION;
+    bool next_empty = false;
+    for (uint k = SLOTS_PER_INVOCATION; k-- > 0u;) {
+        uint slot = first + k;
+        if (slot >= params.evict_first + params.evict_slots || slot > params.mask)
+            continue;
+        uint c = table.words[check_word(slot)];
+        uint e = entry_word(slot);
+        if (c >= 2u && params.frame_index - table.words[last_word(e)] >= params.evict_frames) {
+            for (uint i = 0u; i < entry_size(); i++)
+                table.words[e + i] = 0u;
+            c = FREED;
+        }
+        if (c == FREED && next_empty && k + 1u < SLOTS_PER_INVOCATION)
+            c = EMPTY;
+        table.words[check_word(slot)] = c;
+        next_empty = c == EMPTY;
+    }
+}
+#endif
+
+#ifdef INSERT
+// the slot holding the cell after claiming a free one if none did, or ~0u
+uint find_or_claim(uvec2 h)
+{
+    uint slot = find(h);
+    if (slot != ~0u)
+        return slot;
+    // the first free slot in the run, in order: threads claiming the same
+    // cell try the same slots in the same order, so they agree on one
+    for (uint i = 0u; i < PROBES; i++) {
+        slot = (h.x + i) & params.mask;
+        uint c = table.words[check_word(slot)];
+        if (c == h.y)
+            return slot;
+        if (c != EMPTY && c != FREED)
+            continue;
+        uint was = atomicCompSwap(table.words[check_word(slot)], c, h.y);
+        if (was == c || was == h.y)
+            return slot;
+    }
+    return ~0u;
+}
+
+void shade(ivec2 p)
+{
+    if (any(greaterThanEqual(p, textureSize(in_signal, 0))))
+        return;
+    vec4 x = texelFetch(in_position, p, 0);
+    if (x.w == 0.0)
+        return;
+    Cell c = cell_of(x.xyz, texelFetch(in_normal, p, 0).xyz);
+    uint slot = find_or_claim(hash_of(c, ifloor(c.plane)));
+    if (slot == ~0u) {
+        atomicAdd(table.words[UNCACHED], 1u);
+        return;
+    }
+    uvec4 q = uvec4(clamp(texelFetch(in_signal, p, 0), 0.0, MAX_SAMPLE) * FIXED + 0.5);
+    uint e = entry_word(slot);
+    for (uint i = 0u; i < params.channels; i++)
+        atomicAdd(table.words[e + i], q[i]);
+    // the cell's first sample this frame lists it for the resolve
+    if (atomicAdd(table.words[count_word(e)], 1u) == 0u)
+        table.words[list_word(atomicAdd(table.words[LISTED], 1u))] = slot;
+}
+#endif
+
+#ifdef RESOLVE
+void resolve(uint slot)
+{
+    uint e = entry_word(slot);
+    uint count = table.words[count_word(e)];
+    float n_before = uintBitsToFloat(table.words[n_word(e)]);
+    float n = min(n_before, float(params.max_frames - 1u) * float(count)) + float(count);
+    for (uint i = 0u; i < params.channels; i++) {
+        float frame_mean = float(table.words[e + i]) / (FIXED * float(count));
+        float mean = uintBitsToFloat(table.words[mean_word(e) + i]);
+        table.words[mean_word(e) + i] = floatBitsToUint(mix(mean, frame_mean, float(count) / n));
+        table.words[e + i] = 0u;
+    }
+    table.words[count_word(e)] = 0u;
+    table.words[last_word(e)] = params.frame_index;
+    table.words[n_word(e)] = floatBitsToUint(n);
+}
+
+// over the listed slots, a fixed number of invocations striding through them
+void main()
+{
+    uint listed = table.words[LISTED], stride = gl_NumWorkGroups.x * 64u;
+    for (uint i = gl_GlobalInvocationID.x; i < listed; i += stride)
+        resolve(table.words[list_word(i)]);
+}
+#endif
+
+#ifdef GATHER
+void shade(ivec2 p)
+{
+    ivec2 size = imageSize(out_color);
+    if (any(greaterThanEqual(p, size)))
+        return;
+    vec4 x = texelFetch(in_position, p, 0);
+    vec4 own = texelFetch(in_signal, p, 0);
+    if (x.w == 0.0) {
+        imageStore(out_color, p, own);
+        return;
+    }
+    Cell c = cell_of(x.xyz, texelFetch(in_normal, p, 0).xyz);
+    // the 2x2 cells whose centres surround the point (its own is one of them)
+    vec2 t = c.plane - 0.5;
+    ivec2 i0 = ifloor(t);
+    vec2 f = t - vec2(i0);
+    vec4 sum = vec4(0.0);
+    float weight = 0.0;
+    for (int k = 0; k < 4; k++) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        uint slot = find(hash_of(c, i0 + o));
+        if (slot == ~0u)
+            continue;
+        uint e = entry_word(slot);
+        if (table.words[n_word(e)] == 0u) // claimed, never resolved: no samples yet
+            continue;
+        float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+        for (uint i = 0u; i < params.channels; i++)
+            sum[i] += w * uintBitsToFloat(table.words[mean_word(e) + i]);
+        weight += w;
+    }
+    // channels past `channels` are the signal's own
+    vec4 cached = own;
+    for (uint i = 0u; i < params.channels; i++)
+        cached[i] = sum[i] / weight;
+    imageStore(out_color, p, weight > 0.0 ? cached : own);
+}
+#endif
+
+#if defined(INSERT) || defined(GATHER)
+void main()
+{
+    for (uint k = 0u; k < VRG_PIXEL_ROWS; k++)
+        shade(vrg_pixel(k));
+}
+#endif

@@ -1,0 +1,304 @@
+#define _POSIX_C_SOURCE 200809L /* open_memstream */
+/* surface_cache against known answers on a still floor
+ * (tests/graphs/surface_cache.ini): the history's weights, the bilinear
+ * gather's placement, cells small enough to be one pixel's own, the table
+ * emptied by new parameters, and a table too small reported.
+ * Usage: PROGRAM CASE (ctest registers one test per case). */
+#include "harness.h"
+
+static const char *const reads[] = {"cache.color", "ticks.color", "light", "tick.count", "gbuffer.position"};
+enum { CACHE, TICKS, LIGHT, TICK, POS, COUNT };
+
+static int read_all(vrg_graph *g, vrg_image_data img[COUNT])
+{
+    for (int i = 0; i < COUNT; i++)
+        if (vrg_graph_read(g, reads[i], &img[i]) != 0) {
+            CHECK(0, "readback of %s failed", reads[i]);
+            for (int k = 0; k < i; k++)
+                free(img[k].pixels);
+            return -1;
+        }
+    return 0;
+}
+
+static void free_all(vrg_image_data img[COUNT])
+{
+    for (int i = 0; i < COUNT; i++)
+        free(img[i].pixels);
+}
+
+/* What a cell holds after `frames` frames of the counter (frame k gives
+ * k * step to every sample): the resolve's recursion with n samples per
+ * frame, n = min(n, (max_frames - 1) * count) + count, weight count / n. */
+static double expected_mean(int frames, int max_frames, double step)
+{
+    double mean = 0, n = 0;
+    for (int k = 1; k <= frames; k++) {
+        n = fmin(n, max_frames - 1) + 1; /* in units of one frame's count */
+        mean += (k * step - mean) / n;
+    }
+    return mean;
+}
+
+/* The history: every floor pixel shows the recursion's value (max_frames 4:
+ * the plain mean for 4 frames, then an exponential average), within the
+ * fixed point's 1/1024 and half floats; one channel cached, the others
+ * passed through. */
+static void test_cache_history(void)
+{
+    vrg_graph *g = load_with("surface_cache.ini", NULL, 0, reads, COUNT);
+    if (!g)
+        return;
+    for (int frames = 1; frames <= 9; frames++) {
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+        if (frames != 3 && frames != 9)
+            continue;
+        vrg_image_data img[COUNT];
+        if (read_all(g, img) != 0)
+            break;
+        double want = expected_mean(frames, 4, 0.0625), worst = 0;
+        int floor = 0;
+        for (uint32_t y = 0; y < img[POS].height; y++)
+            for (uint32_t x = 0; x < img[POS].width; x++) {
+                if (px(&img[POS], x, y, 3) == 0)
+                    continue;
+                floor++;
+                CHECK(fabsf(px(&img[TICK], x, y, 0) - (float)(frames * 0.0625)) < 1e-6f, "the counter shows %g after %d frames",
+                      px(&img[TICK], x, y, 0), frames);
+                worst = fmax(worst, fabs(px(&img[TICKS], x, y, 0) - want));
+                /* channels = 1: the rest is the counter's own (r32f reads as (r, 0, 0, 1)) */
+                CHECK(px(&img[TICKS], x, y, 1) == 0 && px(&img[TICKS], x, y, 3) == 1, "(%u, %u): channels past the first are (%g, %g), not the signal's",
+                      x, y, px(&img[TICKS], x, y, 1), px(&img[TICKS], x, y, 3));
+            }
+        CHECK(floor > 1000, "only %d floor pixels", floor);
+        CHECK(worst < 2e-3, "after %d frames a cell holds up to %g away from %g", frames, worst, want);
+        free_all(img);
+    }
+    vrg_graph_destroy(g);
+}
+
+/* the floor covers the (2r+1)^2 pixels around (x, y): cells there are whole */
+static int floor_around(const vrg_image_data *pos, uint32_t x, uint32_t y, uint32_t r)
+{
+    for (uint32_t v = y - r; v <= y + r; v++)
+        for (uint32_t u = x - r; u <= x + r; u++)
+            if (px(pos, u, v, 3) == 0)
+                return 0;
+    return 1;
+}
+
+/* Eviction: cells not given samples for evict_frames frames are freed (each
+ * frame looks at a sixteenth of the table), and their slots serve again.
+ * The floor is seen, then only the sky for 20 frames, then the floor
+ * again: its cells start over, so the cached counter is that frame's value
+ * alone; kept cells would blend it with the value of 20 frames before. */
+static void test_cache_evict(void)
+{
+    static const char *sets[] = {"ticks.evict_frames=2"};
+    vrg_graph *g = load_with("surface_cache.ini", sets, 1, reads, COUNT);
+    if (!g)
+        return;
+    vrg_camera floor_view = *vrg_graph_camera(g), sky_view = floor_view;
+    sky_view.pitch = 60;
+    int frames = 0;
+    for (; frames < 3; frames++)
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_graph_set_camera(g, &sky_view);
+    for (; frames < 23; frames++)
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_graph_set_camera(g, &floor_view);
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    frames++;
+    vrg_image_data img[COUNT];
+    if (read_all(g, img) == 0) {
+        double want = frames * 0.0625, worst = 0;
+        int floor = 0;
+        for (uint32_t y = 0; y < img[POS].height; y++)
+            for (uint32_t x = 0; x < img[POS].width; x++)
+                if (px(&img[POS], x, y, 3) != 0) {
+                    floor++;
+                    worst = fmax(worst, fabs(px(&img[TICKS], x, y, 0) - want));
+                }
+        CHECK(floor > 1000, "only %d floor pixels", floor);
+        CHECK(worst < 2e-3, "back on the floor after 20 frames of sky, a cell holds up to %g away from this frame's %g: not freed", worst, want);
+        free_all(img);
+    }
+    vrg_graph_destroy(g);
+}
+
+/* The gather: red is linear in world x along each screen row, so the
+ * bilinear blend of cells around a point gives the point's own red, up to
+ * the offset of the centroid of the pixels a cell holds from its centre
+ * (pixels near the floor's edge, whose cells are partly off the floor, are
+ * left out);
+ * gathering from cells half a cell off would make it a consistent error of
+ * half a cell (2 pixels of red at cell_pixels 4). Blurring still happened:
+ * green (not linear in world z) differs. */
+static void test_cache_gather(void)
+{
+    vrg_graph *g = load_with("surface_cache.ini", NULL, 0, reads, COUNT);
+    if (!g)
+        return;
+    for (int i = 0; i < 3; i++)
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_image_data img[COUNT];
+    if (read_all(g, img) != 0) {
+        vrg_graph_destroy(g);
+        return;
+    }
+    uint32_t w = img[POS].width, h = img[POS].height;
+    double pixel_red = 1.0 / (w - 1), signed_sum = 0, worst = 0, green_diff = 0;
+    int n = 0;
+    for (uint32_t y = 8; y + 8 < h; y++)
+        for (uint32_t x = 8; x + 8 < w; x++) {
+            if (!floor_around(&img[POS], x, y, 8))
+                continue;
+            double e = px(&img[CACHE], x, y, 0) - px(&img[LIGHT], x, y, 0);
+            signed_sum += e;
+            worst = fmax(worst, fabs(e));
+            green_diff += fabs(px(&img[CACHE], x, y, 1) - px(&img[LIGHT], x, y, 1));
+            CHECK(fabsf(px(&img[CACHE], x, y, 2) - 1.0f) < 2e-3f, "(%u, %u): blue %g, the signal's is 1", x, y, px(&img[CACHE], x, y, 2));
+            n++;
+        }
+    CHECK(n > 500, "only %d interior floor pixels", n);
+    double mean = signed_sum / (n > 0 ? n : 1);
+    printf("gather: red error mean %.5f, worst %.5f (one pixel of red: %.5f); green mean difference %.5f\n", mean, worst, pixel_red,
+           green_diff / (n > 0 ? n : 1));
+    CHECK(fabs(mean) < 0.15 * pixel_red, "the cached red is off by %g on average (one pixel: %g): cells are gathered off their place", mean,
+          pixel_red);
+    CHECK(worst < 1.5 * pixel_red, "the cached red is up to %g off (one pixel: %g)", worst, pixel_red);
+    CHECK(green_diff / (n > 0 ? n : 1) > 1e-3, "green is unchanged: nothing was averaged");
+    free_all(img);
+    vrg_graph_destroy(g);
+}
+
+/* Cells a quarter of a pixel wide hold one pixel's sample each, so the
+ * cache gives back the signal itself: two pixels in one cell, or a lookup
+ * finding another cell's entry, would show. */
+static void test_cache_own_cells(void)
+{
+    static const char *sets[] = {"cache.cell_pixels=0.25"};
+    vrg_graph *g = load_with("surface_cache.ini", sets, 1, reads, COUNT);
+    if (!g)
+        return;
+    for (int i = 0; i < 2; i++)
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_image_data img[COUNT];
+    if (read_all(g, img) == 0) {
+        double worst = 0;
+        for (uint32_t y = 0; y < img[POS].height; y++)
+            for (uint32_t x = 0; x < img[POS].width; x++)
+                for (int c = 0; c < 3; c++)
+                    worst = fmax(worst, fabs(px(&img[CACHE], x, y, c) - px(&img[LIGHT], x, y, c)));
+        CHECK(worst < 2e-3, "one pixel per cell: the cache differs from the signal by up to %g", worst);
+        free_all(img);
+    }
+    vrg_graph_destroy(g);
+}
+
+/* New parameter values empty the table: after the light goes from 1 to 0
+ * the cache shows 0 at once, not an average with the frames before. */
+static void test_cache_reset(void)
+{
+    vrg_graph *g = load_with("surface_cache.ini", NULL, 0, reads, COUNT);
+    if (!g)
+        return;
+    for (int i = 0; i < 4; i++)
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    CHECK(vrg_graph_set_param(g, "light.value", 0.0) == 0, "light.value not set");
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_image_data img[COUNT];
+    if (read_all(g, img) == 0) {
+        double worst = 0;
+        for (uint32_t y = 0; y < img[POS].height; y++)
+            for (uint32_t x = 0; x < img[POS].width; x++)
+                if (px(&img[POS], x, y, 3) != 0)
+                    worst = fmax(worst, px(&img[CACHE], x, y, 2));
+        CHECK(worst < 1e-3, "blue is up to %g one frame after it became 0: the old parameters' history survived", worst);
+        free_all(img);
+    }
+    vrg_graph_destroy(g);
+}
+
+/* A table too small for the samples: the pixels left out show their own
+ * sample, the count is the stat `uncached` and one warning names `cells`. */
+static void test_cache_full(void)
+{
+    char *log = NULL;
+    size_t len = 0;
+    FILE *diag = open_memstream(&log, &len);
+    char path[1024];
+    snprintf(path, sizeof path, "%s/graphs/surface_cache.ini", TEST_DIR);
+    static const char *sets[] = {"cache.cell_pixels=0.25", "cache.cells=1024"};
+    vrg_graph_desc d = {.path = path, .overrides = sets, .override_count = 2, .diag = diag, .readback = reads, .readback_count = COUNT};
+    vrg_graph *g = NULL;
+    if (!diag || vrg_graph_load(ctx, &d, &g) != 0) {
+        CHECK(0, "cannot load surface_cache.ini");
+        if (diag)
+            fclose(diag);
+        free(log);
+        return;
+    }
+    double uncached = 0;
+    for (int i = 0; i < 4; i++) {
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+        CHECK(vrg_graph_stat(g, "cache", "uncached", &uncached) == 0, "no stat 'uncached'");
+    }
+    /* 1024 slots, over 1500 floor pixels each wanting its own */
+    CHECK(uncached >= 400, "uncached = %g with 1024 slots for every floor pixel", uncached);
+    vrg_image_data img[COUNT];
+    if (read_all(g, img) == 0) {
+        double worst = 0;
+        for (uint32_t y = 0; y < img[POS].height; y++)
+            for (uint32_t x = 0; x < img[POS].width; x++)
+                worst = fmax(worst, fabs(px(&img[CACHE], x, y, 0) - px(&img[LIGHT], x, y, 0)));
+        CHECK(worst < 2e-3, "with the table full the image differs from the signal by up to %g", worst);
+        free_all(img);
+    }
+    vrg_graph_destroy(g);
+    fclose(diag);
+    CHECK(log && strstr(log, "no free cell") && strstr(log, "cells = 1024") && strstr(log, "raise cells"), "no warning naming cells: %s",
+          log ? log : "");
+    const char *second = log ? strstr(log, "no free cell") : NULL;
+    CHECK(!second || !strstr(second + 1, "no free cell"), "the warning repeats every frame: %s", log);
+    free(log);
+}
+
+/* A table larger than the device binds as one storage buffer is refused
+ * when the graph loads, naming cells (lavapipe binds 128 MiB). */
+static void test_cache_too_large(void)
+{
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(vrg_context_device(ctx)->physical_device, &props);
+    uint64_t bytes = 4u * (16u + (uint64_t)(1u << 26) * 13u); /* 4 channels: 11 words an entry, 1 check, 1 list */
+    if (bytes <= props.limits.maxStorageBufferRange) {
+        printf("skipped: this device binds %u bytes\n", props.limits.maxStorageBufferRange);
+        return;
+    }
+    char *log = NULL;
+    size_t len = 0;
+    FILE *diag = open_memstream(&log, &len);
+    char path[1024];
+    snprintf(path, sizeof path, "%s/graphs/surface_cache.ini", TEST_DIR);
+    static const char *sets[] = {"ticks.cells=67108864"};
+    vrg_graph_desc d = {.path = path, .overrides = sets, .override_count = 1, .diag = diag};
+    vrg_graph *g = NULL;
+    CHECK(diag && vrg_graph_load(ctx, &d, &g) != 0, "a table of %llu bytes was accepted", (unsigned long long)bytes);
+    if (g)
+        vrg_graph_destroy(g);
+    if (diag)
+        fclose(diag);
+    CHECK(log && strstr(log, "surface_cache.ini:") && strstr(log, "cells = 67108864 needs a table of") && strstr(log, "lower cells"),
+          "no error naming cells: %s", log ? log : "");
+    free(log);
+}
+
+int main(int argc, char **argv)
+{
+    static const test_case cases[] = {
+        {"cache_history", test_cache_history, 1, NULL}, {"cache_evict", test_cache_evict, 1, NULL}, {"cache_gather", test_cache_gather, 1, NULL},
+        {"cache_own_cells", test_cache_own_cells, 1, NULL}, {"cache_reset", test_cache_reset, 1, NULL},
+        {"cache_full", test_cache_full, 1, NULL}, {"cache_too_large", test_cache_too_large, 1, NULL},
+    };
+    return run_case(argc, argv, cases, sizeof cases / sizeof cases[0]);
+}
