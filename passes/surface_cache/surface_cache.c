@@ -44,6 +44,8 @@ static const vrg_param_desc params[] = {
     {"max_frames", VRG_PARAM_INT, 32, 1, 4096, "frames of samples a cell's history is worth at most"},
     {"evict_frames", VRG_PARAM_INT, 32, 1, 1 << 20, "frames without samples after which a cell is freed"},
     {"cells", VRG_PARAM_INT, 1 << 21, 1 << 10, 1 << 26, "hash table slots (a power of two)"},
+    {"coarse_levels", VRG_PARAM_INT, 0, 0, 4, "also keep cells 2^coarse_levels times wider, for young cells to lean on (0: none)"},
+    {"young_samples", VRG_PARAM_FLOAT, 8, 0.001, 1e6, "samples from which a cell no longer leans on the coarse cells"},
     {"channels", VRG_PARAM_INT, 4, 1, 4, "the signal's channels that are cached (the first ones; the rest pass through)"},
 };
 
@@ -107,6 +109,8 @@ typedef struct surface_cache_push {
     float cell_pixels;
     uint32_t max_frames, evict_frames, mask, frame, channels;
     uint32_t evict_first, evict_slots;
+    int32_t coarse_levels;
+    float young_samples;
 } surface_cache_push;
 
 enum { EVICT, INSERT, RESOLVE, GATHER };
@@ -123,7 +127,7 @@ static const vrg_dispatch_desc dispatches[] = {
     [RESOLVE] = {.shader = "surface_cache.comp", .defines = "RESOLVE", .push_size = sizeof(surface_cache_push), .groups_x = RESOLVE_GROUPS,
                  .groups_y = 1, .groups_z = 1, .bindings = {TABLE_BINDINGS}},
     [GATHER] = {.shader = "surface_cache.comp", .defines = "GATHER", .push_size = sizeof(surface_cache_push), .pixel_loop = 1,
-                .domain = "color", .bindings = {TABLE_BINDINGS, {"color"}}},
+                .domain = "color", .bindings = {{"signal"}, {"position"}, {"normal"}, {"frame"}, {"table", VRG_ACCESS_TEXEL_READ}, {"color"}}},
 };
 
 /* the count the GPU wrote into this ring slice when it last ran this frame
@@ -170,7 +174,9 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
                              (uint32_t)f->frame_index,
                              (uint32_t)vrg_param_int(pass, "channels"),
                              (uint32_t)(f->frame_index % EVICT_SHARES) * share,
-                             share};
+                             share,
+                             vrg_param_int(pass, "coarse_levels"),
+                             (float)vrg_param(pass, "young_samples")};
     for (int i = EVICT; i <= GATHER; i++) {
         vrg_dispatch_desc d = dispatches[i];
         d.push = &pc;

@@ -15,8 +15,16 @@ layout(binding = 0) uniform sampler2D in_signal;
 layout(binding = 1) uniform sampler2D in_position;
 layout(binding = 2) uniform sampler2D in_normal;
 // the header, the check words of all slots, the entries, the list of the
-// slots given samples this frame
+// slots given samples this frame. GATHER only reads it, as a texel buffer:
+// lavapipe fetches texels with SIMD gathers but loads storage-buffer words
+// at per-lane addresses one lane at a time.
+#ifdef GATHER
+layout(binding = 4) uniform usamplerBuffer table_texels;
+uint word(uint i) { return texelFetch(table_texels, int(i)).r; }
+#else
 layout(std430, binding = 4) buffer Table { uint words[]; } table;
+uint word(uint i) { return table.words[i]; }
+#endif
 #ifdef GATHER
 layout(binding = 5, rgba16f) uniform writeonly image2D out_color;
 #endif
@@ -24,6 +32,8 @@ layout(push_constant) uniform Params {
     float cell_pixels;
     uint max_frames, evict_frames, mask, frame_index, channels;
     uint evict_first, evict_slots; // this frame's share of the table to look at for eviction
+    int coarse_levels;             // 0: no coarse cells
+    float young_samples;
 } params;
 
 // header words
@@ -55,12 +65,18 @@ struct Cell {
     vec2 plane; // in the plane, in cells
 };
 
-Cell cell_of(vec3 x, vec3 n)
+// the level whose cells are at least cell_pixels pixels wide at x
+int level_of(vec3 x)
 {
-    Cell c;
     float depth = max(dot(x - frame.camera_pos.xyz, frame.camera_forward.xyz), 1e-3);
     float pixel = depth * 2.0 * length(frame.camera_up.xyz) / float(frame.frame_info.z);
-    c.level = clamp(int(ceil(log2(params.cell_pixels * pixel))), -8, 8);
+    return clamp(int(ceil(log2(params.cell_pixels * pixel))), -8, 8);
+}
+
+Cell cell_of(vec3 x, vec3 n, int level)
+{
+    Cell c;
+    c.level = level;
     float s = exp2(float(c.level));
     vec3 a = abs(n);
     int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
@@ -88,7 +104,7 @@ uint find(uvec2 h)
 {
     for (uint i = 0u; i < PROBES; i++) {
         uint slot = (h.x + i) & params.mask;
-        uint c = table.words[check_word(slot)];
+        uint c = word(check_word(slot));
         if (c == h.y)
             return slot;
         if (c == EMPTY)
@@ -111,7 +127,7 @@ void main()
         uint slot = first + k;
         if (slot >= params.evict_first + params.evict_slots || slot > params.mask)
             continue;
-        uint c = table.words[check_word(slot)];
+        uint was = table.words[check_word(slot)], c = was;
         uint e = entry_word(slot);
         if (c >= 2u && params.frame_index - table.words[last_word(e)] >= params.evict_frames) {
             for (uint i = 0u; i < entry_size(); i++)
@@ -120,7 +136,8 @@ void main()
         }
         if (c == FREED && next_empty && k + 1u < SLOTS_PER_INVOCATION)
             c = EMPTY;
-        table.words[check_word(slot)] = c;
+        if (c != was)
+            table.words[check_word(slot)] = c;
         next_empty = c == EMPTY;
     }
 }
@@ -149,6 +166,21 @@ uint find_or_claim(uvec2 h)
     return ~0u;
 }
 
+void add_sample(Cell c, uvec4 q)
+{
+    uint slot = find_or_claim(hash_of(c, ifloor(c.plane)));
+    if (slot == ~0u) {
+        atomicAdd(table.words[UNCACHED], 1u);
+        return;
+    }
+    uint e = entry_word(slot);
+    for (uint i = 0u; i < params.channels; i++)
+        atomicAdd(table.words[e + i], q[i]);
+    // the cell's first sample this frame lists it for the resolve
+    if (atomicAdd(table.words[count_word(e)], 1u) == 0u)
+        table.words[list_word(atomicAdd(table.words[LISTED], 1u))] = slot;
+}
+
 void shade(ivec2 p)
 {
     if (any(greaterThanEqual(p, textureSize(in_signal, 0))))
@@ -156,19 +188,12 @@ void shade(ivec2 p)
     vec4 x = texelFetch(in_position, p, 0);
     if (x.w == 0.0)
         return;
-    Cell c = cell_of(x.xyz, texelFetch(in_normal, p, 0).xyz);
-    uint slot = find_or_claim(hash_of(c, ifloor(c.plane)));
-    if (slot == ~0u) {
-        atomicAdd(table.words[UNCACHED], 1u);
-        return;
-    }
+    vec3 n = texelFetch(in_normal, p, 0).xyz;
     uvec4 q = uvec4(clamp(texelFetch(in_signal, p, 0), 0.0, MAX_SAMPLE) * FIXED + 0.5);
-    uint e = entry_word(slot);
-    for (uint i = 0u; i < params.channels; i++)
-        atomicAdd(table.words[e + i], q[i]);
-    // the cell's first sample this frame lists it for the resolve
-    if (atomicAdd(table.words[count_word(e)], 1u) == 0u)
-        table.words[list_word(atomicAdd(table.words[LISTED], 1u))] = slot;
+    int level = level_of(x.xyz);
+    add_sample(cell_of(x.xyz, n, level), q);
+    if (params.coarse_levels > 0)
+        add_sample(cell_of(x.xyz, n, level + params.coarse_levels), q);
 }
 #endif
 
@@ -193,13 +218,47 @@ void resolve(uint slot)
 // over the listed slots, a fixed number of invocations striding through them
 void main()
 {
-    uint listed = table.words[LISTED], stride = gl_NumWorkGroups.x * 64u;
+    // the list holds at most one entry per slot: never read or write past it
+    uint listed = min(table.words[LISTED], cells()), stride = gl_NumWorkGroups.x * 64u;
     for (uint i = gl_GlobalInvocationID.x; i < listed; i += stride)
-        resolve(table.words[list_word(i)]);
+        resolve(min(table.words[list_word(i)], params.mask));
 }
 #endif
 
 #ifdef GATHER
+// The bilinear blend of the 2x2 cells whose centres surround the point (its
+// own is one of them), over those that have samples; .w: their blended n
+// (samples). weight 0: none has.
+vec4 gather(Cell c, out float n_blend, out float weight)
+{
+    vec2 t = c.plane - 0.5;
+    ivec2 i0 = ifloor(t);
+    vec2 f = t - vec2(i0);
+    vec4 sum = vec4(0.0);
+    n_blend = 0.0;
+    weight = 0.0;
+    for (int k = 0; k < 4; k++) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        uint slot = find(hash_of(c, i0 + o));
+        if (slot == ~0u)
+            continue;
+        uint e = entry_word(slot);
+        float n = uintBitsToFloat(word(n_word(e)));
+        if (n == 0.0) // claimed, never resolved: no samples yet
+            continue;
+        float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+        for (uint i = 0u; i < params.channels; i++)
+            sum[i] += w * uintBitsToFloat(word(mean_word(e) + i));
+        n_blend += w * n;
+        weight += w;
+    }
+    if (weight > 0.0) {
+        sum /= weight;
+        n_blend /= weight;
+    }
+    return sum;
+}
+
 void shade(ivec2 p)
 {
     ivec2 size = imageSize(out_color);
@@ -211,31 +270,25 @@ void shade(ivec2 p)
         imageStore(out_color, p, own);
         return;
     }
-    Cell c = cell_of(x.xyz, texelFetch(in_normal, p, 0).xyz);
-    // the 2x2 cells whose centres surround the point (its own is one of them)
-    vec2 t = c.plane - 0.5;
-    ivec2 i0 = ifloor(t);
-    vec2 f = t - vec2(i0);
-    vec4 sum = vec4(0.0);
-    float weight = 0.0;
-    for (int k = 0; k < 4; k++) {
-        ivec2 o = ivec2(k & 1, k >> 1);
-        uint slot = find(hash_of(c, i0 + o));
-        if (slot == ~0u)
-            continue;
-        uint e = entry_word(slot);
-        if (table.words[n_word(e)] == 0u) // claimed, never resolved: no samples yet
-            continue;
-        float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
-        for (uint i = 0u; i < params.channels; i++)
-            sum[i] += w * uintBitsToFloat(table.words[mean_word(e) + i]);
-        weight += w;
+    vec3 n = texelFetch(in_normal, p, 0).xyz;
+    int level = level_of(x.xyz);
+    float n_fine, w_fine;
+    vec4 mean = gather(cell_of(x.xyz, n, level), n_fine, w_fine);
+    // young cells (fewer than young_samples samples) lean on the coarse
+    // cells around them, which gather 4^coarse_levels times the samples
+    if (params.coarse_levels > 0 && n_fine < params.young_samples) {
+        float n_coarse, w_coarse;
+        vec4 coarse = gather(cell_of(x.xyz, n, level + params.coarse_levels), n_coarse, w_coarse);
+        if (w_coarse > 0.0) {
+            mean = w_fine > 0.0 ? mix(coarse, mean, n_fine / params.young_samples) : coarse;
+            w_fine = 1.0;
+        }
     }
     // channels past `channels` are the signal's own
     vec4 cached = own;
     for (uint i = 0u; i < params.channels; i++)
-        cached[i] = sum[i] / weight;
-    imageStore(out_color, p, weight > 0.0 ? cached : own);
+        cached[i] = mean[i];
+    imageStore(out_color, p, w_fine > 0.0 ? cached : own);
 }
 #endif
 

@@ -172,6 +172,61 @@ static void test_cache_gather(void)
     vrg_graph_destroy(g);
 }
 
+/* mean |cached - signal| of green over the floor after 3 frames, with sets */
+static double green_blur(const char *const *sets, uint32_t nsets, vrg_image_data *keep)
+{
+    vrg_graph *g = load_with("surface_cache.ini", sets, nsets, reads, COUNT);
+    double diff = -1;
+    if (!g)
+        return diff;
+    for (int i = 0; i < 3; i++)
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_image_data img[COUNT];
+    if (read_all(g, img) == 0) {
+        double sum = 0;
+        int n = 0;
+        for (uint32_t y = 0; y < img[POS].height; y++)
+            for (uint32_t x = 0; x < img[POS].width; x++)
+                if (px(&img[POS], x, y, 3) != 0) {
+                    sum += fabs(px(&img[CACHE], x, y, 1) - px(&img[LIGHT], x, y, 1));
+                    n++;
+                }
+        diff = sum / (n > 0 ? n : 1);
+        if (keep) {
+            *keep = img[CACHE];
+            img[CACHE].pixels = NULL;
+        }
+        free_all(img);
+    }
+    vrg_graph_destroy(g);
+    return diff;
+}
+
+/* Coarse cells: a cell younger than young_samples leans on the cells
+ * 2^coarse_levels times wider, by 1 - n / young_samples. Always young
+ * (young_samples 1e6) the image is the coarse cells' (green, not linear on
+ * the floor, is blurred more than by the fine cells alone); never young
+ * (0.001) it is the fine cells' image, to a half float's rounding (a few
+ * pixels at the floor's far edge differ by one unit in the last place). */
+static void test_cache_coarse(void)
+{
+    vrg_image_data fine_img = {0}, never_img = {0};
+    static const char *always[] = {"cache.coarse_levels=2", "cache.young_samples=1000000"};
+    static const char *never[] = {"cache.coarse_levels=2", "cache.young_samples=0.001"};
+    double fine = green_blur(NULL, 0, &fine_img), coarse = green_blur(always, 2, NULL), young_never = green_blur(never, 2, &never_img);
+    printf("green blur: fine cells %.5f, coarse %.5f, never young %.5f\n", fine, coarse, young_never);
+    CHECK(fine > 0 && coarse > 2 * fine, "coarse cells blur green by %g, the fine ones by %g: not the coarse cells'", coarse, fine);
+    if (fine_img.pixels && never_img.pixels) {
+        size_t n = (size_t)fine_img.width * fine_img.height * 4;
+        double worst = 0;
+        for (size_t i = 0; i < n; i++)
+            worst = fmax(worst, fabs(fine_img.pixels[i] - never_img.pixels[i]));
+        CHECK(worst < 1e-3, "with no young cells the image is not the fine cells' alone: up to %g apart", worst);
+    }
+    free(fine_img.pixels);
+    free(never_img.pixels);
+}
+
 /* Cells a quarter of a pixel wide hold one pixel's sample each, so the
  * cache gives back the signal itself: two pixels in one cell, or a lookup
  * finding another cell's entry, would show. */
@@ -297,7 +352,7 @@ int main(int argc, char **argv)
 {
     static const test_case cases[] = {
         {"cache_history", test_cache_history, 1, NULL}, {"cache_evict", test_cache_evict, 1, NULL}, {"cache_gather", test_cache_gather, 1, NULL},
-        {"cache_own_cells", test_cache_own_cells, 1, NULL}, {"cache_reset", test_cache_reset, 1, NULL},
+        {"cache_own_cells", test_cache_own_cells, 1, NULL}, {"cache_coarse", test_cache_coarse, 1, NULL}, {"cache_reset", test_cache_reset, 1, NULL},
         {"cache_full", test_cache_full, 1, NULL}, {"cache_too_large", test_cache_too_large, 1, NULL},
     };
     return run_case(argc, argv, cases, sizeof cases / sizeof cases[0]);
