@@ -15,7 +15,10 @@
 - variants of a named graph (NAME@GRAPH:...): a variant of the second graph
   renders that graph, not the first; the report says which; a GRAPH not
   listed, or listed twice, is a usage error (exit 2) naming the candidates.
-Usage: test_compare.py VOXRG SOURCE_DIR OUT_DIR"""
+Usage: test_compare.py VOXRG SOURCE_DIR OUT_DIR [CASE]
+The cases (CASES below) are independent: ctest runs each as its own test
+(compare_CASE, each with its own OUT_DIR) so that they spread over the cores;
+without CASE all run in order."""
 import base64
 import html.parser
 import json
@@ -26,6 +29,7 @@ import subprocess
 import sys
 
 VOXRG, SRC, OUT = sys.argv[1:4]
+ONLY = sys.argv[4] if len(sys.argv) > 4 else None
 GRAPHS = os.path.join(SRC, "graphs")
 CACHE = os.path.join(OUT, "cache")
 failures = []
@@ -259,10 +263,19 @@ def variant_graph():
           "report.html: t1's row does not say it is a variant of thesis")
 
 
+# one line: tests/cli/CMakeLists.txt reads the names from it
+CASES = (errors, names, variant_graph, identical, e2e)
+
+
 def main():
+    cases = [c for c in CASES if ONLY in (None, c.__name__)]
+    if not cases:
+        print("usage: test_compare.py VOXRG SOURCE_DIR OUT_DIR [CASE]: no case %r (cases: %s)" %
+              (ONLY, " ".join(c.__name__ for c in CASES)), file=sys.stderr)
+        return 2
     shutil.rmtree(OUT, ignore_errors=True)
     os.makedirs(OUT)
-    for case in (errors, names, variant_graph, identical, e2e):
+    for case in cases:
         case()
         print("%s: done" % case.__name__, flush=True)
     print("compare: %s" % ("FAILED (%d)" % len(failures) if failures else "ok"))
