@@ -18,17 +18,22 @@
  * linear probing over at most 32 slots; a 32-bit check value tells cells
  * in one slot apart.
  *
- * Per frame, three dispatches (surface_cache.comp):
+ * Per frame, four dispatches (surface_cache.comp):
+ *   evict:   a quarter of the table per frame is looked at, and cells
+ *            not given samples for evict_frames frames are freed;
  *   insert:  each pixel finds or claims its cell and adds its sample, in
  *            fixed point, with integer atomics: the sums do not depend on
  *            the order threads run in, so neither does the image;
- *   resolve: each cell given samples this frame blends their mean into its
- *            own with weight count / n, n = min(n_before, (max_frames - 1)
- *            * count) + count, so the history is worth at most max_frames
- *            frames of this frame's samples; a cell not given any for
- *            evict_frames frames is freed;
+ *   resolve: each cell given samples this frame (listed by its first
+ *            sample) blends their mean into its own with weight count / n,
+ *            n = min(n_before, (max_frames - 1) * count) + count, so the
+ *            history is worth at most max_frames frames of this frame's
+ *            samples;
  *   gather:  each pixel blends the 2x2 cells around its point (bilinear,
- *            over the cells that exist).
+ *            over the cells that exist). With coarse_levels = k, samples
+ *            also go to cells 2^k times wider, and where the fine cells
+ *            hold fewer than young_samples samples the gather blends
+ *            toward the coarse cells' by 1 - n / young_samples.
  * A sample that finds no free slot in 32 probes is not cached (its pixel
  * shows its own sample); the count of those is read back a few frames
  * later and reported as the stat `uncached` and a warning naming `cells`.
@@ -42,7 +47,7 @@
 static const vrg_param_desc params[] = {
     {"cell_pixels", VRG_PARAM_FLOAT, 2, 0.25, 64, "least side of a cell, in pixels at the point's distance"},
     {"max_frames", VRG_PARAM_INT, 32, 1, 4096, "frames of samples a cell's history is worth at most"},
-    {"evict_frames", VRG_PARAM_INT, 32, 1, 1 << 20, "frames without samples after which a cell is freed"},
+    {"evict_frames", VRG_PARAM_INT, 8, 1, 1 << 20, "frames without samples after which a cell is freed"},
     {"cells", VRG_PARAM_INT, 1 << 21, 1 << 10, 1 << 26, "hash table slots (a power of two)"},
     {"coarse_levels", VRG_PARAM_INT, 0, 0, 4, "also keep cells 2^coarse_levels times wider, for young cells to lean on (0: none)"},
     {"young_samples", VRG_PARAM_FLOAT, 8, 0.001, 1e6, "samples from which a cell no longer leans on the coarse cells"},
@@ -116,7 +121,7 @@ typedef struct surface_cache_push {
 enum { EVICT, INSERT, RESOLVE, GATHER };
 #define GROUP 64u          /* RESOLVE and EVICT's local size */
 #define SLOTS_PER_INVOCATION 16u /* EVICT's; surface_cache.comp's SLOTS_PER_INVOCATION */
-#define EVICT_SHARES 16u   /* each frame looks at one share of the table for cells to free */
+#define EVICT_SHARES 4u    /* each frame looks at one share of the table for cells to free */
 #define RESOLVE_GROUPS 256u /* invocations striding through the listed cells */
 #define TABLE_BINDINGS {"signal"}, {"position"}, {"normal"}, {"frame"}, {"table"}
 static const vrg_dispatch_desc dispatches[] = {

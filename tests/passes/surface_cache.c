@@ -88,7 +88,7 @@ static int floor_around(const vrg_image_data *pos, uint32_t x, uint32_t y, uint3
 }
 
 /* Eviction: cells not given samples for evict_frames frames are freed (each
- * frame looks at a sixteenth of the table), and their slots serve again.
+ * frame looks at a quarter of the table), and their slots serve again.
  * The floor is seen, then only the sky for 20 frames, then the floor
  * again: its cells start over, so the cached counter is that frame's value
  * alone; kept cells would blend it with the value of 20 frames before. */
