@@ -33,7 +33,8 @@
  *            over the cells that exist). With coarse_levels = k, samples
  *            also go to cells 2^k times wider, and where the fine cells
  *            hold fewer than young_samples samples the gather blends
- *            toward the coarse cells' by 1 - n / young_samples.
+ *            toward the coarse cells' by 1 - n / young_samples, or toward
+ *            the `fallback` input where it is connected.
  * A sample that finds no free slot in 32 probes is not cached (its pixel
  * shows its own sample); the count of those is read back a few frames
  * later and reported as the stat `uncached` and a warning naming `cells`.
@@ -50,7 +51,7 @@ static const vrg_param_desc params[] = {
     {"evict_frames", VRG_PARAM_INT, 8, 1, 1 << 20, "frames without samples after which a cell is freed"},
     {"cells", VRG_PARAM_INT, 1 << 21, 1 << 10, 1 << 26, "hash table slots (a power of two)"},
     {"coarse_levels", VRG_PARAM_INT, 0, 0, 4, "also keep cells 2^coarse_levels times wider, for young cells to lean on (0: none)"},
-    {"young_samples", VRG_PARAM_FLOAT, 8, 0.001, 1e6, "samples from which a cell no longer leans on the coarse cells"},
+    {"young_samples", VRG_PARAM_FLOAT, 8, 0.001, 1e6, "samples from which a cell no longer leans on the fallback or the coarse cells"},
     {"channels", VRG_PARAM_INT, 4, 1, 4, "the signal's channels that are cached (the first ones; the rest pass through)"},
 };
 
@@ -60,6 +61,8 @@ static const vrg_slot_desc slots[] = {
     {.name = "position", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "G-buffer world position; w = 0 on sky"},
     {.name = "normal", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "G-buffer normal"},
     {.name = "frame", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_UNIFORM, .help = "the scene's per-frame uniforms (camera)"},
+    {.name = "fallback", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .flags = VRG_SLOT_OPTIONAL,
+     .help = "what young cells lean on instead of coarse cells (e.g. a spatial filter of the signal)"},
     {.name = "color", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
      .help = "the cached signal; sky pixels and uncached samples: the signal itself"},
     {.name = "table", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_STORAGE_READ_WRITE, .flags = VRG_SLOT_PERSISTENT,
@@ -116,6 +119,7 @@ typedef struct surface_cache_push {
     uint32_t evict_first, evict_slots;
     int32_t coarse_levels;
     float young_samples;
+    int32_t use_fallback;
 } surface_cache_push;
 
 enum { EVICT, INSERT, RESOLVE, GATHER };
@@ -132,7 +136,7 @@ static const vrg_dispatch_desc dispatches[] = {
     [RESOLVE] = {.shader = "surface_cache.comp", .defines = "RESOLVE", .push_size = sizeof(surface_cache_push), .groups_x = RESOLVE_GROUPS,
                  .groups_y = 1, .groups_z = 1, .bindings = {TABLE_BINDINGS}},
     [GATHER] = {.shader = "surface_cache.comp", .defines = "GATHER", .push_size = sizeof(surface_cache_push), .pixel_loop = 1,
-                .domain = "color", .bindings = {{"signal"}, {"position"}, {"normal"}, {"frame"}, {"table", VRG_ACCESS_TEXEL_READ}, {"color"}}},
+                .domain = "color", .bindings = {{"signal"}, {"position"}, {"normal"}, {"frame"}, {"table", VRG_ACCESS_TEXEL_READ}, {"color"}, {"fallback"}}},
 };
 
 /* the count the GPU wrote into this ring slice when it last ran this frame
@@ -154,8 +158,8 @@ static void report_uncached(vrg_pass *pass, surface_cache_state *s, const vrg_ri
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    static const char *same[] = {"signal", "position", "normal"};
-    if (vrg_pass_require_same_size(pass, "color", same, 3) != 0)
+    static const char *same[] = {"signal", "position", "normal", "fallback"};
+    if (vrg_pass_require_same_size(pass, "color", same, vrg_res_connected(vrg_pass_res(pass, "fallback")) ? 4 : 3) != 0)
         return;
     surface_cache_state *s = vrg_pass_user(pass);
     vrg_ring_slice slice = vrg_pass_ring_slice(pass, s->readback, 4 * HEADER_WORDS);
@@ -181,7 +185,8 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
                              (uint32_t)(f->frame_index % EVICT_SHARES) * share,
                              share,
                              vrg_param_int(pass, "coarse_levels"),
-                             (float)vrg_param(pass, "young_samples")};
+                             (float)vrg_param(pass, "young_samples"),
+                             vrg_res_connected(vrg_pass_res(pass, "fallback"))};
     for (int i = EVICT; i <= GATHER; i++) {
         vrg_dispatch_desc d = dispatches[i];
         d.push = &pc;

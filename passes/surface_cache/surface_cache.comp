@@ -27,6 +27,7 @@ uint word(uint i) { return table.words[i]; }
 #endif
 #ifdef GATHER
 layout(binding = 5, rgba16f) uniform writeonly image2D out_color;
+layout(binding = 6) uniform sampler2D in_fallback;
 #endif
 layout(push_constant) uniform Params {
     float cell_pixels;
@@ -34,6 +35,7 @@ layout(push_constant) uniform Params {
     uint evict_first, evict_slots; // this frame's share of the table to look at for eviction
     int coarse_levels;             // 0: no coarse cells
     float young_samples;
+    int use_fallback;              // in_fallback is connected
 } params;
 
 // header words
@@ -274,9 +276,14 @@ void shade(ivec2 p)
     int level = level_of(x.xyz);
     float n_fine, w_fine;
     vec4 mean = gather(cell_of(x.xyz, n, level), n_fine, w_fine);
-    // young cells (fewer than young_samples samples) lean on the coarse
-    // cells around them, which gather 4^coarse_levels times the samples
-    if (params.coarse_levels > 0 && n_fine < params.young_samples) {
+    // young cells (fewer than young_samples samples) lean on the fallback,
+    // or on the coarse cells around them, which gather 4^coarse_levels
+    // times the samples
+    if (params.use_fallback != 0 && n_fine < params.young_samples) {
+        vec4 fallback = texelFetch(in_fallback, p, 0);
+        mean = w_fine > 0.0 ? mix(fallback, mean, n_fine / params.young_samples) : fallback;
+        w_fine = 1.0;
+    } else if (params.coarse_levels > 0 && n_fine < params.young_samples) {
         float n_coarse, w_coarse;
         vec4 coarse = gather(cell_of(x.xyz, n, level + params.coarse_levels), n_coarse, w_coarse);
         if (w_coarse > 0.0) {

@@ -6,8 +6,8 @@
  * Usage: PROGRAM CASE (ctest registers one test per case). */
 #include "harness.h"
 
-static const char *const reads[] = {"cache.color", "ticks.color", "light", "tick.count", "gbuffer.position"};
-enum { CACHE, TICKS, LIGHT, TICK, POS, COUNT };
+static const char *const reads[] = {"cache.color", "ticks.color", "light", "tick.count", "gbuffer.position", "fell.color"};
+enum { CACHE, TICKS, LIGHT, TICK, POS, FELL, COUNT };
 
 static int read_all(vrg_graph *g, vrg_image_data img[COUNT])
 {
@@ -207,7 +207,8 @@ static double green_blur(const char *const *sets, uint32_t nsets, vrg_image_data
  * (young_samples 1e6) the image is the coarse cells' (green, not linear on
  * the floor, is blurred more than by the fine cells alone); never young
  * (0.001) it is the fine cells' image, to a half float's rounding (a few
- * pixels at the floor's far edge differ by one unit in the last place). */
+ * pixels at the floor's far edge differ by one unit in the last place).
+ * With the fallback input connected, young cells lean on it instead. */
 static void test_cache_coarse(void)
 {
     vrg_image_data fine_img = {0}, never_img = {0};
@@ -216,6 +217,20 @@ static void test_cache_coarse(void)
     double fine = green_blur(NULL, 0, &fine_img), coarse = green_blur(always, 2, NULL), young_never = green_blur(never, 2, &never_img);
     printf("green blur: fine cells %.5f, coarse %.5f, never young %.5f\n", fine, coarse, young_never);
     CHECK(fine > 0 && coarse > 2 * fine, "coarse cells blur green by %g, the fine ones by %g: not the coarse cells'", coarse, fine);
+    /* a connected fallback replaces the coarse cells: `fell` is always young */
+    vrg_graph *g = load_with("surface_cache.ini", NULL, 0, reads, COUNT);
+    vrg_image_data img[COUNT];
+    if (g && vrg_graph_frame(g) == 0 && vrg_graph_frame(g) == 0 && read_all(g, img) == 0) {
+        double worst = 0;
+        for (uint32_t y = 0; y < img[POS].height; y++)
+            for (uint32_t x = 0; x < img[POS].width; x++)
+                if (px(&img[POS], x, y, 3) != 0)
+                    worst = fmax(worst, fabs(px(&img[FELL], x, y, 0) - px(&img[TICK], x, y, 0)) + fabs(px(&img[FELL], x, y, 1)));
+        CHECK(worst < 1e-3, "always young with a fallback: up to %g away from the fallback", worst);
+        free_all(img);
+    }
+    if (g)
+        vrg_graph_destroy(g);
     if (fine_img.pixels && never_img.pixels) {
         size_t n = (size_t)fine_img.width * fine_img.height * 4;
         double worst = 0;
