@@ -187,6 +187,35 @@ static void test_capture_replay(void)
     vrg_graph_destroy(g);
 }
 
+/* Persistent buffers start cleared, even on a graph's first frame, when
+ * no barrier precedes the clear: a graph fills its persistent buffer with
+ * 99 and is destroyed, the next one (whose probe never writes the buffer)
+ * must read zeros where the allocator may hand it the same memory. */
+static void test_persistent_cleared(void)
+{
+    static const char *fills[] = {"[graph]\noutput = color\nwidth = 8\nheight = 8\n"
+                                  "[pass probe]\nplugin = keep_probe\nout.data = data\nout.color = color\nvalue = 99\n",
+                                  "[graph]\noutput = color\nwidth = 8\nheight = 8\n"
+                                  "[pass probe]\nplugin = keep_probe\nout.data = data\nout.color = color\nfill = 0\n"};
+    static const char *reads[] = {"data"};
+    for (int round = 0; round < 4; round++)
+        for (int i = 0; i < 2; i++) {
+            vrg_graph *g = load_text(fills[i], reads, 1);
+            if (!g)
+                return;
+            CHECK(vrg_graph_frame(g) == 0, "frame failed");
+            void *data = NULL;
+            uint64_t size = 0;
+            CHECK(vrg_graph_read_buffer(g, "data", &data, &size) == 0 && size == 16, "readback of data failed");
+            const uint32_t *w = data;
+            for (int k = 0; w && k < 4; k++)
+                CHECK(w[k] == (i == 0 ? 99u : 0u), "round %d, graph %d: word %d is %u on the first frame, want %u", round, i, k, w[k],
+                      i == 0 ? 99u : 0u);
+            free(data);
+            vrg_graph_destroy(g);
+        }
+}
+
 /* History images are cleared: a counter that reads @prev even when history
  * is invalid restarts at 1 on the first frame, after a reset and a resize. */
 static void test_history_cleared(void)
@@ -463,6 +492,7 @@ int main(int argc, char **argv)
         {"buffer_texels", test_buffer_texels, 1},
         {"scene", test_scene, 1},
         {"history_cleared", test_history_cleared, 1},
+        {"persistent_cleared", test_persistent_cleared, 1},
         {"pingpong_alias", test_pingpong_alias, 1},
         {"accumulate_count", test_accumulate_count, 1},
         {"validation_live", test_validation_live, 1},

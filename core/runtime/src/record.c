@@ -20,7 +20,10 @@
 static int clear_kept(vrg_graph *g, VkCommandBuffer cmd)
 {
     _vrg_barrier_rec b[2 * VRG_MAX_RESOURCES] = {0}; /* both copies of every resource */
-    int n = 0, cleared = 0;
+    struct {
+        int res, copy;
+    } clear[2 * VRG_MAX_RESOURCES];
+    int n = 0, nclear = 0, cleared = 0;
     for (int i = 0; i < g->res_count; i++) {
         _vrg_resource *r = &g->res[i];
         r->history_cleared = r->history && g->history_reset && !r->history_kept;
@@ -35,17 +38,21 @@ static int clear_kept(vrg_graph *g, VkCommandBuffer cmd)
             r->sync[c].layout = VK_IMAGE_LAYOUT_UNDEFINED;
             if (_vrg_sync_use(&r->sync[c], _vrg_access_info_of(VRG_ACCESS_TRANSFER_DST, r->kind), 1, &b[n]))
                 b[n].res = i, b[n].copy = c, n++;
+            /* cleared whether or not a barrier was needed first: a new
+             * buffer has no earlier access to wait for, and its memory may
+             * hold what a destroyed graph left there */
+            clear[nclear].res = i, clear[nclear].copy = c, nclear++;
         }
     }
     _vrg_emit_barriers(g, cmd, b, n);
-    for (int k = 0; k < n; k++) {
-        _vrg_resource *r = &g->res[b[k].res];
+    for (int k = 0; k < nclear; k++) {
+        _vrg_resource *r = &g->res[clear[k].res];
         if (r->kind == VRG_IMAGE) {
             VkClearColorValue zero = {{0}};
             VkImageSubresourceRange range = {VK_IMAGE_ASPECT_COLOR_BIT, 0, VK_REMAINING_MIP_LEVELS, 0, 1};
-            vkCmdClearColorImage(cmd, r->image[b[k].copy], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
+            vkCmdClearColorImage(cmd, r->image[clear[k].copy], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
         } else
-            vkCmdFillBuffer(cmd, r->buffer[b[k].copy], 0, VK_WHOLE_SIZE, 0);
+            vkCmdFillBuffer(cmd, r->buffer[clear[k].copy], 0, VK_WHOLE_SIZE, 0);
     }
     return cleared;
 }

@@ -7,6 +7,7 @@
 
 static const vrg_param_desc params[] = {
     {"value", VRG_PARAM_INT, 1, 0, 1000, "what a new `data` is filled with"},
+    {"fill", VRG_PARAM_INT, 1, 0, 1, "0: never write `data` (it shows what the runtime left in it)"},
     {.name = "keep", .type = VRG_PARAM_STRING, .default_string = "", .help = "the output to keep across a reload (\"\": none)"},
 };
 
@@ -28,7 +29,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     vrg_res data = vrg_pass_res(pass, "data");
     int fresh = vrg_res_fresh(pass, data);
     uint32_t value = (uint32_t)vrg_param_int(pass, "value");
-    if (fresh)
+    if (fresh && vrg_param_int(pass, "fill"))
         vkCmdFillBuffer(cmd, vrg_res_buffer(pass, data), 0, VK_WHOLE_SIZE, value);
     vrg_pass_stat(pass, "fresh", fresh);
     VkClearColorValue c = {{(float)value, 0, 0, 0}};
