@@ -36,8 +36,10 @@
  *            toward the coarse cells' by 1 - n / young_samples, or toward
  *            the `fallback` input where it is connected.
  * A sample that finds no free slot in 32 probes is not cached (its pixel
- * shows its own sample); the count of those is read back a few frames
- * later and reported as the stat `uncached` and a warning naming `cells`.
+ * shows the cells around it that exist, else its own sample), and which
+ * samples those are then depends on thread order; their count is read back
+ * a few frames later and reported as the stat `uncached` and a warning
+ * naming `cells`.
  * A reload with new parameters or a reset empties the table. */
 #include <stdlib.h>
 #include <string.h>
@@ -57,23 +59,23 @@ static const vrg_param_desc params[] = {
 
 static const vrg_slot_desc slots[] = {
     {.name = "signal", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED,
-     .help = "this frame's samples (non-negative; rgba)"},
+     .help = "this frame's samples (rgba; cached clamped to [0, 1024])"},
     {.name = "position", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "G-buffer world position; w = 0 on sky"},
     {.name = "normal", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "G-buffer normal"},
     {.name = "frame", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_UNIFORM, .help = "the scene's per-frame uniforms (camera)"},
     {.name = "fallback", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .flags = VRG_SLOT_OPTIONAL,
      .help = "what young cells lean on instead of coarse cells (e.g. a spatial filter of the signal)"},
     {.name = "color", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
-     .help = "the cached signal; sky pixels and uncached samples: the signal itself"},
+     .help = "the cached signal; sky pixels, and pixels with no cell around them: the signal itself"},
     {.name = "table", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_STORAGE_READ_WRITE, .flags = VRG_SLOT_PERSISTENT,
      .help = "the hash table of cells (kept across frames)"},
 };
 
 static uint64_t table_bytes(const vrg_pass *pass)
 {
-    /* per slot: its check word, an entry of 2 words per channel + 3, and a
+    /* per slot: its check word, an entry of 3 words per channel + 3, and a
      * word of the list of cells given samples this frame (surface_cache.comp) */
-    uint64_t entry_words = 2u * (uint64_t)vrg_param_int(pass, "channels") + 3u;
+    uint64_t entry_words = 3u * (uint64_t)vrg_param_int(pass, "channels") + 3u;
     return 4u * (HEADER_WORDS + (uint64_t)vrg_param_int(pass, "cells") * (2u + entry_words));
 }
 
@@ -93,6 +95,10 @@ static int check(vrg_pass *pass)
         if (table_bytes(pass) > props.limits.maxStorageBufferRange)
             return vrg_pass_error(pass, "cells = %d needs a table of %llu bytes, more than this device binds as one storage buffer (%u): lower cells",
                                   cells, (unsigned long long)table_bytes(pass), props.limits.maxStorageBufferRange);
+        /* the gather reads it as a texel buffer of words */
+        if (table_bytes(pass) / 4 > dev->features.max_texel_buffer_texels)
+            return vrg_pass_error(pass, "cells = %d needs a table of %llu words, more than this device's texel buffers hold (%u): lower cells", cells,
+                                  (unsigned long long)(table_bytes(pass) / 4), dev->features.max_texel_buffer_texels);
     }
     return 0;
 }
@@ -147,7 +153,7 @@ static void report_uncached(vrg_pass *pass, surface_cache_state *s, const vrg_ri
     uint32_t uncached = 0;
     if (s->slots_read & bit)
         memcpy(&uncached, slice->map, sizeof uncached);
-    s->slots_read |= bit;
+    s->slots_read &= ~bit; /* set again once this frame's copy is recorded */
     vrg_pass_stat(pass, "uncached", uncached);
     if (uncached > 0 && !s->warned) {
         s->warned = 1;
@@ -158,7 +164,7 @@ static void report_uncached(vrg_pass *pass, surface_cache_state *s, const vrg_ri
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    static const char *same[] = {"signal", "position", "normal", "fallback"};
+    static const char *const same[] = {"signal", "position", "normal", "fallback"};
     if (vrg_pass_require_same_size(pass, "color", same, vrg_res_connected(vrg_pass_res(pass, "fallback")) ? 4 : 3) != 0)
         return;
     surface_cache_state *s = vrg_pass_user(pass);
@@ -202,6 +208,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     /* the host reads the copy after the frame's fence: make it visible there */
     VkMemoryBarrier to_host = {VK_STRUCTURE_TYPE_MEMORY_BARRIER, NULL, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0, NULL, 0, NULL);
+    s->slots_read |= 1ull << f->frame_slot;
     vrg_use zero = {table, VRG_ACCESS_TRANSFER_DST};
     vrg_pass_use(pass, cmd, &zero, 1);
     vkCmdFillBuffer(cmd, buf, 0, 4 * HEADER_WORDS, 0);

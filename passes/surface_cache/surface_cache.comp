@@ -43,21 +43,28 @@ const uint UNCACHED = 0u, LISTED = 1u, HEADER = 16u;
 // check words: a free slot, a freed one (lookups go on past it), else a cell's check value
 const uint EMPTY = 0u, FREED = 1u;
 const uint PROBES = 32u;
-const uint SLOTS_PER_INVOCATION = 16u; // RESOLVE and EVICT: fewer, longer invocations cost less on a CPU
+const uint SLOTS_PER_INVOCATION = 16u; // EVICT's: fewer, longer invocations cost less on a CPU
 const float FIXED = 1024.0;      // fixed-point scale of the sums
-const float MAX_SAMPLE = 1024.0; // a sample's largest value (keeps 4096 of them in 32 bits)
+const float MAX_SAMPLE = 1024.0; // a sample's largest value: larger ones are cached as this
 
-// An entry, C = channels: C fixed-point sums, the count, the last frame
-// with samples, n (float bits), C means (float bits).
+// An entry, C = channels: C fixed-point sums of two words each (low, high:
+// the low word's carries, so no count of samples overflows), the count,
+// the last frame with samples, n (float bits), C means (float bits).
 uint cells() { return params.mask + 1u; }
-uint entry_size() { return 2u * params.channels + 3u; }
+uint entry_size() { return 3u * params.channels + 3u; }
 uint check_word(uint slot) { return HEADER + slot; }
 uint entry_word(uint slot) { return HEADER + cells() + slot * entry_size(); }
 uint list_word(uint i) { return HEADER + cells() * (1u + entry_size()) + i; }
-uint count_word(uint e) { return e + params.channels; }
-uint last_word(uint e) { return e + params.channels + 1u; }
-uint n_word(uint e) { return e + params.channels + 2u; }
-uint mean_word(uint e) { return e + params.channels + 3u; }
+uint count_word(uint e) { return e + 2u * params.channels; }
+uint last_word(uint e) { return e + 2u * params.channels + 1u; }
+uint n_word(uint e) { return e + 2u * params.channels + 2u; }
+uint mean_word(uint e) { return e + 2u * params.channels + 3u; }
+
+// A cell not given samples for more than evict_frames frames holds nothing
+// (the resolve starts it over, the gather skips it) whether or not the
+// evict pass has freed its slot yet: when that happens depends on where
+// the slot is, and so may depend on thread order; this does not.
+bool expired(uint e) { return params.frame_index - word(last_word(e)) > params.evict_frames; }
 
 // A point's cell: its level, face and the cell's integer coordinates, with
 // the continuous coordinates in the face's plane (in cells) for the gather.
@@ -118,25 +125,27 @@ uint find(uvec2 h)
 #ifdef EVICT
 // Cells without samples for evict_frames frames are freed. A freed slot
 // right before an EMPTY one ends no run that reaches further, so it becomes
-// EMPTY too; within an invocation's slots, walked from the last, that
-// carries backwards (the next invocation's first slot is not looked at:
-// another invocation may be changing it).
+// EMPTY too; an invocation walks its slots from the last, so that carries
+// backwards.
 void main()
 {
     uint first = params.evict_first + gl_GlobalInvocationID.x * SLOTS_PER_INVOCATION;
-    bool next_empty = false;
+    // EVICT only ever moves a check word toward EMPTY (cell, FREED, EMPTY),
+    // so an EMPTY seen past the last slot, while another invocation may be
+    // changing it, stays EMPTY; a FREED one seen there waits for a later visit
+    bool next_empty = table.words[check_word((first + SLOTS_PER_INVOCATION) & params.mask)] == EMPTY;
     for (uint k = SLOTS_PER_INVOCATION; k-- > 0u;) {
         uint slot = first + k;
         if (slot >= params.evict_first + params.evict_slots || slot > params.mask)
             continue;
         uint was = table.words[check_word(slot)], c = was;
         uint e = entry_word(slot);
-        if (c >= 2u && params.frame_index - table.words[last_word(e)] >= params.evict_frames) {
+        if (c >= 2u && expired(e)) {
             for (uint i = 0u; i < entry_size(); i++)
                 table.words[e + i] = 0u;
             c = FREED;
         }
-        if (c == FREED && next_empty && k + 1u < SLOTS_PER_INVOCATION)
+        if (c == FREED && next_empty)
             c = EMPTY;
         if (c != was)
             table.words[check_word(slot)] = c;
@@ -176,8 +185,12 @@ void add_sample(Cell c, uvec4 q)
         return;
     }
     uint e = entry_word(slot);
-    for (uint i = 0u; i < params.channels; i++)
-        atomicAdd(table.words[e + i], q[i]);
+    for (uint i = 0u; i < params.channels; i++) {
+        // the high word counts the low word's wraps: the same sum in any order
+        uint was = atomicAdd(table.words[e + 2u * i], q[i]);
+        if (was + q[i] < was)
+            atomicAdd(table.words[e + 2u * i + 1u], 1u);
+    }
     // the cell's first sample this frame lists it for the resolve
     if (atomicAdd(table.words[count_word(e)], 1u) == 0u)
         table.words[list_word(atomicAdd(table.words[LISTED], 1u))] = slot;
@@ -194,7 +207,7 @@ void shade(ivec2 p)
     uvec4 q = uvec4(clamp(texelFetch(in_signal, p, 0), 0.0, MAX_SAMPLE) * FIXED + 0.5);
     int level = level_of(x.xyz);
     add_sample(cell_of(x.xyz, n, level), q);
-    if (params.coarse_levels > 0)
+    if (params.coarse_levels > 0 && params.use_fallback == 0) // with a fallback they are never read
         add_sample(cell_of(x.xyz, n, level + params.coarse_levels), q);
 }
 #endif
@@ -204,13 +217,15 @@ void resolve(uint slot)
 {
     uint e = entry_word(slot);
     uint count = table.words[count_word(e)];
-    float n_before = uintBitsToFloat(table.words[n_word(e)]);
+    float n_before = expired(e) ? 0.0 : uintBitsToFloat(table.words[n_word(e)]);
     float n = min(n_before, float(params.max_frames - 1u) * float(count)) + float(count);
     for (uint i = 0u; i < params.channels; i++) {
-        float frame_mean = float(table.words[e + i]) / (FIXED * float(count));
+        float sum = float(table.words[e + 2u * i]) + 4294967296.0 * float(table.words[e + 2u * i + 1u]);
+        float frame_mean = sum / (FIXED * float(count));
         float mean = uintBitsToFloat(table.words[mean_word(e) + i]);
         table.words[mean_word(e) + i] = floatBitsToUint(mix(mean, frame_mean, float(count) / n));
-        table.words[e + i] = 0u;
+        table.words[e + 2u * i] = 0u;
+        table.words[e + 2u * i + 1u] = 0u;
     }
     table.words[count_word(e)] = 0u;
     table.words[last_word(e)] = params.frame_index;
@@ -246,7 +261,7 @@ vec4 gather(Cell c, out float n_blend, out float weight)
             continue;
         uint e = entry_word(slot);
         float n = uintBitsToFloat(word(n_word(e)));
-        if (n == 0.0) // claimed, never resolved: no samples yet
+        if (n == 0.0 || expired(e)) // claimed and never resolved, or expired
             continue;
         float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
         for (uint i = 0u; i < params.channels; i++)
