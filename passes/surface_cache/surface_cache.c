@@ -19,8 +19,11 @@
  * in one slot apart.
  *
  * Per frame, four dispatches (surface_cache.comp):
- *   evict:   a quarter of the table per frame is looked at, and cells
- *            not given samples for evict_frames frames are freed;
+ *   evict:   a quarter of the table per frame is looked at, and the
+ *            slots of expired cells are freed (a cell expires once it has
+ *            had no samples for more than evict_frames frames: from then
+ *            the resolve starts it over and the gather skips it, so the
+ *            image does not depend on when this pass reaches its slot);
  *   insert:  each pixel finds or claims its cell and adds its sample, in
  *            fixed point, with integer atomics: the sums do not depend on
  *            the order threads run in, so neither does the image;
