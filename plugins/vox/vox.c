@@ -11,10 +11,13 @@
  * rotation, so nothing is mirrored. Each palette colour a voxel uses
  * becomes a block material with a flat atlas tile (vrg_world_add_material).
  * Edits (voxrg/edits.h) are kept beside the graph and applied at start. */
+#define _POSIX_C_SOURCE 200809L /* fileno */
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include "voxrg/edits.h"
 #include "vox_read.h"
 
@@ -69,18 +72,30 @@ static void resolve(vrg_pass *pass, const char *file, char *out, size_t n)
         snprintf(out, n, "%.*s/%s", (int)(slash - graph), graph, file);
 }
 
+/* 0, or -1 (errno set) when the file cannot be read whole; a directory
+ * opens, and its "size" from fseek can be LONG_MAX: regular files only */
 static int read_all(const char *path, uint8_t **data, size_t *size)
 {
     FILE *f = fopen(path, "rb");
     if (!f)
         return -1;
+    struct stat st;
+    int err = fstat(fileno(f), &st) != 0 ? errno : S_ISDIR(st.st_mode) ? EISDIR : S_ISREG(st.st_mode) ? 0 : EINVAL;
+    if (err) {
+        fclose(f);
+        errno = err;
+        return -1;
+    }
     long n = -1;
     if (fseek(f, 0, SEEK_END) == 0)
         n = ftell(f);
     uint8_t *d = n >= 0 && fseek(f, 0, SEEK_SET) == 0 ? malloc(n ? (size_t)n : 1) : NULL;
     if (!d || fread(d, 1, (size_t)n, f) != (size_t)n) {
+        /* fseek, ftell and malloc set errno; a short read need not */
+        err = d ? EIO : errno;
         free(d);
         fclose(f);
+        errno = err;
         return -1;
     }
     fclose(f);
@@ -141,8 +156,8 @@ static int place(vrg_pass *pass, placed *p)
         return vrg_pass_error(pass, "file = the .vox file to show (relative to the graph file)");
     resolve(pass, file, p->path, sizeof p->path);
     if (read_all(p->path, &p->bytes, &p->size) != 0)
-        return vrg_pass_error_at(pass, file_line, "file = '%s': cannot read %s (the shipped vox graphs expect ../shared/vox beside the project, docs/world.md)",
-                                 file, p->path);
+        return vrg_pass_error_at(pass, file_line, "file = '%s': cannot read %s: %s (the shipped vox graphs expect ../shared/vox beside the project, docs/world.md)",
+                                 file, p->path, strerror(errno));
     char err[512];
     if (vox_read(p->bytes, p->size, p->path, &p->vox, err, sizeof err) != 0) {
         int rc = vrg_pass_error_at(pass, file_line, "%s", err);
