@@ -3,11 +3,12 @@
  * Every pixel's sample goes to the cell of a grid over the surfaces that
  * holds its G-buffer point; each cell keeps a running mean of everything
  * it was given; every pixel reads back the bilinear blend of the 2x2 cells
- * around its point. For lighting that depends on the point alone (diffuse
- * irradiance, sun visibility: not on the view) and a static scene this is
- * the whole denoiser: nothing is reprojected, so nothing is resampled and
- * blurred frame after frame, a surface seen again finds its history, and a
- * cell averages the samples of all the pixels it covers.
+ * around its point (or its point's own cell). For lighting that depends on
+ * the point alone (diffuse irradiance, sun visibility: not on the view)
+ * and a static scene this is the whole denoiser: nothing is reprojected,
+ * so nothing is resampled and blurred frame after frame, a surface seen
+ * again finds its history, and a cell averages the samples of all the
+ * pixels it covers.
  *
  * Cells. A cell is a square of side s = 2^L blocks on one face direction
  * (the normal's dominant axis and sign) and one layer along that axis,
@@ -16,7 +17,8 @@
  * away large, so a cell covers about cell_pixels^2 pixels wherever it is.
  * Cells sit in a hash table of `cells` slots (a power of two) found by
  * linear probing over at most 32 slots; a 32-bit check value tells cells
- * in one slot apart.
+ * in one slot apart. A slot is one entry of 8 or 16 words (the check value
+ * first), so that each slot a lookup reads is one cache line.
  *
  * Per frame, four dispatches (surface_cache.comp):
  *   evict:   a quarter of the table per frame is looked at, and the
@@ -33,13 +35,14 @@
  *            history is worth at most max_frames frames of this frame's
  *            samples;
  *   gather:  each pixel blends the 2x2 cells around its point (bilinear,
- *            over the cells that exist). With coarse_levels = k, samples
+ *            over the cells that exist), or with bilinear = 0 reads its
+ *            point's own cell. With coarse_levels = k, samples
  *            also go to cells 2^k times wider, and where the fine cells
  *            hold fewer than young_samples samples the gather blends
  *            toward the coarse cells' by 1 - n / young_samples, or toward
  *            the `fallback` input where it is connected.
  * A sample that finds no free slot in 32 probes is not cached (its pixel
- * shows the cells around it that exist, else its own sample), and which
+ * shows the cells it reads that exist, else its own sample), and which
  * samples those are then depends on thread order; their count is read back
  * a few frames later and reported as the stat `uncached` and a warning
  * naming `cells`.
@@ -53,10 +56,12 @@
 static const vrg_param_desc params[] = {
     {"cell_pixels", VRG_PARAM_FLOAT, 2, 0.25, 64, "least side of a cell, in pixels at the point's distance"},
     {"max_frames", VRG_PARAM_INT, 32, 1, 4096, "frames of samples a cell's history is worth at most"},
-    {"evict_frames", VRG_PARAM_INT, 8, 1, 1 << 20, "frames without samples after which a cell is freed"},
+    {"evict_frames", VRG_PARAM_INT, 8, 1, 1 << 20, "frames without samples after which a cell expires (its slot is freed within 4 more)"},
     {"cells", VRG_PARAM_INT, 1 << 21, 1 << 10, 1 << 26, "hash table slots (a power of two)"},
     {"coarse_levels", VRG_PARAM_INT, 0, 0, 4, "also keep cells 2^coarse_levels times wider, for young cells to lean on (0: none)"},
     {"young_samples", VRG_PARAM_FLOAT, 8, 0.001, 1e6, "samples from which a cell no longer leans on the fallback or the coarse cells"},
+    {"bilinear", VRG_PARAM_BOOL, 1, 0, 1,
+     "read the bilinear blend of the 2x2 cells around each point (0: the point's own cell, a quarter of the reads: for cells under a pixel wide)"},
     {"channels", VRG_PARAM_INT, 4, 1, 4, "the signal's channels that are cached (the first ones; the rest pass through)"},
 };
 
@@ -76,10 +81,11 @@ static const vrg_slot_desc slots[] = {
 
 static uint64_t table_bytes(const vrg_pass *pass)
 {
-    /* per slot: its check word, an entry of 3 words per channel + 3, and a
-     * word of the list of cells given samples this frame (surface_cache.comp) */
-    uint64_t entry_words = 3u * (uint64_t)vrg_param_int(pass, "channels") + 3u;
-    return 4u * (HEADER_WORDS + (uint64_t)vrg_param_int(pass, "cells") * (2u + entry_words));
+    /* per slot: an entry of 8 words for one channel, else 16 (its check
+     * word, 3 words per channel + 3, padded: surface_cache.comp), and a
+     * word of the list of cells given samples this frame */
+    uint64_t entry_words = vrg_param_int(pass, "channels") == 1 ? 8u : 16u;
+    return 4u * (HEADER_WORDS + (uint64_t)vrg_param_int(pass, "cells") * (1u + entry_words));
 }
 
 static int check(vrg_pass *pass)
@@ -129,6 +135,7 @@ typedef struct surface_cache_push {
     int32_t coarse_levels;
     float young_samples;
     int32_t use_fallback;
+    int32_t bilinear;
 } surface_cache_push;
 
 enum { EVICT, INSERT, RESOLVE, GATHER };
@@ -195,7 +202,8 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
                              share,
                              vrg_param_int(pass, "coarse_levels"),
                              (float)vrg_param(pass, "young_samples"),
-                             vrg_res_connected(vrg_pass_res(pass, "fallback"))};
+                             vrg_res_connected(vrg_pass_res(pass, "fallback")),
+                             vrg_param_int(pass, "bilinear")};
     for (int i = EVICT; i <= GATHER; i++) {
         vrg_dispatch_desc d = dispatches[i];
         d.push = &pc;

@@ -14,8 +14,8 @@ layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
 layout(binding = 0) uniform sampler2D in_signal;
 layout(binding = 1) uniform sampler2D in_position;
 layout(binding = 2) uniform sampler2D in_normal;
-// the header, the check words of all slots, the entries, the list of the
-// slots given samples this frame. GATHER only reads it, as a texel buffer:
+// the header, the slots' entries, the list of the slots given samples
+// this frame. GATHER only reads it, as a texel buffer:
 // lavapipe fetches texels with SIMD gathers but loads storage-buffer words
 // at per-lane addresses one lane at a time.
 #ifdef GATHER
@@ -36,6 +36,7 @@ layout(push_constant) uniform Params {
     int coarse_levels;             // 0: no coarse cells
     float young_samples;
     int use_fallback;              // in_fallback is connected
+    int bilinear;                  // gather the 2x2 cells around a point, else its own cell
 } params;
 
 // header words
@@ -47,18 +48,23 @@ const uint SLOTS_PER_INVOCATION = 16u; // EVICT's: fewer, longer invocations cos
 const float FIXED = 1024.0;      // fixed-point scale of the sums
 const float MAX_SAMPLE = 1024.0; // a sample's largest value: larger ones are cached as this
 
-// An entry, C = channels: C fixed-point sums of two words each (low, high:
-// the low word's carries, so no count of samples overflows), the count,
-// the last frame with samples, n (float bits), C means (float bits).
+// A slot's entry, C = channels: the check word, the last frame with
+// samples, n (float bits), C means (float bits), C fixed-point sums of two
+// words each (low, high: the low word's carries, so no count of samples
+// overflows), the count; 8 words for one channel, else 16. A lookup
+// misses the CPU's caches at each slot it reads (the table is far larger):
+// an entry of a power of two words never straddles a 64-byte line, and
+// what the gather reads comes first.
 uint cells() { return params.mask + 1u; }
-uint entry_size() { return 3u * params.channels + 3u; }
-uint check_word(uint slot) { return HEADER + slot; }
-uint entry_word(uint slot) { return HEADER + cells() + slot * entry_size(); }
-uint list_word(uint i) { return HEADER + cells() * (1u + entry_size()) + i; }
-uint count_word(uint e) { return e + 2u * params.channels; }
-uint last_word(uint e) { return e + 2u * params.channels + 1u; }
-uint n_word(uint e) { return e + 2u * params.channels + 2u; }
-uint mean_word(uint e) { return e + 2u * params.channels + 3u; }
+uint entry_size() { return params.channels == 1u ? 8u : 16u; }
+uint entry_word(uint slot) { return HEADER + slot * entry_size(); }
+uint check_word(uint slot) { return entry_word(slot); }
+uint last_word(uint e) { return e + 1u; }
+uint n_word(uint e) { return e + 2u; }
+uint mean_word(uint e) { return e + 3u; }
+uint sum_word(uint e, uint i) { return e + 3u + params.channels + 2u * i; } // and the next: its high word
+uint count_word(uint e) { return e + 3u + 3u * params.channels; }
+uint list_word(uint i) { return HEADER + cells() * entry_size() + i; }
 
 // A cell not given samples for more than evict_frames frames holds nothing
 // (the resolve starts it over, the gather skips it) whether or not the
@@ -141,7 +147,7 @@ void main()
         uint was = table.words[check_word(slot)], c = was;
         uint e = entry_word(slot);
         if (c >= 2u && expired(e)) {
-            for (uint i = 0u; i < entry_size(); i++)
+            for (uint i = 1u; i < entry_size(); i++) // all but the check word
                 table.words[e + i] = 0u;
             c = FREED;
         }
@@ -187,9 +193,9 @@ void add_sample(Cell c, uvec4 q)
     uint e = entry_word(slot);
     for (uint i = 0u; i < params.channels; i++) {
         // the high word counts the low word's wraps: the same sum in any order
-        uint was = atomicAdd(table.words[e + 2u * i], q[i]);
+        uint was = atomicAdd(table.words[sum_word(e, i)], q[i]);
         if (was + q[i] < was)
-            atomicAdd(table.words[e + 2u * i + 1u], 1u);
+            atomicAdd(table.words[sum_word(e, i) + 1u], 1u);
     }
     // the cell's first sample this frame lists it for the resolve
     if (atomicAdd(table.words[count_word(e)], 1u) == 0u)
@@ -220,12 +226,12 @@ void resolve(uint slot)
     float n_before = expired(e) ? 0.0 : uintBitsToFloat(table.words[n_word(e)]);
     float n = min(n_before, float(params.max_frames - 1u) * float(count)) + float(count);
     for (uint i = 0u; i < params.channels; i++) {
-        float sum = float(table.words[e + 2u * i]) + 4294967296.0 * float(table.words[e + 2u * i + 1u]);
+        float sum = float(table.words[sum_word(e, i)]) + 4294967296.0 * float(table.words[sum_word(e, i) + 1u]);
         float frame_mean = sum / (FIXED * float(count));
         float mean = uintBitsToFloat(table.words[mean_word(e) + i]);
         table.words[mean_word(e) + i] = floatBitsToUint(mix(mean, frame_mean, float(count) / n));
-        table.words[e + 2u * i] = 0u;
-        table.words[e + 2u * i + 1u] = 0u;
+        table.words[sum_word(e, i)] = 0u;
+        table.words[sum_word(e, i) + 1u] = 0u;
     }
     table.words[count_word(e)] = 0u;
     table.words[last_word(e)] = params.frame_index;
@@ -244,17 +250,17 @@ void main()
 
 #ifdef GATHER
 // The bilinear blend of the 2x2 cells whose centres surround the point (its
-// own is one of them), over those that have samples; .w: their blended n
-// (samples). weight 0: none has.
+// own is one of them), over those that have samples, or (bilinear = 0) the
+// point's own cell; n_blend: their blended n (samples). weight 0: none has.
 vec4 gather(Cell c, out float n_blend, out float weight)
 {
-    vec2 t = c.plane - 0.5;
+    vec2 t = params.bilinear != 0 ? c.plane - 0.5 : c.plane;
     ivec2 i0 = ifloor(t);
-    vec2 f = t - vec2(i0);
+    vec2 f = params.bilinear != 0 ? t - vec2(i0) : vec2(0.0);
     vec4 sum = vec4(0.0);
     n_blend = 0.0;
     weight = 0.0;
-    for (int k = 0; k < 4; k++) {
+    for (int k = 0; k < (params.bilinear != 0 ? 4 : 1); k++) {
         ivec2 o = ivec2(k & 1, k >> 1);
         uint slot = find(hash_of(c, i0 + o));
         if (slot == ~0u)

@@ -126,6 +126,83 @@ static void test_cache_evict(void)
     vrg_graph_destroy(g);
 }
 
+/* surface_cache.ini with sets after `frames` frames, every image read back */
+static int render_with(const char *const *sets, uint32_t nsets, int frames, vrg_image_data img[COUNT])
+{
+    vrg_graph *g = load_with("surface_cache.ini", sets, nsets, reads, COUNT);
+    if (!g)
+        return -1;
+    int rc = 0;
+    for (int i = 0; i < frames && rc == 0; i++)
+        CHECK((rc = vrg_graph_frame(g)) == 0, "frame failed");
+    if (rc == 0)
+        rc = read_all(g, img);
+    vrg_graph_destroy(g);
+    return rc;
+}
+
+/* The ticks pass's image after 4 frames looking at the floor and 12
+ * turned away from part of it (whose cells expire after 2 frames and are
+ * freed), with a table of `cells` slots; *freed_before_live: slots freed
+ * with a live cell's slot right after them, at the end. */
+static int turn_away(const char *cells, vrg_image_data *ticks, int *freed_before_live)
+{
+    static const char *const with_table[] = {"ticks.color", "ticks.table"};
+    const char *sets[] = {"ticks.evict_frames=2", "ticks.max_frames=1000", cells};
+    vrg_graph *g = load_with("surface_cache.ini", sets, 3, with_table, 2);
+    if (!g)
+        return -1;
+    vrg_camera view = *vrg_graph_camera(g);
+    int rc = 0;
+    for (int frame = 0; frame < 16 && rc == 0; frame++) {
+        if (frame == 4) {
+            view.yaw += 30;
+            vrg_graph_set_camera(g, &view);
+        }
+        CHECK((rc = vrg_graph_frame(g)) == 0, "frame failed");
+        double uncached = 0;
+        CHECK(vrg_graph_stat(g, "ticks", "uncached", &uncached) == 0 && uncached == 0, "%s: %g samples uncached", cells, uncached);
+    }
+    uint32_t *words = NULL;
+    uint64_t size = 0;
+    if (rc == 0)
+        rc = vrg_graph_read(g, "ticks.color", ticks);
+    if (rc == 0)
+        rc = vrg_graph_read_buffer(g, "ticks.table", (void **)&words, &size);
+    if (rc == 0) {
+        /* 16 header words, then 8-word entries (1 channel), check word first */
+        uint64_t slots = (size / 4 - 16) / 9;
+        *freed_before_live = 0;
+        for (uint64_t i = 0; i + 1 < slots; i++)
+            *freed_before_live += words[16 + 8 * i] == 1 && words[16 + 8 * (i + 1)] >= 2;
+    }
+    free(words);
+    vrg_graph_destroy(g);
+    return rc;
+}
+
+/* Freed slots inside probe runs: a cell found past a freed slot keeps its
+ * history, and a new cell may take the freed slot. With the table about
+ * half full the image after turning away from part of the floor is the
+ * same as with a table 64 times larger, where runs are short; the small
+ * table did have freed slots right before live ones. */
+static void test_cache_freed_runs(void)
+{
+    vrg_image_data small = {0}, large = {0};
+    int freed_small = 0, freed_large = 0;
+    if (turn_away("ticks.cells=1024", &small, &freed_small) == 0 && turn_away("ticks.cells=65536", &large, &freed_large) == 0) {
+        size_t n = (size_t)small.width * small.height * 4, differ = 0;
+        for (size_t i = 0; i < n; i++)
+            differ += small.pixels[i] != large.pixels[i];
+        printf("freed slots right before live ones: %d (1024 slots), %d (65536); values that differ: %zu\n", freed_small, freed_large,
+               differ);
+        CHECK(freed_small >= 10, "only %d freed slots before live ones: the case is not exercised", freed_small);
+        CHECK(differ == 0, "%zu values differ between the tables: a lookup stopped at a freed slot, or reused a live one", differ);
+    }
+    free(small.pixels);
+    free(large.pixels);
+}
+
 /* The gather: red is linear in world x along each screen row, so the
  * bilinear blend of cells around a point gives the point's own red, up to
  * the offset of the centroid of the pixels a cell holds from its centre
@@ -136,16 +213,9 @@ static void test_cache_evict(void)
  * green (not linear in world z) differs. */
 static void test_cache_gather(void)
 {
-    vrg_graph *g = load_with("surface_cache.ini", NULL, 0, reads, COUNT);
-    if (!g)
-        return;
-    for (int i = 0; i < 3; i++)
-        CHECK(vrg_graph_frame(g) == 0, "frame failed");
     vrg_image_data img[COUNT];
-    if (read_all(g, img) != 0) {
-        vrg_graph_destroy(g);
+    if (render_with(NULL, 0, 3, img) != 0)
         return;
-    }
     uint32_t w = img[POS].width, h = img[POS].height;
     double pixel_red = 1.0 / (w - 1), signed_sum = 0, worst = 0, green_diff = 0;
     int n = 0;
@@ -169,20 +239,14 @@ static void test_cache_gather(void)
     CHECK(worst < 1.5 * pixel_red, "the cached red is up to %g off (one pixel: %g)", worst, pixel_red);
     CHECK(green_diff / (n > 0 ? n : 1) > 1e-3, "green is unchanged: nothing was averaged");
     free_all(img);
-    vrg_graph_destroy(g);
 }
 
 /* mean |cached - signal| of green over the floor after 3 frames, with sets */
 static double green_blur(const char *const *sets, uint32_t nsets, vrg_image_data *keep)
 {
-    vrg_graph *g = load_with("surface_cache.ini", sets, nsets, reads, COUNT);
     double diff = -1;
-    if (!g)
-        return diff;
-    for (int i = 0; i < 3; i++)
-        CHECK(vrg_graph_frame(g) == 0, "frame failed");
     vrg_image_data img[COUNT];
-    if (read_all(g, img) == 0) {
+    if (render_with(sets, nsets, 3, img) == 0) {
         double sum = 0;
         int n = 0;
         for (uint32_t y = 0; y < img[POS].height; y++)
@@ -198,7 +262,6 @@ static double green_blur(const char *const *sets, uint32_t nsets, vrg_image_data
         }
         free_all(img);
     }
-    vrg_graph_destroy(g);
     return diff;
 }
 
@@ -248,22 +311,57 @@ static void test_cache_coarse(void)
 static void test_cache_own_cells(void)
 {
     static const char *sets[] = {"cache.cell_pixels=0.25"};
-    vrg_graph *g = load_with("surface_cache.ini", sets, 1, reads, COUNT);
-    if (!g)
-        return;
-    for (int i = 0; i < 2; i++)
-        CHECK(vrg_graph_frame(g) == 0, "frame failed");
     vrg_image_data img[COUNT];
-    if (read_all(g, img) == 0) {
-        double worst = 0;
-        for (uint32_t y = 0; y < img[POS].height; y++)
-            for (uint32_t x = 0; x < img[POS].width; x++)
-                for (int c = 0; c < 3; c++)
-                    worst = fmax(worst, fabs(px(&img[CACHE], x, y, c) - px(&img[LIGHT], x, y, c)));
-        CHECK(worst < 2e-3, "one pixel per cell: the cache differs from the signal by up to %g", worst);
-        free_all(img);
-    }
-    vrg_graph_destroy(g);
+    if (render_with(sets, 1, 2, img) != 0)
+        return;
+    double worst = 0;
+    for (uint32_t y = 0; y < img[POS].height; y++)
+        for (uint32_t x = 0; x < img[POS].width; x++)
+            for (int c = 0; c < 3; c++)
+                worst = fmax(worst, fabs(px(&img[CACHE], x, y, c) - px(&img[LIGHT], x, y, c)));
+    CHECK(worst < 2e-3, "one pixel per cell: the cache differs from the signal by up to %g", worst);
+    free_all(img);
+}
+
+/* Of the horizontally neighbouring interior floor pixels, the fraction
+ * whose cached red is the same, after 3 frames with sets; -1 on failure.
+ * *error: the mean |cached - signal| of red, in pixels of red. */
+static double same_red(const char *const *sets, uint32_t nsets, double *error)
+{
+    vrg_image_data img[COUNT];
+    if (render_with(sets, nsets, 3, img) != 0)
+        return -1;
+    int pairs = 0, same = 0;
+    double sum = 0;
+    for (uint32_t y = 8; y + 8 < img[POS].height; y++)
+        for (uint32_t x = 8; x + 9 < img[POS].width; x++)
+            if (floor_around(&img[POS], x, y, 8) && floor_around(&img[POS], x + 1, y, 8)) {
+                pairs++;
+                same += px(&img[CACHE], x, y, 0) == px(&img[CACHE], x + 1, y, 0);
+                sum += fabs(px(&img[CACHE], x, y, 0) - px(&img[LIGHT], x, y, 0));
+            }
+    *error = pairs > 0 ? sum / pairs * (img[POS].width - 1) : 0;
+    free_all(img);
+    CHECK(pairs > 400, "only %d pairs of interior floor pixels", pairs);
+    return pairs > 0 ? (double)same / pairs : -1;
+}
+
+/* bilinear = 0: each pixel reads its point's own cell, so all the pixels
+ * of a cell (4 to 8 pixels wide here) show its one mean, where the
+ * bilinear blend gives nearly every pixel a value of its own (red is
+ * linear in world x along a row). The mean is the cell's own: a pixel's
+ * red is off by a quarter of the cell's width on average (1 to 2 pixels
+ * of red); a neighbouring cell's would be a whole width off. */
+static void test_cache_nearest(void)
+{
+    static const char *nearest[] = {"cache.bilinear=0"};
+    double blended_error = 0, own_error = 0;
+    double blended = same_red(NULL, 0, &blended_error), own = same_red(nearest, 1, &own_error);
+    printf("neighbours with the same red: bilinear %.3f, own cell %.3f; mean red error %.2f and %.2f pixels of red\n", blended, own,
+           blended_error, own_error);
+    CHECK(own > 0.6, "own cell: only %.3f of neighbouring pixels show the same red", own);
+    CHECK(own_error < 2.5, "own cell: red is %.2f pixels of red off on average: not the pixel's own cell", own_error);
+    CHECK(blended >= 0 && blended < 0.2, "bilinear: %.3f of neighbouring pixels show the same red", blended);
 }
 
 /* New parameter values empty the table: after the light goes from 1 to 0
@@ -340,7 +438,8 @@ static int test_cache_too_large(void)
 {
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(vrg_context_device(ctx)->physical_device, &props);
-    uint64_t bytes = 4u * (16u + (uint64_t)(1u << 26) * 17u); /* 4 channels: 15 words an entry, 1 check, 1 list */
+    /* `cache` caches 4 channels: an entry of 16 words, 1 of the list */
+    uint64_t bytes = 4u * (16u + (uint64_t)(1u << 26) * 17u);
     if (bytes <= props.limits.maxStorageBufferRange) {
         printf("skipped: this device binds %u bytes\n", props.limits.maxStorageBufferRange);
         return SKIP;
@@ -350,7 +449,7 @@ static int test_cache_too_large(void)
     FILE *diag = open_memstream(&log, &len);
     char path[1024];
     snprintf(path, sizeof path, "%s/graphs/surface_cache.ini", TEST_DIR);
-    static const char *sets[] = {"ticks.cells=67108864"};
+    static const char *sets[] = {"cache.cells=67108864"};
     vrg_graph_desc d = {.path = path, .overrides = sets, .override_count = 1, .diag = diag};
     vrg_graph *g = NULL;
     CHECK(diag && vrg_graph_load(ctx, &d, &g) != 0, "a table of %llu bytes was accepted", (unsigned long long)bytes);
@@ -369,7 +468,7 @@ int main(int argc, char **argv)
     static const test_case cases[] = {
         {"cache_history", test_cache_history, 1, NULL}, {"cache_evict", test_cache_evict, 1, NULL}, {"cache_gather", test_cache_gather, 1, NULL},
         {"cache_own_cells", test_cache_own_cells, 1, NULL}, {"cache_coarse", test_cache_coarse, 1, NULL}, {"cache_reset", test_cache_reset, 1, NULL},
-        {"cache_full", test_cache_full, 1, NULL}, {"cache_too_large", NULL, 1, test_cache_too_large},
+        {"cache_nearest", test_cache_nearest, 1, NULL}, {"cache_freed_runs", test_cache_freed_runs, 1, NULL}, {"cache_full", test_cache_full, 1, NULL}, {"cache_too_large", NULL, 1, test_cache_too_large},
     };
     return run_case(argc, argv, cases, sizeof cases / sizeof cases[0]);
 }
