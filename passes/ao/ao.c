@@ -5,12 +5,16 @@
  * With cosine-weighted directions (pdf cos/pi) this estimates the
  * cosine-weighted ambient visibility (1/pi) * integral of V(w) cos(w) dw over
  * the hemisphere: 1 on an open floor. Sky pixels (position.w == 0): 1, no
- * rays. Rays start at position + normal * 1e-3. */
+ * rays. Rays start at position + normal * 1e-3. stratified = 1 draws the
+ * directions from random.glsl's stratified points (docs/lighting.md,
+ * "Sampling"). */
 #include "voxrg/plugin.h"
 
 static const vrg_param_desc params[] = {
     {"rays", VRG_PARAM_INT, 4, 1, 64, "AO rays per pixel"},
     {"radius", VRG_PARAM_FLOAT, 4, 0.01, 1024, "AO ray length, blocks"},
+    {"stratified", VRG_PARAM_BOOL, 0, 0, 1,
+     "directions from a sequence that covers the hemisphere evenly over each 4x4 tile of pixels and over the frames (0: independent random numbers)"},
 };
 
 static const vrg_slot_desc slots[] = {
@@ -30,6 +34,7 @@ static const vrg_slot_desc slots[] = {
 typedef struct ao_push {
     int32_t rays;
     float radius;
+    int32_t stratified;
 } ao_push;
 
 /* every dispatch execute() records: checked by `voxrg check` */
@@ -39,7 +44,7 @@ static const vrg_dispatch_desc dispatches[] = {
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    ao_push pc = {vrg_param_int(pass, "rays"), (float)vrg_param(pass, "radius")};
+    ao_push pc = {vrg_param_int(pass, "rays"), (float)vrg_param(pass, "radius"), vrg_param_int(pass, "stratified")};
     vrg_dispatch_desc d = dispatches[0];
     d.push = &pc;
     (void)vrg_dispatch(pass, cmd, &d);

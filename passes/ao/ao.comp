@@ -16,6 +16,7 @@ layout(binding = 4, r16f) uniform writeonly image2D out_ao;
 layout(push_constant) uniform Params {
     int rays;
     float radius;
+    int stratified; // rays from stratified points (rng_pair)
 } params;
 
 const uint SALT = 0x414f0002u;  // this pass's random stream
@@ -36,8 +37,8 @@ void shade(ivec2 p)
     Rng r = rng_init(uvec2(p), frame.frame_info.x, frame.frame_info.w, SALT);
     int open = 0;
     for (int i = 0; i < params.rays; i++) {
-        float u1 = rng_next(r), u2 = rng_next(r);
-        if (!trace_any(o, sample_cosine(n, u1, u2), params.radius))
+        vec2 u = rng_pair(r, params.stratified != 0, uint(i), uint(params.rays));
+        if (!trace_any(o, sample_cosine(n, u.x, u.y), params.radius))
             open++;
     }
     imageStore(out_ao, p, vec4(float(open) / float(params.rays)));

@@ -16,6 +16,8 @@
  * albedo(b, n2): material_albedo(b), or, with the atlas connected and
  * textures = 1, the mean of the face's atlas tile (mip level 4: one texel per
  * tile; differs from the material's for grass sides and bottoms).
+ * Directions: from the pixel's random stream, or with stratified = 1 from
+ * random.glsl's stratified points (docs/lighting.md, "Sampling").
  *
  * Output, rgb (a = 1): irradiance = (1/rays) * sum of L_in, the mean incoming
  * radiance over cosine-weighted directions (pdf cos/pi). That estimates
@@ -29,6 +31,8 @@ static const vrg_param_desc params[] = {
     {"max_distance", VRG_PARAM_FLOAT, 64, 1, 16384, "indirect and secondary shadow ray length, blocks"},
     {"shadow", VRG_PARAM_BOOL, 1, 0, 1, "trace a shadow ray toward the sun at each secondary hit (0: assume lit)"},
     {"textures", VRG_PARAM_BOOL, 1, 0, 1, "with the atlas connected, use its per-face tile means instead of material albedos"},
+    {"stratified", VRG_PARAM_BOOL, 0, 0, 1,
+     "directions from a sequence that covers the hemisphere evenly over each 4x4 tile of pixels and over the frames (0: independent random numbers)"},
 };
 
 static const vrg_slot_desc slots[] = {
@@ -52,6 +56,7 @@ typedef struct indirect_push {
     float max_distance;
     int32_t shadow;
     int32_t textured;
+    int32_t stratified;
 } indirect_push;
 
 /* every dispatch execute() records: checked by `voxrg check` */
@@ -62,7 +67,7 @@ static const vrg_dispatch_desc dispatches[] = {
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     indirect_push pc = {vrg_param_int(pass, "rays"), (float)vrg_param(pass, "max_distance"), vrg_param_int(pass, "shadow"),
-            vrg_param_int(pass, "textures") && vrg_res_connected(vrg_pass_res(pass, "atlas"))};
+            vrg_param_int(pass, "textures") && vrg_res_connected(vrg_pass_res(pass, "atlas")), vrg_param_int(pass, "stratified")};
     vrg_dispatch_desc d = dispatches[0];
     d.push = &pc;
     (void)vrg_dispatch(pass, cmd, &d);

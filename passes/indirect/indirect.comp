@@ -19,6 +19,7 @@ layout(push_constant) uniform Params {
     float max_distance;
     int shadow;
     int textured;
+    int stratified; // rays from stratified points (rng_pair)
 } params;
 
 const uint SALT = 0x494e0003u;  // this pass's random stream
@@ -53,8 +54,8 @@ void shade(ivec2 p)
     Rng r = rng_init(uvec2(p), frame.frame_info.x, frame.frame_info.w, SALT);
     vec3 sum = vec3(0.0);
     for (int i = 0; i < params.rays; i++) {
-        float u1 = rng_next(r), u2 = rng_next(r);
-        vec3 d = sample_cosine(n, u1, u2);
+        vec2 u = rng_pair(r, params.stratified != 0, uint(i), uint(params.rays));
+        vec3 d = sample_cosine(n, u.x, u.y);
         Hit h = trace_closest(o, d, params.max_distance);
         sum += h.hit ? bounce(o + d * h.t, h.normal, h.block) : frame_sky(d);
     }

@@ -9,7 +9,10 @@
  *                                          whatever `rays` says (they would
  *                                          all be the same ray)
  * A disc sample below the face's horizon (N.D <= 0) counts as occluded
- * without tracing. Rays start at position + normal * 1e-3.
+ * without tracing. Rays start at position + normal * 1e-3. The disc points
+ * come from the pixel's random stream, or with stratified = 1 from a
+ * sequence that covers the disc evenly over 4x4 tiles and frames
+ * (random.glsl's rng_pair; docs/lighting.md, "Sampling").
  * occluder (optional, computed only when something reads it): the mean
  * distance, blocks, from the ray origin to the first block hit, over the
  * traced rays that hit; -1 where none did (lit, sky, no rays traced). A
@@ -20,6 +23,8 @@ static const vrg_param_desc params[] = {
     {"rays", VRG_PARAM_INT, 4, 1, 64, "shadow rays per pixel (one when sun_radius is 0)"},
     {"sun_radius", VRG_PARAM_FLOAT, 0.27, 0, 45, "angular radius of the sun's disc, degrees (0.27: the real sun; 0: hard shadows)"},
     {"max_distance", VRG_PARAM_FLOAT, 256, 1, 16384, "shadow ray length, blocks"},
+    {"stratified", VRG_PARAM_BOOL, 0, 0, 1,
+     "points on the disc from a sequence that covers it evenly over each 4x4 tile of pixels and over the frames (0: independent random numbers)"},
 };
 
 static const vrg_slot_desc slots[] = {
@@ -43,6 +48,7 @@ typedef struct sun_shadow_push {
     int32_t rays;
     float sun_radius; /* radians */
     float max_distance;
+    int32_t stratified;
 } sun_shadow_push;
 
 /* every dispatch execute() records: checked by `voxrg check` */
@@ -54,7 +60,7 @@ static const vrg_dispatch_desc dispatches[] = {
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     sun_shadow_push pc = {vrg_param_int(pass, "rays"), (float)(vrg_param(pass, "sun_radius") * 3.14159265358979323846 / 180.0),
-            (float)vrg_param(pass, "max_distance")};
+            (float)vrg_param(pass, "max_distance"), vrg_param_int(pass, "stratified")};
     if (pc.sun_radius <= 0.0f)
         pc.rays = 1;
     /* the unconnected output is a 1x1 stand-in: the shader neither writes

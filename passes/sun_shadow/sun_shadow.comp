@@ -20,6 +20,7 @@ layout(push_constant) uniform Params {
     int rays;
     float sun_radius;  // radians; 0: exactly sun_dir, and rays == 1
     float max_distance;
+    int stratified; // rays from stratified points (rng_pair)
 } params;
 
 const uint SALT = 0x53554e01u;  // this pass's random stream
@@ -57,8 +58,8 @@ void shade(ivec2 p)
     for (int i = 0; i < params.rays; i++) {
         vec3 d = l;
         if (params.sun_radius > 0.0) {
-            float u1 = rng_next(r), u2 = rng_next(r);
-            d = sample_cone(l, params.sun_radius, u1, u2);
+            vec2 u = rng_pair(r, params.stratified != 0, uint(i), uint(params.rays));
+            d = sample_cone(l, params.sun_radius, u.x, u.y);
         }
         if (dot(n, d) <= 0.0)
             continue;

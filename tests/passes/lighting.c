@@ -298,6 +298,121 @@ static void test_haze(void)
     vrg_graph_destroy(g);
 }
 
+/* ---- stratified sampling ---- */
+
+/* The per-pixel mean of `res` over `frames` frames of `graph` with sets,
+ * and (pos not NULL) the G-buffer position; 0 on failure, with nothing
+ * left allocated. */
+static int mean_over_frames(const char *graph, const char *const *sets, uint32_t nsets, const char *res, int frames, vrg_image_data *mean,
+                            vrg_image_data *pos)
+{
+    const char *reads[] = {res, "gbuffer.position"};
+    vrg_graph *g = load_with(graph, sets, nsets, reads, pos ? 2 : 1);
+    *mean = (vrg_image_data){0};
+    if (!g)
+        return 0;
+    int ok = 1;
+    for (int f = 0; f < frames && ok; f++) {
+        vrg_image_data img;
+        ok = vrg_graph_frame(g) == 0 && vrg_graph_read(g, res, &img) == 0;
+        CHECK(ok, "%s: frame %d failed", graph, f);
+        if (!ok)
+            break;
+        if (!mean->pixels) {
+            *mean = img;
+            continue;
+        }
+        for (uint32_t i = 0; i < 4 * img.width * img.height; i++)
+            mean->pixels[i] += img.pixels[i];
+        free(img.pixels);
+    }
+    for (uint32_t i = 0; ok && i < 4 * mean->width * mean->height; i++)
+        mean->pixels[i] /= (float)frames;
+    ok = ok && (!pos || vrg_graph_read(g, "gbuffer.position", pos) == 0);
+    vrg_graph_destroy(g);
+    if (!ok) {
+        free(mean->pixels);
+        mean->pixels = NULL;
+    }
+    return ok;
+}
+
+/* RMS difference of channel 0 between a and ref over the 4x4 tiles (tile
+ * means) or, with tile = 1, the pixels whose every pixel is on geometry and
+ * whose ref lies inside (lo, hi); *count: how many. */
+static double tile_rms(const vrg_image_data *a, const vrg_image_data *ref, const vrg_image_data *pos, uint32_t tile, float lo, float hi,
+                       int *count)
+{
+    double sum = 0;
+    *count = 0;
+    for (uint32_t ty = 0; ty + tile <= pos->height; ty += tile)
+        for (uint32_t tx = 0; tx + tile <= pos->width; tx += tile) {
+            double ma = 0, mr = 0;
+            int on = 1;
+            for (uint32_t y = ty; y < ty + tile; y++)
+                for (uint32_t x = tx; x < tx + tile; x++) {
+                    on &= px(pos, x, y, 3) != 0;
+                    ma += px(a, x, y, 0), mr += px(ref, x, y, 0);
+                }
+            mr /= tile * tile, ma /= tile * tile;
+            if (!on || mr <= lo || mr >= hi)
+                continue;
+            sum += (ma - mr) * (ma - mr);
+            (*count)++;
+        }
+    return *count ? sqrt(sum / *count) : -1;
+}
+
+/* stratified = 1 draws one ray per pixel from a sequence that covers the
+ * hemisphere (indirect, ao) or the sun's disc (sun_shadow) evenly over
+ * each 4x4 tile and over the frames: against 64 rays per pixel over 4
+ * frames, a tile's mean of one frame and a pixel's mean of 8 frames are
+ * closer than with independent random numbers, and the image is still the
+ * same on every run. */
+static void test_light_stratified(void)
+{
+    static const struct {
+        const char *graph, *res, *pass;
+        float lo, hi; /* tiles whose reference lies in (lo, hi): the indirect light anywhere, the sun's penumbrae, AO near the walls */
+    } cases[] = {
+        {"light_corner.ini", "indirect.irradiance", "indirect", -1e9f, 1e9f},
+        {"light_penumbra.ini", "shadow.visibility", "shadow", 0.02f, 0.98f},
+        {"light_corner.ini", "ao.ao", "ao", -1e9f, 0.98f},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        char rays[64], white[64], strat[64];
+        snprintf(rays, sizeof rays, "%s.rays=1", cases[c].pass);
+        snprintf(white, sizeof white, "%s.stratified=0", cases[c].pass);
+        snprintf(strat, sizeof strat, "%s.stratified=1", cases[c].pass);
+        const char *ref_sets[] = {white}, *white_sets[] = {rays, white}, *strat_sets[] = {rays, strat};
+        vrg_image_data ref = {0}, pos = {0}, w1 = {0}, s1 = {0}, w8 = {0}, s8 = {0}, again = {0};
+        /* 64 rays a pixel over 4 frames; 1 ray in one frame; 1 ray over 8 frames, twice stratified */
+        int ok = mean_over_frames(cases[c].graph, ref_sets, 1, cases[c].res, 4, &ref, &pos) &&
+                 mean_over_frames(cases[c].graph, white_sets, 2, cases[c].res, 1, &w1, NULL) &&
+                 mean_over_frames(cases[c].graph, strat_sets, 2, cases[c].res, 1, &s1, NULL) &&
+                 mean_over_frames(cases[c].graph, white_sets, 2, cases[c].res, 8, &w8, NULL) &&
+                 mean_over_frames(cases[c].graph, strat_sets, 2, cases[c].res, 8, &s8, NULL) &&
+                 mean_over_frames(cases[c].graph, strat_sets, 2, cases[c].res, 8, &again, NULL);
+        if (ok) {
+            int n_tiles, n_pixels, n;
+            double tile_white = tile_rms(&w1, &ref, &pos, 4, cases[c].lo, cases[c].hi, &n_tiles);
+            double tile_strat = tile_rms(&s1, &ref, &pos, 4, cases[c].lo, cases[c].hi, &n);
+            double pixel_white = tile_rms(&w8, &ref, &pos, 1, cases[c].lo, cases[c].hi, &n_pixels);
+            double pixel_strat = tile_rms(&s8, &ref, &pos, 1, cases[c].lo, cases[c].hi, &n);
+            printf("%s: RMS against 256 rays, 4x4 tile of one frame: random %.4f, stratified %.4f (%d tiles); pixel over 8 frames: random %.4f, "
+                   "stratified %.4f (%d pixels)\n",
+                   cases[c].pass, tile_white, tile_strat, n_tiles, pixel_white, pixel_strat, n_pixels);
+            CHECK(n_tiles >= 10 && n_pixels >= 100, "%s: only %d tiles and %d pixels measured", cases[c].pass, n_tiles, n_pixels);
+            CHECK(tile_strat < 0.75 * tile_white, "%s: a 4x4 tile's mean is %.4f off stratified, %.4f with random numbers", cases[c].pass, tile_strat,
+                  tile_white);
+            CHECK(pixel_strat < 0.8 * pixel_white, "%s: a pixel's mean over 8 frames is %.4f off stratified, %.4f with random numbers", cases[c].pass,
+                  pixel_strat, pixel_white);
+            CHECK(memcmp(s8.pixels, again.pixels, 16u * s8.width * s8.height) == 0, "%s: stratified sampling is not deterministic", cases[c].pass);
+        }
+        free(ref.pixels), free(pos.pixels), free(w1.pixels), free(s1.pixels), free(w8.pixels), free(s8.pixels), free(again.pixels);
+    }
+}
+
 int main(int argc, char **argv)
 {
     static const test_case cases[] = {
@@ -308,6 +423,7 @@ int main(int argc, char **argv)
         {"light_penumbra", test_light_penumbra, 1},
         {"light_corner", test_light_corner, 1},
         {"light_chain", test_light_chain, 1},
+        {"light_stratified", test_light_stratified, 1},
     };
     return run_case(argc, argv, cases, sizeof cases / sizeof cases[0]);
 }
