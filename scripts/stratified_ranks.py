@@ -10,7 +10,9 @@ a 4x4 tile) picks point frame * stride + rank. This script
      the points of a window (1, 2, 2x2, 3x3 pixels) over 1, 2, 4, 8 frames,
      integrating random half-plane indicators (a visibility edge), each
      window's error scaled by sqrt(samples) so that random numbers score
-     about the same everywhere; Bayer and random numbers alongside.
+     about the same everywhere; Bayer and random numbers alongside. One ray
+     per pixel, and one random shift per window (the shader has one per 4x4
+     tile, so windows that cross a tile edge are modelled loosely).
 Pure Python, about a minute: python3 scripts/stratified_ranks.py
 """
 import math

@@ -39,18 +39,22 @@ float rng_next(inout Rng r)
 // Stratified sample points: the R2 sequence (Roberts 2018: a Kronecker
 // sequence, fract(k * alpha), alpha from the plastic number), point k =
 // (frame * 23 + rank) * count + i, rank the pixel's place in its 4x4 tile.
-// The 16 pixels of a tile take 16 consecutive points in a frame, which
-// cover the square evenly; the ranks are placed so that every 2x2 and 3x3
-// window of pixels holds points far apart (a Bayer matrix puts neighbours
-// 8 apart, nearly the same u1); and each pixel's points over the frames
-// are a Kronecker sequence too. The stride is over 16, so no two pixels of
-// a tile share a point; 23 is among the strides 16..40 with the lowest
-// error for windows of 1 to 9 pixels over 1 to 8 frames (16 is among the
-// worst: 16 * alpha is nearly (0.08, 0.12)). scripts/stratified_ranks.py
-// made the table and scored the strides. Each tile shifts the sequence by
-// its own random offset (Cranley-Patterson rotation), so that tiles are
-// not copies of each other. Fixed point in 32 bits: exactly fract(k *
-// alpha) however large k grows.
+// With one ray (count = 1) the 16 pixels of a tile take 16 consecutive
+// points in a frame, which cover the square evenly; the ranks are placed
+// so that every 2x2 and 3x3 window of pixels holds points far apart (a
+// Bayer matrix puts neighbours 8 apart, nearly the same u1); and each
+// pixel's points over the frames are a Kronecker sequence too. With count
+// rays a pixel's rays in a frame are consecutive points and its step
+// between frames is 23 * count points: the tile still covers the square
+// each frame, but the stride was scored for one ray only. The stride is
+// over 16, so no two pixels of a tile share a point; 23 is among the
+// strides 16..40 with the lowest error for windows of 1 to 9 pixels over 1
+// to 8 frames (16 is among the worst: 16 * alpha is nearly (0.08, 0.12)).
+// scripts/stratified_ranks.py made the table and scored the strides. Each
+// tile shifts the sequence by its own random offset (Cranley-Patterson
+// rotation), so that tiles are not copies of each other. Fixed point in 32
+// bits: exactly fract(k * A / 2^32), A = alpha rounded to 32 bits, however
+// large k grows (no float precision lost).
 vec2 stratified_point(uvec2 pixel, uint frame_index, uint stream, uint i, uint count)
 {
     const uint RANK[16] = uint[16](13u, 3u, 2u, 12u, 14u, 0u, 1u, 15u, 8u, 6u, 7u, 9u, 11u, 5u, 4u, 10u);

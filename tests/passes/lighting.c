@@ -328,7 +328,10 @@ static int mean_over_frames(const char *graph, const char *const *sets, uint32_t
     }
     for (uint32_t i = 0; ok && i < 4 * mean->width * mean->height; i++)
         mean->pixels[i] /= (float)frames;
-    ok = ok && (!pos || vrg_graph_read(g, "gbuffer.position", pos) == 0);
+    if (ok && pos) {
+        ok = vrg_graph_read(g, "gbuffer.position", pos) == 0;
+        CHECK(ok, "%s: cannot read gbuffer.position", graph);
+    }
     vrg_graph_destroy(g);
     if (!ok) {
         free(mean->pixels);
