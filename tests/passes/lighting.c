@@ -340,9 +340,10 @@ static int mean_over_frames(const char *graph, const char *const *sets, uint32_t
     return ok;
 }
 
-/* RMS difference of channel 0 between a and ref over the 4x4 tiles (tile
- * means) or, with tile = 1, the pixels whose every pixel is on geometry and
- * whose ref lies inside (lo, hi); *count: how many. */
+/* RMS difference of channel 0 between the means of a and ref over blocks
+ * of tile x tile pixels (tile = 1: single pixels), over the blocks whose
+ * every pixel is on geometry and whose ref mean lies inside (lo, hi);
+ * *count: how many blocks. */
 static double tile_rms(const vrg_image_data *a, const vrg_image_data *ref, const vrg_image_data *pos, uint32_t tile, float lo, float hi,
                        int *count)
 {
