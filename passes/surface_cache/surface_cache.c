@@ -36,11 +36,15 @@
  *            samples;
  *   gather:  each pixel blends the 2x2 cells around its point (bilinear,
  *            over the cells that exist), or with bilinear = 0 reads its
- *            point's own cell. With coarse_levels = k, samples
- *            also go to cells 2^k times wider, and where the fine cells
- *            hold fewer than young_samples samples the gather blends
- *            toward the coarse cells' by 1 - n / young_samples, or toward
- *            the `fallback` input where it is connected.
+ *            point's own cell. With coarse_levels = k, samples also go to
+ *            the cells 2, 4, ... 2^k times wider (the same grid's cells of
+ *            the next levels: a farther pixel's own cells may be a nearer
+ *            one's coarse cells, which carries a surface's history across
+ *            its change of level). Cells holding fewer than young_samples
+ *            samples lean on the next level up, its young ones on the
+ *            level above, and the widest level's (or, with no coarse
+ *            levels, the fine cells') on the `fallback` input where it is
+ *            connected: each keeps n / young_samples of what is left.
  * A sample that finds no free slot in 32 probes is not cached (its pixel
  * shows the cells it reads that exist, else its own sample), and which
  * samples those are then depends on thread order; their count is read back
@@ -58,8 +62,8 @@ static const vrg_param_desc params[] = {
     {"max_frames", VRG_PARAM_INT, 32, 1, 4096, "frames of samples a cell's history is worth at most"},
     {"evict_frames", VRG_PARAM_INT, 8, 1, 1 << 20, "frames without samples after which a cell expires (its slot is freed within 4 more)"},
     {"cells", VRG_PARAM_INT, 1 << 21, 1 << 10, 1 << 26, "hash table slots (a power of two)"},
-    {"coarse_levels", VRG_PARAM_INT, 0, 0, 4, "also keep cells 2^coarse_levels times wider, for young cells to lean on (0: none)"},
-    {"young_samples", VRG_PARAM_FLOAT, 8, 0.001, 1e6, "samples from which a cell no longer leans on the fallback or the coarse cells"},
+    {"coarse_levels", VRG_PARAM_INT, 0, 0, 4, "also keep the cells 2, 4, ... 2^coarse_levels times wider, a chain for young cells to lean on (0: none)"},
+    {"young_samples", VRG_PARAM_FLOAT, 8, 0.001, 1e6, "samples from which a cell no longer leans on the next level up (or the fallback)"},
     {"bilinear", VRG_PARAM_BOOL, 1, 0, 1,
      "read the bilinear blend of the 2x2 cells around each point (0: the point's own cell, a quarter of the reads: for cells under a pixel wide)"},
     {"channels", VRG_PARAM_INT, 4, 1, 4, "the signal's channels that are cached (the first ones; the rest pass through)"},
@@ -72,7 +76,7 @@ static const vrg_slot_desc slots[] = {
     {.name = "normal", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "G-buffer normal"},
     {.name = "frame", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_UNIFORM, .help = "the scene's per-frame uniforms (camera)"},
     {.name = "fallback", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .flags = VRG_SLOT_OPTIONAL,
-     .help = "what young cells lean on instead of coarse cells (e.g. a spatial filter of the signal)"},
+     .help = "what the widest level's young cells lean on (e.g. a spatial filter of the signal)"},
     {.name = "color", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
      .help = "the cached signal; sky pixels, and pixels with no cell around them: the signal itself"},
     {.name = "table", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_STORAGE_READ_WRITE, .flags = VRG_SLOT_PERSISTENT,

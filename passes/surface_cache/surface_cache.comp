@@ -213,8 +213,8 @@ void shade(ivec2 p)
     uvec4 q = uvec4(clamp(texelFetch(in_signal, p, 0), 0.0, MAX_SAMPLE) * FIXED + 0.5);
     int level = level_of(x.xyz);
     add_sample(cell_of(x.xyz, n, level), q);
-    if (params.coarse_levels > 0 && params.use_fallback == 0) // with a fallback they are never read
-        add_sample(cell_of(x.xyz, n, level + params.coarse_levels), q);
+    for (int k = 1; k <= params.coarse_levels; k++)
+        add_sample(cell_of(x.xyz, n, level + k), q);
 }
 #endif
 
@@ -297,18 +297,32 @@ void shade(ivec2 p)
     int level = level_of(x.xyz);
     float n_fine, w_fine;
     vec4 mean = gather(cell_of(x.xyz, n, level), n_fine, w_fine);
-    // young cells (fewer than young_samples samples) lean on the fallback,
-    // or on the coarse cells around them, which gather 4^coarse_levels
-    // times the samples
-    if (params.use_fallback != 0 && n_fine < params.young_samples) {
-        vec4 fallback = texelFetch(in_fallback, p, 0);
-        mean = w_fine > 0.0 ? mix(fallback, mean, n_fine / params.young_samples) : fallback;
-        w_fine = 1.0;
-    } else if (params.coarse_levels > 0 && n_fine < params.young_samples) {
-        float n_coarse, w_coarse;
-        vec4 coarse = gather(cell_of(x.xyz, n, level + params.coarse_levels), n_coarse, w_coarse);
-        if (w_coarse > 0.0) {
-            mean = w_fine > 0.0 ? mix(coarse, mean, n_fine / params.young_samples) : coarse;
+    // A young cell (fewer than young_samples samples) leans on the cells
+    // twice as wide, which gather 4 times the samples; young ones of those
+    // on the next level up, and so on for coarse_levels levels; the last
+    // level's young cells (or young fine cells without coarse levels) on
+    // the fallback where it is connected. Each level keeps n / young_samples
+    // of what is left: a chain of mixes from the top, computed from the
+    // fine cells up so that it stops at the first level that is not young.
+    if (n_fine < params.young_samples && (params.coarse_levels > 0 || params.use_fallback != 0)) {
+        float keep = w_fine > 0.0 ? n_fine / params.young_samples : 0.0;
+        vec4 sum = keep * mean, top = vec4(0.0);
+        float rest = 1.0 - keep;
+        bool found = false;
+        for (int k = 1; k <= params.coarse_levels && rest > 0.0; k++) {
+            float n_k, w_k;
+            vec4 m = gather(cell_of(x.xyz, n, level + k), n_k, w_k);
+            if (w_k == 0.0)
+                continue;
+            float a = min(n_k / params.young_samples, 1.0);
+            sum += rest * a * m;
+            rest *= 1.0 - a;
+            top = m;
+            found = true;
+        }
+        // what is left: the fallback's, else the coarsest cells found
+        if (params.use_fallback != 0 || found) {
+            mean = sum + rest * (params.use_fallback != 0 ? texelFetch(in_fallback, p, 0) : top);
             w_fine = 1.0;
         }
     }

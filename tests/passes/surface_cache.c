@@ -265,21 +265,62 @@ static double green_blur(const char *const *sets, uint32_t nsets, vrg_image_data
     return diff;
 }
 
+/* The cache pass's image after 3 frames with sets, seen from straight
+ * above the floor's middle: every floor point at one depth, so at one
+ * level, and no pixel's coarse cells are another pixel's fine ones.
+ * Returns the mean |cached - signal| of green (-1 on failure). */
+static double cache_from_above(const char *const *sets, uint32_t nsets, vrg_image_data *cache)
+{
+    static const char *const above_reads[] = {"cache.color", "light"};
+    vrg_graph *g = load_with("surface_cache.ini", sets, nsets, above_reads, 2);
+    if (!g)
+        return -1;
+    vrg_camera above = *vrg_graph_camera(g);
+    above.position[0] = 16, above.position[1] = 14, above.position[2] = 16;
+    above.pitch = -90;
+    int rc = vrg_graph_set_camera(g, &above);
+    CHECK(rc == 0, "the camera above the floor was refused");
+    for (int i = 0; i < 3 && rc == 0; i++)
+        CHECK((rc = vrg_graph_frame(g)) == 0, "frame failed");
+    vrg_image_data light = {0};
+    if (rc == 0)
+        CHECK((rc = vrg_graph_read(g, "cache.color", cache)) == 0, "readback of cache.color failed");
+    if (rc == 0)
+        CHECK((rc = vrg_graph_read(g, "light", &light)) == 0, "readback of light failed");
+    double blur = -1;
+    if (rc == 0) {
+        blur = 0;
+        for (uint32_t y = 0; y < cache->height; y++)
+            for (uint32_t x = 0; x < cache->width; x++)
+                blur += fabs(px(cache, x, y, 1) - px(&light, x, y, 1));
+        blur /= (double)cache->width * cache->height;
+    }
+    free(light.pixels);
+    vrg_graph_destroy(g);
+    return blur;
+}
+
 /* Coarse cells: a cell younger than young_samples leans on the cells
- * 2^coarse_levels times wider, by 1 - n / young_samples. Always young
- * (young_samples 1e6) the image is the coarse cells' (green, not linear on
- * the floor, is blurred more than by the fine cells alone); never young
- * (0.001) it is the fine cells' image, to a half float's rounding (a few
- * pixels at the floor's far edge differ by one unit in the last place).
- * With the fallback input connected, young cells lean on it instead. */
+ * twice as wide, and so on up to 2^coarse_levels times wider (the chain:
+ * test_cache_chain). Always young (young_samples 1e6) the image is the
+ * widest cells' (green, not linear on the floor, is blurred more than by
+ * the fine cells alone). Never young (0.001) it is the fine cells' image, to
+ * a half float's rounding, seen from above: where the floor's depth
+ * changes, a pixel's fine cells are also nearer pixels' coarse cells, by
+ * design (they carry a surface's history across its change of level), and
+ * hold their samples too. With the fallback input connected and no coarse
+ * levels, young cells lean on it instead. */
 static void test_cache_coarse(void)
 {
     vrg_image_data fine_img = {0}, never_img = {0};
     static const char *always[] = {"cache.coarse_levels=2", "cache.young_samples=1000000"};
     static const char *never[] = {"cache.coarse_levels=2", "cache.young_samples=0.001"};
-    double fine = green_blur(NULL, 0, &fine_img), coarse = green_blur(always, 2, NULL), young_never = green_blur(never, 2, &never_img);
-    printf("green blur: fine cells %.5f, coarse %.5f, never young %.5f\n", fine, coarse, young_never);
+    double fine = green_blur(NULL, 0, NULL), coarse = green_blur(always, 2, NULL);
+    printf("green blur: fine cells %.5f, coarse %.5f\n", fine, coarse);
     CHECK(fine > 0 && coarse > 2 * fine, "coarse cells blur green by %g, the fine ones by %g: not the coarse cells'", coarse, fine);
+    double above_fine = cache_from_above(NULL, 0, &fine_img), above_never = cache_from_above(never, 2, &never_img);
+    printf("green blur from above: fine cells %.5f, never young %.5f\n", above_fine, above_never);
+    CHECK(above_fine > 1e-3, "from above the fine cells averaged nothing (green blur %g): is the floor in view?", above_fine);
     /* a connected fallback replaces the coarse cells: `fell` is always young */
     vrg_graph *g = load_with("surface_cache.ini", NULL, 0, reads, COUNT);
     vrg_image_data img[COUNT];
@@ -303,6 +344,55 @@ static void test_cache_coarse(void)
     }
     free(fine_img.pixels);
     free(never_img.pixels);
+}
+
+/* The chain: with coarse_levels = k a young cell leans on the cells twice
+ * as wide, young ones of those on the next level up, up to 2^k times wider,
+ * whose young cells lean on the fallback. The chain pass caches the counter
+ * (the same mean at every level) with the pattern as its fallback; cells
+ * at least a pixel wide, young below 16 samples, 3 frames: a fine cell
+ * (under 2 pixels wide: at most 12 samples) is young, a cell 8 times wider
+ * is not, so on the floor the image is the counter's mean. Had the fallback
+ * stood in for the coarse levels, as it did before the chain, the pattern
+ * would show. Young everywhere (young_samples 1e6) the image is the
+ * fallback's. */
+static void test_cache_chain(void)
+{
+    static const char *const chain_reads[] = {"chain.color", "light", "gbuffer.position"};
+    static const char *const always_young[] = {"chain.young_samples=1000000"};
+    for (int young = 0; young <= 1; young++) {
+        vrg_graph *g = load_with("surface_cache.ini", always_young, young ? 1 : 0, chain_reads, 3);
+        if (!g)
+            return;
+        vrg_image_data img[3] = {{0}};
+        int ok = 1;
+        for (int f = 0; f < 3 && ok; f++)
+            CHECK(ok = vrg_graph_frame(g) == 0, "frame failed");
+        for (int i = 0; i < 3 && ok; i++)
+            CHECK(ok = vrg_graph_read(g, chain_reads[i], &img[i]) == 0, "readback of %s failed", chain_reads[i]);
+        if (ok) {
+            double mean = expected_mean(3, 32, 0.0625), worst = 0, pattern_off = 0;
+            int n = 0;
+            for (uint32_t y = 4; y + 4 < img[2].height; y++)
+                for (uint32_t x = 4; x + 4 < img[2].width; x++) {
+                    if (!floor_around(&img[2], x, y, 4))
+                        continue;
+                    double want = young ? px(&img[1], x, y, 0) : mean;
+                    worst = fmax(worst, fabs(px(&img[0], x, y, 0) - want));
+                    pattern_off = fmax(pattern_off, fabs(px(&img[1], x, y, 0) - mean));
+                    n++;
+                }
+            printf("chain, %s: %d floor pixels, up to %.5f from the %s (the pattern is up to %.3f from the mean)\n",
+                   young ? "always young" : "young fine cells", n, worst, young ? "fallback" : "counter's mean", pattern_off);
+            CHECK(n > 500, "only %d interior floor pixels", n);
+            CHECK(pattern_off > 0.1, "the pattern is within %g of the counter's mean: the test tells nothing", pattern_off);
+            CHECK(worst < 2e-3, "%s: up to %g away from the %s", young ? "always young" : "fine cells young, coarse ones not", worst,
+                  young ? "fallback" : "coarse cells' mean");
+        }
+        for (int i = 0; i < 3; i++)
+            free(img[i].pixels);
+        vrg_graph_destroy(g);
+    }
 }
 
 /* Cells a quarter of a pixel wide hold one pixel's sample each, so the
@@ -467,7 +557,7 @@ int main(int argc, char **argv)
 {
     static const test_case cases[] = {
         {"cache_history", test_cache_history, 1, NULL}, {"cache_evict", test_cache_evict, 1, NULL}, {"cache_gather", test_cache_gather, 1, NULL},
-        {"cache_own_cells", test_cache_own_cells, 1, NULL}, {"cache_coarse", test_cache_coarse, 1, NULL}, {"cache_reset", test_cache_reset, 1, NULL},
+        {"cache_own_cells", test_cache_own_cells, 1, NULL}, {"cache_coarse", test_cache_coarse, 1, NULL}, {"cache_chain", test_cache_chain, 1, NULL}, {"cache_reset", test_cache_reset, 1, NULL},
         {"cache_nearest", test_cache_nearest, 1, NULL}, {"cache_freed_runs", test_cache_freed_runs, 1, NULL}, {"cache_full", test_cache_full, 1, NULL}, {"cache_too_large", NULL, 1, test_cache_too_large},
     };
     return run_case(argc, argv, cases, sizeof cases / sizeof cases[0]);
