@@ -320,9 +320,12 @@ void shade(ivec2 p)
             top = m;
             found = true;
         }
-        // what is left: the fallback's, else the coarsest cells found
+        // what is left: the fallback's, else the coarsest cells found (the
+        // fallback is not read when nothing is left: 0 * inf is NaN)
         if (params.use_fallback != 0 || found) {
-            mean = sum + rest * (params.use_fallback != 0 ? texelFetch(in_fallback, p, 0) : top);
+            if (rest > 0.0)
+                sum += rest * (params.use_fallback != 0 ? texelFetch(in_fallback, p, 0) : top);
+            mean = sum;
             w_fine = 1.0;
         }
     }

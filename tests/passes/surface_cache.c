@@ -265,37 +265,58 @@ static double green_blur(const char *const *sets, uint32_t nsets, vrg_image_data
     return diff;
 }
 
-/* The cache pass's image after 3 frames with sets, seen from straight
- * above the floor's middle: every floor point at one depth, so at one
- * level, and no pixel's coarse cells are another pixel's fine ones.
- * Returns the mean |cached - signal| of green (-1 on failure). */
-static double cache_from_above(const char *const *sets, uint32_t nsets, vrg_image_data *cache)
+/* Whether pixel (x, y) shows the floor's top face (y = 1) */
+static int on_top(const vrg_image_data *pos, uint32_t x, uint32_t y)
 {
-    static const char *const above_reads[] = {"cache.color", "light"};
-    vrg_graph *g = load_with("surface_cache.ini", sets, nsets, above_reads, 2);
+    return px(pos, x, y, 3) != 0 && fabsf(px(pos, x, y, 1) - 1.0f) < 1e-3f;
+}
+
+/* The cache pass's image after 3 frames with sets, seen from nearly
+ * straight above the floor's middle (pitch -89, the camera's limit), high
+ * enough that the whole floor is in view: every top-face point at about
+ * one depth (25.8 to 26.2), so at one level, and no pixel's coarse cells
+ * are another pixel's fine ones; the floor's 32 blocks are whole cells of
+ * 4, 8 and 16 blocks, so no cell is cut by the image's edges. *pos: the
+ * G-buffer position (may be NULL). Returns the mean |cached - signal| of
+ * green over the top face (-1 on failure). */
+static double cache_from_above(const char *const *sets, uint32_t nsets, vrg_image_data *cache, vrg_image_data *pos)
+{
+    static const char *const above_reads[] = {"cache.color", "light", "gbuffer.position"};
+    vrg_graph *g = load_with("surface_cache.ini", sets, nsets, above_reads, 3);
     if (!g)
         return -1;
     vrg_camera above = *vrg_graph_camera(g);
-    above.position[0] = 16, above.position[1] = 14, above.position[2] = 16;
-    above.pitch = -90;
+    above.position[0] = 16, above.position[1] = 27, above.position[2] = 16;
+    above.pitch = -89;
     int rc = vrg_graph_set_camera(g, &above);
     CHECK(rc == 0, "the camera above the floor was refused");
     for (int i = 0; i < 3 && rc == 0; i++)
         CHECK((rc = vrg_graph_frame(g)) == 0, "frame failed");
-    vrg_image_data light = {0};
+    vrg_image_data light = {0}, position = {0};
     if (rc == 0)
         CHECK((rc = vrg_graph_read(g, "cache.color", cache)) == 0, "readback of cache.color failed");
     if (rc == 0)
         CHECK((rc = vrg_graph_read(g, "light", &light)) == 0, "readback of light failed");
+    if (rc == 0)
+        CHECK((rc = vrg_graph_read(g, "gbuffer.position", &position)) == 0, "readback of gbuffer.position failed");
     double blur = -1;
     if (rc == 0) {
         blur = 0;
+        int n = 0;
         for (uint32_t y = 0; y < cache->height; y++)
             for (uint32_t x = 0; x < cache->width; x++)
-                blur += fabs(px(cache, x, y, 1) - px(&light, x, y, 1));
-        blur /= (double)cache->width * cache->height;
+                if (on_top(&position, x, y)) {
+                    blur += fabs(px(cache, x, y, 1) - px(&light, x, y, 1));
+                    n++;
+                }
+        CHECK(n > 500, "only %d pixels of the floor's top in view from above", n);
+        blur /= n > 0 ? n : 1;
     }
     free(light.pixels);
+    if (pos)
+        *pos = position;
+    else
+        free(position.pixels);
     vrg_graph_destroy(g);
     return blur;
 }
@@ -305,7 +326,7 @@ static double cache_from_above(const char *const *sets, uint32_t nsets, vrg_imag
  * test_cache_chain). Always young (young_samples 1e6) the image is the
  * widest cells' (green, not linear on the floor, is blurred more than by
  * the fine cells alone). Never young (0.001) it is the fine cells' image, to
- * a half float's rounding, seen from above: where the floor's depth
+ * a half float's rounding, seen from nearly above: where the floor's depth
  * changes, a pixel's fine cells are also nearer pixels' coarse cells, by
  * design (they carry a surface's history across its change of level), and
  * hold their samples too. With the fallback input connected and no coarse
@@ -318,10 +339,10 @@ static void test_cache_coarse(void)
     double fine = green_blur(NULL, 0, NULL), coarse = green_blur(always, 2, NULL);
     printf("green blur: fine cells %.5f, coarse %.5f\n", fine, coarse);
     CHECK(fine > 0 && coarse > 2 * fine, "coarse cells blur green by %g, the fine ones by %g: not the coarse cells'", coarse, fine);
-    double above_fine = cache_from_above(NULL, 0, &fine_img), above_never = cache_from_above(never, 2, &never_img);
+    double above_fine = cache_from_above(NULL, 0, &fine_img, NULL), above_never = cache_from_above(never, 2, &never_img, NULL);
     printf("green blur from above: fine cells %.5f, never young %.5f\n", above_fine, above_never);
     CHECK(above_fine > 1e-3, "from above the fine cells averaged nothing (green blur %g): is the floor in view?", above_fine);
-    /* a connected fallback replaces the coarse cells: `fell` is always young */
+    /* with a fallback and no coarse levels young cells lean on the fallback: `fell` is always young */
     vrg_graph *g = load_with("surface_cache.ini", NULL, 0, reads, COUNT);
     vrg_image_data img[COUNT];
     if (g && vrg_graph_frame(g) == 0 && vrg_graph_frame(g) == 0 && read_all(g, img) == 0) {
@@ -393,6 +414,53 @@ static void test_cache_chain(void)
             free(img[i].pixels);
         vrg_graph_destroy(g);
     }
+}
+
+/* The largest difference of green between two images over the floor's top */
+static double worst_on_top(const vrg_image_data *a, const vrg_image_data *b, const vrg_image_data *pos)
+{
+    double worst = 0;
+    for (uint32_t y = 0; y < a->height; y++)
+        for (uint32_t x = 0; x < a->width; x++)
+            if (on_top(pos, x, y))
+                worst = fmax(worst, fabs(px(a, x, y, 1) - px(b, x, y, 1)));
+    return worst;
+}
+
+/* The chain's middle level, from above the whole floor (one level, whole
+ * cells): after 3 frames a cell of the cache pass holds about 84 samples,
+ * a cell twice as wide about 330, 4 times as wide about 1300 (28, 111 and
+ * 445 pixels a frame). With young_samples 200 the fine cells are young
+ * (one coarse level changes the image) and the cells twice as wide are
+ * not, so the chain stops there: two coarse levels give the image of one,
+ * exactly. With 800 the cells twice as wide are young too and lean on the
+ * level above: two levels differ from one. A chain that read only its
+ * widest level fails the first case; one that stopped at the first coarse
+ * level fails the second. */
+static void test_cache_chain_levels(void)
+{
+    static const char *sets[5][2] = {{"cache.coarse_levels=0", "cache.young_samples=200"},
+                                     {"cache.coarse_levels=1", "cache.young_samples=200"},
+                                     {"cache.coarse_levels=2", "cache.young_samples=200"},
+                                     {"cache.coarse_levels=1", "cache.young_samples=800"},
+                                     {"cache.coarse_levels=2", "cache.young_samples=800"}};
+    vrg_image_data img[5] = {{0}}, pos = {0};
+    int ok = 1;
+    for (int i = 0; i < 5 && ok; i++)
+        ok = cache_from_above(sets[i], 2, &img[i], i == 0 ? &pos : NULL) > 0;
+    if (ok) {
+        double young_fine = worst_on_top(&img[0], &img[1], &pos), same = worst_on_top(&img[1], &img[2], &pos),
+               differ = worst_on_top(&img[3], &img[4], &pos);
+        printf("chain levels, young below 200: no or one coarse level up to %.6f apart, one or two %.6f; below 800: one or two %.6f\n",
+               young_fine, same, differ);
+        CHECK(young_fine > 1e-3, "young below 200, one coarse level gives the fine cells' image (up to %g apart): they were not young",
+              young_fine);
+        CHECK(same == 0, "young below 200 (the first coarse level not young) two coarse levels differ from one by up to %g", same);
+        CHECK(differ > 1e-3, "young below 800 (the first coarse level young) two coarse levels give one's image (up to %g apart)", differ);
+    }
+    for (int i = 0; i < 5; i++)
+        free(img[i].pixels);
+    free(pos.pixels);
 }
 
 /* Cells a quarter of a pixel wide hold one pixel's sample each, so the
@@ -557,7 +625,7 @@ int main(int argc, char **argv)
 {
     static const test_case cases[] = {
         {"cache_history", test_cache_history, 1, NULL}, {"cache_evict", test_cache_evict, 1, NULL}, {"cache_gather", test_cache_gather, 1, NULL},
-        {"cache_own_cells", test_cache_own_cells, 1, NULL}, {"cache_coarse", test_cache_coarse, 1, NULL}, {"cache_chain", test_cache_chain, 1, NULL}, {"cache_reset", test_cache_reset, 1, NULL},
+        {"cache_own_cells", test_cache_own_cells, 1, NULL}, {"cache_coarse", test_cache_coarse, 1, NULL}, {"cache_chain", test_cache_chain, 1, NULL}, {"cache_chain_levels", test_cache_chain_levels, 1, NULL}, {"cache_reset", test_cache_reset, 1, NULL},
         {"cache_nearest", test_cache_nearest, 1, NULL}, {"cache_freed_runs", test_cache_freed_runs, 1, NULL}, {"cache_full", test_cache_full, 1, NULL}, {"cache_too_large", NULL, 1, test_cache_too_large},
     };
     return run_case(argc, argv, cases, sizeof cases / sizeof cases[0]);
