@@ -67,6 +67,8 @@ static const vrg_param_desc params[] = {
     {"bilinear", VRG_PARAM_BOOL, 1, 0, 1,
      "read the bilinear blend of the 2x2 cells around each point (0: the point's own cell, a quarter of the reads: for cells under a pixel wide)"},
     {"channels", VRG_PARAM_INT, 4, 1, 4, "the signal's channels that are cached (the first ones; the rest pass through)"},
+    {"slot_invocations", VRG_PARAM_INT, -1, -1, 1,
+     "evict and resolve: one invocation per slot (1, for GPUs) or few long ones (0, for CPUs); -1: by device type. The same image either way"},
 };
 
 static const vrg_slot_desc slots[] = {
@@ -120,6 +122,7 @@ typedef struct surface_cache_state {
     vrg_ring *readback;   /* each frame slot's copy of the table's header, for `uncached` */
     uint64_t slots_read;  /* frame slots whose ring slice the GPU has written */
     int warned;
+    int cpu;              /* a CPU device: slot_invocations = -1 means 0 */
 } surface_cache_state;
 
 static int create(vrg_pass *pass)
@@ -128,6 +131,9 @@ static int create(vrg_pass *pass)
     if (!s)
         return vrg_pass_error(pass, "out of memory");
     vrg_pass_set_user(pass, s);
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(vrg_pass_device(pass)->physical_device, &props);
+    s->cpu = props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     s->readback = vrg_pass_host_ring(pass, "uncached readback", 4 * HEADER_WORDS, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     return s->readback ? 0 : -1;
 }
@@ -142,21 +148,32 @@ typedef struct surface_cache_push {
     int32_t bilinear;
 } surface_cache_push;
 
-enum { EVICT, INSERT, RESOLVE, GATHER };
-#define GROUP 64u          /* RESOLVE and EVICT's local size */
-#define SLOTS_PER_INVOCATION 16u /* EVICT's; surface_cache.comp's SLOTS_PER_INVOCATION */
-#define EVICT_SHARES 4u    /* each frame looks at one share of the table for cells to free */
-#define RESOLVE_GROUPS 256u /* invocations striding through the listed cells */
+enum { EVICT, INSERT, RESOLVE, GATHER, EVICT_PER_SLOT }; /* the last: EVICT on a GPU */
+/* How evict and resolve split their slots among invocations. A CPU device
+ * (lavapipe) runs every invocation with its own set-up, so few long ones
+ * win: 16 slots each for evict, 256 groups striding through the listed
+ * cells for resolve. On a GPU each slot is a memory latency, and an
+ * invocation walking 16 of them in turn makes the whole dispatch wait for
+ * 16 latencies: one slot per invocation, and enough resolve groups for
+ * every cell the frame can list (each pixel lists at most one per level).
+ * The images are the same either way (slot_invocations picks one; test
+ * cache_slot_invocations): docs/benchmarks.md has the times. */
+#define GROUP 64u                    /* RESOLVE and EVICT's local size */
+#define CPU_SLOTS_PER_INVOCATION 16u /* EVICT's on a CPU: surface_cache.comp's default */
+#define EVICT_SHARES 4u              /* each frame looks at one share of the table for cells to free */
+#define CPU_RESOLVE_GROUPS 256u      /* invocations striding through the listed cells, on a CPU */
 #define TABLE_BINDINGS {"signal"}, {"position"}, {"normal"}, {"frame"}, {"table"}
 static const vrg_dispatch_desc dispatches[] = {
     [EVICT] = {.shader = "surface_cache.comp", .defines = "EVICT", .push_size = sizeof(surface_cache_push), .groups_x = 1, .groups_y = 1,
                .groups_z = 1, .bindings = {TABLE_BINDINGS}},
     [INSERT] = {.shader = "surface_cache.comp", .defines = "INSERT", .push_size = sizeof(surface_cache_push), .pixel_loop = 1,
                 .domain = "color", .bindings = {TABLE_BINDINGS}},
-    [RESOLVE] = {.shader = "surface_cache.comp", .defines = "RESOLVE", .push_size = sizeof(surface_cache_push), .groups_x = RESOLVE_GROUPS,
+    [RESOLVE] = {.shader = "surface_cache.comp", .defines = "RESOLVE", .push_size = sizeof(surface_cache_push), .groups_x = CPU_RESOLVE_GROUPS,
                  .groups_y = 1, .groups_z = 1, .bindings = {TABLE_BINDINGS}},
     [GATHER] = {.shader = "surface_cache.comp", .defines = "GATHER", .push_size = sizeof(surface_cache_push), .pixel_loop = 1,
                 .domain = "color", .bindings = {{"signal"}, {"position"}, {"normal"}, {"frame"}, {"table", VRG_ACCESS_TEXEL_READ}, {"color"}, {"fallback"}}},
+    [EVICT_PER_SLOT] = {.shader = "surface_cache.comp", .defines = "EVICT SLOTS_PER_INVOCATION=1u", .push_size = sizeof(surface_cache_push),
+                        .groups_x = 1, .groups_y = 1, .groups_z = 1, .bindings = {TABLE_BINDINGS}},
 };
 
 /* the count the GPU wrote into this ring slice when it last ran this frame
@@ -208,11 +225,21 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
                              (float)vrg_param(pass, "young_samples"),
                              vrg_res_connected(vrg_pass_res(pass, "fallback")),
                              vrg_param_int(pass, "bilinear")};
+    int per_slot = vrg_param_int(pass, "slot_invocations");
+    if (per_slot < 0)
+        per_slot = !s->cpu;
+    uint32_t evict_run = per_slot ? 1u : CPU_SLOTS_PER_INVOCATION;
+    VkExtent2D size = vrg_res_extent(pass, vrg_pass_res(pass, "color"));
+    uint64_t listed_most = (uint64_t)size.width * size.height * (1u + (uint32_t)pc.coarse_levels);
+    if (listed_most > cells)
+        listed_most = cells;
     for (int i = EVICT; i <= GATHER; i++) {
-        vrg_dispatch_desc d = dispatches[i];
+        vrg_dispatch_desc d = dispatches[i == EVICT && per_slot ? EVICT_PER_SLOT : i];
         d.push = &pc;
         if (i == EVICT)
-            d.groups_x = (share + GROUP * SLOTS_PER_INVOCATION - 1) / (GROUP * SLOTS_PER_INVOCATION);
+            d.groups_x = (share + GROUP * evict_run - 1) / (GROUP * evict_run);
+        if (i == RESOLVE && per_slot)
+            d.groups_x = (uint32_t)((listed_most + GROUP - 1) / GROUP);
         if (vrg_dispatch(pass, cmd, &d) != 0)
             return;
     }

@@ -44,7 +44,9 @@ const uint UNCACHED = 0u, LISTED = 1u, HEADER = 16u;
 // check words: a free slot, a freed one (lookups go on past it), else a cell's check value
 const uint EMPTY = 0u, FREED = 1u;
 const uint PROBES = 32u;
-const uint SLOTS_PER_INVOCATION = 16u; // EVICT's: fewer, longer invocations cost less on a CPU
+#ifndef SLOTS_PER_INVOCATION // EVICT's: 16 on a CPU, 1 on a GPU (surface_cache.c says why)
+#define SLOTS_PER_INVOCATION 16u
+#endif
 const float FIXED = 1024.0;      // fixed-point scale of the sums
 const float MAX_SAMPLE = 1024.0; // a sample's largest value: larger ones are cached as this
 

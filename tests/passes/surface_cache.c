@@ -143,13 +143,16 @@ static int render_with(const char *const *sets, uint32_t nsets, int frames, vrg_
 
 /* The ticks pass's image after 4 frames looking at the floor and 12
  * turned away from part of it (whose cells expire after 2 frames and are
- * freed), with a table of `cells` slots; *freed_before_live: slots freed
- * with a live cell's slot right after them, at the end. */
-static int turn_away(const char *cells, vrg_image_data *ticks, int *freed_before_live)
+ * freed), with a table of `cells` slots (and `extra` set, if given);
+ * *freed_before_live: slots freed with a live cell's slot right after them,
+ * at the end; *stale (if given): slots still holding a cell that had no
+ * samples in the last 7 frames (expired, and its share of the table
+ * looked at since: every evict pass should have freed it). */
+static int turn_away(const char *cells, const char *extra, vrg_image_data *ticks, int *freed_before_live, int *stale)
 {
     static const char *const with_table[] = {"ticks.color", "ticks.table"};
-    const char *sets[] = {"ticks.evict_frames=2", "ticks.max_frames=1000", cells};
-    vrg_graph *g = load_with("surface_cache.ini", sets, 3, with_table, 2);
+    const char *sets[] = {"ticks.evict_frames=2", "ticks.max_frames=1000", cells, extra};
+    vrg_graph *g = load_with("surface_cache.ini", sets, extra ? 4 : 3, with_table, 2);
     if (!g)
         return -1;
     vrg_camera view = *vrg_graph_camera(g);
@@ -175,6 +178,9 @@ static int turn_away(const char *cells, vrg_image_data *ticks, int *freed_before
         *freed_before_live = 0;
         for (uint64_t i = 0; i + 1 < slots; i++)
             *freed_before_live += words[16 + 8 * i] == 1 && words[16 + 8 * (i + 1)] >= 2;
+        /* word 1 of an entry: the last frame with samples (the last frame is 15) */
+        for (uint64_t i = 0; stale && i < slots; i++)
+            *stale += words[16 + 8 * i] >= 2 && words[16 + 8 * i + 1] + 7 < 15;
     }
     free(words);
     vrg_graph_destroy(g);
@@ -190,7 +196,7 @@ static void test_cache_freed_runs(void)
 {
     vrg_image_data small = {0}, large = {0};
     int freed_small = 0, freed_large = 0;
-    if (turn_away("ticks.cells=1024", &small, &freed_small) == 0 && turn_away("ticks.cells=65536", &large, &freed_large) == 0) {
+    if (turn_away("ticks.cells=1024", NULL, &small, &freed_small, NULL) == 0 && turn_away("ticks.cells=65536", NULL, &large, &freed_large, NULL) == 0) {
         size_t n = (size_t)small.width * small.height * 4, differ = 0;
         for (size_t i = 0; i < n; i++)
             differ += small.pixels[i] != large.pixels[i];
@@ -201,6 +207,52 @@ static void test_cache_freed_runs(void)
     }
     free(small.pixels);
     free(large.pixels);
+}
+
+/* Evict and resolve split among invocations as on a GPU (one slot each)
+ * or as on a CPU (16 slots each; 256 groups striding through the listed
+ * cells) give the same image: with a small table turned half away from
+ * (so cells expire and freed slots sit inside probe runs), and on the
+ * chain of three coarse levels, whose frames list the most cells. */
+static void test_cache_slot_invocations(void)
+{
+    vrg_image_data ticks[2] = {{0}}, chain[2] = {{0}};
+    int freed[2] = {0, 0}, stale[2] = {0, 0}, ok = 1;
+    static const char *const chain_reads[] = {"chain.color"};
+    for (int per_slot = 0; per_slot <= 1 && ok; per_slot++) {
+        char set[64];
+        snprintf(set, sizeof set, "ticks.slot_invocations=%d", per_slot);
+        CHECK(ok = turn_away("ticks.cells=1024", set, &ticks[per_slot], &freed[per_slot], &stale[per_slot]) == 0, "turning away failed");
+        snprintf(set, sizeof set, "chain.slot_invocations=%d", per_slot);
+        const char *sets[] = {set};
+        vrg_graph *g = ok ? load_with("surface_cache.ini", sets, 1, chain_reads, 1) : NULL;
+        ok = g != NULL;
+        for (int f = 0; f < 5 && ok; f++)
+            CHECK(ok = vrg_graph_frame(g) == 0, "frame failed");
+        if (ok)
+            CHECK(ok = vrg_graph_read(g, "chain.color", &chain[per_slot]) == 0, "readback of chain.color failed");
+        if (g)
+            vrg_graph_destroy(g);
+    }
+    if (ok) {
+        size_t differ = 0, n = (size_t)ticks[0].width * ticks[0].height * 4, m = (size_t)chain[0].width * chain[0].height * 4;
+        for (size_t i = 0; i < n; i++)
+            differ += ticks[0].pixels[i] != ticks[1].pixels[i];
+        size_t chain_differ = 0;
+        for (size_t i = 0; i < m; i++)
+            chain_differ += chain[0].pixels[i] != chain[1].pixels[i];
+        printf("freed slots right before live ones: %d (CPU split), %d (GPU split); expired cells not freed: %d, %d; values that differ: "
+               "%zu turned away, %zu on the chain\n",
+               freed[0], freed[1], stale[0], stale[1], differ, chain_differ);
+        CHECK(freed[0] >= 10 && freed[1] >= 10, "only %d / %d freed slots before live ones: eviction is not exercised", freed[0], freed[1]);
+        CHECK(stale[0] == 0 && stale[1] == 0, "%d / %d expired cells not freed: the evict pass does not reach every slot", stale[0], stale[1]);
+        CHECK(differ == 0, "%zu values differ after turning away: one split evicts or resolves what the other does not", differ);
+        CHECK(chain_differ == 0, "%zu values differ on the chain: one split resolves cells the other does not", chain_differ);
+    }
+    for (int i = 0; i < 2; i++) {
+        free(ticks[i].pixels);
+        free(chain[i].pixels);
+    }
 }
 
 /* The gather: red is linear in world x along each screen row, so the
@@ -622,7 +674,7 @@ int main(int argc, char **argv)
     static const test_case cases[] = {
         {"cache_history", test_cache_history, 1, NULL}, {"cache_evict", test_cache_evict, 1, NULL}, {"cache_gather", test_cache_gather, 1, NULL},
         {"cache_own_cells", test_cache_own_cells, 1, NULL}, {"cache_coarse", test_cache_coarse, 1, NULL}, {"cache_chain", test_cache_chain, 1, NULL}, {"cache_chain_levels", test_cache_chain_levels, 1, NULL}, {"cache_reset", test_cache_reset, 1, NULL},
-        {"cache_nearest", test_cache_nearest, 1, NULL}, {"cache_freed_runs", test_cache_freed_runs, 1, NULL}, {"cache_full", test_cache_full, 1, NULL}, {"cache_too_large", NULL, 1, test_cache_too_large},
+        {"cache_nearest", test_cache_nearest, 1, NULL}, {"cache_freed_runs", test_cache_freed_runs, 1, NULL}, {"cache_full", test_cache_full, 1, NULL}, {"cache_slot_invocations", test_cache_slot_invocations, 1, NULL}, {"cache_too_large", NULL, 1, test_cache_too_large},
     };
     return run_case(argc, argv, cases, sizeof cases / sizeof cases[0]);
 }

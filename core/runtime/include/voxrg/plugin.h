@@ -465,7 +465,7 @@ typedef struct vrg_dispatch_desc {
     uint32_t groups_x, groups_y, groups_z; /* explicit group counts, if set */
     /* The shader shades VRG_PIXEL_ROWS rows per invocation (pixel.glsl's
      * vrg_pixel(k) for k < VRG_PIXEL_ROWS): the runtime divides the group
-     * count in y by it. VRG_PIXEL_ROWS is 8 on a CPU device, 1 on a GPU. */
+     * count in y by it. VRG_PIXEL_ROWS is 32 on a CPU device, 1 on a GPU. */
     int pixel_loop;
 } vrg_dispatch_desc;
 
