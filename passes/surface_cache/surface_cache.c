@@ -68,7 +68,8 @@ static const vrg_param_desc params[] = {
      "read the bilinear blend of the 2x2 cells around each point (0: the point's own cell, a quarter of the reads: for cells under a pixel wide)"},
     {"channels", VRG_PARAM_INT, 4, 1, 4, "the signal's channels that are cached (the first ones; the rest pass through)"},
     {"slot_invocations", VRG_PARAM_INT, -1, -1, 1,
-     "evict and resolve: one invocation per slot (1, for GPUs) or few long ones (0, for CPUs); -1: by device type. The same image either way"},
+     "evict and resolve: one invocation per slot (1, for GPUs) or few long ones (0, for CPUs); -1: by device type. The same image either way "
+     "(a change empties the table, as any parameter's)"},
 };
 
 static const vrg_slot_desc slots[] = {
@@ -123,6 +124,7 @@ typedef struct surface_cache_state {
     uint64_t slots_read;  /* frame slots whose ring slice the GPU has written */
     int warned;
     int cpu;              /* a CPU device: slot_invocations = -1 means 0 */
+    uint32_t max_groups;  /* maxComputeWorkGroupCount[0]: 65535 on many GPUs */
 } surface_cache_state;
 
 static int create(vrg_pass *pass)
@@ -134,6 +136,7 @@ static int create(vrg_pass *pass)
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(vrg_pass_device(pass)->physical_device, &props);
     s->cpu = props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    s->max_groups = props.limits.maxComputeWorkGroupCount[0];
     s->readback = vrg_pass_host_ring(pass, "uncached readback", 4 * HEADER_WORDS, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     return s->readback ? 0 : -1;
 }
@@ -228,18 +231,26 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     int per_slot = vrg_param_int(pass, "slot_invocations");
     if (per_slot < 0)
         per_slot = !s->cpu;
-    uint32_t evict_run = per_slot ? 1u : CPU_SLOTS_PER_INVOCATION;
+    /* within the device's group count: a share too large for one slot per
+     * invocation (2^24 cells on a device that allows 65535 groups) is
+     * evicted 16 slots per invocation; resolve strides, so fewer groups
+     * than listed cells only take longer */
+    int evict_per_slot = per_slot && (share + GROUP - 1) / GROUP <= s->max_groups;
+    uint32_t evict_run = evict_per_slot ? 1u : CPU_SLOTS_PER_INVOCATION;
     VkExtent2D size = vrg_res_extent(pass, vrg_pass_res(pass, "color"));
     uint64_t listed_most = (uint64_t)size.width * size.height * (1u + (uint32_t)pc.coarse_levels);
     if (listed_most > cells)
         listed_most = cells;
+    uint64_t resolve_groups = (listed_most + GROUP - 1) / GROUP;
+    if (resolve_groups > s->max_groups)
+        resolve_groups = s->max_groups;
     for (int i = EVICT; i <= GATHER; i++) {
-        vrg_dispatch_desc d = dispatches[i == EVICT && per_slot ? EVICT_PER_SLOT : i];
+        vrg_dispatch_desc d = dispatches[i == EVICT && evict_per_slot ? EVICT_PER_SLOT : i];
         d.push = &pc;
         if (i == EVICT)
             d.groups_x = (share + GROUP * evict_run - 1) / (GROUP * evict_run);
         if (i == RESOLVE && per_slot)
-            d.groups_x = (uint32_t)((listed_most + GROUP - 1) / GROUP);
+            d.groups_x = (uint32_t)resolve_groups;
         if (vrg_dispatch(pass, cmd, &d) != 0)
             return;
     }

@@ -134,7 +134,10 @@ uint find(uvec2 h)
 // Cells without samples for evict_frames frames are freed. A freed slot
 // right before an EMPTY one ends no run that reaches further, so it becomes
 // EMPTY too; an invocation walks its slots from the last, so that carries
-// backwards.
+// backwards over its slots. With one slot per invocation (GPUs) a run of
+// freed slots empties one slot per visit from its end instead: lookups
+// give the same answers either way (a FREED slot only lets them go on),
+// so only the probe runs are longer for a while.
 void main()
 {
     uint first = params.evict_first + gl_GlobalInvocationID.x * SLOTS_PER_INVOCATION;
