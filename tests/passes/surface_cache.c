@@ -179,10 +179,11 @@ static int turn_away(const char *cells, const char *extra, vrg_image_data *ticks
         for (uint64_t i = 0; i + 1 < slots; i++)
             *freed_before_live += words[16 + 8 * i] == 1 && words[16 + 8 * (i + 1)] >= 2;
         /* word 1 of an entry: the last frame with samples (the last frame is 15) */
-        if (stale)
+        if (stale) {
             *stale = 0;
-        for (uint64_t i = 0; stale && i < slots; i++)
-            *stale += words[16 + 8 * i] >= 2 && words[16 + 8 * i + 1] + 7 < 15;
+            for (uint64_t i = 0; i < slots; i++)
+                *stale += words[16 + 8 * i] >= 2 && words[16 + 8 * i + 1] + 7 < 15;
+        }
     }
     free(words);
     vrg_graph_destroy(g);
