@@ -83,6 +83,7 @@ static const vrg_slot_desc slots[] = {
     {.name = "color", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
      .help = "the cached signal; sky pixels, and pixels with no cell around them: the signal itself"},
     {.name = "table", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_STORAGE_READ_WRITE, .flags = VRG_SLOT_PERSISTENT,
+     .format = VK_FORMAT_R32G32B32A32_UINT,
      .help = "the hash table of cells (kept across frames)"},
 };
 
@@ -111,10 +112,10 @@ static int check(vrg_pass *pass)
         if (table_bytes(pass) > props.limits.maxStorageBufferRange)
             return vrg_pass_error(pass, "cells = %d needs a table of %llu bytes, more than this device binds as one storage buffer (%u): lower cells",
                                   cells, (unsigned long long)table_bytes(pass), props.limits.maxStorageBufferRange);
-        /* the gather reads it as a texel buffer of words */
-        if (table_bytes(pass) / 4 > dev->features.max_texel_buffer_texels)
-            return vrg_pass_error(pass, "cells = %d needs a table of %llu words, more than this device's texel buffers hold (%u): lower cells", cells,
-                                  (unsigned long long)(table_bytes(pass) / 4), dev->features.max_texel_buffer_texels);
+        /* the gather reads it as a texel buffer of 4 words a texel */
+        if (table_bytes(pass) / 16 > dev->features.max_texel_buffer_texels)
+            return vrg_pass_error(pass, "cells = %d needs a table of %llu texels of 4 words, more than this device's texel buffers hold (%u): lower cells",
+                                  cells, (unsigned long long)(table_bytes(pass) / 16), dev->features.max_texel_buffer_texels);
     }
     return 0;
 }

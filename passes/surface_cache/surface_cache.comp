@@ -19,8 +19,8 @@ layout(binding = 2) uniform sampler2D in_normal;
 // lavapipe fetches texels with SIMD gathers but loads storage-buffer words
 // at per-lane addresses one lane at a time.
 #ifdef GATHER
-layout(binding = 4) uniform usamplerBuffer table_texels;
-uint word(uint i) { return texelFetch(table_texels, int(i)).r; }
+layout(binding = 4) uniform usamplerBuffer table_texels; // rgba32ui: 4 words a fetch
+uint word(uint i) { return texelFetch(table_texels, int(i >> 2u))[i & 3u]; }
 #else
 layout(std430, binding = 4) buffer Table { uint words[]; } table;
 uint word(uint i) { return table.words[i]; }
@@ -254,6 +254,23 @@ void main()
 #endif
 
 #ifdef GATHER
+// An entry's first texel (entries start on one: 8 or 16 words): its check
+// word, last frame, n and first mean, all the gather reads of one channel.
+// The slot holding the cell's, or check word 0 (none holds it), and the
+// entry's first word.
+uvec4 find_entry(uvec2 h, out uint e)
+{
+    for (uint i = 0u; i < PROBES; i++) {
+        e = entry_word((h.x + i) & params.mask);
+        uvec4 t = texelFetch(table_texels, int(e >> 2u));
+        if (t.x == h.y)
+            return t;
+        if (t.x == EMPTY)
+            break;
+    }
+    return uvec4(0u);
+}
+
 // The bilinear blend of the 2x2 cells whose centres surround the point (its
 // own is one of them), over those that have samples, or (bilinear = 0) the
 // point's own cell; n_blend: their blended n (samples). weight 0: none has.
@@ -267,16 +284,17 @@ vec4 gather(Cell c, out float n_blend, out float weight)
     weight = 0.0;
     for (int k = 0; k < (params.bilinear != 0 ? 4 : 1); k++) {
         ivec2 o = ivec2(k & 1, k >> 1);
-        uint slot = find(hash_of(c, i0 + o));
-        if (slot == ~0u)
+        uint e;
+        uvec4 first = find_entry(hash_of(c, i0 + o), e);
+        float n = uintBitsToFloat(first.z);
+        // not found, claimed and never resolved, or expired (expired(e))
+        if (first.x == EMPTY || n == 0.0 || params.frame_index - first.y > params.evict_frames)
             continue;
-        uint e = entry_word(slot);
-        float n = uintBitsToFloat(word(n_word(e)));
-        if (n == 0.0 || expired(e)) // claimed and never resolved, or expired
-            continue;
+        // the other means: the next texel (mean_word(e) is e + 3)
+        vec4 m = vec4(uintBitsToFloat(first.w), params.channels > 1u ? uintBitsToFloat(texelFetch(table_texels, int(e >> 2u) + 1).xyz) : vec3(0.0));
         float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
         for (uint i = 0u; i < params.channels; i++)
-            sum[i] += w * uintBitsToFloat(word(mean_word(e) + i));
+            sum[i] += w * m[i];
         n_blend += w * n;
         weight += w;
     }

@@ -5,13 +5,15 @@
 # number of frames after its last samples, whenever the evict pass reaches
 # its slot. 12 frames with cells expiring after 2 frames, on 1, 2 and 3
 # threads, and with tables of other sizes (other slots for every cell).
+# GRAPH: surface-cache-4ray.ini, its indirect cache with two coarse levels
+# and its sun read at each point's own cell (the other gather).
 # usage: cache_threads.sh VOXRG GRAPH PATH OUT
 set -e
 voxrg=$1 graph=$2 path=$3 out=$4
 render() {
     name=$1; shift
     "$voxrg" render "$graph" --validate --frames 12 --size 96x54 --camera "$path" --set sun_cache.evict_frames=2 \
-        --set indirect_cache.evict_frames=2 "$@" --out "$out/$name" >/dev/null
+        --set indirect_cache.evict_frames=2 --set indirect_cache.coarse_levels=2 --set sun_cache.bilinear=0 "$@" --out "$out/$name" >/dev/null
 }
 for n in 1 2 3; do
     LP_NUM_THREADS=$n render t$n
