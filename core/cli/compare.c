@@ -553,6 +553,8 @@ static int render_candidate(vrg_context *ctx, const options *o, const job *j, vr
             rc = vrg_graph_frame(g);
         if (rc == 0 && !(frames[k] = read_output(g)))
             rc = -1;
+        if (rc != 0)
+            break;
         double total = 0;
         for (uint32_t i = 0; i < np; i++) {
             double v = vrg_graph_pass_ms(g, i);
@@ -586,8 +588,8 @@ static int render_candidate(vrg_context *ctx, const options *o, const job *j, vr
         prev = cur, cur = t;
         t = refp;
         refp = refc, refc = t;
-        char what[112];
-        snprintf(what, sizeof what, "%s (metrics)", c->name);
+        char what[112]; /* progress() shows 24 characters: the name last */
+        snprintf(what, sizeof what, "scoring %s", c->name);
         progress(what, k + 1, o->frames, tty);
     }
     for (uint32_t k = 0; frames && k < o->frames; k++)

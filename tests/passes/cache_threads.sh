@@ -6,7 +6,8 @@
 # its slot. 12 frames with cells expiring after 2 frames, on 1, 2 and 3
 # threads, and with tables of other sizes (other slots for every cell).
 # GRAPH: surface-cache-4ray.ini, its indirect cache with two coarse levels
-# and its sun read at each point's own cell (the other gather).
+# and its sun read at each point's own cell (the other gather), or
+# tests/graphs/cache_fallback.ini (a sun cache with a fallback).
 # usage: cache_threads.sh VOXRG GRAPH PATH OUT
 set -e
 voxrg=$1 graph=$2 path=$3 out=$4
