@@ -72,7 +72,9 @@ uint list_word(uint i) { return HEADER + cells() * entry_size() + i; }
 // (the resolve starts it over, the gather skips it) whether or not the
 // evict pass has freed its slot yet: when that happens depends on where
 // the slot is, and so may depend on thread order; this does not.
-bool expired(uint e) { return params.frame_index - word(last_word(e)) > params.evict_frames; }
+// (from the last frame with samples, for a reader that has it already)
+bool expired_since(uint last) { return params.frame_index - last > params.evict_frames; }
+bool expired(uint e) { return expired_since(word(last_word(e))); }
 
 // A point's cell: its level, face and the cell's integer coordinates, with
 // the continuous coordinates in the face's plane (in cells) for the gather.
@@ -287,8 +289,8 @@ vec4 gather(Cell c, out float n_blend, out float weight)
         uint e;
         uvec4 first = find_entry(hash_of(c, i0 + o), e);
         float n = uintBitsToFloat(first.z);
-        // not found, claimed and never resolved, or expired (expired(e))
-        if (first.x == EMPTY || n == 0.0 || params.frame_index - first.y > params.evict_frames)
+        // not found, claimed and never resolved, or expired
+        if (first.x == EMPTY || n == 0.0 || expired_since(first.y))
             continue;
         // the other means: the next texel (mean_word(e) is e + 3)
         vec4 m = vec4(uintBitsToFloat(first.w), params.channels > 1u ? uintBitsToFloat(texelFetch(table_texels, int(e >> 2u) + 1).xyz) : vec3(0.0));
