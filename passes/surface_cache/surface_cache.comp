@@ -20,10 +20,8 @@ layout(binding = 2) uniform sampler2D in_normal;
 // at per-lane addresses one lane at a time.
 #ifdef GATHER
 layout(binding = 4) uniform usamplerBuffer table_texels; // rgba32ui: 4 words a fetch
-uint word(uint i) { return texelFetch(table_texels, int(i >> 2u))[i & 3u]; }
 #else
 layout(std430, binding = 4) buffer Table { uint words[]; } table;
-uint word(uint i) { return table.words[i]; }
 #endif
 #ifdef GATHER
 layout(binding = 5, rgba16f) uniform writeonly image2D out_color;
@@ -72,9 +70,11 @@ uint list_word(uint i) { return HEADER + cells() * entry_size() + i; }
 // (the resolve starts it over, the gather skips it) whether or not the
 // evict pass has freed its slot yet: when that happens depends on where
 // the slot is, and so may depend on thread order; this does not.
-// (from the last frame with samples, for a reader that has it already)
+// (from the last frame with samples; the gather reads it with the check word)
 bool expired_since(uint last) { return params.frame_index - last > params.evict_frames; }
-bool expired(uint e) { return expired_since(word(last_word(e))); }
+#ifndef GATHER
+bool expired(uint e) { return expired_since(table.words[last_word(e)]); }
+#endif
 
 // A point's cell: its level, face and the cell's integer coordinates, with
 // the continuous coordinates in the face's plane (in cells) for the gather.
@@ -117,21 +117,6 @@ uvec2 hash_of(Cell c, ivec2 cell)
     return uvec2(h, max(check, 2u)); // 0 and 1 mark free slots
 }
 
-// The slot holding the cell, or ~0u. A cell lies within PROBES slots of its
-// hash with no EMPTY slot before it (FREED ones keep the run going).
-uint find(uvec2 h)
-{
-    for (uint i = 0u; i < PROBES; i++) {
-        uint slot = (h.x + i) & params.mask;
-        uint c = word(check_word(slot));
-        if (c == h.y)
-            return slot;
-        if (c == EMPTY)
-            break;
-    }
-    return ~0u;
-}
-
 #ifdef EVICT
 // Cells without samples for evict_frames frames are freed. A freed slot
 // right before an EMPTY one ends no run that reaches further, so it becomes
@@ -168,6 +153,21 @@ void main()
 #endif
 
 #ifdef INSERT
+// The slot holding the cell, or ~0u. A cell lies within PROBES slots of its
+// hash with no EMPTY slot before it (FREED ones keep the run going).
+uint find(uvec2 h)
+{
+    for (uint i = 0u; i < PROBES; i++) {
+        uint slot = (h.x + i) & params.mask;
+        uint c = table.words[check_word(slot)];
+        if (c == h.y)
+            return slot;
+        if (c == EMPTY)
+            break;
+    }
+    return ~0u;
+}
+
 // the slot holding the cell after claiming a free one if none did, or ~0u
 uint find_or_claim(uvec2 h)
 {
@@ -256,10 +256,11 @@ void main()
 #endif
 
 #ifdef GATHER
-// An entry's first texel (entries start on one: 8 or 16 words): its check
-// word, last frame, n and first mean, all the gather reads of one channel.
-// The slot holding the cell's, or check word 0 (none holds it), and the
-// entry's first word.
+// find() for the gather, by texels: an entry's first texel (entries start
+// on one: 8 or 16 words) holds its check word, last frame, n and first
+// mean, all the gather reads of one channel. The first texel of the slot
+// holding the cell, or check word 0 (none holds it), and the entry's
+// first word.
 uvec4 find_entry(uvec2 h, out uint e)
 {
     for (uint i = 0u; i < PROBES; i++) {
