@@ -121,8 +121,8 @@ static float dist3(const vrg_image_data *a, uint32_t ax, uint32_t ay, const vrg_
  * those 2x2 gets exactly its normal and a position on its plane, and where
  * all four are on it, its own position (bilinear on a plane, samples in
  * the right place); one without (weight-0 texels do not count) gets the
- * nearest hit texel's values (of
- * the 2x2, else of the 4x4 around them); plain bilinear leaves pixels off
+ * nearest hit texel's values (of the 2x2, else of the 4x4 around them),
+ * else 1 (a thin pole no texel hit); plain bilinear leaves pixels off
  * their plane at the wall's steps and silhouettes. Sky pixels get 1. */
 static void test_upsample_edges(void)
 {
@@ -131,7 +131,7 @@ static void test_upsample_edges(void)
     if (!g)
         return;
     const vrg_image_data *pos = &img[FULL_POS], *n = &img[FULL_N], *low = &img[HALF_POS];
-    int hits = 0, wrong = 0, nearest_wrong = 0, fallbacks = 0, off_plane_bilinear = 0, sky_wrong = 0, sky = 0, interior = 0;
+    int hits = 0, wrong = 0, nearest_wrong = 0, fallbacks = 0, rings = 0, ones = 0, off_plane_bilinear = 0, sky_wrong = 0, sky = 0, interior = 0;
     double shift_sum = 0, shift_max = 0;
     for (uint32_t y = 0; y < pos->height; y++)
         for (uint32_t x = 0; x < pos->width; x++) {
@@ -145,7 +145,7 @@ static void test_upsample_edges(void)
             int bx = (int)floorf(((float)x - 1.0f) / 2.0f), by = (int)floorf(((float)y - 1.0f) / 2.0f);
             /* bilinear weights: an odd pixel sits on a texel's sample (weight 1 there) */
             float fx = ((float)x - 1.0f) / 2.0f - (float)bx, fy = ((float)y - 1.0f) / 2.0f - (float)by;
-            int qualified = 0, weighted = 0, nx = -1, ny = -1;
+            int qualified = 0, weighted = 0, nx = -1, ny = -1, ring = 0;
             float nearest = 1e30f;
             for (int j = 0; j < 20; j++) {
                 int inner = j < 4, ox = inner ? (j & 1) : (j - 4) % 4 - 1, oy = inner ? (j >> 1) : (j - 4) / 4 - 1;
@@ -166,7 +166,7 @@ static void test_upsample_edges(void)
                 else if (hit)
                     dist = dist3(low, (uint32_t)qx, (uint32_t)qy, pos, x, y);
                 if (hit && dist < nearest)
-                    nearest = dist, nx = qx, ny = qy;
+                    nearest = dist, nx = qx, ny = qy, ring = !inner;
             }
             float d = 0, db = 0, dn = 0;
             for (int c = 0; c < 3; c++) {
@@ -185,13 +185,22 @@ static void test_upsample_edges(void)
             }
             if (qualified)
                 wrong += dn > 1e-3f || fabsf(d) > 0.05f; /* f16 positions: 0.016 at 32..64 */
-            else
-                fallbacks++, nearest_wrong += nx < 0 || dn > 1e-3f || dist3(&img[UP_POS], x, y, low, (uint32_t)nx, (uint32_t)ny) > 0.05f;
+            else {
+                fallbacks++, rings += ring, ones += nx < 0;
+                /* the nearest hit texel's values, else (none in the 4x4) 1 */
+                int far = 0;
+                for (int c = 0; c < 3; c++)
+                    far |= nx < 0 && px(&img[UP_POS], x, y, c) != 1.0f;
+                nearest_wrong += dn > 1e-3f || far || (nx >= 0 && dist3(&img[UP_POS], x, y, low, (uint32_t)nx, (uint32_t)ny) > 0.05f);
+            }
         }
     CHECK(sky > 100 && hits > 2000, "the view does not test it: %d sky, %d hits", sky, hits);
     CHECK(sky_wrong == 0, "%d sky channels are not 1", sky_wrong);
     CHECK(wrong == 0, "%d of %d pixels with a texel of their surface got another surface's normal or left their plane", wrong, hits);
-    CHECK(nearest_wrong == 0, "%d of %d pixels without one did not get the nearest hit texel's value", nearest_wrong, fallbacks);
+    CHECK(nearest_wrong == 0, "%d of %d pixels without one did not get the nearest hit texel's value (or 1)", nearest_wrong, fallbacks);
+    /* the poles beyond the wall, about a pixel wide: pixels on them whose
+     * 2x2 texels all missed, with a hit in the ring of the 4x4 or none */
+    CHECK(rings > 10 && ones > 10, "the view does not test the fallback: %d pixels took a texel of the 4x4's ring, %d took 1", rings, ones);
     CHECK(interior > 1000 && shift_sum / interior < 0.03 && shift_max < 0.1,
           "%d pixels inside their surface lie %.3f texel steps from their own position on average (at most %.3f): the texels are misplaced",
           interior, interior ? shift_sum / interior : 0.0, shift_max);
