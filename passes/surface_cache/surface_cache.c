@@ -245,6 +245,9 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     uint64_t resolve_groups = (listed_most + GROUP - 1) / GROUP;
     if (resolve_groups > s->max_groups)
         resolve_groups = s->max_groups;
+    /* which split ran (test cache_slot_invocations reads them) */
+    vrg_pass_stat(pass, "evict_slots_per_invocation", evict_run);
+    vrg_pass_stat(pass, "resolve_groups", per_slot ? (double)resolve_groups : CPU_RESOLVE_GROUPS);
     for (int i = EVICT; i <= GATHER; i++) {
         vrg_dispatch_desc d = dispatches[i == EVICT && evict_per_slot ? EVICT_PER_SLOT : i];
         d.push = &pc;

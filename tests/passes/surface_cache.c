@@ -238,6 +238,15 @@ static void test_cache_slot_invocations(void)
             CHECK(ok = vrg_graph_frame(g) == 0, "frame failed");
         if (ok)
             CHECK(ok = vrg_graph_read(g, "chain.color", &chain[per_slot]) == 0, "readback of chain.color failed");
+        /* the split the parameter asked for is the one recorded */
+        double run = 0, groups = 0;
+        if (ok) {
+            CHECK(vrg_graph_stat(g, "chain", "evict_slots_per_invocation", &run) == 0 && run == (per_slot ? 1 : 16),
+                  "slot_invocations = %d: evict ran %g slots per invocation", per_slot, run);
+            /* a GPU's: a group of 64 per cell the frame can list, 64x48 pixels x 4 levels */
+            CHECK(vrg_graph_stat(g, "chain", "resolve_groups", &groups) == 0 && groups == (per_slot ? 64 * 48 * 4 / 64 : 256),
+                  "slot_invocations = %d: resolve ran %g groups", per_slot, groups);
+        }
         if (g)
             vrg_graph_destroy(g);
     }
