@@ -562,9 +562,7 @@ static int render_candidate(vrg_context *ctx, const options *o, const job *j, vr
             total += v > 0 ? v : 0;
         }
         ms[k * (np + 1) + np] = total;
-        char what[96];
-        snprintf(what, sizeof what, "%s", c->name);
-        progress(what, k + 1, o->frames, tty);
+        progress(c->name, k + 1, o->frames, tty);
     }
     for (uint32_t k = 0; k < o->frames && rc == 0; k++) {
         uint8_t *rgb = frames[k];

@@ -238,23 +238,25 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
      * than listed cells only take longer */
     int evict_per_slot = per_slot && (share + GROUP - 1) / GROUP <= s->max_groups;
     uint32_t evict_run = evict_per_slot ? 1u : CPU_SLOTS_PER_INVOCATION;
-    VkExtent2D size = vrg_res_extent(pass, vrg_pass_res(pass, "color"));
-    uint64_t listed_most = (uint64_t)size.width * size.height * (1u + (uint32_t)pc.coarse_levels);
-    if (listed_most > cells)
-        listed_most = cells;
-    uint64_t resolve_groups = (listed_most + GROUP - 1) / GROUP;
-    if (resolve_groups > s->max_groups)
-        resolve_groups = s->max_groups;
+    uint32_t resolve_groups = CPU_RESOLVE_GROUPS;
+    if (per_slot) {
+        VkExtent2D size = vrg_res_extent(pass, vrg_pass_res(pass, "color"));
+        uint64_t listed_most = (uint64_t)size.width * size.height * (1u + (uint32_t)pc.coarse_levels);
+        if (listed_most > cells)
+            listed_most = cells;
+        uint64_t groups = (listed_most + GROUP - 1) / GROUP;
+        resolve_groups = groups > s->max_groups ? s->max_groups : (uint32_t)groups;
+    }
     /* which split ran (test cache_slot_invocations reads them) */
     vrg_pass_stat(pass, "evict_slots_per_invocation", evict_run);
-    vrg_pass_stat(pass, "resolve_groups", per_slot ? (double)resolve_groups : CPU_RESOLVE_GROUPS);
+    vrg_pass_stat(pass, "resolve_groups", resolve_groups);
     for (int i = EVICT; i <= GATHER; i++) {
         vrg_dispatch_desc d = dispatches[i == EVICT && evict_per_slot ? EVICT_PER_SLOT : i];
         d.push = &pc;
         if (i == EVICT)
             d.groups_x = (share + GROUP * evict_run - 1) / (GROUP * evict_run);
-        if (i == RESOLVE && per_slot)
-            d.groups_x = (uint32_t)resolve_groups;
+        if (i == RESOLVE)
+            d.groups_x = resolve_groups;
         if (vrg_dispatch(pass, cmd, &d) != 0)
             return;
     }
