@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Sets up a fresh Debian 12 machine, builds voxrg and renders the default graph
-# headless to out/ (the window comes with `voxrg run`, a later milestone).
+# (graphs/thesis.ini) headless to out/. `./build/voxrg run` then opens a
+# window on graphs/interactive.ini (README.md, "Using it").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
