@@ -2,7 +2,6 @@
  * queries when the scene built a TLAS), writing what the lighting passes and
  * the denoiser need. On a miss: sky radiance in albedo, zero normal, w = 0
  * in position, ids 0. */
-#include <stdio.h>
 #include "voxrg/plugin.h"
 
 static const vrg_param_desc params[] = {

@@ -20,7 +20,6 @@
  * axis and the history length into one rgba32ui texel: a tap is one fetch.
  * feedback = k writes iteration k's output (0: the input) to `feedback`,
  * the history the temporal pass reads next frame. */
-#include <stdio.h>
 #include "voxrg/plugin.h"
 
 static const vrg_param_desc params[] = {

@@ -406,6 +406,10 @@ static void pack_header(const vrg_world *w, uint32_t *out)
 
 static int floor_div(int a, int n) { return a >= 0 ? a / n : -((-a + n - 1) / n); }
 
+#define BRICKS_PER_AXIS (VRG_CHUNK_SIZE / VRG_BRICK_SIZE)
+_Static_assert(VRG_BRICK_SIZE == 8 && VRG_CHUNK_SIZE == 16,
+               "the slot layout above (8 bricks of 16 occupancy words) and world.glsl hold 8^3 bricks in 16^3 chunks");
+
 /* Packs a slot for the GPU and notes the box of its non-air blocks. */
 static void pack_slot(const vrg_world *w, slot *sl, uint32_t *out)
 {
@@ -428,7 +432,7 @@ static void pack_slot(const vrg_world *w, slot *sl, uint32_t *out)
                 const int l[3] = {x, y, z};
                 for (int a = 0; a < 3; a++)
                     lo[a] = l[a] < lo[a] ? l[a] : lo[a], hi[a] = l[a] + 1 > hi[a] ? l[a] + 1 : hi[a];
-                int brick = (x >> 3) + 2 * ((z >> 3) + 2 * (y >> 3));
+                int brick = x / VRG_BRICK_SIZE + BRICKS_PER_AXIS * (z / VRG_BRICK_SIZE + BRICKS_PER_AXIS * (y / VRG_BRICK_SIZE));
                 int sub = ((x >> 2) & 1) + 2 * (((z >> 2) & 1) + 2 * ((y >> 2) & 1));
                 int word = 2 * sub + ((y & 3) >> 1), bit = (x & 3) + 4 * ((z & 3) + 4 * (y & 1));
                 occ[brick * 16 + word] |= 1u << bit;

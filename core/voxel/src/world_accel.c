@@ -257,15 +257,6 @@ static void quad_vertices(uint32_t key, float *out)
 
 static VkDeviceSize align_up(VkDeviceSize v, VkDeviceSize a) { return (v + a - 1) / a * a; }
 
-int vrg_world_accel_quads(const vrg_world_accel *a, int cx, int cy, int cz)
-{
-    const blas_set *t = a->set;
-    for (int s = 0; s < t->slots; s++)
-        if (t->blas[s].as && t->blas[s].chunk[0] == cx && t->blas[s].chunk[1] == cy && t->blas[s].chunk[2] == cz)
-            return t->blas[s].quads;
-    return -1;
-}
-
 int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *tlas_slot)
 {
     blas_set *t = a->set;

@@ -25,7 +25,6 @@
 #define VOXRG_CAMERA_H
 
 #include <stdint.h>
-#include <stdio.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -45,8 +44,8 @@ typedef struct vrg_camera {
 /* The world's extent in blocks: every coordinate of a camera position (x, y
  * and z) lies in [-VRG_WORLD_LIMIT, VRG_WORLD_LIMIT] (docs/world.md says why
  * this value). Graph files, camera paths and vrg_graph_set_camera refuse
- * positions outside it; a camera path's curve and `voxrg run`'s fly camera
- * stop at its edge. */
+ * positions outside it; hosts that move a camera (a path's curve, a fly
+ * camera) stop it at the edge. */
 #define VRG_WORLD_LIMIT 1048576.0f
 /* 1 when all three coordinates are finite and within VRG_WORLD_LIMIT. */
 int vrg_camera_position_in_world(const float position[3]);

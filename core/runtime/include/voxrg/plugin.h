@@ -168,16 +168,16 @@ typedef struct vrg_plugin_desc {
      * size used. restore_state gets it back in the new instance after create. */
     size_t (*save_state)(vrg_pass *pass, void *dst, size_t cap);
     int (*restore_state)(vrg_pass *pass, const void *src, size_t size);
-    /* Called while the graph is validated, without a device (also by
-     * `voxrg check --no-device`): check string parameters, reporting with
-     * vrg_pass_error_at(), and size outputs with vrg_pass_set_buffer_size().
-     * Return 0 if all is well. May be NULL. */
+    /* Called while the graph is validated, without a device (also when the
+     * graph is loaded with no context at all): check string parameters,
+     * reporting with vrg_pass_error_at(), and size outputs with
+     * vrg_pass_set_buffer_size(). Return 0 if all is well. May be NULL. */
     int (*check)(vrg_pass *pass);
     /* Every dispatch the pass records (vrg_dispatch): shader, bindings,
      * defines and push_size of each variant; push, domain and the group
-     * counts are not read here. `voxrg check` (vrg_graph_check_shaders)
-     * compiles and reflects each against the slots before any frame, even
-     * without a device; a pass that lists its dispatches records only these
+     * counts are not read here. vrg_graph_check_shaders compiles and
+     * reflects each against the slots before any frame, even without a
+     * device; a pass that lists its dispatches records only these
      * (another one fails with VRG-E061). May be NULL: the shaders are then
      * checked at their first dispatch only. */
     const struct vrg_dispatch_desc *dispatches;
@@ -230,7 +230,7 @@ typedef struct vrg_frame_info {
     int history_valid;      /* 0 on the first frame, after resize, a reset, or a reload that
                              * lost some history (vrg_res_history_valid: per input) */
     double time_s;          /* simulated time: frame_index / [graph] fps */
-    vrg_camera camera;      /* this frame's camera ([camera] section, --camera path, or the host) */
+    vrg_camera camera;      /* this frame's camera ([camera] section, or the host's vrg_graph_set_camera) */
     vrg_camera prev_camera; /* last frame's; equal to camera when history is not valid */
     int resources_new;      /* every resource was just (re)allocated: persistent ones are
                              * cleared, so upload their contents again (but those a
@@ -288,19 +288,20 @@ const char *vrg_pass_graph_path(const vrg_pass *pass);
 double vrg_pass_gpu_ms(const vrg_pass *pass, const char *other_pass);
 
 /* A named figure of this frame (e.g. chunks integrated, milliseconds spent
- * on the CPU) that hosts read with vrg_graph_stat and `render --json` writes. */
+ * on the CPU) that hosts read with vrg_graph_stat / vrg_graph_stat_at. */
 void vrg_pass_stat(vrg_pass *pass, const char *name, double value);
 
-/* Parameters by name, after defaults, graph values and --set overrides. */
+/* Parameters by name, after defaults, graph values and the host's overrides
+ * (vrg_graph_desc.overrides). */
 double vrg_param(const vrg_pass *pass, const char *name);
 int vrg_param_int(const vrg_pass *pass, const char *name);
 /* String parameters: the value (the last given, or the default). */
 const char *vrg_param_string(const vrg_pass *pass, const char *name);
 /* Repeatable parameters: how many values, and value i with its graph line
- * (0 when it came from --set or the default). */
+ * (0 when it came from an override or the default). */
 int vrg_param_count(const vrg_pass *pass, const char *name);
 const char *vrg_param_item(const vrg_pass *pass, const char *name, int i, int *line);
-/* Graph line of the string value in effect (0: the default or --set). */
+/* Graph line of the string value in effect (0: the default or an override). */
 int vrg_param_line(const vrg_pass *pass, const char *name);
 /* A string parameter that names one of `choices`: its index, or -1 after
  * reporting "NAME = 'VALUE': expected A, B or C" at the value's line. */

@@ -1,4 +1,5 @@
-/* voxrg host API: what the CLI, tests and embedding programs call. */
+/* voxrg host API: what a program that renders graphs calls (the voxrg
+ * command, the tests and embedding programs alike). */
 #ifndef VOXRG_H
 #define VOXRG_H
 
@@ -71,7 +72,7 @@ int vrg_context_gpu_busy(const vrg_context *ctx);
 typedef struct vrg_graph_desc {
     const char *path;             /* the graph file (also used in messages) */
     const char *text;             /* optional: graph text instead of reading path */
-    const char *const *overrides; /* "pass.param=value" (--set) */
+    const char *const *overrides; /* "pass.param=value", applied over the file's values */
     uint32_t override_count;
     uint32_t width, height;       /* 0: the graph's own size */
     const char *const *readback;  /* resources to keep readable after a frame (output is always) */
@@ -93,8 +94,8 @@ void vrg_graph_destroy(vrg_graph *g);
  * frames_in_flight, default 2) it returns once the frame is submitted,
  * having waited only for the frame frames_in_flight before this one, so
  * the CPU records the next frame while the GPU runs this one. Returns 0, or
- * -1 on error (also when that wait times out: --gpu-timeout, naming the
- * frame and the pass still running).
+ * -1 on error (also when that wait outlasts the context's gpu_timeout_s,
+ * naming the frame and the pass still running).
  *
  * What describes a frame:
  *  - readbacks (vrg_graph_read, vrg_graph_read_buffer, vrg_graph_image)
@@ -168,7 +169,6 @@ const char *vrg_graph_image_name(const vrg_graph *g, uint32_t i);
 int vrg_graph_show(vrg_graph *g, const char *resource);
 /* A view of that image (for sampling after moving it to GENERAL and back). */
 VkImageView vrg_graph_image_view(vrg_graph *g, const char *resource);
-/* Bytes of a buffer resource written in the last frame. Caller frees *data. */
 /* A figure a pass recorded with vrg_pass_stat in the last frame: 0, or -1. */
 int vrg_graph_stat(const vrg_graph *g, const char *pass, const char *name, double *value);
 /* Its i-th figure (for listing): name, or NULL past the end. */
@@ -176,9 +176,11 @@ const char *vrg_graph_stat_at(const vrg_graph *g, uint32_t pass, uint32_t i, dou
 
 /* VRG_IMAGE or VRG_BUFFER, or -1 if the graph has no such resource. */
 int vrg_graph_resource_kind(const vrg_graph *g, const char *resource);
+/* Bytes of a buffer resource written in the last frame. Caller frees *data. */
 int vrg_graph_read_buffer(vrg_graph *g, const char *resource, void **data, uint64_t *size);
 
-/* What `voxrg check` prints: schedule, resources, barriers, culled passes, memory. */
+/* The graph as compiled, for people: schedule, resources, barriers, culled
+ * passes, memory. */
 void vrg_graph_report(const vrg_graph *g, FILE *f);
 void vrg_graph_write_dot(const vrg_graph *g, FILE *f);
 /* Compiles and reflects every dispatch each pass declares
@@ -190,18 +192,18 @@ void vrg_graph_write_dot(const vrg_graph *g, FILE *f);
  * their type and format only with a device). Writes one line per pass to
  * `report` (NULL: none). Returns 0, or -1 when any shader failed. */
 int vrg_graph_check_shaders(vrg_graph *g, FILE *report);
-/* Per-pass GPU milliseconds of frame vrg_graph_timed_frame (the newest
- * that ended; vrg_graph_wait makes it the last one); -1 where not measured. */
 uint32_t vrg_graph_pass_count(const vrg_graph *g);
 const char *vrg_graph_pass_name(const vrg_graph *g, uint32_t i);
 /* Pass i's plugin descriptor (its parameters for a settings UI), NULL past
  * the end. Valid until the graph is destroyed or reloaded. */
 const vrg_plugin_desc *vrg_graph_pass_plugin(const vrg_graph *g, uint32_t i);
+/* Pass i's GPU milliseconds in frame vrg_graph_timed_frame (the newest
+ * that ended; vrg_graph_wait makes it the last one); -1 where not measured. */
 double vrg_graph_pass_ms(const vrg_graph *g, uint32_t i);
 const char *vrg_graph_output(const vrg_graph *g);
 /* Graph frames per output frame: the largest vrg_pass_set_subframes request,
- * at least 1. `voxrg render` holds the camera for that many frames per
- * output frame (a reference graph's accumulation converges meanwhile). */
+ * at least 1. A host holds the camera for that many frames per output frame
+ * (a reference graph's accumulation converges meanwhile). */
 uint32_t vrg_graph_subframes(const vrg_graph *g);
 
 /* Hot reload. With on = 1 the graph watches (inotify) every shader file its
@@ -216,8 +218,8 @@ const char *vrg_graph_reload_error(const vrg_graph *g);
  * changed: shaders, the graph file, a rebuilt plugin's .so) to the end of
  * the first frame that used it, for the last reload; -1 if none. */
 double vrg_graph_reload_ms(const vrg_graph *g);
-/* Sets a numeric parameter while the graph runs ("pass.param", the --set
- * syntax), checked against its type and range; passes see it from the next
+/* Sets a numeric parameter while the graph runs ("pass.param", as in
+ * vrg_graph_desc.overrides), checked against its type and range; passes see it from the next
  * frame on, with frame params_changed set once (history stays valid,
  * accumulations restart). String parameters and those flagged
  * VRG_PARAM_RELOAD (read only in create(), e.g. the terrain's radius) are

@@ -1,4 +1,4 @@
-/* Image metrics for comparing renderings with a reference (voxrg compare).
+/* Image metrics for comparing renderings with a reference.
  * Images are display-encoded sRGB values in [0, 1], three floats per pixel,
  * row by row. See docs/compare.md for the definitions and constants. */
 #ifndef VOXRG_METRICS_H

@@ -22,7 +22,7 @@ extern "C" {
 
 #define VRG_CHUNK_SIZE 16
 #define VRG_CHUNK_VOXELS (VRG_CHUNK_SIZE * VRG_CHUNK_SIZE * VRG_CHUNK_SIZE)
-#define VRG_BRICK_SIZE 8
+#define VRG_BRICK_SIZE 8 /* voxels per side of a brick, the GPU layout's unit of occupancy (2^3 per chunk) */
 
 typedef uint8_t vrg_block;
 
@@ -155,8 +155,6 @@ void vrg_world_accel_destroy(vrg_world_accel *a);
 /* In execute(): records BLAS rebuilds and the TLAS build into `tlas` (a
  * VRG_ACCEL output slot written with VRG_ACCESS_AS_BUILD). */
 int vrg_world_accel_record(vrg_world_accel *a, VkCommandBuffer cmd, const char *tlas_slot);
-/* Quads in the chunk's BLAS (for tests), -1 if it has none. */
-int vrg_world_accel_quads(const vrg_world_accel *a, int cx, int cy, int cz);
 
 /* ---- Block textures ---------------------------------------------------
  * Procedural 16x16 tiles (material tile_top/side/bottom index them) in a
