@@ -43,7 +43,8 @@ static const char *usage_main =
 static const char *usage_new_pass =
     "usage: voxrg new-pass NAME [--dir DIR]\n"
     "Writes a ready out-of-tree pass into DIR (default: NAME; created if missing):\n"
-    "NAME.c (a tint of an input image), NAME.comp, a CMakeLists.txt that builds it\n"
+    "NAME.c (a tint of an input image, hazed toward the horizon with the scene's\n"
+    "frame uniforms: camera and sky), NAME.comp, a CMakeLists.txt that builds it\n"
     "against an installed voxrg (find_package(voxrg CONFIG), voxrg_add_pass) and\n"
     "NAME.ini, a graph that runs it between shipped passes. NAME is a C identifier.\n"
     "Existing files are never overwritten. docs/out-of-tree.md.\n";

@@ -1,6 +1,7 @@
 /* `voxrg new-pass NAME [--dir DIR]`: a ready out-of-tree pass (after
  * Falcor's new-render-pass script). It writes NAME.c (a tint of an input
- * image, with a parameter), NAME.comp, a CMakeLists.txt that builds it
+ * image, with haze from the scene's frame uniforms: the camera and the
+ * sky), NAME.comp, a CMakeLists.txt that builds it
  * against an installed voxrg (find_package(voxrg CONFIG), voxrg_add_pass)
  * and NAME.ini, a graph that runs it between shipped passes, so that the
  * folder builds and renders as written (docs/out-of-tree.md). Existing files
@@ -18,7 +19,8 @@
 
 /* Every "@NAME@" in the templates becomes the pass's name. */
 static const char *c_template =
-    "/* @NAME@: colour = input x tint, a pass built outside the voxrg tree.\n"
+    "/* @NAME@: colour = input x tint, hazed toward the horizon, a pass built\n"
+    " * outside the voxrg tree.\n"
     " * Scaffolded by `voxrg new-pass`; docs/plugin-abi.md describes the ABI. */\n"
     "#include \"voxrg/plugin.h\"\n"
     "\n"
@@ -28,16 +30,22 @@ static const char *c_template =
     "    {.name = \"blue\", .type = VRG_PARAM_FLOAT, .default_value = 1, .min = 0, .max = 16, .help = \"multiplies blue\"},\n"
     "    {.name = \"strength\", .type = VRG_PARAM_FLOAT, .default_value = 1, .min = 0, .max = 1,\n"
     "     .help = \"0: the input as it is, 1: fully tinted\"},\n"
+    "    {.name = \"haze\", .type = VRG_PARAM_FLOAT, .default_value = 0, .min = 0, .max = 1,\n"
+    "     .help = \"the sky's colour mixed in where the view ray meets the horizon (0: none)\"},\n"
     "};\n"
     "\n"
     "static const vrg_slot_desc slots[] = {\n"
     "    {.name = \"color\", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = \"linear colour\"},\n"
+    "    /* the scene's per-frame uniforms: camera, sun, sky (frame.glsl) */\n"
+    "    {.name = \"frame\", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_UNIFORM,\n"
+    "     .help = \"the scene's per-frame uniforms\"},\n"
     "    {.name = \"tinted\", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE,\n"
     "     .format = VK_FORMAT_R16G16B16A16_SFLOAT, .help = \"the colour, tinted\"},\n"
     "};\n"
     "\n"
     "typedef struct @NAME@_push {\n"
     "    float tint[4]; /* a vec4 in the shader: std430 pads a vec3 */\n"
+    "    float haze;\n"
     "} @NAME@_push;\n"
     "\n"
     "/* every dispatch execute() records: `voxrg check` compiles and reflects\n"
@@ -50,7 +58,8 @@ static const char *c_template =
     "{\n"
     "    float tint[3] = {(float)vrg_param(pass, \"red\"), (float)vrg_param(pass, \"green\"), (float)vrg_param(pass, \"blue\")};\n"
     "    float strength = (float)vrg_param(pass, \"strength\");\n"
-    "    @NAME@_push pc = {{1 + strength * (tint[0] - 1), 1 + strength * (tint[1] - 1), 1 + strength * (tint[2] - 1), 0}};\n"
+    "    @NAME@_push pc = {{1 + strength * (tint[0] - 1), 1 + strength * (tint[1] - 1), 1 + strength * (tint[2] - 1), 0},\n"
+    "                      (float)vrg_param(pass, \"haze\")};\n"
     "    vrg_dispatch_desc d = dispatches[0];\n"
     "    d.push = &pc;\n"
     "    (void)vrg_dispatch(pass, cmd, &d);\n"
@@ -60,7 +69,7 @@ static const char *c_template =
     "    .abi_version = VRG_ABI_VERSION,\n"
     "    .name = \"@NAME@\",\n"
     "    .kind = VRG_PLUGIN_PASS,\n"
-    "    .help = \"colour x tint (an out-of-tree pass)\",\n"
+    "    .help = \"colour x tint, hazed toward the horizon (an out-of-tree pass)\",\n"
     "    .shader_dir = VRG_PLUGIN_DIR,\n"
     "    .params = params,\n"
     "    .param_count = sizeof params / sizeof params[0],\n"
@@ -75,14 +84,20 @@ static const char *c_template =
 
 static const char *comp_template =
     "#version 460\n"
-    "// @NAME@: colour x tint. pixel.glsl comes with voxrg (share/voxrg/shaders/include).\n"
+    "// @NAME@: colour x tint, hazed toward the horizon. pixel.glsl and frame.glsl\n"
+    "// come with voxrg (share/voxrg/shaders/include).\n"
     "#include \"pixel.glsl\"\n"
     "\n"
     "layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;\n"
     "// bindings in the order of the plugin's slots\n"
     "layout(binding = 0) uniform sampler2D in_color;\n"
-    "layout(binding = 1, rgba16f) uniform writeonly image2D out_tinted;\n"
-    "layout(push_constant) uniform Push { vec4 tint; } pc;\n"
+    "// The frame slot is binding 1: frame.glsl declares the block `frame` there\n"
+    "// (camera_pos, camera_forward, sun_dir, sky colours, frame_info, ...;\n"
+    "// docs/plugin-abi.md lists every field) and frame_ray_dir, frame_sky.\n"
+    "#define FRAME_BINDING 1\n"
+    "#include \"frame.glsl\"\n"
+    "layout(binding = 2, rgba16f) uniform writeonly image2D out_tinted;\n"
+    "layout(push_constant) uniform Push { vec4 tint; float haze; } pc;\n"
     "\n"
     "void shade(ivec2 p)\n"
     "{\n"
@@ -90,6 +105,11 @@ static const char *comp_template =
     "    if (any(greaterThanEqual(p, size)))\n"
     "        return;\n"
     "    vec4 c = texelFetch(in_color, vrg_pixel_in(p, size, textureSize(in_color, 0)), 0);\n"
+    "    // this pixel's view ray from the camera, and the sky's colour along it:\n"
+    "    // haze, strongest where the ray is level with the horizon\n"
+    "    vec3 dir = frame_ray_dir(vec2(p), vec2(size));\n"
+    "    float level = 1.0 - abs(dir.y);\n"
+    "    c.rgb = mix(c.rgb, frame_sky(dir), pc.haze * level * level * level * level);\n"
     "    imageStore(out_tinted, p, vec4(c.rgb * pc.tint.rgb, c.a));\n"
     "}\n"
     "\n"
@@ -114,7 +134,8 @@ static const char *cmake_template =
     "set_target_properties(@NAME@ PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR})\n";
 
 static const char *graph_template =
-    "; @NAME@ between shipped passes: the G-buffer's albedo, tinted, tonemapped.\n"
+    "; @NAME@ between shipped passes: the G-buffer's albedo, tinted and hazed,\n"
+    "; tonemapped.\n"
     "; Needs build/@NAME@.so (cmake, see CMakeLists.txt):\n"
     ";   voxrg render @NAME@.ini --out out\n"
     "[graph]\n"
@@ -145,11 +166,13 @@ static const char *graph_template =
     "[pass @NAME@]\n"
     "plugin     = @NAME@\n"
     "in.color   = albedo\n"
+    "in.frame   = frame\n"
     "out.tinted = tinted\n"
     "red        = 1\n"
     "green      = 0.6\n"
     "blue       = 0.3\n"
     "strength   = 0.8\n"
+    "haze       = 0.5\n"
     "\n"
     "[pass tonemap]\n"
     "plugin   = tonemap\n"

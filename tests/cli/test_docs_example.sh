@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The complete pass of docs/plugin-abi.md, built and run as the page says:
-# its invert.c, invert.comp and graph are cut out of the page, the plugin is
+# The complete passes of docs/plugin-abi.md, built and run as the page says:
+# invert (an image in, an image out) and fog (reads the frame uniforms):
+# each one's .c, .comp and graph are cut out of the page, the plugin is
 # compiled with the page's "Outside CMake" command, and the graph renders
 # under --validate. A page that no longer builds fails this test.
 # usage: test_docs_example.sh VOXRG_BINARY SOURCE_DIR LIBDIR PLUGIN_DIR OUT_DIR
@@ -15,18 +16,26 @@ block() {
         want && /^```/ { if (inside) exit; inside = 1; next }
         inside { print }' "$page"
 }
-block '`passes/invert/invert.c`:' > "$out/invert/invert.c"
-block '`passes/invert/invert.comp`:' > "$out/invert/invert.comp"
-block 'A graph that uses it' > "$out/invert.ini"
-for f in invert/invert.c invert/invert.comp invert.ini; do
-    [ -s "$out/$f" ] || { echo "FAIL: docs/plugin-abi.md has no $f block"; exit 1; }
-done
-# the page's command, with this build's paths; a plugin author's warnings
-# are errors here, so the page's tables stay clean under -Wextra
-if ! gcc -std=c11 -Wall -Wextra -Werror -fPIC -shared -I"$src/core/runtime/include" -DVRG_PLUGIN_DIR="\"$out/invert\"" \
-    "$out/invert/invert.c" -o "$out/invert.so" -L"$libdir" -lvoxrg 2> "$out/gcc.log"; then
-    echo "FAIL: the page's invert.c does not compile:"; cat "$out/gcc.log"; exit 1
-fi
+# NAME's .c and .comp, and its graph (the block after the line starting
+# with GRAPH_MARKER), compiled with the page's command and this build's
+# paths; a plugin author's warnings are errors here, so the page's tables
+# stay clean under -Wextra
+build_example() {
+    name=$1 marker=$2
+    mkdir -p "$out/$name"
+    block "\`passes/$name/$name.c\`:" > "$out/$name/$name.c"
+    block "\`passes/$name/$name.comp\`:" > "$out/$name/$name.comp"
+    block "$marker" > "$out/$name.ini"
+    for f in $name/$name.c $name/$name.comp $name.ini; do
+        [ -s "$out/$f" ] || { echo "FAIL: docs/plugin-abi.md has no $f block"; exit 1; }
+    done
+    if ! gcc -std=c11 -Wall -Wextra -Werror -fPIC -shared -I"$src/core/runtime/include" -DVRG_PLUGIN_DIR="\"$out/$name\"" \
+        "$out/$name/$name.c" -o "$out/$name.so" -L"$libdir" -lvoxrg 2> "$out/gcc-$name.log"; then
+        echo "FAIL: the page's $name.c does not compile:"; cat "$out/gcc-$name.log"; exit 1
+    fi
+}
+build_example invert 'A graph that uses it'
+build_example fog 'A graph that uses it, with a scene'
 # docs/world.md's scene tables (VRG_SCENE_PARAMS and _SLOTS included) under
 # the same flags
 awk '/^static const vrg_param_desc params/ { want = 1 } want { print } want && /^static const vrg_slot_desc/ { exit }' \
@@ -45,4 +54,15 @@ if ! "$voxrg" render "$out/invert.ini" --validate --set invert.strength=1 --size
     echo "FAIL: the page's graph does not render:"; cat "$out/render.log"; exit 1
 fi
 [ -s "$out/r/inverted.png" ] || { echo "FAIL: no inverted.png"; exit 1; }
+# fog reads the camera and the sky from the frame uniforms: its graph
+# renders, and fog with density 0 leaves hit pixels as they were, so the
+# two images differ
+for density in 0.02 0; do
+    if ! "$voxrg" render "$out/fog.ini" --validate --set fog.density=$density --size 64x36 --out "$out/fog-$density" \
+        > "$out/render-fog.log" 2>&1; then
+        echo "FAIL: the page's fog graph does not render:"; cat "$out/render-fog.log"; exit 1
+    fi
+    [ -s "$out/fog-$density/ldr.png" ] || { echo "FAIL: fog wrote no ldr.png"; exit 1; }
+done
+cmp -s "$out/fog-0.02/ldr.png" "$out/fog-0/ldr.png" && { echo "FAIL: fog's density changes nothing"; exit 1; }
 echo "docs example: ok"

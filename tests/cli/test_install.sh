@@ -119,6 +119,10 @@ run "$voxrg" new-pass tint > again.txt 2>&1
 run "$voxrg" render tint/tint.ini --validate --frames 1 --out tint/out > tint_render.log 2>&1 ||
     { cat tint_render.log; fail "the scaffolded graph does not render"; }
 [ -s tint/out/ldr.png ] || fail "tint wrote no ldr.png"
+# the scaffold reads the frame uniforms (camera, sky): its haze changes the image
+run "$voxrg" render tint/tint.ini --validate --frames 1 --set tint.haze=0 --out tint/out0 > tint_render0.log 2>&1 ||
+    { cat tint_render0.log; fail "the scaffolded graph does not render with haze 0"; }
+cmp -s tint/out/ldr.png tint/out0/ldr.png && fail "the scaffold's haze (its frame uniforms) changes nothing"
 run VOXRG_PLUGIN_PATH="$out/work/tint/build" "$voxrg" plugins tint > plugins_tint.txt 2>&1 &&
     grep -q "file: $out/work/tint/build/tint.so" plugins_tint.txt || { cat plugins_tint.txt; fail "voxrg plugins tint"; }
 
