@@ -203,53 +203,64 @@ def command_lines(block):
             yield number, piece.strip()
 
 
+INVOCATION = re.compile(r"^(?:\S*/)?voxrg\s+(%s)\b(.*)$" % "|".join(map(re.escape, COMMANDS)))
+
+
+def synopses_in(numbered):
+    """(line, command, text) of each synopsis of a block: a line `voxrg
+    COMMAND ...` with [optional] parts, continued on indented lines that
+    start with '['."""
+    k = 0
+    while k < len(numbered):
+        number, line = numbered[k]
+        m = INVOCATION.match(re.sub(r"\s#.*", "", line).strip())
+        k += 1
+        if m and line.lstrip().startswith("voxrg") and "[" in m.group(2):
+            text = m.group(2)
+            while k < len(numbered) and numbered[k][1].strip().startswith("["):
+                text += " " + numbered[k][1]
+                k += 1
+            yield number, m.group(1), text
+
+
+def example_problems(path, numbered, known):
+    """Flags an example command line gives that its command does not know."""
+    for number, piece in command_lines(numbered):
+        m = INVOCATION.match(piece)
+        if not m or "[" in m.group(2):
+            continue
+        for flag in flag_names(m.group(2)):
+            if flag not in known[m.group(1)]:
+                yield f"{path}:{number}: `voxrg {m.group(1)} {flag}`: voxrg {m.group(1)} --help has no {flag}"
+
+
+def synopsis_problems(where, command, text, usage, usage_text):
+    named = set(flag_names(text))
+    for flag in sorted(named - usage):
+        yield f"{where}: the synopsis of `voxrg {command}` names {flag}, which voxrg {command} --help does not"
+    for flag in sorted(usage - named):
+        yield f"{where}: the synopsis of `voxrg {command}` lacks {flag} (voxrg {command} --help has it)"
+    for flag in sorted(named & usage):
+        doc, want = choices(text, flag), choices(usage_text, flag)
+        if doc is not None and doc != want:
+            yield (f"{where}: the synopsis of `voxrg {command}` gives {flag} {'|'.join(sorted(doc))}; "
+                   f"voxrg {command} --help: {'|'.join(sorted(want or []))}")
+
+
 def part_synopses(root, voxrg):
     usage_text, usage, known = {}, {}, {}
     for c in COMMANDS:
         usage_text[c], usage[c], known[c] = help_flags(voxrg, c)
-    problems, synopses = [], {}
-    invocation = re.compile(r"^(?:\S*/)?voxrg\s+(%s)\b(.*)$" % "|".join(map(re.escape, COMMANDS)))
+    problems, seen = [], set()
     for path in doc_pages(root):
         for first, lines in code_blocks(read(path)):
             numbered = list(zip(range(first, first + len(lines)), lines))
-            # a synopsis: a line `voxrg COMMAND ...` with [optional]
-            # parts, continued on indented lines that start with '['
-            k = 0
-            while k < len(numbered):
-                number, line = numbered[k]
-                m = invocation.match(re.sub(r"\s#.*", "", line).strip())
-                if m and line.lstrip().startswith("voxrg") and "[" in m.group(2):
-                    text, k = m.group(2), k + 1
-                    while k < len(numbered) and numbered[k][1].strip().startswith("["):
-                        text += " " + numbered[k][1]
-                        k += 1
-                    synopses.setdefault(m.group(1), []).append((path, number, text))
-                    continue
-                k += 1
-            for number, piece in command_lines(numbered):
-                m = invocation.match(piece)
-                if not m or "[" in m.group(2):
-                    continue
-                for flag in flag_names(m.group(2)):
-                    if flag not in known[m.group(1)]:
-                        problems.append(f"{path}:{number}: `voxrg {m.group(1)} {flag}`: "
-                                        f"voxrg {m.group(1)} --help has no {flag}")
-    for command, found in synopses.items():
-        for path, number, text in found:
-            named = set(flag_names(text))
-            for flag in sorted(named - usage[command]):
-                problems.append(f"{path}:{number}: the synopsis of `voxrg {command}` names {flag}, "
-                                f"which voxrg {command} --help does not")
-            for flag in sorted(usage[command] - named):
-                problems.append(f"{path}:{number}: the synopsis of `voxrg {command}` lacks {flag} "
-                                f"(voxrg {command} --help has it)")
-            for flag in sorted(named & usage[command]):
-                doc, want = choices(text, flag), choices(usage_text[command], flag)
-                if doc is not None and doc != want:
-                    problems.append(f"{path}:{number}: the synopsis of `voxrg {command}` gives {flag} "
-                                    f"{'|'.join(sorted(doc))}; voxrg {command} --help: {'|'.join(sorted(want or []))}")
+            for number, command, text in synopses_in(numbered):
+                seen.add(command)
+                problems += synopsis_problems(f"{path}:{number}", command, text, usage[command], usage_text[command])
+            problems += example_problems(path, numbered, known)
     for command in COMMANDS:
-        if command not in synopses:
+        if command not in seen:
             problems.append(f"{root}/docs: no synopsis of `voxrg {command}` (graph-format.md, The CLI)")
     return problems
 
@@ -321,10 +332,8 @@ def main():
     part, root = sys.argv[1], sys.argv[2]
     voxrg = sys.argv[3] if len(sys.argv) > 3 else None
     problems = PARTS[part](root, voxrg)
-    for p in problems:
-        print(p)
-    print(f"docs {part}: {'%d problems' % len(problems) if problems else 'ok'}")
-    return 1 if problems else 0
+    print("\n".join(problems + [f"docs {part}: {'%d problems' % len(problems) if problems else 'ok'}"]))
+    return int(bool(problems))
 
 
 if __name__ == "__main__":
