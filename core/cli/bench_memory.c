@@ -31,7 +31,7 @@ static int model_missing(const char *dir, const char *name, char *missing, size_
 {
     char path[1400], line[1200];
     snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "r");
+    FILE *f = vrg_fopen_regular(path, "r");
     int gone = 0;
     while (f && !gone && fgets(line, sizeof line, f)) {
         char file[1100];

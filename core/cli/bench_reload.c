@@ -149,7 +149,7 @@ int vrg_bench_reload(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure
      * history carried over, pipelines kept */
     char src[1100];
     snprintf(src, sizeof src, "%s/graphs/thesis.ini", vrg_data_dir());
-    FILE *f = fopen(src, "r");
+    FILE *f = vrg_fopen_regular(src, "r");
     size_t len = f ? fread(text, 1, sizeof text - 64, f) : 0;
     if (f)
         fclose(f);

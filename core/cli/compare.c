@@ -439,7 +439,7 @@ static int reference_frames(vrg_context *ctx, const options *o, const vrg_camera
         return -1;
     char *text = vrg_cli_read_text(o->reference);
     if (!text) {
-        fprintf(stderr, "error: cannot read %s: %s\n", o->reference, strerror(errno));
+        fprintf(stderr, "error: cannot read %s: %s\n", o->reference, vrg_open_strerror(errno));
         return -1;
     }
     uint64_t base = fnv(1469598103934665603ull, text, strlen(text));

@@ -120,7 +120,7 @@ const char *vrg_cli_json_str(const char *s, char *buf, size_t cap)
 
 char *vrg_cli_read_text(const char *path)
 {
-    FILE *f = fopen(path, "rb");
+    FILE *f = vrg_fopen_regular(path, "rb");
     if (!f)
         return NULL;
     size_t cap = 4096, len = 0;

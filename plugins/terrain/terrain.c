@@ -202,7 +202,7 @@ static int open_edits(vrg_pass *pass, scene *s)
     const terrain_params *g = &s->tw->gen;
     snprintf(key, sizeof key, "terrain seed=%u octaves=%d scale=%g falloff=%g base_height=%g amplitude=%g height_chunks=%d biome_size=%g tree_density=%g sea_level=%d",
              g->seed, g->octaves, g->scale, g->falloff, g->base_height, g->amplitude, g->height_chunks, g->biome_size, g->tree_density, g->sea_level);
-    s->edits = vrg_edits_open(path, key, err, sizeof err);
+    s->edits = vrg_edits_open(path, key, s->tw->world, err, sizeof err);
     if (!s->edits)
         return vrg_pass_error_at(pass, vrg_param_line(pass, "edits"), "%s", err);
     if (vrg_edits_dropped_bytes(s->edits))

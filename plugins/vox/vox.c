@@ -11,13 +11,11 @@
  * rotation, so nothing is mirrored. Each palette colour a voxel uses
  * becomes a block material with a flat atlas tile (vrg_world_add_material).
  * Edits (voxrg/edits.h) are kept beside the graph and applied at start. */
-#define _POSIX_C_SOURCE 200809L /* fileno */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include "voxrg/edits.h"
 #include "vox_read.h"
 
@@ -72,20 +70,14 @@ static void resolve(vrg_pass *pass, const char *file, char *out, size_t n)
         snprintf(out, n, "%.*s/%s", (int)(slash - graph), graph, file);
 }
 
-/* 0, or -1 (errno set) when the file cannot be read whole; a directory
- * opens, and its "size" from fseek can be LONG_MAX: regular files only */
+/* 0, or -1 (errno set) when the file cannot be read whole. Regular files
+ * only: a FIFO would block, a folder's "size" from fseek can be LONG_MAX. */
 static int read_all(const char *path, uint8_t **data, size_t *size)
 {
-    FILE *f = fopen(path, "rb");
+    FILE *f = vrg_fopen_regular(path, "rb");
     if (!f)
         return -1;
-    struct stat st;
-    int err = fstat(fileno(f), &st) != 0 ? errno : S_ISDIR(st.st_mode) ? EISDIR : S_ISREG(st.st_mode) ? 0 : EINVAL;
-    if (err) {
-        fclose(f);
-        errno = err;
-        return -1;
-    }
+    int err;
     long n = -1;
     if (fseek(f, 0, SEEK_END) == 0)
         n = ftell(f);
@@ -157,7 +149,7 @@ static int place(vrg_pass *pass, placed *p)
     resolve(pass, file, p->path, sizeof p->path);
     if (read_all(p->path, &p->bytes, &p->size) != 0)
         return vrg_pass_error_at(pass, file_line, "file = '%s': cannot read %s: %s (the shipped vox graphs expect ../shared/vox beside the project, docs/world.md)",
-                                 file, p->path, strerror(errno));
+                                 file, p->path, vrg_open_strerror(errno));
     char err[512];
     if (vox_read(p->bytes, p->size, p->path, &p->vox, err, sizeof err) != 0) {
         int rc = vrg_pass_error_at(pass, file_line, "%s", err);
@@ -371,7 +363,7 @@ static int open_edits(vrg_pass *pass, scene *s, const placed *p)
         return 0; /* a graph from text has no folder to keep edits in */
     snprintf(key, sizeof key, "vox file=%s bytes=%zu fnv1a=%016llx position=%s scale=%d ground=%s", file_name(p->path), p->size,
              (unsigned long long)fnv1a(p->bytes, p->size), vrg_param_string(pass, "position"), p->scale, vrg_param_string(pass, "ground"));
-    s->edits = vrg_edits_open(path, key, err, sizeof err);
+    s->edits = vrg_edits_open(path, key, s->gpu.world, err, sizeof err);
     if (!s->edits)
         return vrg_pass_error_at(pass, vrg_param_line(pass, "edits"), "%s", err);
     if (vrg_edits_dropped_bytes(s->edits))

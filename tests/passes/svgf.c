@@ -114,11 +114,11 @@ static int remove_pillar(vrg_graph *g, vrg_edits *e)
 static void test_svgf_edit_removal(void)
 {
     static const char *reads[] = {"reproject.color"};
-    char dir[] = "/tmp/vrg_edit_ghost_XXXXXX", path[64], err[512];
+    char dir[] = "/tmp/vrg_edit_ghost_XXXXXX", path[64], err[512] = "the graph did not load";
     vrg_graph *g = load_with("svgf_ghost.ini", NULL, 0, reads, 1), *fresh = load_with("svgf_ghost.ini", NULL, 0, reads, 1);
     CHECK(mkdtemp(dir) != NULL, "mkdtemp failed");
     snprintf(path, sizeof path, "%s/ghost.edits", dir);
-    vrg_edits *e = vrg_edits_open(path, "svgf_ghost", err, sizeof err);
+    vrg_edits *e = g ? vrg_edits_open(path, "svgf_ghost", vrg_graph_world(g), err, sizeof err) : NULL;
     CHECK(e != NULL, "%s", err);
     if (!g || !fresh || !e)
         return;

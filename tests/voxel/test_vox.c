@@ -369,7 +369,7 @@ static void test_edits_roundtrip(void)
     char path[512], err[1024];
     snprintf(path, sizeof path, "%s/g.ini.edits", tmpdir);
     vrg_world *w = small_world();
-    vrg_edits *e = vrg_edits_open(path, "test seed=1", err, sizeof err);
+    vrg_edits *e = vrg_edits_open(path, "test seed=1", w, err, sizeof err);
     CHECK(e, "%s", err);
     CHECK(vrg_edits_set(e, w, 1, 2, 3, VRG_BLOCK_AIR, err, sizeof err) == 0, "%s", err);
     CHECK(vrg_edits_set(e, w, 4, 5, 6, VRG_BLOCK_RED, err, sizeof err) == 0, "%s", err);
@@ -384,7 +384,7 @@ static void test_edits_roundtrip(void)
 
     /* a fresh world gets the edits back, from the file alone */
     w = small_world();
-    e = vrg_edits_open(path, "test seed=1", err, sizeof err);
+    e = vrg_edits_open(path, "test seed=1", w, err, sizeof err);
     CHECK(e && vrg_edits_records(e) == 7, "records: %d (%s)", e ? vrg_edits_records(e) : -1, err);
     if (e) {
         vrg_edits_apply_world(e, w);
@@ -399,7 +399,7 @@ static void test_edits_roundtrip(void)
         vrg_edits_close(e);
     }
     /* another world's key is refused, naming the file */
-    e = vrg_edits_open(path, "test seed=2", err, sizeof err);
+    e = vrg_edits_open(path, "test seed=2", w, err, sizeof err);
     CHECK(!e && strstr(err, path) && strstr(err, "another world") && strstr(err, "test seed=1"), "key mismatch: '%s'", err);
     vrg_edits_close(e);
     /* a damaged record in the middle is reported at its offset */
@@ -408,7 +408,7 @@ static void test_edits_roundtrip(void)
     fseek(f, hdr + 20 + 5, SEEK_SET);
     fputc(0x55, f);
     fclose(f);
-    e = vrg_edits_open(path, "test seed=1", err, sizeof err);
+    e = vrg_edits_open(path, "test seed=1", w, err, sizeof err);
     char at[64];
     snprintf(at, sizeof at, "at byte %ld", hdr + 20);
     CHECK(!e && strstr(err, at) && strstr(err, "damaged"), "corrupt record: '%s'", err);
@@ -423,7 +423,7 @@ static int run_op(vrg_edits *e, vrg_world *w, long i, char *err, size_t n)
         return vrg_edits_undo(e, w, err, n) < 0 ? -1 : 0;
     if (i % 7 == 5)
         return vrg_edits_redo(e, w, err, n) < 0 ? -1 : 0;
-    return vrg_edits_set(e, w, (int)(i % 4), (int)(i / 4 % 4), (int)(i / 16 % 4), (vrg_block)(1 + i % 200), err, n);
+    return vrg_edits_set(e, w, (int)(i % 4), (int)(i / 4 % 4), (int)(i / 16 % 4), (vrg_block)(1 + i % (VRG_BLOCK_COUNT - 1)), err, n);
 }
 
 /* The blocks of the corner after ops 0..k-1: the journal's semantics
@@ -444,8 +444,8 @@ static int expected_state(long k, vrg_block out[64])
                 done[nd] = undone[--nu], out[done[nd].pos] = done[nd].now, nd++, records++;
         } else {
             int pos = (int)(i % 4) + 4 * (int)(i / 4 % 4) + 16 * (int)(i / 16 % 4);
-            done[nd++] = (model_op){pos, out[pos], (vrg_block)(1 + i % 200)};
-            out[pos] = (vrg_block)(1 + i % 200);
+            done[nd++] = (model_op){pos, out[pos], (vrg_block)(1 + i % (VRG_BLOCK_COUNT - 1))};
+            out[pos] = (vrg_block)(1 + i % (VRG_BLOCK_COUNT - 1));
             nu = 0;
             records++;
         }
@@ -473,7 +473,7 @@ static void test_edits_kill(void)
         if (pid == 0) {
             close(fds[0]);
             vrg_world *w = small_world();
-            vrg_edits *e = vrg_edits_open(path, "kill", err, sizeof err);
+            vrg_edits *e = vrg_edits_open(path, "kill", w, err, sizeof err);
             if (!e)
                 _exit(3);
             vrg_edits_apply_world(e, w);
@@ -499,12 +499,14 @@ static void test_edits_kill(void)
         while (read(fds[0], &v, sizeof v) == sizeof v)
             done = v;
         close(fds[0]);
-        vrg_edits *e = vrg_edits_open(path, "kill", err, sizeof err);
-        CHECK(e, "reopening after kill %d: %s", it, err);
-        if (!e)
-            break;
-        torn_seen += vrg_edits_dropped_bytes(e) != 0;
         vrg_world *w = small_world();
+        vrg_edits *e = vrg_edits_open(path, "kill", w, err, sizeof err);
+        CHECK(e, "reopening after kill %d: %s", it, err);
+        if (!e) {
+            vrg_world_destroy(w);
+            break;
+        }
+        torn_seen += vrg_edits_dropped_bytes(e) != 0;
         vrg_edits_apply_world(e, w);
         vrg_block got[64], want[64], want_next[64];
         for (int i = 0; i < 64; i++)
@@ -532,17 +534,17 @@ static void test_edits_torn(void)
     char path[512], err[1024];
     snprintf(path, sizeof path, "%s/torn.edits", tmpdir);
     vrg_world *w = small_world();
-    vrg_edits *e = vrg_edits_open(path, "torn", err, sizeof err);
+    vrg_edits *e = vrg_edits_open(path, "torn", w, err, sizeof err);
     CHECK(e && vrg_edits_set(e, w, 1, 1, 1, VRG_BLOCK_RED, err, sizeof err) == 0, "%s", err);
     vrg_edits_close(e);
     int fd = open(path, O_WRONLY | O_APPEND);
     CHECK(write(fd, "E\0\3\0\2\0\0", 7) == 7, "append a torn record");
     close(fd);
-    e = vrg_edits_open(path, "torn", err, sizeof err);
+    e = vrg_edits_open(path, "torn", w, err, sizeof err);
     CHECK(e && vrg_edits_records(e) == 1 && vrg_edits_dropped_bytes(e) == 7, "the torn tail is dropped: %s", e ? "" : err);
     CHECK(e && vrg_edits_set(e, w, 2, 2, 2, VRG_BLOCK_WHITE, err, sizeof err) == 0, "append after a torn tail: %s", err);
     vrg_edits_close(e);
-    e = vrg_edits_open(path, "torn", err, sizeof err);
+    e = vrg_edits_open(path, "torn", w, err, sizeof err);
     vrg_block b = 0;
     CHECK(e && vrg_edits_records(e) == 2 && vrg_edits_dropped_bytes(e) == 0 && vrg_edits_block(e, 2, 2, 2, &b) == 1 && b == VRG_BLOCK_WHITE,
           "the record after the cut is read: %s", e ? "" : err);

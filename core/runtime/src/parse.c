@@ -158,18 +158,17 @@ static char *normalised(const char *text)
  * FIFO or a device would block or never end. */
 static char *read_graph_file(const char *path, _vrg_ast *ast, _vrg_diag *d)
 {
-    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    int fd = vrg_open_regular(path, O_RDONLY);
+    if (fd < 0 && (errno == EINVAL || errno == EISDIR)) {
+        _vrg_error(d, VRG_E_GRAPH_UNREADABLE, "graph file '%s' is not a regular file", path);
+        return NULL;
+    }
     if (fd < 0) {
         _vrg_error(d, VRG_E_GRAPH_UNREADABLE, "cannot open graph file '%s': %s", path, strerror(errno));
         return NULL;
     }
     struct stat st;
-    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-        close(fd);
-        _vrg_error(d, VRG_E_GRAPH_UNREADABLE, "graph file '%s' is not a regular file", path);
-        return NULL;
-    }
-    if (st.st_size > (1 << 20)) {
+    if (fstat(fd, &st) != 0 || st.st_size > (1 << 20)) {
         close(fd);
         _vrg_error(d, VRG_E_GRAPH_UNREADABLE, "graph file '%s' is not a readable text file under 1 MiB", path);
         return NULL;

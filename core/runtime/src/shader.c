@@ -21,7 +21,7 @@ static void glslang_init(void) { glslang_initialize_process(); }
 
 static char *read_file(const char *path, size_t *len)
 {
-    FILE *f = fopen(path, "rb");
+    FILE *f = vrg_fopen_regular(path, "rb");
     if (!f)
         return NULL;
     fseek(f, 0, SEEK_END);

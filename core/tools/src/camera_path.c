@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "voxrg/camera_path.h"
+#include "voxrg/plugin.h"
 
 #define FIELDS 6
 #define MAX_FILE_BYTES (16u << 20) /* far beyond any hand-written path */
@@ -166,9 +167,9 @@ int vrg_camera_path_parse(const char *name, const char *text, vrg_camera_path *o
 int vrg_camera_path_load(const char *file, vrg_camera_path *out, FILE *diag)
 {
     memset(out, 0, sizeof *out);
-    FILE *f = fopen(file, "rb");
+    FILE *f = vrg_fopen_regular(file, "rb");
     if (!f) {
-        fprintf(out_of(diag), "%s: error: cannot open camera path: %s\n", file, strerror(errno));
+        fprintf(out_of(diag), "%s: error: cannot open camera path: %s\n", file, vrg_open_strerror(errno));
         fprintf(out_of(diag), "  hint: camera paths are text files such as graphs/paths/orbit.path\n");
         return -1;
     }

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "voxrg/graph_edit.h"
+#include "voxrg/plugin.h"
 #include "voxrg/output.h"
 
 typedef struct span {
@@ -166,7 +167,7 @@ char *vrg_graph_edit_text(const char *path, const char *text, const vrg_graph_ed
 /* The whole file (malloc'd), or NULL after a message. */
 static char *read_all(const char *path, FILE *diag)
 {
-    FILE *f = fopen(path, "rb");
+    FILE *f = vrg_fopen_regular(path, "rb");
     int open_errno = errno;
     char *text = NULL;
     size_t len = 0, cap = 0;
@@ -190,7 +191,7 @@ static char *read_all(const char *path, FILE *diag)
             return NULL;
         }
     }
-    fprintf(diag, "error: cannot read %s: %s\n", path, f ? "out of memory" : strerror(open_errno));
+    fprintf(diag, "error: cannot read %s: %s\n", path, f ? "out of memory" : vrg_open_strerror(open_errno));
     if (f)
         fclose(f);
     free(text);

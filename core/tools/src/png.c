@@ -119,7 +119,7 @@ int vrg_png_encode_rgb8(const uint8_t *rgb, uint32_t w, uint32_t h, void **png, 
 int vrg_png_read_rgb8(const char *path, uint8_t **rgb, uint32_t *w, uint32_t *h)
 {
     *rgb = NULL;
-    FILE *f = fopen(path, "rb");
+    FILE *f = vrg_fopen_regular(path, "rb");
     if (!f)
         return -1;
     spng_ctx *ctx = spng_ctx_new(0);

@@ -9,7 +9,14 @@
  * file per edit: an edit costs 20 bytes and one sync however long the
  * history is. A kill or power loss can only tear the last record, which
  * opening drops; a damaged record with records after it is corruption,
- * reported, never skipped. */
+ * reported, never skipped. A record outside the world, or naming a block
+ * without a material, is refused as well: the world could not show it.
+ *
+ * The journal's bytes are also kept in memory: when the file is deleted or
+ * moved away while edits go on (an append would land in a file nobody will
+ * read), the next append writes it again at its path, whole, as the header
+ * is written. A different file found at the path is left alone: the edit
+ * is refused. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <stdarg.h>
@@ -39,8 +46,14 @@ struct vrg_edits {
     char path[4096];
     char key[VRG_EDITS_KEY_MAX];
     int fd;            /* open for appending once the file exists; -1 before */
-    long valid_bytes;  /* header and whole records: a torn tail beyond is cut before appending */
+    dev_t dev;         /* the file fd is (or is to be) opened on, to notice */
+    ino_t ino;         /* another one, or none, at the path */
+    uint8_t *bytes;    /* the header and the whole records: the file as it should be */
+    size_t bytes_cap;
+    long valid_bytes;  /* bytes used: a torn tail beyond is cut before appending */
     long dropped;
+    int height;        /* blocks: y in [0, height) */
+    int materials;     /* block ids below it have a material */
     int records;
     change *changes;   /* sorted by chunk, then position (apply_chunk finds a chunk's range) */
     int change_count, change_cap;
@@ -166,6 +179,18 @@ static int failf(char *err, size_t n, const char *fmt, ...)
 
 static size_t header_bytes(const vrg_edits *e) { return 8 + 4 + strlen(e->key) + 4; }
 
+/* 0 when the world can hold block b at (x, y, z), else -1 with why. Within
+ * VRG_WORLD_LIMIT block coordinates and their chunks fit an int. */
+static int check_edit(const vrg_edits *e, int x, int y, int z, int b, char *why, size_t n)
+{
+    const int limit = (int)VRG_WORLD_LIMIT;
+    if (x < -limit || x >= limit || z < -limit || z >= limit || y < 0 || y >= e->height)
+        return failf(why, n, "block %d %d %d is outside the world (x and z in [%d, %d), y in [0, %d))", x, y, z, -limit, limit, e->height);
+    if (b >= e->materials)
+        return failf(why, n, "block id %d has no material (this world's ids are 0 to %d)", b, e->materials - 1);
+    return 0;
+}
+
 static int load(vrg_edits *e, const uint8_t *d, size_t size, char *err, size_t n)
 {
     size_t klen = strlen(e->key);
@@ -186,6 +211,9 @@ static int load(vrg_edits *e, const uint8_t *d, size_t size, char *err, size_t n
             break; /* the last record, torn */
         }
         op o = {(int32_t)get32(r + 4), (int32_t)get32(r + 8), (int32_t)get32(r + 12), r[1], r[2]};
+        char why[160];
+        if (check_edit(e, o.x, o.y, o.z, o.old > o.now ? o.old : o.now, why, sizeof why) != 0)
+            return failf(err, n, "%s: record at byte %zu: %s", e->path, pos, why);
         int rc = replay(e, r[0], o);
         if (rc < 0)
             return failf(err, n, "%s: out of memory", e->path);
@@ -200,17 +228,17 @@ static int load(vrg_edits *e, const uint8_t *d, size_t size, char *err, size_t n
 
 static int read_file(vrg_edits *e, char *err, size_t n)
 {
-    int fd = open(e->path, O_RDONLY);
+    int fd = vrg_open_regular(e->path, O_RDONLY); /* a FIFO must not block the open */
     if (fd < 0) {
         if (errno == ENOENT)
             return 0; /* no edits yet */
-        return failf(err, n, "%s: cannot open: %s", e->path, strerror(errno));
+        return failf(err, n, "%s: cannot open: %s", e->path, vrg_open_strerror(errno));
     }
     struct stat st;
     uint8_t *d = NULL;
     int rc = -1;
-    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode))
-        failf(err, n, "%s: not a regular file", e->path);
+    if (fstat(fd, &st) != 0)
+        failf(err, n, "%s: cannot open: %s", e->path, strerror(errno));
     else if (!(d = malloc(st.st_size ? (size_t)st.st_size : 1)))
         failf(err, n, "%s: out of memory for %lld bytes", e->path, (long long)st.st_size);
     else {
@@ -223,14 +251,52 @@ static int read_file(vrg_edits *e, char *err, size_t n)
         }
         rc = got == (size_t)st.st_size ? load(e, d, got, err, n) : failf(err, n, "%s: read failed", e->path);
     }
-    free(d);
     close(fd);
-    if (rc == 0)
-        e->fd = -2; /* exists: opened for appending at the first edit */
-    return rc;
+    if (rc != 0) {
+        free(d);
+        return rc;
+    }
+    e->bytes = d; /* the journal as read, less a torn tail (valid_bytes) */
+    e->bytes_cap = st.st_size ? (size_t)st.st_size : 1;
+    e->dev = st.st_dev;
+    e->ino = st.st_ino;
+    e->fd = -2; /* exists: opened for appending at the first edit */
+    return 0;
 }
 
-vrg_edits *vrg_edits_open(const char *path, const char *key, char *err, size_t err_size)
+/* Room for `more` bytes after the valid ones. */
+static int reserve(vrg_edits *e, size_t more)
+{
+    size_t need = (size_t)e->valid_bytes + more;
+    if (need <= e->bytes_cap)
+        return 0;
+    size_t cap = e->bytes_cap ? 2 * e->bytes_cap : 4096;
+    while (cap < need)
+        cap *= 2;
+    uint8_t *b = realloc(e->bytes, cap);
+    if (!b)
+        return -1;
+    e->bytes = b;
+    e->bytes_cap = cap;
+    return 0;
+}
+
+/* A journal not written yet: its header. */
+static int start_bytes(vrg_edits *e)
+{
+    size_t klen = strlen(e->key);
+    if (reserve(e, header_bytes(e)) != 0)
+        return -1;
+    uint8_t *h = e->bytes;
+    memcpy(h, MAGIC, 8);
+    put32(h + 8, (uint32_t)klen);
+    memcpy(h + 12, e->key, klen);
+    put32(h + 12 + klen, crc32(h, 12 + klen));
+    e->valid_bytes = (long)header_bytes(e);
+    return 0;
+}
+
+vrg_edits *vrg_edits_open(const char *path, const char *key, const vrg_world *w, char *err, size_t err_size)
 {
     vrg_edits *e = calloc(1, sizeof *e);
     if (!e) {
@@ -245,7 +311,14 @@ vrg_edits *vrg_edits_open(const char *path, const char *key, char *err, size_t e
     }
     strcpy(e->path, path);
     strcpy(e->key, key);
-    if (read_file(e, err, err_size) != 0) {
+    int dims[3];
+    vrg_world_grid(w, dims);
+    e->height = dims[1] * VRG_CHUNK_SIZE;
+    e->materials = vrg_world_material_count(w);
+    int rc = read_file(e, err, err_size);
+    if (rc == 0 && !e->bytes && start_bytes(e) != 0)
+        rc = failf(err, err_size, "%s: out of memory", path);
+    if (rc != 0) {
         vrg_edits_close(e);
         return NULL;
     }
@@ -258,6 +331,7 @@ void vrg_edits_close(vrg_edits *e)
         return;
     if (e->fd >= 0)
         close(e->fd);
+    free(e->bytes);
     free(e->changes);
     free(e->done);
     free(e->undone);
@@ -284,45 +358,50 @@ static int sync_folder(const char *path)
     return rc;
 }
 
-/* The header, atomically: a temporary file, synced, renamed, folder synced. */
+/* The journal's bytes as the file at its path, atomically: a temporary
+ * file, synced, renamed, the folder synced. */
 static int create_file(vrg_edits *e, char *err, size_t n)
 {
-    size_t hb = header_bytes(e), klen = strlen(e->key);
-    uint8_t *h = malloc(hb);
     char tmp[4200];
     snprintf(tmp, sizeof tmp, "%s.tmp%ld", e->path, (long)getpid());
-    if (!h)
-        return failf(err, n, "%s: out of memory", e->path);
-    memcpy(h, MAGIC, 8);
-    put32(h + 8, (uint32_t)klen);
-    memcpy(h + 12, e->key, klen);
-    put32(h + 12 + klen, crc32(h, 12 + klen));
-    int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    int ok = fd >= 0 && write(fd, h, hb) == (ssize_t)hb && fsync(fd) == 0;
+    int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    int ok = fd >= 0 && write(fd, e->bytes, (size_t)e->valid_bytes) == (ssize_t)e->valid_bytes && fsync(fd) == 0;
     if (fd >= 0)
         close(fd);
-    free(h);
     if (!ok || rename(tmp, e->path) != 0 || sync_folder(e->path) != 0) {
         int code = errno;
         unlink(tmp);
         return failf(err, n, "%s: cannot create: %s", e->path, strerror(code));
     }
-    e->valid_bytes = (long)hb;
+    e->dropped = 0; /* a torn tail was not written again */
     return 0;
 }
 
-/* Opens for appending, cutting a torn tail first (records go after whole ones). */
+/* Opens for appending, cutting a torn tail first (records go after whole
+ * ones). Another file at the path than the one read is refused. */
 static int open_append(vrg_edits *e, char *err, size_t n)
 {
     if (e->fd >= 0)
         return 0;
-    if (e->fd == -1 && create_file(e, err, n) != 0)
+    int created = e->fd == -1;
+    if (created && create_file(e, err, n) != 0)
         return -1;
-    e->fd = open(e->path, O_WRONLY | O_APPEND);
-    if (e->fd < 0) {
+    e->fd = vrg_open_regular(e->path, O_WRONLY | O_APPEND);
+    struct stat st;
+    if (e->fd < 0 || fstat(e->fd, &st) != 0) {
+        int code = errno;
+        if (e->fd >= 0)
+            close(e->fd);
         e->fd = -2;
-        return failf(err, n, "%s: cannot open for writing: %s", e->path, strerror(errno));
+        return failf(err, n, "%s: cannot open for writing: %s", e->path, vrg_open_strerror(code));
     }
+    if (!created && (st.st_dev != e->dev || st.st_ino != e->ino)) {
+        close(e->fd);
+        e->fd = -2;
+        return failf(err, n, "%s: another file took the journal's place since it was read: not written to (move it away to go on editing)", e->path);
+    }
+    e->dev = st.st_dev;
+    e->ino = st.st_ino;
     if (e->dropped && (ftruncate(e->fd, e->valid_bytes) != 0 || fsync(e->fd) != 0)) {
         close(e->fd);
         e->fd = -2;
@@ -332,6 +411,18 @@ static int open_append(vrg_edits *e, char *err, size_t n)
     return 0;
 }
 
+/* 1 when the journal read or written is no longer at its path (deleted,
+ * or moved away): appending to it would save nothing anyone reads. */
+static int journal_gone(const vrg_edits *e)
+{
+    struct stat open_st, path_st;
+    if (e->fd == -1) /* not created yet */
+        return 0;
+    if (e->fd >= 0 && fstat(e->fd, &open_st) == 0 && open_st.st_nlink == 0)
+        return 1;
+    return stat(e->path, &path_st) != 0 && errno == ENOENT;
+}
+
 static int append(vrg_edits *e, int kind, op o, char *err, size_t n)
 {
     uint8_t r[RECORD] = {(uint8_t)kind, o.old, o.now, 0};
@@ -339,6 +430,14 @@ static int append(vrg_edits *e, int kind, op o, char *err, size_t n)
     put32(r + 8, (uint32_t)o.y);
     put32(r + 12, (uint32_t)o.z);
     put32(r + 16, crc32(r, 16));
+    if (reserve(e, RECORD) != 0)
+        return failf(err, n, "%s: out of memory", e->path);
+    int rewritten = journal_gone(e);
+    if (rewritten) {
+        if (e->fd >= 0)
+            close(e->fd);
+        e->fd = -1;
+    }
     if (open_append(e, err, n) != 0)
         return -1;
     if (write(e->fd, r, RECORD) != RECORD || fdatasync(e->fd) != 0) {
@@ -350,8 +449,11 @@ static int append(vrg_edits *e, int kind, op o, char *err, size_t n)
         }
         return failf(err, n, "%s: cannot write an edit: %s", e->path, strerror(code));
     }
+    memcpy(e->bytes + e->valid_bytes, r, RECORD);
     e->valid_bytes += RECORD;
     e->records++;
+    if (rewritten)
+        snprintf(err, n, "%s was deleted or moved away: written again with all %d records", e->path, e->records);
     return 0;
 }
 
@@ -387,6 +489,8 @@ int vrg_edits_apply_world(const vrg_edits *e, vrg_world *w)
 
 static int record(vrg_edits *e, vrg_world *w, int kind, op o, char *err, size_t n)
 {
+    if (n)
+        err[0] = '\0';
     if (append(e, kind, o, err, n) != 0)
         return -1;
     if (replay(e, kind, o) < 0)
@@ -400,6 +504,9 @@ static int record(vrg_edits *e, vrg_world *w, int kind, op o, char *err, size_t 
 int vrg_edits_set(vrg_edits *e, vrg_world *w, int x, int y, int z, vrg_block b, char *err, size_t n)
 {
     op o = {x, y, z, w ? vrg_world_block(w, x, y, z) : VRG_BLOCK_AIR, b};
+    char why[160];
+    if (check_edit(e, x, y, z, b, why, sizeof why) != 0)
+        return failf(err, n, "%s: not written: %s", e->path, why);
     return record(e, w, 'E', o, err, n);
 }
 

@@ -10,6 +10,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <vulkan/vulkan.h>
 #include "voxrg/camera.h"
 
@@ -281,6 +282,16 @@ void vrg_pass_warn_at(vrg_pass *pass, int line, const char *fmt, ...) __attribut
 /* The graph file's path as the host gave it ("" for a graph loaded from
  * text): files a parameter names are relative to its folder. */
 const char *vrg_pass_graph_path(const vrg_pass *pass);
+/* Opens an existing file to read (or append to) only when it is a regular
+ * file, without blocking: a FIFO, a device or a socket named where a file
+ * belongs would block the open or never end. flags as open(2)'s, O_CLOEXEC
+ * added; mode as fopen's, "r" or "a" forms (nothing is created). The
+ * descriptor or stream, or -1 / NULL with errno set: EISDIR for a folder,
+ * EINVAL for anything else that is not a regular file. vrg_open_strerror
+ * says "not a regular file" for EINVAL, else strerror's text. */
+int vrg_open_regular(const char *path, int flags);
+FILE *vrg_fopen_regular(const char *path, const char *mode);
+const char *vrg_open_strerror(int err);
 
 /* GPU milliseconds of a pass (NULL: this one) in the newest frame known to
  * have finished: with frames in flight an earlier one than this frame
