@@ -159,6 +159,9 @@ static int parse_options(int argc, char **argv, options *o)
         } else if (!strcmp(a, "--size")) {
             if (vrg_cli_parse_size(next, &o->width, &o->height) != 0)
                 return usage_error("--size '%s': expected WxH, " VRG_CLI_SIZE_RANGE ", e.g. 320x180", next);
+            if (o->width < VRG_SSIM_WINDOW || o->height < VRG_SSIM_WINDOW)
+                return usage_error("--size %s: compare needs at least " VRG_CLI_STR(VRG_SSIM_WINDOW) "x" VRG_CLI_STR(VRG_SSIM_WINDOW)
+                                   " pixels (SSIM's window)", next);
         } else if (!strcmp(a, "--frames")) {
             if (parse_count(next, 1, 100000, &o->frames) != 0)
                 return usage_error("--frames '%s': expected 1 to 100000", next);
@@ -333,6 +336,10 @@ static int check_all(const options *o, job *jobs, vrg_cmp_result *r, vrg_camera 
         } else if (vrg_graph_resource_kind(g, vrg_graph_output(g)) != VRG_IMAGE) {
             fprintf(stderr, "error: the reference's output '%s' is not an image\n", vrg_graph_output(g));
             rc = -1;
+        } else if (r->width < VRG_SSIM_WINDOW || r->height < VRG_SSIM_WINDOW) {
+            fprintf(stderr, "error: the graphs render %ux%u: compare needs at least %dx%d pixels (SSIM's window): set --size\n", r->width,
+                    r->height, VRG_SSIM_WINDOW, VRG_SSIM_WINDOW);
+            rc = -1;
         }
     }
     vrg_graph_destroy(g);
@@ -366,7 +373,7 @@ static void write_dep(void *user, const char *path)
 
 static int deps_current(const char *deps_path)
 {
-    FILE *f = fopen(deps_path, "r");
+    FILE *f = vrg_fopen_regular(deps_path, "r");
     if (!f)
         return 0;
     char line[2200];
@@ -384,14 +391,29 @@ static int deps_current(const char *deps_path)
     return ok && lines > 0;
 }
 
-static const char *default_cache(char *buf, size_t cap)
+/* --cache, or the user's cache folder */
+static const char *cache_dir(const options *o, char *buf, size_t cap)
 {
     const char *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
-    if (xdg && *xdg)
+    if (o->cache)
+        snprintf(buf, cap, "%s", o->cache);
+    else if (xdg && *xdg)
         snprintf(buf, cap, "%s/voxrg/reference", xdg);
     else
         snprintf(buf, cap, "%s/.cache/voxrg/reference", home && *home ? home : "/tmp");
     return buf;
+}
+
+/* A cache entry is a regular file or absent: anything else under its name
+ * (a FIFO would block the reader, and the writer, for ever) is an error
+ * naming it. */
+static int cache_entry_ok(const char *path)
+{
+    struct stat st;
+    if (stat(path, &st) != 0 || S_ISREG(st.st_mode))
+        return 0;
+    fprintf(stderr, "error: the reference cache's %s is not a regular file: remove it\n", path);
+    return -1;
 }
 
 static void progress(const char *what, uint32_t done, uint32_t total, int tty)
@@ -434,9 +456,7 @@ static int reference_frames(vrg_context *ctx, const options *o, const vrg_camera
                             uint8_t **ref, vrg_cmp_result *r, int tty)
 {
     char cache[VRG_CLI_PATH], file[VRG_CLI_PATH], deps[VRG_CLI_PATH];
-    snprintf(cache, sizeof cache, "%s", o->cache ? o->cache : default_cache(file, sizeof file));
-    if (vrg_cli_mkdir_p(cache) != 0)
-        return -1;
+    cache_dir(o, cache, sizeof cache); /* checked writable before any work */
     char *text = vrg_cli_read_text(o->reference);
     if (!text) {
         fprintf(stderr, "error: cannot read %s: %s\n", o->reference, vrg_open_strerror(errno));
@@ -449,7 +469,7 @@ static int reference_frames(vrg_context *ctx, const options *o, const vrg_camera
     base = fnv(base, &r->width, sizeof r->width);
     base = fnv(base, &r->height, sizeof r->height);
     vrg_graph *g = NULL;
-    int rc = 0;
+    int rc = 0, cache_bad = 0;
     for (uint32_t k = 0; k < o->frames && rc == 0; k++) {
         vrg_camera cam;
         uint32_t index = o->start + k; /* the path's frame */
@@ -458,6 +478,10 @@ static int reference_frames(vrg_context *ctx, const options *o, const vrg_camera
         key = fnv(fnv(fnv(key, &cam.yaw, sizeof cam.yaw), &cam.pitch, sizeof cam.pitch), &cam.fov_y, sizeof cam.fov_y);
         snprintf(file, sizeof file, "%s/%016llx.png", cache, (unsigned long long)key);
         snprintf(deps, sizeof deps, "%s/%016llx.deps", cache, (unsigned long long)key);
+        if (cache_entry_ok(file) != 0 || cache_entry_ok(deps) != 0) {
+            rc = -1, cache_bad = 1;
+            break;
+        }
         uint32_t w, h;
         if (deps_current(deps) && vrg_png_read_rgb8(file, &ref[k], &w, &h) == 0) {
             if (w == r->width && h == r->height) {
@@ -491,7 +515,7 @@ static int reference_frames(vrg_context *ctx, const options *o, const vrg_camera
         progress("reference", k + 1, o->frames, tty);
     }
     vrg_graph_destroy(g);
-    if (rc != 0)
+    if (rc != 0 && !cache_bad)
         fprintf(stderr, "\nerror: the reference %s failed to render\n", o->reference);
     return rc;
 }
@@ -544,7 +568,7 @@ static int render_candidate(vrg_context *ctx, const options *o, const job *j, vr
      * as the graph (docs/compare.md). The frames are kept in memory, as the
      * reference's are. */
     uint8_t **frames = calloc(o->frames, sizeof *frames);
-    int rc = frames ? 0 : -1;
+    int rc = frames ? 0 : -1, written = 1;
     for (uint32_t k = 0; k < o->frames && rc == 0; k++) {
         vrg_camera cam;
         camera_at(path, fixed, (o->start + k) * frame_s, &cam);
@@ -569,7 +593,8 @@ static int render_candidate(vrg_context *ctx, const options *o, const job *j, vr
         frames[k] = NULL;
         char file[VRG_CLI_PATH + VRG_CLI_PATH];
         snprintf(file, sizeof file, "%s/%s-%05u.png", frames_dir, c->name, k);
-        rc = vrg_png_write_rgb8(file, rgb, r->width, r->height);
+        rc = vrg_png_write_rgb8(file, rgb, r->width, r->height); /* says why it failed, naming the file */
+        written = rc == 0;
         to_float(rgb, n, cur);
         to_float(ref[k], n, refc);
         c->per_frame[VRG_CMP_PSNR][k] = vrg_metric_psnr(cur, refc, r->width, r->height);
@@ -618,7 +643,7 @@ static int render_candidate(vrg_context *ctx, const options *o, const job *j, vr
                     sum += c->per_frame[m][k], cnt++;
             c->summary[m] = cnt ? sum / cnt : NAN;
         }
-    } else
+    } else if (written)
         fprintf(stderr, "\nerror: candidate '%s' (%s) failed to render\n", c->name, j->graph);
     free(cur), free(prev), free(refc), free(refp), free(ms);
     vrg_graph_destroy(g);
@@ -805,7 +830,8 @@ int vrg_cli_compare(int argc, char **argv)
         return 1;
     if (o.camera && vrg_camera_path_load(o.camera, &path, stderr) != 0)
         return 1;
-    if (vrg_cli_out_dir(o.out) != 0 || vrg_cli_out_dir(frames_dir) != 0) {
+    char cache[VRG_CLI_PATH];
+    if (vrg_cli_out_dir(o.out) != 0 || vrg_cli_out_dir(frames_dir) != 0 || vrg_cli_out_dir(cache_dir(&o, cache, sizeof cache)) != 0) {
         vrg_camera_path_free(&path);
         return 1;
     }

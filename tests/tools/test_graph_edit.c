@@ -3,11 +3,13 @@
  * (voxrg/graph_edit.h): only the edited values' text changes (comments,
  * blank lines, odd spacing, inline comments and CRLF line ends stay), a
  * missing key is added after its section's last key, a missing section is
- * an error naming the file, and the file is replaced whole. No device.
+ * an error naming the file, and the file is replaced whole; a FIFO in its
+ * place is refused without blocking. No device.
  * Usage: test_graph_edit CASE (run in a writable folder). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include "voxrg/graph_edit.h"
 #include "check.h"
@@ -129,17 +131,38 @@ static void case_file(void)
     CHECK(rmdir(dir) == 0, "files left beside the graph (a temporary file?)");
 }
 
+/* A graph file replaced by a FIFO before the panel saves: an error naming
+ * it, at once (an open that blocked would wait for a writer for ever, and
+ * the window with it: the alarm fails the case instead). */
+static void case_fifo(void)
+{
+    char dir[] = "graph_edit_XXXXXX";
+    CHECK(mkdtemp(dir), "mkdtemp failed");
+    char path[64], err[512] = "";
+    snprintf(path, sizeof path, "%s/g.ini", dir);
+    CHECK(mkfifo(path, 0644) == 0, "mkfifo failed");
+    vrg_graph_edit e = {"scene", "time_of_day", "12"};
+    FILE *diag = fmemopen(err, sizeof err, "w");
+    alarm(30);
+    CHECK(vrg_graph_edit_file(path, &e, 1, diag) != 0, "a FIFO was edited");
+    alarm(0);
+    fclose(diag);
+    CHECK(strstr(err, path) && strstr(err, "not a regular file"), "the message: %s", err);
+    unlink(path);
+    CHECK(rmdir(dir) == 0, "files left beside the graph");
+}
+
 int main(int argc, char **argv)
 {
     static const struct {
         const char *name;
         void (*fn)(void);
-    } cases[] = {{"values", case_values}, {"crlf", case_crlf}, {"missing", case_missing}, {"file", case_file}};
+    } cases[] = {{"values", case_values}, {"crlf", case_crlf}, {"missing", case_missing}, {"file", case_file}, {"fifo", case_fifo}};
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         if (argc > 1 && strcmp(argv[1], cases[i].name) == 0) {
             cases[i].fn();
             return failures ? 1 : 0;
         }
-    fprintf(stderr, "usage: test_graph_edit values|crlf|missing|file\n");
+    fprintf(stderr, "usage: test_graph_edit values|crlf|missing|file|fifo\n");
     return 2;
 }

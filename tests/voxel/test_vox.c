@@ -3,6 +3,7 @@
  * files, the edit journal (crash safety by kill -9), and rendering of a
  * model and of an edited world. Usage: PROGRAM CASE. */
 #include <fcntl.h>
+#include <limits.h>
 #include <signal.h>
 #include <stdint.h>
 #include <sys/stat.h>
@@ -552,6 +553,134 @@ static void test_edits_torn(void)
     vrg_world_destroy(w);
 }
 
+/* CRC-32 as the journal's (docs/world.md, "Edits"): a record the test
+ * forges passes the checksum, so what it holds is what is judged. */
+static uint32_t journal_crc(const uint8_t *p, size_t n)
+{
+    uint32_t c = 0xffffffffu;
+    for (size_t i = 0; i < n; i++) {
+        c ^= p[i];
+        for (int k = 0; k < 8; k++)
+            c = c >> 1 ^ (0xedb88320u & (0u - (c & 1)));
+    }
+    return ~c;
+}
+
+static void le32(uint8_t *p, uint32_t v)
+{
+    for (int i = 0; i < 4; i++)
+        p[i] = (uint8_t)(v >> 8 * i);
+}
+
+/* A journal whose one record is the writer's with (x, y, z) and the new
+ * block replaced, its checksum made right: refused at the record's byte
+ * offset, naming the file, with `what` is wrong (NULL: accepted). */
+static void check_forged(const char *path, vrg_world *w, int x, int y, int z, int block, const char *what)
+{
+    char err[1024];
+    unlink(path);
+    vrg_edits *e = vrg_edits_open(path, "forged", w, err, sizeof err);
+    CHECK(e && vrg_edits_set(e, w, 1, 1, 1, VRG_BLOCK_RED, err, sizeof err) == 0, "writing the record: %s", err);
+    vrg_edits_close(e);
+    long at = 8 + 4 + (long)strlen("forged") + 4;
+    uint8_t r[20];
+    FILE *f = fopen(path, "r+b");
+    CHECK(f && fseek(f, at, SEEK_SET) == 0 && fread(r, 1, 20, f) == 20, "reading the record back");
+    if (!f)
+        return;
+    r[2] = (uint8_t)block;
+    le32(r + 4, (uint32_t)x), le32(r + 8, (uint32_t)y), le32(r + 12, (uint32_t)z);
+    le32(r + 16, journal_crc(r, 16));
+    CHECK(fseek(f, at, SEEK_SET) == 0 && fwrite(r, 1, 20, f) == 20, "writing the forged record");
+    fclose(f);
+    e = vrg_edits_open(path, "forged", w, err, sizeof err);
+    char offset[64];
+    snprintf(offset, sizeof offset, "record at byte %ld", at);
+    if (what)
+        CHECK(!e && strstr(err, path) && strstr(err, offset) && strstr(err, what), "%d %d %d block %d: '%s'", x, y, z, block, e ? "accepted" : err);
+    else
+        CHECK(e, "%d %d %d block %d, within the world, refused: '%s'", x, y, z, block, err);
+    vrg_edits_close(e);
+}
+
+/* Records outside the world (past VRG_WORLD_LIMIT, where chunk coordinates
+ * overflow an int, or beyond its height), or naming a block id without a
+ * material, are refused when read and when written. */
+static void test_edits_bad_records(void)
+{
+    make_tmpdir();
+    char path[512], err[1024];
+    snprintf(path, sizeof path, "%s/forged.edits", tmpdir);
+    vrg_world *w = small_world();
+    check_forged(path, w, INT32_MIN, 1, 1, VRG_BLOCK_RED, "outside the world");
+    check_forged(path, w, 1, 1, INT32_MAX, VRG_BLOCK_RED, "outside the world");
+    check_forged(path, w, (int)VRG_WORLD_LIMIT, 1, 1, VRG_BLOCK_RED, "outside the world");
+    check_forged(path, w, 1, -1, 1, VRG_BLOCK_RED, "outside the world");
+    check_forged(path, w, 1, VRG_CHUNK_SIZE, 1, VRG_BLOCK_RED, "outside the world"); /* small_world: one chunk high */
+    check_forged(path, w, 1, 1, 1, 100, "block id 100 has no material");
+    check_forged(path, w, 1, 1, 1, 250, "block id 250 has no material");
+    check_forged(path, w, 1, 1, 1, 255, "block id 255 has no material");
+    check_forged(path, w, -(int)VRG_WORLD_LIMIT, VRG_CHUNK_SIZE - 1, (int)VRG_WORLD_LIMIT - 1, VRG_BLOCK_COUNT - 1, NULL);
+    /* the writer refuses them too: a journal it wrote always opens */
+    unlink(path);
+    vrg_edits *e = vrg_edits_open(path, "forged", w, err, sizeof err);
+    CHECK(e && vrg_edits_set(e, w, 1, 1, 1, 100, err, sizeof err) == -1 && strstr(err, "no material"), "block 100 written: '%s'", err);
+    CHECK(e && vrg_edits_set(e, w, 1, VRG_CHUNK_SIZE, 1, VRG_BLOCK_RED, err, sizeof err) == -1 && strstr(err, "outside the world"),
+          "a block above the world written: '%s'", err);
+    CHECK(e && vrg_edits_records(e) == 0 && access(path, F_OK) != 0, "a refused edit left a record or a file");
+    vrg_edits_close(e);
+    vrg_world_destroy(w);
+}
+
+/* The journal deleted, or moved away, while edits go on: the next edit
+ * writes it again at its path with every record, and says so; another
+ * file put at the path is not written to. A FIFO at the path is refused
+ * when opened, without blocking. */
+static void test_edits_lost(void)
+{
+    make_tmpdir();
+    char path[512], moved[600], err[1024];
+    snprintf(path, sizeof path, "%s/lost.edits", tmpdir);
+    snprintf(moved, sizeof moved, "%s/moved.edits", tmpdir);
+    vrg_world *w = small_world();
+    vrg_edits *e = vrg_edits_open(path, "lost", w, err, sizeof err);
+    CHECK(e && vrg_edits_set(e, w, 1, 1, 1, VRG_BLOCK_RED, err, sizeof err) == 0 && !err[0], "first edit: '%s'", err);
+    CHECK(unlink(path) == 0, "unlink");
+    CHECK(vrg_edits_set(e, w, 2, 2, 2, VRG_BLOCK_WHITE, err, sizeof err) == 0 && strstr(err, path) && strstr(err, "deleted or moved"),
+          "the edit after the unlink says nothing of it: '%s'", err);
+    CHECK(rename(path, moved) == 0, "move");
+    CHECK(vrg_edits_undo(e, w, err, sizeof err) == 0 && strstr(err, "written again with all 3 records"), "undo after the move: '%s'", err);
+    CHECK(vrg_edits_set(e, w, 3, 3, 3, VRG_BLOCK_SAND, err, sizeof err) == 0 && !err[0], "an edit with the journal in place: '%s'", err);
+    vrg_edits_close(e);
+    e = vrg_edits_open(path, "lost", w, err, sizeof err);
+    vrg_block b = 0;
+    CHECK(e && vrg_edits_records(e) == 4 && vrg_edits_block(e, 1, 1, 1, &b) == 1 && b == VRG_BLOCK_RED && vrg_edits_block(e, 2, 2, 2, &b) == 1 &&
+              b == VRG_BLOCK_STONE && vrg_edits_block(e, 3, 3, 3, &b) == 1 && b == VRG_BLOCK_SAND,
+          "the journal at the path lacks edits: %d records (%s)", e ? vrg_edits_records(e) : -1, e ? "" : err);
+    /* read, not yet appended to, then deleted: written again at the first edit */
+    CHECK(unlink(path) == 0, "unlink");
+    CHECK(e && vrg_edits_redo(e, w, err, sizeof err) == 1 && vrg_edits_set(e, w, 0, 0, 0, VRG_BLOCK_DIRT, err, sizeof err) == 0 &&
+              strstr(err, "written again with all 5 records"),
+          "the first edit after reopening: '%s'", err);
+    /* another file at the path: refused, left as it is */
+    CHECK(rename(moved, path) == 0, "put another file in place");
+    struct stat before, after;
+    stat(path, &before);
+    CHECK(e && vrg_edits_set(e, w, 0, 1, 0, VRG_BLOCK_DIRT, err, sizeof err) == -1 && strstr(err, path) && strstr(err, "another file"),
+          "an edit into another file: '%s'", err);
+    CHECK(stat(path, &after) == 0 && after.st_size == before.st_size, "the other file changed");
+    vrg_edits_close(e);
+    /* a FIFO where the journal belongs (a blocking open would wait for a writer for ever) */
+    alarm(30);
+    CHECK(unlink(path) == 0 && mkfifo(path, 0644) == 0, "mkfifo");
+    e = vrg_edits_open(path, "lost", w, err, sizeof err);
+    CHECK(!e && strstr(err, path) && strstr(err, "not a regular file"), "a FIFO as the journal: '%s'", e ? "opened" : err);
+    alarm(0);
+    vrg_edits_close(e);
+    unlink(path);
+    vrg_world_destroy(w);
+}
+
 /* ---- rendering ---- */
 
 static vrg_graph *load_vox(const char *edits, const char *scale) /* scale: part of the journal key */
@@ -687,6 +816,8 @@ static const test_case cases[] = {
     {"edits_roundtrip", test_edits_roundtrip, 0, NULL},
     {"edits_torn", test_edits_torn, 0, NULL},
     {"edits_kill", test_edits_kill, 0, NULL},
+    {"edits_bad_records", test_edits_bad_records, 0, NULL},
+    {"edits_lost", test_edits_lost, 0, NULL},
     {"vox_render", NULL, 1, test_vox_render},
 };
 

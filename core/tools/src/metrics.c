@@ -37,7 +37,7 @@ double vrg_metric_temporal(const float *test, const float *test_prev, const floa
 
 /* ---- SSIM ---- */
 
-enum { SSIM_WINDOW = 11 };
+enum { SSIM_WINDOW = VRG_SSIM_WINDOW };
 
 /* Valid-mode separable filtering of `src` (w x h) with the 11-tap kernel:
  * out is (w-10) x (h-10). `tmp` holds (w-10) x h. */

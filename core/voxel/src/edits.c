@@ -377,6 +377,12 @@ static int create_file(vrg_edits *e, char *err, size_t n)
     return 0;
 }
 
+static int replaced(const vrg_edits *e, char *err, size_t n)
+{
+    return failf(err, n, "%s: another file took the journal's place since it was opened: the edit is not written (move that file away to go on)",
+                 e->path);
+}
+
 /* Opens for appending, cutting a torn tail first (records go after whole
  * ones). Another file at the path than the one read is refused. */
 static int open_append(vrg_edits *e, char *err, size_t n)
@@ -398,7 +404,7 @@ static int open_append(vrg_edits *e, char *err, size_t n)
     if (!created && (st.st_dev != e->dev || st.st_ino != e->ino)) {
         close(e->fd);
         e->fd = -2;
-        return failf(err, n, "%s: another file took the journal's place since it was read: not written to (move it away to go on editing)", e->path);
+        return replaced(e, err, n);
     }
     e->dev = st.st_dev;
     e->ino = st.st_ino;
@@ -411,16 +417,17 @@ static int open_append(vrg_edits *e, char *err, size_t n)
     return 0;
 }
 
-/* 1 when the journal read or written is no longer at its path (deleted,
- * or moved away): appending to it would save nothing anyone reads. */
-static int journal_gone(const vrg_edits *e)
+/* Whether the journal read or written is still at its path: 0 yes, 1 no
+ * file is there (it was deleted or moved away: appending to it would save
+ * nothing anyone reads), -1 another file is. */
+static int journal_moved(const vrg_edits *e)
 {
-    struct stat open_st, path_st;
+    struct stat st;
     if (e->fd == -1) /* not created yet */
         return 0;
-    if (e->fd >= 0 && fstat(e->fd, &open_st) == 0 && open_st.st_nlink == 0)
-        return 1;
-    return stat(e->path, &path_st) != 0 && errno == ENOENT;
+    if (stat(e->path, &st) != 0)
+        return errno == ENOENT;
+    return st.st_dev == e->dev && st.st_ino == e->ino ? 0 : -1;
 }
 
 static int append(vrg_edits *e, int kind, op o, char *err, size_t n)
@@ -432,12 +439,13 @@ static int append(vrg_edits *e, int kind, op o, char *err, size_t n)
     put32(r + 16, crc32(r, 16));
     if (reserve(e, RECORD) != 0)
         return failf(err, n, "%s: out of memory", e->path);
-    int rewritten = journal_gone(e);
-    if (rewritten) {
-        if (e->fd >= 0)
-            close(e->fd);
-        e->fd = -1;
-    }
+    int moved = journal_moved(e), rewritten = moved == 1;
+    if (moved && e->fd >= 0)
+        close(e->fd);
+    if (moved)
+        e->fd = rewritten ? -1 : -2;
+    if (moved < 0)
+        return replaced(e, err, n);
     if (open_append(e, err, n) != 0)
         return -1;
     if (write(e->fd, r, RECORD) != RECORD || fdatasync(e->fd) != 0) {

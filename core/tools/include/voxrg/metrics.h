@@ -20,6 +20,7 @@ double vrg_metric_psnr(const float *test, const float *ref, uint32_t width, uint
 /* SSIM (Wang et al. 2004) of the luma 0.2989 R + 0.5870 G + 0.1140 B: 11x11
  * Gaussian window (sigma 1.5), K1 0.01, K2 0.03, L 1, averaged over the
  * windows that fit in the image. -1 if the image is under 11x11. */
+#define VRG_SSIM_WINDOW 11
 double vrg_metric_ssim(const float *test, const float *ref, uint32_t width, uint32_t height);
 
 /* LDR-FLIP (Andersson et al. 2020), mean of the per-pixel error in [0, 1],

@@ -1,0 +1,144 @@
+#!/usr/bin/env python3
+"""Files that are not what voxrg expects, where a user can put them:
+- a FIFO where a file is read (a vox model, an edit journal, a cached
+  reference frame): an error naming it and a non-zero exit, at once (each
+  run has a time limit: an open that blocks fails the case instead of
+  hanging the suite);
+- compare at a size below SSIM's window: refused, naming --size and the
+  minimum (no -1 reported as a score);
+- compare with a cache folder it cannot write: one error, before any work;
+- compare whose frame cannot be written: the write is the error, naming the
+  file and the reason, not a "failed to render".
+Usage: test_hostile_files.py VOXRG TESTS_DIR OUT_DIR CASE"""
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+VOXRG, TESTS, OUT, CASE = sys.argv[1:5]
+LIMIT_S = 120
+failures = []
+
+GRAPH = """[graph]
+name   = {name}
+output = view
+width  = {width}
+height = 18
+
+[scene]
+{scene}
+
+[pass view]
+plugin    = world_debug
+in.world  = world
+in.frame  = frame
+out.color = view
+"""
+
+
+def check(cond, what):
+    if not cond:
+        failures.append(what)
+        print("FAIL:", what, flush=True)
+    return cond
+
+
+def voxrg(*args):
+    """rc, stderr; rc None when the run did not end within LIMIT_S."""
+    try:
+        p = subprocess.run([VOXRG, *args], cwd=OUT, capture_output=True, text=True, timeout=LIMIT_S)
+        return p.returncode, p.stderr
+    except subprocess.TimeoutExpired:
+        return None, ""
+
+
+def refused(what, rc, stderr, *patterns):
+    check(rc is not None, f"{what}: blocked ({LIMIT_S} s)")
+    check(rc not in (None, 0), f"{what}: exit {rc}")
+    for p in patterns:
+        check(re.search(p, stderr), f"{what}: no '{p}' in:\n{stderr}")
+
+
+def write(name, text):
+    with open(os.path.join(OUT, name), "w") as f:
+        f.write(text)
+
+
+def fifo(name):
+    os.mkfifo(os.path.join(OUT, name))
+
+
+def fifo_vox():
+    write("vox.ini", GRAPH.format(name="fifo_vox", width=32, scene="plugin = vox\nfile   = model.vox"))
+    fifo("model.vox")
+    rc, err = voxrg("check", "--no-device", "vox.ini")
+    refused("a FIFO as the vox file", rc, err, r"vox\.ini:\d+: error.*model\.vox: not a regular file")
+
+
+def fifo_journal():
+    write("terrain.ini", GRAPH.format(name="fifo_journal", width=32, scene="plugin  = terrain\nseed    = 7\nradius  = 1\nthreads = 1"))
+    fifo("terrain.ini.edits")
+    rc, err = voxrg("check", "terrain.ini")
+    refused("a FIFO as the edit journal", rc, err, r"terrain\.ini\.edits: cannot open: not a regular file")
+
+
+def compare(*args, cache="cache", out="out"):
+    shutil.copy(os.path.join(TESTS, "graphs", "blocks_wall.ini"), OUT)
+    return voxrg("compare", "blocks_wall.ini", "--reference", "blocks_wall.ini", "--frames", "2", "--out", out, "--cache", cache, *args)
+
+
+def fifo_reference():
+    rc, err = compare("--size", "32x18")
+    check(rc == 0, f"the first compare (filling the cache): exit {rc}\n{err}")
+    frames = sorted(f for f in os.listdir(os.path.join(OUT, "cache")) if f.endswith(".png"))
+    check(len(frames) == 2, f"cached frames: {frames}")
+    entry = os.path.join("cache", frames[0])
+    os.unlink(os.path.join(OUT, entry))
+    fifo(entry)
+    rc, err = compare("--size", "32x18")
+    refused("a FIFO as a cached reference frame", rc, err, re.escape(entry) + r" is not a regular file")
+
+
+def compare_size():
+    rc, err = compare("--size", "10x18")
+    refused("--size 10x18", rc, err, r"--size 10x18: compare needs at least 11x11 pixels")
+    check(rc == 2, f"--size 10x18 is a usage error: exit {rc}")
+    write("narrow.ini", GRAPH.format(name="narrow", width=8, scene="plugin = blocks\nbox    = 0 0 0 7 0 7 white"))
+    rc, err = voxrg("compare", "narrow.ini", "--reference", "narrow.ini", "--frames", "2", "--out", "out", "--cache", "cache")
+    refused("a graph 8 pixels wide", rc, err, r"render 8x18: compare needs at least 11x11 pixels.*set --size")
+    check(not os.path.exists(os.path.join(OUT, "out", "metrics.json")), "a report was written")
+
+
+def compare_cache():
+    # a folder no file can be created in, whoever runs the test (root too)
+    cache = "/proc/1"
+    rc, err = compare("--size", "32x18", cache=cache)
+    refused("an unwritable --cache", rc, err, r"error: cannot write in " + re.escape(cache))
+    check(len(re.findall(r"error", err)) == 1, f"one error, before any work:\n{err}")
+
+
+def compare_out_write():
+    # the candidate's first frame cannot be written: a folder holds its name
+    os.makedirs(os.path.join(OUT, "out", "frames", "blocks_wall-00000.png"))
+    rc, err = compare("--size", "32x18")
+    refused("a frame that cannot be written", rc, err, r"cannot write out/frames/blocks_wall-00000\.png: Is a directory")
+    check("failed to render" not in err, f"a write failure reported as a failed render:\n{err}")
+
+
+CASES = (fifo_vox, fifo_journal, fifo_reference, compare_size, compare_cache, compare_out_write)
+
+
+def main():
+    cases = {c.__name__: c for c in CASES}
+    if CASE not in cases:
+        sys.exit(f"usage: test_hostile_files.py VOXRG TESTS_DIR OUT_DIR {'|'.join(cases)}")
+    shutil.rmtree(OUT, ignore_errors=True)
+    os.makedirs(OUT)
+    cases[CASE]()
+    print("FAILED" if failures else "ok")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
