@@ -364,7 +364,8 @@ static int create_file(vrg_edits *e, char *err, size_t n)
 {
     char tmp[4200];
     snprintf(tmp, sizeof tmp, "%s.tmp%ld", e->path, (long)getpid());
-    int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    unlink(tmp); /* a stale one; O_EXCL then opens nothing else (a FIFO would block) */
+    int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
     int ok = fd >= 0 && write(fd, e->bytes, (size_t)e->valid_bytes) == (ssize_t)e->valid_bytes && fsync(fd) == 0;
     if (fd >= 0)
         close(fd);
