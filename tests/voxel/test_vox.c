@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
+#include <zlib.h>
 #include "harness.h"
 #include "voxrg/edits.h"
 #include "voxrg/world.h"
@@ -553,19 +554,6 @@ static void test_edits_torn(void)
     vrg_world_destroy(w);
 }
 
-/* CRC-32 as the journal's (docs/world.md, "Edits"): a record the test
- * forges passes the checksum, so what it holds is what is judged. */
-static uint32_t journal_crc(const uint8_t *p, size_t n)
-{
-    uint32_t c = 0xffffffffu;
-    for (size_t i = 0; i < n; i++) {
-        c ^= p[i];
-        for (int k = 0; k < 8; k++)
-            c = c >> 1 ^ (0xedb88320u & (0u - (c & 1)));
-    }
-    return ~c;
-}
-
 static void le32(uint8_t *p, uint32_t v)
 {
     for (int i = 0; i < 4; i++)
@@ -573,7 +561,7 @@ static void le32(uint8_t *p, uint32_t v)
 }
 
 /* A journal whose one record is the writer's with (x, y, z) and the new
- * block replaced, its checksum made right: refused at the record's byte
+ * block replaced, its checksum made right (so what it holds is judged): refused at the record's byte
  * offset, naming the file, with `what` is wrong (NULL: accepted). */
 static void check_forged(const char *path, vrg_world *w, int x, int y, int z, int block, const char *what)
 {
@@ -590,7 +578,7 @@ static void check_forged(const char *path, vrg_world *w, int x, int y, int z, in
         return;
     r[2] = (uint8_t)block;
     le32(r + 4, (uint32_t)x), le32(r + 8, (uint32_t)y), le32(r + 12, (uint32_t)z);
-    le32(r + 16, journal_crc(r, 16));
+    le32(r + 16, (uint32_t)crc32(0, r, 16)); /* the journal's CRC-32 is zlib's */
     CHECK(fseek(f, at, SEEK_SET) == 0 && fwrite(r, 1, 20, f) == 20, "writing the forged record");
     fclose(f);
     e = vrg_edits_open(path, "forged", w, err, sizeof err);
