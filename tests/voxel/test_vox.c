@@ -560,7 +560,7 @@ static void le32(uint8_t *p, uint32_t v)
         p[i] = (uint8_t)(v >> 8 * i);
 }
 
-/* A journal whose one record is the writer's with (x, y, z) and the new
+/* A journal whose second record is the writer's with (x, y, z) and the new
  * block replaced, its checksum made right (so what it holds is judged): refused at the record's byte
  * offset, naming the file, with `what` is wrong (NULL: accepted). */
 static void check_forged(const char *path, vrg_world *w, int x, int y, int z, int block, const char *what)
@@ -568,9 +568,10 @@ static void check_forged(const char *path, vrg_world *w, int x, int y, int z, in
     char err[1024];
     unlink(path);
     vrg_edits *e = vrg_edits_open(path, "forged", w, err, sizeof err);
-    CHECK(e && vrg_edits_set(e, w, 1, 1, 1, VRG_BLOCK_RED, err, sizeof err) == 0, "writing the record: %s", err);
+    CHECK(e && vrg_edits_set(e, w, 1, 1, 1, VRG_BLOCK_RED, err, sizeof err) == 0 && vrg_edits_set(e, w, 2, 2, 2, VRG_BLOCK_RED, err, sizeof err) == 0,
+          "writing the records: %s", err);
     vrg_edits_close(e);
-    long at = 8 + 4 + (long)strlen("forged") + 4;
+    long at = 8 + 4 + (long)strlen("forged") + 4 + 20; /* the second: replaying it compares it with the first's position */
     uint8_t r[20];
     FILE *f = fopen(path, "r+b");
     CHECK(f && fseek(f, at, SEEK_SET) == 0 && fread(r, 1, 20, f) == 20, "reading the record back");
