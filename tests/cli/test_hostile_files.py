@@ -8,13 +8,16 @@
   minimum (no -1 reported as a score);
 - compare with a cache folder it cannot write: one error, before any work;
 - compare whose frame cannot be written: the write is the error, naming the
-  file and the reason, not a "failed to render".
+  file and the reason, not a "failed to render";
+- voxrg run (under Xvfb, driven with xdotool; skipped without them): the
+  edit journal deleted while editing, the graph file a FIFO when saved.
 Usage: test_hostile_files.py VOXRG TESTS_DIR OUT_DIR CASE"""
 import os
 import re
 import shutil
 import subprocess
 import sys
+import time
 
 VOXRG, TESTS, OUT, CASE = sys.argv[1:5]
 LIMIT_S = 120
@@ -126,7 +129,78 @@ def compare_out_write():
     check("failed to render" not in err, f"a write failure reported as a failed render:\n{err}")
 
 
-CASES = (fifo_vox, fifo_journal, fifo_reference, compare_size, compare_cache, compare_out_write)
+def run_window():
+    """voxrg run, driven under Xvfb: the journal deleted while editing (the
+    next edit writes it again, whole, and says so), then Ctrl+S after the
+    graph file became a FIFO (an error naming it; the window goes on and
+    closes on Escape)."""
+    if not shutil.which("Xvfb") or not shutil.which("xdotool"):
+        print("skip: Xvfb or xdotool not installed (scripts/setup.sh installs them)")
+        sys.exit(77)
+    write("terrain.ini", GRAPH.format(name="window", width=160, scene="plugin  = terrain\nseed    = 7\nradius  = 1\nthreads = 2")
+          .replace("height = 18", "height = 100") + "\n[camera]\nposition = 8 44 8\nyaw      = 30\npitch    = -50\n")
+    display = os.path.join(OUT, "xvfb.display")
+    with open(display, "w") as f:
+        xvfb = subprocess.Popen(["Xvfb", "-displayfd", str(f.fileno()), "-screen", "0", "640x480x24", "-nolisten", "tcp"],
+                                pass_fds=(f.fileno(),), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    log = os.path.join(OUT, "run.stderr")
+    proc = None
+    try:
+        for _ in range(100):
+            if open(display).read().strip():
+                break
+            time.sleep(0.1)
+        env = dict(os.environ, DISPLAY=":" + open(display).read().split()[0])
+        proc = subprocess.Popen([VOXRG, "run", "terrain.ini", "--window", "160x100", "--scale", "1"], cwd=OUT, env=env,
+                                stdout=subprocess.DEVNULL, stderr=open(log, "w"))
+
+        def xdo(*args):
+            return subprocess.run(["xdotool", *args], env=env, capture_output=True, text=True, timeout=60).stdout
+
+        def said(pattern, seconds=60):
+            end = time.time() + seconds
+            while time.time() < end and proc.poll() is None:
+                if re.search(pattern, open(log).read()):
+                    return True
+                time.sleep(0.1)
+            return check(re.search(pattern, open(log).read()), f"no '{pattern}' from voxrg run:\n{open(log).read()[-3000:]}")
+
+        wid = xdo("search", "--sync", "--name", "^voxrg").split()[0]
+        said(r"device")
+        xdo("windowfocus", "--sync", wid)
+        xdo("mousemove", "--window", wid, "80", "50")
+        journal = os.path.join(OUT, "terrain.ini.edits")
+        for _ in range(100):  # until streaming has put a block under the cursor
+            xdo("click", "1")
+            if re.search(r"edit: removed", open(log).read()):
+                break
+            time.sleep(0.3)
+        said(r"edit: removed")
+        os.unlink(journal)
+        xdo("click", "1")
+        said(r"edit: removed .*; .*terrain\.ini\.edits was deleted or moved away: written again with all 2 records")
+        data = open(journal, "rb").read() if os.path.exists(journal) else b""
+        header = 8 + 4 + int.from_bytes(data[8:12], "little") + 4 if len(data) >= 12 else 0
+        check(header and len(data) == header + 2 * 20, f"the journal at its path holds {len(data)} bytes, not its header and 2 records")
+        xdo("key", "m", "Down", "Right")
+        os.unlink(os.path.join(OUT, "terrain.ini"))
+        fifo("terrain.ini")
+        xdo("key", "ctrl+s")
+        said(r"error: cannot read terrain\.ini: not a regular file")
+        xdo("key", "Escape")
+        try:
+            rc = proc.wait(timeout=LIMIT_S)
+            check(rc == 0, f"voxrg run exited {rc}")
+        except subprocess.TimeoutExpired:
+            check(False, "the window froze: no exit after Escape")
+    finally:
+        if proc and proc.poll() is None:
+            proc.kill()
+        xvfb.kill()
+        xvfb.wait()
+
+
+CASES = (fifo_vox, fifo_journal, fifo_reference, compare_size, compare_cache, compare_out_write, run_window)
 
 
 def main():
