@@ -157,28 +157,35 @@ def run_window():
         def xdo(*args):
             return subprocess.run(["xdotool", *args], env=env, capture_output=True, text=True, timeout=60).stdout
 
-        def said(pattern, seconds=60):
+        def said(pattern, count=1, seconds=60):
+            """Waits for the count-th match of pattern on voxrg's stderr."""
             end = time.time() + seconds
             while time.time() < end and proc.poll() is None:
-                if re.search(pattern, open(log).read()):
+                if len(re.findall(pattern, open(log).read())) >= count:
                     return True
                 time.sleep(0.1)
-            return check(re.search(pattern, open(log).read()), f"no '{pattern}' from voxrg run:\n{open(log).read()[-3000:]}")
+            return check(len(re.findall(pattern, open(log).read())) >= count, f"no '{pattern}' x{count} from voxrg run:\n{open(log).read()[-3000:]}")
 
         wid = xdo("search", "--sync", "--name", "^voxrg").split()[0]
         said(r"device")
         xdo("windowfocus", "--sync", wid)
         xdo("mousemove", "--window", wid, "80", "50")
         journal = os.path.join(OUT, "terrain.ini.edits")
-        for _ in range(100):  # until streaming has put a block under the cursor
+        def click():
+            """One click, and its "edit:" line (each waited for: a slow run must not take two clicks as one)."""
+            before = open(log).read().count("edit:")
             xdo("click", "1")
-            if re.search(r"edit: removed", open(log).read()):
+            said(r"edit:.*\n", before + 1)
+            return open(log).read().split("edit:")[before + 1]
+
+        for _ in range(100):  # until streaming has put a block under the cursor
+            if click().startswith(" removed"):
                 break
             time.sleep(0.3)
-        said(r"edit: removed")
         os.unlink(journal)
-        xdo("click", "1")
-        said(r"edit: removed .*; .*terrain\.ini\.edits was deleted or moved away: written again with all 2 records")
+        said_again = click()
+        check(re.match(r" removed .*; .*terrain\.ini\.edits was deleted or moved away: written again with all 2 records", said_again),
+              f"the edit after the journal was deleted:{said_again}")
         data = open(journal, "rb").read() if os.path.exists(journal) else b""
         header = 8 + 4 + int.from_bytes(data[8:12], "little") + 4 if len(data) >= 12 else 0
         check(header and len(data) == header + 2 * 20, f"the journal at its path holds {len(data)} bytes, not its header and 2 records")
