@@ -1,8 +1,22 @@
 /* Phase 4, allocate: create every image and buffer, place transient ones in
- * shared heap blocks (aliasing, planned in compile.c), give kept ones (@prev
+ * shared heap blocks (aliasing, planned in alias.c), give kept ones (@prev
  * and persistent) their own memory, and name everything for debuggers. */
+#include <math.h>
 #include <string.h>
 #include "internal.h"
+
+/* A relative size scales the graph's; an absolute one is as written. */
+static void resource_extent(const vrg_graph *g, const _vrg_resource *r, uint32_t *w, uint32_t *h)
+{
+    if (r->abs_width) {
+        *w = r->abs_width;
+        *h = r->abs_height;
+        return;
+    }
+    float s = r->scale > 0 ? r->scale : 1.0f;
+    *w = (uint32_t)fmaxf(1.0f, floorf((float)g->width * s + 0.5f));
+    *h = (uint32_t)fmaxf(1.0f, floorf((float)g->height * s + 0.5f));
+}
 
 static VkImageUsageFlags image_usage(const vrg_context *ctx, VkFormat format)
 {
@@ -117,7 +131,7 @@ static int create_objects(vrg_graph *g, int ri)
     int copies = r->history ? 2 : 1;
     if (r->kind == VRG_ACCEL)
         return create_accel(g, r);
-    _vrg_resource_extent(g, r, &r->width, &r->height);
+    resource_extent(g, r, &r->width, &r->height);
     r->mips = 1;
     if (r->kind == VRG_IMAGE && r->mip_request > 1) {
         uint32_t full = 1, m = r->width > r->height ? r->width : r->height;
@@ -205,7 +219,7 @@ static int alloc_memory(vrg_graph *g, VkDeviceSize size, uint32_t type_bits, VkD
 
 static void estimate_requirements(vrg_graph *g, _vrg_resource *r)
 {
-    _vrg_resource_extent(g, r, &r->width, &r->height);
+    resource_extent(g, r, &r->width, &r->height);
     uint64_t bytes = r->kind == VRG_IMAGE ? (uint64_t)r->width * r->height * _vrg_format_bytes(r->format)
                    : r->kind == VRG_ACCEL  ? r->size * 128 /* about a node per instance */
                                            : r->size;

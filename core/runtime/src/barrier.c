@@ -1,42 +1,9 @@
-/* Synchronisation: what each declared access means to Vulkan, and the exact
- * barrier between the state a resource is in and the use about to happen.
+/* Synchronisation: the exact barrier between the state a resource is in
+ * and the use about to happen (what each access means to Vulkan: access.c).
  * Used by the recorder before every pass, by the dispatch helper between a
  * pass's own dispatches, and by `check` (on a simulated frame) to print them. */
 #include <string.h>
 #include "internal.h"
-
-_vrg_access_info _vrg_access_info_of(vrg_access a, vrg_resource_kind kind)
-{
-    const VkPipelineStageFlags2 cs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    const VkPipelineStageFlags2 xfer = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-    int img = kind == VRG_IMAGE;
-    switch (a) {
-    case VRG_ACCESS_SAMPLED:
-        return (_vrg_access_info){cs, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 0};
-    case VRG_ACCESS_STORAGE_READ:
-        return (_vrg_access_info){cs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT, img ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED, 0};
-    case VRG_ACCESS_STORAGE_WRITE:
-        return (_vrg_access_info){cs, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, img ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED, 1};
-    case VRG_ACCESS_STORAGE_READ_WRITE:
-        return (_vrg_access_info){cs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                                 img ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED, 1};
-    case VRG_ACCESS_UNIFORM:
-        return (_vrg_access_info){cs, VK_ACCESS_2_UNIFORM_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED, 0};
-    case VRG_ACCESS_TRANSFER_SRC:
-        return (_vrg_access_info){xfer, VK_ACCESS_2_TRANSFER_READ_BIT, img ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED, 0};
-    case VRG_ACCESS_TRANSFER_DST:
-        return (_vrg_access_info){xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, img ? VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED, 1};
-    case VRG_ACCESS_AS_BUILD:
-        return (_vrg_access_info){VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
-                                 VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR | VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR,
-                                 VK_IMAGE_LAYOUT_UNDEFINED, 1};
-    case VRG_ACCESS_RAY_QUERY:
-        return (_vrg_access_info){cs, VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR, VK_IMAGE_LAYOUT_UNDEFINED, 0};
-    case VRG_ACCESS_TEXEL_READ:
-        return (_vrg_access_info){cs, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED, 0};
-    }
-    return (_vrg_access_info){cs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_IMAGE_LAYOUT_GENERAL, 0};
-}
 
 /* Write-after-write and write-after-read need an execution dependency on
  * every earlier access (and the last write made available); read-after-write
@@ -85,14 +52,6 @@ int _vrg_sync_use(_vrg_sync *s, _vrg_access_info need, int discard, _vrg_barrier
     if (is_image)
         s->layout = need.layout;
     return needed;
-}
-
-int _vrg_copy_of(const vrg_graph *g, int res, int prev)
-{
-    if (!g->res[res].history)
-        return 0;
-    int current = (int)(g->frame.frame_index & 1);
-    return prev ? current ^ 1 : current;
 }
 
 /* One use of one resource copy: merges in the accesses of resources that

@@ -4,7 +4,9 @@
  * --suite graph). The runtime appends while g->capture is set: every
  * barrier batch (barrier.c) and every dispatch with its pipeline, pushed
  * descriptors and push constants (dispatch.c). Timestamps, the scene's
- * uploads and readback copies are not captured. */
+ * uploads and readback copies are not captured. The frame itself runs in
+ * vrg_graph_capture_frame (graph_frame.c): this file only keeps and
+ * replays what it is handed. */
 #include <stdlib.h>
 #include <string.h>
 #include "internal.h"
@@ -113,22 +115,11 @@ void _vrg_capture_dispatch(vrg_capture *c, VkPipeline pipeline, VkPipelineLayout
     c->dispatches++;
 }
 
-vrg_capture *vrg_graph_capture_frame(vrg_graph *g)
+vrg_capture *_vrg_capture_new(PFN_vkCmdPushDescriptorSetKHR push_descriptor)
 {
     vrg_capture *c = calloc(1, sizeof *c);
-    if (!c)
-        return NULL;
-    c->push_descriptor = g->ctx->push_descriptor;
-    g->capture = c;
-    int rc = vrg_graph_frame(g);
-    g->capture = NULL;
-    /* the captured commands replay after this frame, which must have ended */
-    if (rc == 0)
-        rc = vrg_graph_wait(g);
-    if (rc != 0) {
-        vrg_capture_free(c);
-        return NULL;
-    }
+    if (c)
+        c->push_descriptor = push_descriptor;
     return c;
 }
 

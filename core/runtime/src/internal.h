@@ -127,7 +127,10 @@ _vrg_running _vrg_running_enter(const char *what, const char *pass, const _vrg_p
 void _vrg_running_leave(_vrg_running before);
 /* A plugin copy being loaded, removed if loading dies (NULLs: none). */
 void _vrg_crash_cleanup_set(const char *dir, const char *file);
-/* capture.c: called where the runtime records, while g->capture is set */
+/* capture.c: an empty capture, which vrg_graph_capture_frame sets as
+ * g->capture for one frame; the recorder's barrier and dispatch calls add
+ * to it while it is set */
+vrg_capture *_vrg_capture_new(PFN_vkCmdPushDescriptorSetKHR push_descriptor);
 void _vrg_capture_barrier(struct vrg_capture *c, const VkDependencyInfo *dep);
 void _vrg_capture_dispatch(struct vrg_capture *c, VkPipeline pipeline, VkPipelineLayout layout, uint32_t write_count,
                           const VkWriteDescriptorSet *writes, const void *push, uint32_t push_size, const uint32_t groups[3]);
@@ -311,6 +314,10 @@ void _vrg_free_retired(vrg_graph *g, int all);
 /* Forgets the figures of vrg_pass_stat (a new frame); free: also the table. */
 void _vrg_pass_clear_stats(vrg_pass *p, int free_table);
 int _vrg_pass_add_string(vrg_pass *p, int param, const char *value, int line, int replace);
+/* A slot ("in.NAME", "out.NAME" or NAME) or internal resource of the pass:
+ * its resource, whether it reads @prev, its slot (-1: internal); -1 if the
+ * pass has none connected. */
+int _vrg_pass_lookup(const vrg_pass *p, const char *name, int *res, int *prev, int *slot);
 
 typedef struct _vrg_barrier_rec {
     int res, copy;
@@ -328,7 +335,7 @@ typedef struct _vrg_heap_block {
 
 struct vrg_graph {
     vrg_context *ctx;
-    /* hot reload (graph.c: vrg_graph_watch) */
+    /* hot reload (graph_watch.c: vrg_graph_watch) */
     struct _vrg_watch *watch;
     char reload_error[4096];   /* the last failed reload's messages; "" after a good one */
     double reload_ms;          /* save-to-frame time of the last reload, -1 if none */
@@ -360,7 +367,7 @@ struct vrg_graph {
     int schedule[VRG_MAX_PASSES];
     int schedule_count;
     /* allocate */
-    _vrg_heap_block blocks[VK_MAX_MEMORY_TYPES]; /* disjoint type sets: see compile.c */
+    _vrg_heap_block blocks[VK_MAX_MEMORY_TYPES]; /* disjoint type sets: see alias.c */
     int block_count;
     int *overlaps;            /* every resource's list of those it shares memory with */
     int overlap_used, overlap_cap;
@@ -402,21 +409,11 @@ struct vrg_graph {
     vrg_camera last_camera;   /* the last frame's */
 };
 
+/* ---- the phases, which load (graph.c) runs in order ---- */
 /* validate.c: AST → graph (plugins loaded, slots resolved, every check). */
 int _vrg_validate(vrg_graph *g, const _vrg_ast *ast, const vrg_graph_desc *desc);
-/* compile.c: cull, order, lifetimes; alias placement of sized resources. */
+/* compile.c: cull, order, lifetimes. */
 int _vrg_compile(vrg_graph *g);
-/* Add an internal resource for a pass (used by create()). */
-int _vrg_graph_add_resource(vrg_graph *g, const char *name);
-uint64_t _vrg_format_bytes(VkFormat f);
-const char *_vrg_format_name(VkFormat f);
-const char *_vrg_format_list(void);
-VkFormat _vrg_format_parse(const char *s);
-uint32_t _vrg_format_channels(VkFormat f);
-void _vrg_resource_extent(const vrg_graph *g, const _vrg_resource *r, uint32_t *w, uint32_t *h);
-/* Place resources with the given sizes into heap blocks; fills block/offset/overlaps.
- * Returns 0, or -1 after reporting. */
-int _vrg_plan_aliasing(vrg_graph *g);
 /* allocate.c */
 int _vrg_allocate(vrg_graph *g);
 void _vrg_free_resources(vrg_graph *g);
@@ -425,7 +422,27 @@ int _vrg_record_frame(vrg_graph *g);
 /* Waits for every submitted frame (reading their timestamps); -1 after
  * reporting a GPU timeout, interrupt or device loss. */
 int _vrg_wait_frames(vrg_graph *g);
-/* barrier.c: the access a use needs, and the barrier that gets it there. */
+/* vrg_graph_load for a reload (graph.c): passes may look at `predecessor`'s
+ * (vrg_pass_previous_instance) until the reload ends. */
+int _vrg_graph_load_replacing(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph *predecessor, vrg_graph **out);
+
+/* ---- the dispatch helper's pipelines (dispatch.c) ---- */
+void _vrg_pipelines_destroy(vrg_pass *p);
+/* Hot reload: recompile this pass's pipelines that use any of the changed
+ * files; a pipeline whose new version fails keeps running (the errors go to
+ * diag). Returns how many were swapped, -1 if any failed. */
+int _vrg_pipelines_reload(vrg_pass *p, char (*changed)[VRG_PATH_MAX], int count);
+/* Calls fn for every file the pass's pipelines read (hot reload watches them). */
+void _vrg_pipelines_deps(vrg_pass *p, void (*fn)(void *user, const char *path), void *user);
+
+/* ---- alias.c: memory placement of transient resources ---- */
+/* Place resources with the given sizes into heap blocks; fills block/offset/overlaps.
+ * Returns 0, or -1 after reporting. */
+int _vrg_plan_aliasing(vrg_graph *g);
+/* A kept resource survives the frame: never aliased, never culled away. */
+static inline int _vrg_resource_kept(const _vrg_resource *r) { return r->history || r->persistent; }
+
+/* ---- access.c: what a declared access means ---- */
 typedef struct _vrg_access_info {
     VkPipelineStageFlags2 stage;
     VkAccessFlags2 access;
@@ -433,16 +450,32 @@ typedef struct _vrg_access_info {
     int writes;
 } _vrg_access_info;
 _vrg_access_info _vrg_access_info_of(vrg_access a, vrg_resource_kind kind);
+const char *_vrg_access_name(vrg_access a);
+
+/* ---- barrier.c: the barrier that brings a resource to a use ---- */
 /* Updates *s for a use; returns 1 and fills *b when a barrier is needed. */
 int _vrg_sync_use(_vrg_sync *s, _vrg_access_info need, int discard, _vrg_barrier_rec *b);
 /* Barriers to bring a pass's resources to their declared accesses. */
 int _vrg_pass_barriers(vrg_graph *g, vrg_pass *p, _vrg_barrier_rec *out, int max);
 void _vrg_emit_barriers(vrg_graph *g, VkCommandBuffer cmd, const _vrg_barrier_rec *b, int n);
-int _vrg_copy_of(const vrg_graph *g, int res, int prev);
-int _vrg_pass_lookup(const vrg_pass *p, const char *name, int *res, int *prev, int *slot);
 int _vrg_resource_barrier(vrg_graph *g, int res, int copy, vrg_access access, _vrg_barrier_rec *out);
-/* shader.c */
-/* ---- reflection (reflect.c): what a compiled shader declares ---- */
+
+/* ---- resource.c: the graph's resource table ---- */
+int _vrg_graph_find_resource(const vrg_graph *g, const char *name);
+/* Finds or adds a resource by name (a graph file's, or an internal one a
+ * pass's create() asks for); -1 when the table is full. */
+int _vrg_graph_add_resource(vrg_graph *g, const char *name);
+/* Which copy of resource res this frame uses (prev: the @prev one). */
+int _vrg_copy_of(const vrg_graph *g, int res, int prev);
+
+/* ---- format.c: the image formats a graph names ---- */
+uint64_t _vrg_format_bytes(VkFormat f);
+const char *_vrg_format_name(VkFormat f);
+const char *_vrg_format_list(void);
+VkFormat _vrg_format_parse(const char *s);
+uint32_t _vrg_format_channels(VkFormat f);
+
+/* ---- shaders (shader.c) and what they declare (reflect.c) ---- */
 typedef struct _vrg_reflected_binding {
     uint32_t set, binding;
     VkDescriptorType type;
@@ -470,29 +503,19 @@ typedef struct _vrg_shader_module {
     char *deps; /* the file and every file it includes, real paths, one per line (free()) */
     _vrg_reflection refl; /* _vrg_reflection_free() */
 } _vrg_shader_module;
-/* vrg_graph_load for a reload: passes may look at `predecessor`'s
- * (vrg_pass_previous_instance) until the reload ends. */
-int _vrg_graph_load_replacing(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph *predecessor, vrg_graph **out);
 /* VRG_GROUP_X/Y shaders are compiled with: the device's, or a GPU's without one. */
 void _vrg_shader_group_size(const vrg_context *ctx, uint32_t out[2]);
 /* ctx NULL: compiled and reflected for a GPU's workgroup shape, no module made. */
 int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, _vrg_shader_module *out, FILE *diag);
 int _vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t cap);
-/* The folder of libvoxrg's own file (install.c); "" if unknown. */
+
+/* ---- install.c ---- */
+/* The folder of libvoxrg's own file; "" if unknown. */
 const char *_vrg_lib_dir(void);
 /* 1 while libvoxrg (or a test linking it statically) runs from its build
  * folder and not from an installed layout: the source tree's shaders and
  * the build's plugins are then searched too. */
 int _vrg_build_tree(void);
-void _vrg_pipelines_destroy(vrg_pass *p);
-/* Hot reload: recompile this pass's pipelines that use any of the changed
- * files; a pipeline whose new version fails keeps running (the errors go to
- * diag). Returns how many were swapped, -1 if any failed. */
-int _vrg_pipelines_reload(vrg_pass *p, char (*changed)[VRG_PATH_MAX], int count);
-/* Adds a pipeline's files (newline-separated) to the graph's watch, if any. */
-void _vrg_graph_watch_pipeline(vrg_graph *g, const char *deps);
-/* Calls fn for every file the pass's pipelines read (hot reload watches them). */
-void _vrg_pipelines_deps(vrg_pass *p, void (*fn)(void *user, const char *path), void *user);
 
 /* ---- hot reload (watch.c) ---- */
 typedef struct _vrg_watch _vrg_watch;
@@ -502,8 +525,8 @@ int _vrg_watch_add(_vrg_watch *w, const char *path);
 /* Tracked files whose write completed since the last poll, in *changed
  * (every one; the caller frees it). -1: out of memory. */
 int _vrg_watch_poll(_vrg_watch *w, char (**changed)[VRG_PATH_MAX]);
-/* report.c */
-const char *_vrg_access_name(vrg_access a);
+/* Adds a pipeline's files (newline-separated) to the graph's watch, if any. */
+void _vrg_graph_watch_pipeline(vrg_graph *g, const char *deps);
 
 static inline const vrg_slot_desc *vrg_slot(const vrg_pass *p, int i) { return &p->plugin->desc->slots[i]; }
 

@@ -5,14 +5,6 @@
 #include <string.h>
 #include "internal.h"
 
-const char *_vrg_access_name(vrg_access a)
-{
-    static const char *names[] = {"?",           "sampled",      "storage-read", "storage-write", "storage-read-write",
-                                  "uniform",     "transfer-src", "transfer-dst", "as-build",      "ray-query",
-                                  "texel-read"};
-    return a >= 1 && a <= VRG_ACCESS_TEXEL_READ ? names[a] : "?";
-}
-
 static const char *layout_name(VkImageLayout l)
 {
     switch (l) {
@@ -215,6 +207,3 @@ void vrg_graph_write_dot(const vrg_graph *g, FILE *f)
     }
     fprintf(f, "}\n");
 }
-
-const char *vrg_format_label(VkFormat f) { return _vrg_format_name(f); }
-const char *vrg_access_label(vrg_access a) { return _vrg_access_name(a); }

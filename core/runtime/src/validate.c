@@ -85,32 +85,6 @@ static int name_too_long(vrg_graph *g, int line, const char *what, const char *n
     return 1;
 }
 
-static int find_resource(const vrg_graph *g, const char *name)
-{
-    for (int i = 0; i < g->res_count; i++)
-        if (strcmp(g->res[i].name, name) == 0)
-            return i;
-    return -1;
-}
-
-int _vrg_graph_add_resource(vrg_graph *g, const char *name)
-{
-    int i = find_resource(g, name);
-    if (i >= 0)
-        return i;
-    if (g->res_count >= VRG_MAX_RESOURCES)
-        return -1;
-    _vrg_resource *r = &g->res[g->res_count];
-    memset(r, 0, sizeof *r);
-    snprintf(r->name, sizeof r->name, "%s", name);
-    r->writer = -1;
-    r->writer_slot = -1;
-    r->internal_owner = -1;
-    r->block = -1;
-    r->first_use = r->last_use = -1;
-    return g->res_count++;
-}
-
 /* A slot by name and direction (in.color and out.color may both exist);
  * with no slot of that direction, one of the other so the error can say so. */
 static int find_slot(const vrg_plugin_desc *desc, const char *name, vrg_slot_dir dir)
@@ -465,7 +439,7 @@ static void resource_section(vrg_graph *g, const _vrg_ast *a, int si, const char
 {
     if (name_too_long(g, a->sections[si].line, "resource", name, strlen(name)))
         return;
-    int ri = find_resource(g, name);
+    int ri = _vrg_graph_find_resource(g, name);
     if (ri < 0) {
         _vrg_warning_at(&g->diag, a->sections[si].line, VRG_W_UNUSED_RESOURCE, "[resource %s] is not used by any pass", name);
         return;
@@ -842,7 +816,7 @@ static void default_outputs(vrg_graph *g)
                 snprintf(name, sizeof name, "%s", sd->name);
             else
                 snprintf(name, sizeof name, "%s.%s", p->name, sd->name);
-            if (find_resource(g, name) >= 0 && g->res[find_resource(g, name)].writer >= 0) {
+            if (_vrg_graph_find_resource(g, name) >= 0 && g->res[_vrg_graph_find_resource(g, name)].writer >= 0) {
                 _vrg_error_at(&g->diag, p->line, VRG_E_TWO_WRITERS, NULL, "resource '%s' (the default for unconnected out.%s) has two writers", name, sd->name);
                 continue;
             }
@@ -1009,7 +983,7 @@ int _vrg_validate(vrg_graph *g, const _vrg_ast *ast, const vrg_graph_desc *desc)
             if (!g->output_line) /* else given, but not usable: already reported */
                 _vrg_error_at(&g->diag, ast->sections[graph_si].line, VRG_E_NO_OUTPUT, "add 'output = RESOURCE' to [graph]", "the graph has no output");
         } else {
-            g->output = find_resource(g, g->output_name);
+            g->output = _vrg_graph_find_resource(g, g->output_name);
             if (g->output >= 0 && g->res[g->output].writer_unknown)
                 ; /* its writer's plugin failed to load: already reported */
             else if (g->output < 0 || g->res[g->output].writer < 0)
@@ -1029,7 +1003,7 @@ int _vrg_validate(vrg_graph *g, const _vrg_ast *ast, const vrg_graph_desc *desc)
     if (desc->width && desc->height)
         g->width = desc->width, g->height = desc->height;
     for (uint32_t i = 0; i < desc->readback_count; i++) {
-        int r = find_resource(g, desc->readback[i]);
+        int r = _vrg_graph_find_resource(g, desc->readback[i]);
         if (r < 0 || g->res[r].writer < 0)
             _vrg_error(&g->diag, VRG_E_UNKNOWN_RESOURCE, "readback '%s': the graph writes no resource of that name", desc->readback[i]);
         else

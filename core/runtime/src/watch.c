@@ -3,7 +3,8 @@
  * old one, which a watch on the old file's inode would miss. Only completed
  * writes count: IN_CLOSE_WRITE (written in place and closed) and
  * IN_MOVED_TO (renamed into place); a file being written is never reported
- * half done. */
+ * half done. A graph's watch (graph_watch.c) also takes the files of each
+ * pipeline the dispatch helper compiles, as it compiles them. */
 #define _GNU_SOURCE
 #include <errno.h>
 #include <limits.h>
@@ -128,4 +129,17 @@ int _vrg_watch_poll(_vrg_watch *w, char (**changed)[VRG_PATH_MAX])
         }
     }
     return n;
+}
+
+void _vrg_graph_watch_pipeline(vrg_graph *g, const char *deps)
+{
+    if (!g->watch)
+        return;
+    for (const char *d = deps; d && *d;) {
+        const char *end = strchr(d, '\n');
+        char path[VRG_PATH_MAX];
+        snprintf(path, sizeof path, "%.*s", (int)(end ? end - d : (long)strlen(d)), d);
+        _vrg_watch_add(g->watch, path);
+        d = end ? end + 1 : d + strlen(d);
+    }
 }

@@ -1,0 +1,191 @@
+/* What a host reads of the last frame: the read-back copies of the output
+ * and dumped resources (converted to floats), and the images themselves
+ * for a viewer, which picks one to show (kept in TRANSFER_SRC after each
+ * frame, as the output is). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "internal.h"
+
+static int find_readable(vrg_graph *g, const char *name)
+{
+    for (int i = 0; i < g->res_count; i++)
+        if (strcmp(g->res[i].name, name) == 0) {
+            if (!(g->res[i].is_output || g->res[i].readback || i == g->shown) || g->res[i].first_use < 0) {
+                _vrg_error(&g->diag, VRG_E_NOT_READ_BACK, "resource '%s' is not read back (ask for it in vrg_graph_desc.readback)", name);
+                return -1;
+            }
+            if (g->last_slot < 0) {
+                _vrg_error(&g->diag, VRG_E_NOT_READ_BACK, "resource '%s': no frame rendered yet", name);
+                return -1;
+            }
+            /* what is read is the last submitted frame's: it must end first */
+            return _vrg_wait_frames(g) == 0 ? i : -1;
+        }
+    _vrg_error(&g->diag, VRG_E_UNKNOWN_RESOURCE, "the graph has no resource '%s'", name);
+    return -1;
+}
+
+/* The last submitted frame's part of the readback buffer. */
+static const uint8_t *last_readback(const vrg_graph *g) { return (const uint8_t *)g->readback_map + g->slots[g->last_slot].readback_base; }
+
+static float half_to_float(uint16_t h)
+{
+    uint32_t sign = (uint32_t)(h >> 15) << 31, exp = (h >> 10) & 0x1f, mant = h & 0x3ff, bits;
+    if (exp == 0) {
+        if (mant == 0)
+            bits = sign;
+        else { /* subnormal */
+            exp = 127 - 14;
+            while (!(mant & 0x400)) {
+                mant <<= 1;
+                exp--;
+            }
+            bits = sign | (exp << 23) | ((mant & 0x3ff) << 13);
+        }
+    } else if (exp == 31)
+        bits = sign | 0x7f800000u | (mant << 13);
+    else
+        bits = sign | ((exp + 127 - 15) << 23) | (mant << 13);
+    float f;
+    memcpy(&f, &bits, 4);
+    return f;
+}
+
+static float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f); }
+
+VkImageView vrg_graph_image_view(vrg_graph *g, const char *name)
+{
+    int i = find_readable(g, name);
+    return i < 0 || g->res[i].kind != VRG_IMAGE ? VK_NULL_HANDLE : g->res[i].view[_vrg_copy_of(g, i, g->res[i].history)];
+}
+
+int vrg_graph_image(vrg_graph *g, const char *name, VkImage *image, VkExtent2D *extent, VkFormat *format)
+{
+    int i = find_readable(g, name);
+    if (i < 0)
+        return -1;
+    _vrg_resource *r = &g->res[i];
+    if (r->kind != VRG_IMAGE) {
+        _vrg_error(&g->diag, VRG_E_WRONG_READ, "resource '%s' is not an image", name);
+        return -1;
+    }
+    /* the frame counter moved on: last frame's copy is now the "previous" one */
+    *image = r->image[_vrg_copy_of(g, i, r->history)];
+    *extent = (VkExtent2D){r->width, r->height};
+    *format = r->format;
+    return 0;
+}
+
+int vrg_graph_read(vrg_graph *g, const char *name, vrg_image_data *out)
+{
+    memset(out, 0, sizeof *out);
+    int i = find_readable(g, name);
+    if (i < 0)
+        return -1;
+    _vrg_resource *r = &g->res[i];
+    if (r->kind != VRG_IMAGE) {
+        _vrg_error(&g->diag, VRG_E_WRONG_READ, "resource '%s' is a buffer: use vrg_graph_read_buffer", name);
+        return -1;
+    }
+    const uint8_t *src = last_readback(g) + g->readback_offset[i];
+    uint32_t ch = _vrg_format_channels(r->format);
+    size_t n = (size_t)r->width * r->height;
+    out->width = r->width;
+    out->height = r->height;
+    out->channels = ch;
+    out->format = r->format;
+    out->pixels = calloc(n * 4, sizeof(float));
+    for (size_t p = 0; p < n; p++) {
+        float v[4] = {0, 0, 0, 1};
+        for (uint32_t c = 0; c < ch; c++) {
+            switch (r->format) {
+            case VK_FORMAT_R8_UNORM:
+            case VK_FORMAT_R8G8_UNORM:
+            case VK_FORMAT_R8G8B8A8_UNORM: v[c] = src[p * ch + c] / 255.0f; break;
+            case VK_FORMAT_R8G8B8A8_SRGB: v[c] = c < 3 ? srgb_to_linear(src[p * 4 + c] / 255.0f) : src[p * 4 + c] / 255.0f; break;
+            case VK_FORMAT_R16_SFLOAT:
+            case VK_FORMAT_R16G16_SFLOAT:
+            case VK_FORMAT_R16G16B16A16_SFLOAT: {
+                uint16_t h;
+                memcpy(&h, src + (p * ch + c) * 2, 2);
+                v[c] = half_to_float(h);
+                break;
+            }
+            case VK_FORMAT_R32_UINT:
+            case VK_FORMAT_R32G32_UINT:
+            case VK_FORMAT_R32G32B32A32_UINT: {
+                uint32_t u;
+                memcpy(&u, src + (p * ch + c) * 4, 4);
+                v[c] = (float)u;
+                break;
+            }
+            case VK_FORMAT_B10G11R11_UFLOAT_PACK32: {
+                uint32_t u;
+                memcpy(&u, src + p * 4, 4);
+                /* 11/11/10-bit floats share half's exponent: widen them to halves */
+                uint32_t bits[3] = {(u & 0x7ff) << 4, ((u >> 11) & 0x7ff) << 4, ((u >> 22) & 0x3ff) << 5};
+                v[c] = half_to_float((uint16_t)bits[c]);
+                break;
+            }
+            default: memcpy(&v[c], src + (p * ch + c) * 4, 4); break;
+            }
+        }
+        memcpy(out->pixels + p * 4, v, sizeof v);
+    }
+    return 0;
+}
+
+int vrg_graph_read_buffer(vrg_graph *g, const char *name, void **data, uint64_t *size)
+{
+    *data = NULL;
+    *size = 0;
+    int i = find_readable(g, name);
+    if (i < 0)
+        return -1;
+    _vrg_resource *r = &g->res[i];
+    if (r->kind != VRG_BUFFER) {
+        _vrg_error(&g->diag, VRG_E_WRONG_READ, "resource '%s' is an image: use vrg_graph_read", name);
+        return -1;
+    }
+    *data = malloc(r->size);
+    memcpy(*data, last_readback(g) + g->readback_offset[i], r->size);
+    *size = r->size;
+    return 0;
+}
+
+static int showable(const vrg_graph *g, int i)
+{
+    const _vrg_resource *r = &g->res[i];
+    return r->kind == VRG_IMAGE && r->first_use >= 0 && r->writer >= 0 && r->internal_owner < 0 && !r->dummy;
+}
+
+uint32_t vrg_graph_image_count(const vrg_graph *g)
+{
+    uint32_t n = 0;
+    for (int i = 0; g->desc.keep_images && i < g->res_count; i++)
+        n += showable(g, i);
+    return n;
+}
+
+const char *vrg_graph_image_name(const vrg_graph *g, uint32_t k)
+{
+    for (int i = 0; g->desc.keep_images && i < g->res_count; i++)
+        if (showable(g, i) && k-- == 0)
+            return g->res[i].name;
+    return NULL;
+}
+
+int vrg_graph_show(vrg_graph *g, const char *name)
+{
+    g->shown = -1;
+    if (!name)
+        return 0;
+    for (int i = 0; i < g->res_count; i++)
+        if (strcmp(g->res[i].name, name) == 0 && g->desc.keep_images && showable(g, i)) {
+            g->shown = i;
+            return 0;
+        }
+    _vrg_error(&g->diag, VRG_E_NOT_READ_BACK, "show %s: not an image this graph keeps for viewing (load it with keep_images)", name);
+    return -1;
+}
