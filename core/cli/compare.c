@@ -16,6 +16,8 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include "compare_result.h"
+#include "report.h"
 #include "util.h"
 #include "voxrg/camera.h"
 #include "voxrg/output.h"
@@ -27,10 +29,6 @@
 #define MAX_SETS 64
 #define MAX_GRAPHS 8
 #define RESERVED_NAME "reference" /* frames/reference-NNNNN.png */
-
-const char *const vrg_cmp_metric_names[VRG_CMP_METRICS] = {"psnr", "ssim", "flip", "temporal"};
-const char *const vrg_cmp_metric_labels[VRG_CMP_METRICS] = {"PSNR (dB)", "SSIM", "FLIP", "temporal error"};
-const int vrg_cmp_metric_higher_better[VRG_CMP_METRICS] = {1, 1, 0, 0};
 
 const char *const vrg_cli_compare_usage =
     "usage: voxrg compare A.ini [B.ini ...] --reference REF.ini [--variant NAME[@GRAPH]:PASS.PARAM=VALUE,...]...\n"
@@ -648,21 +646,6 @@ static int render_candidate(vrg_context *ctx, const options *o, const job *j, vr
     free(cur), free(prev), free(refc), free(refp), free(ms);
     vrg_graph_destroy(g);
     return rc;
-}
-
-int vrg_cmp_best(const vrg_cmp_result *r, int m)
-{
-    int best = -1;
-    for (int i = 0; i < r->count; i++) {
-        double v = m < 0 ? -r->cand[i].gpu_mean_ms : vrg_cmp_metric_higher_better[m] ? r->cand[i].summary[m] : -r->cand[i].summary[m];
-        double b = best < 0 ? 0
-                   : m < 0  ? -r->cand[best].gpu_mean_ms
-                   : vrg_cmp_metric_higher_better[m] ? r->cand[best].summary[m]
-                                                      : -r->cand[best].summary[m];
-        if (!isnan(v) && (best < 0 || v > b))
-            best = i;
-    }
-    return best;
 }
 
 /* ---- files ---- */

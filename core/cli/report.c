@@ -9,7 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "compare.h"
+#include "report.h"
 #include "voxrg/metrics.h"
 #include "voxrg/output.h"
 #include "voxrg/png.h"
