@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "internal.h"
+#include "plugin_loader.h"
 
 typedef struct bytes {
     const uint8_t *p;

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <string.h>
 #include "internal.h"
+#include "phases.h"
 
 /* A relative size scales the graph's; an absolute one is as written. */
 static void resource_extent(const vrg_graph *g, const _vrg_resource *r, uint32_t *w, uint32_t *h)

@@ -4,6 +4,7 @@
  * pass's own dispatches, and by `check` (on a simulated frame) to print them. */
 #include <string.h>
 #include "internal.h"
+#include "capture.h"
 
 /* Write-after-write and write-after-read need an execution dependency on
  * every earlier access (and the last write made available); read-after-write

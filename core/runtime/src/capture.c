@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "internal.h"
+#include "capture.h"
 
 typedef struct cap_dispatch {
     VkPipeline pipeline;

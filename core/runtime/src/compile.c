@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "internal.h"
+#include "phases.h"
 
 /* ---- cull ---- */
 

@@ -6,6 +6,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include "internal.h"
+#include "reflect.h"
+#include "shader.h"
+#include "watch.h"
+#include "capture.h"
 
 /* What one dispatch binds: the pipeline cache's key beside shader and
  * defines, and what reflection checks the shader against. */

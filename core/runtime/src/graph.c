@@ -6,6 +6,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include "internal.h"
+#include "phases.h"
+#include "parse.h"
+#include "plugin_loader.h"
+#include "watch.h"
 
 static int create_passes(vrg_graph *g)
 {

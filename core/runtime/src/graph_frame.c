@@ -5,6 +5,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include <time.h>
 #include "internal.h"
+#include "phases.h"
+#include "capture.h"
 
 int vrg_graph_frame(vrg_graph *g)
 {

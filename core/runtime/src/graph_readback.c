@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "internal.h"
+#include "phases.h"
 
 static int find_readable(vrg_graph *g, const char *name)
 {

@@ -9,6 +9,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include "internal.h"
+#include "watch.h"
 
 static void watch_path(void *user, const char *path) { _vrg_watch_add(user, path); }
 

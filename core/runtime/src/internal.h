@@ -1,6 +1,9 @@
 /* Internal data model shared by the phases: parse → validate → compile →
  * allocate → record. Each phase lives in its own file and fills in the part
- * of these structs it owns. */
+ * of these structs it owns. Beside the model: the helpers most files use.
+ * What only a few files use has its own header: the phases (phases.h), the
+ * AST (parse.h), plugin loading (plugin_loader.h), shaders (shader.h,
+ * reflect.h), the file watch (watch.h), frame capture (capture.h). */
 #ifndef VRG_INTERNAL_H
 #define VRG_INTERNAL_H
 
@@ -93,7 +96,7 @@ _vrg_wait_result _vrg_wait_fence(vrg_context *ctx, VkFence fence, double *waited
 void _vrg_name_object(vrg_context *ctx, VkObjectType type, uint64_t handle, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
 int _vrg_find_memory_type(const vrg_context *ctx, uint32_t bits, VkMemoryPropertyFlags want);
 
-/* ---- plugin loading (plugin_loader.c) ---- */
+/* ---- a loaded plugin (plugin_loader.h finds and loads them) ---- */
 typedef struct _vrg_plugin {
     char name[VRG_NAME_MAX];
     char path[VRG_PATH_MAX];   /* the file loaded: the source, or a reload's private copy */
@@ -107,17 +110,6 @@ typedef struct _vrg_plugin {
     unsigned generation; /* load order: the highest of a name is its current version */
     int users;           /* passes of live graphs running it (_vrg_plugin_acquire) */
 } _vrg_plugin;
-/* Finds NAME on the search path (plugin_loader.c's header comment) and loads
- * a private copy of it; NULL after reporting at `line`. A file already loaded
- * is not loaded again. `graph_path` is the graph file (for its plugin_path,
- * ':'-separated folders relative to it, NULL if none). */
-const _vrg_plugin *_vrg_plugin_load(const char *name, const char *graph_path, const char *plugin_path, _vrg_diag *d, int line);
-/* Every folder of a graph's plugin_path exists; errors at `line`. The
- * same resolution as the search path's (relative to the graph file). */
-int _vrg_plugin_path_check(const char *graph_path, const char *plugin_path, _vrg_diag *d, int line);
-/* The checks a plugin's descriptor must pass (also run by the fuzzer). */
-int _vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const char *path, _vrg_diag *d, int line);
-
 /* ---- crash reports (crash.c) ---- */
 /* What plugin code this thread runs now: a fatal signal names it. */
 typedef struct _vrg_running {
@@ -127,45 +119,6 @@ _vrg_running _vrg_running_enter(const char *what, const char *pass, const _vrg_p
 void _vrg_running_leave(_vrg_running before);
 /* A plugin copy being loaded, removed if loading dies (NULLs: none). */
 void _vrg_crash_cleanup_set(const char *dir, const char *file);
-/* capture.c: an empty capture, which vrg_graph_capture_frame sets as
- * g->capture for one frame; the recorder's barrier and dispatch calls add
- * to it while it is set */
-vrg_capture *_vrg_capture_new(PFN_vkCmdPushDescriptorSetKHR push_descriptor);
-void _vrg_capture_barrier(struct vrg_capture *c, const VkDependencyInfo *dep);
-void _vrg_capture_dispatch(struct vrg_capture *c, VkPipeline pipeline, VkPipelineLayout layout, uint32_t write_count,
-                          const VkWriteDescriptorSet *writes, const void *push, uint32_t push_size, const uint32_t groups[3]);
-/* A pass runs the plugin / no longer does. A superseded version (a hot
- * reload loaded a newer one) is unloaded when its last user goes. */
-void _vrg_plugin_acquire(const _vrg_plugin *p);
-void _vrg_plugin_release(const _vrg_plugin *p);
-/* A rebuilt plugin file becomes the newest version of its plugin (hot reload). */
-int _vrg_plugin_reload(const char *source_path, _vrg_diag *d);
-/* Every plugin on the search path (for `voxrg plugins`), the current
- * version of each file; returns how many there are (more than max: only max
- * filled). Files that fail to load are reported to `problems` (NULL: not). */
-int _vrg_plugin_list(const _vrg_plugin **out, int max, FILE *problems);
-
-/* ---- parse (parse.c): the file as written, with line numbers ---- */
-typedef struct _vrg_key {
-    char name[VRG_NAME_MAX];
-    char value[256];
-    int line;
-    int section_index; /* index into _vrg_ast.sections */
-} _vrg_key;
-typedef struct _vrg_section {
-    char name[256]; /* longer than any line that can be read */
-    int line;
-} _vrg_section;
-typedef struct _vrg_ast {
-    _vrg_section sections[VRG_MAX_PASSES + 64];
-    int section_count;
-    _vrg_key keys[VRG_MAX_KEYS];
-    int key_count;
-    int syntax_error_line; /* inih's first error, 0 if none */
-    int fatal;             /* a limit or encoding error: the file was not read whole */
-} _vrg_ast;
-int _vrg_parse(const char *path, const char *text, _vrg_ast *ast, _vrg_diag *d);
-
 /* ---- the validated graph ---- */
 enum { VRG_RES_GRAPH = 0, VRG_RES_INTERNAL = 1 };
 
@@ -409,23 +362,6 @@ struct vrg_graph {
     vrg_camera last_camera;   /* the last frame's */
 };
 
-/* ---- the phases, which load (graph.c) runs in order ---- */
-/* validate.c: AST → graph (plugins loaded, slots resolved, every check). */
-int _vrg_validate(vrg_graph *g, const _vrg_ast *ast, const vrg_graph_desc *desc);
-/* compile.c: cull, order, lifetimes. */
-int _vrg_compile(vrg_graph *g);
-/* allocate.c */
-int _vrg_allocate(vrg_graph *g);
-void _vrg_free_resources(vrg_graph *g);
-/* record.c */
-int _vrg_record_frame(vrg_graph *g);
-/* Waits for every submitted frame (reading their timestamps); -1 after
- * reporting a GPU timeout, interrupt or device loss. */
-int _vrg_wait_frames(vrg_graph *g);
-/* vrg_graph_load for a reload (graph.c): passes may look at `predecessor`'s
- * (vrg_pass_previous_instance) until the reload ends. */
-int _vrg_graph_load_replacing(vrg_context *ctx, const vrg_graph_desc *desc, vrg_graph *predecessor, vrg_graph **out);
-
 /* ---- the dispatch helper's pipelines (dispatch.c) ---- */
 void _vrg_pipelines_destroy(vrg_pass *p);
 /* Hot reload: recompile this pass's pipelines that use any of the changed
@@ -475,40 +411,6 @@ const char *_vrg_format_list(void);
 VkFormat _vrg_format_parse(const char *s);
 uint32_t _vrg_format_channels(VkFormat f);
 
-/* ---- shaders (shader.c) and what they declare (reflect.c) ---- */
-typedef struct _vrg_reflected_binding {
-    uint32_t set, binding;
-    VkDescriptorType type;
-    VkFormat format; /* storage images: the format qualifier (UNDEFINED: none) */
-    int readonly, writeonly; /* storage images and buffers: declared so (every member of a buffer) */
-    char name[64];
-    char where[VRG_PATH_MAX + 16]; /* FILE:LINE of its declaration */
-} _vrg_reflected_binding;
-typedef struct _vrg_reflection {
-    _vrg_reflected_binding *bindings;
-    int count, cap;
-    uint32_t push_bytes; /* the push-constant block's size, 0: none */
-    char push_name[64];
-    char push_where[VRG_PATH_MAX + 16];
-} _vrg_reflection;
-/* src: the expanded GLSL (with shader.c's #line directives), for the lines. */
-int _vrg_reflect(const uint32_t *spv, size_t words, const char *src, const char *path, _vrg_reflection *out, FILE *diag);
-void _vrg_reflection_free(_vrg_reflection *r);
-const char *_vrg_glsl_format_name(VkFormat f);
-const char *_vrg_descriptor_type_name(VkDescriptorType t);
-
-typedef struct _vrg_shader_module {
-    VkShaderModule module;
-    uint32_t local_size[3];
-    char *deps; /* the file and every file it includes, real paths, one per line (free()) */
-    _vrg_reflection refl; /* _vrg_reflection_free() */
-} _vrg_shader_module;
-/* VRG_GROUP_X/Y shaders are compiled with: the device's, or a GPU's without one. */
-void _vrg_shader_group_size(const vrg_context *ctx, uint32_t out[2]);
-/* ctx NULL: compiled and reflected for a GPU's workgroup shape, no module made. */
-int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, _vrg_shader_module *out, FILE *diag);
-int _vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t cap);
-
 /* ---- install.c ---- */
 /* The folder of libvoxrg's own file; "" if unknown. */
 const char *_vrg_lib_dir(void);
@@ -516,17 +418,6 @@ const char *_vrg_lib_dir(void);
  * folder and not from an installed layout: the source tree's shaders and
  * the build's plugins are then searched too. */
 int _vrg_build_tree(void);
-
-/* ---- hot reload (watch.c) ---- */
-typedef struct _vrg_watch _vrg_watch;
-_vrg_watch *_vrg_watch_create(void);
-void _vrg_watch_destroy(_vrg_watch *w);
-int _vrg_watch_add(_vrg_watch *w, const char *path);
-/* Tracked files whose write completed since the last poll, in *changed
- * (every one; the caller frees it). -1: out of memory. */
-int _vrg_watch_poll(_vrg_watch *w, char (**changed)[VRG_PATH_MAX]);
-/* Adds a pipeline's files (newline-separated) to the graph's watch, if any. */
-void _vrg_graph_watch_pipeline(vrg_graph *g, const char *deps);
 
 static inline const vrg_slot_desc *vrg_slot(const vrg_pass *p, int i) { return &p->plugin->desc->slots[i]; }
 

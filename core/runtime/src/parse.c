@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "internal.h"
+#include "parse.h"
 
 typedef struct line_reader {
     const char *text; /* whole file */

@@ -39,6 +39,7 @@
 #include <sys/statvfs.h>
 #include <unistd.h>
 #include "internal.h"
+#include "plugin_loader.h"
 
 #if UINTPTR_MAX > 0xffffffffu
 typedef Elf64_Ehdr elf_ehdr;

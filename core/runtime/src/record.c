@@ -12,6 +12,7 @@
 #include <string.h>
 #include <time.h>
 #include "internal.h"
+#include "phases.h"
 
 /* @prev copies on every history reset (but those a reload carried over);
  * persistent resources only when new (but those a reload kept). Returns

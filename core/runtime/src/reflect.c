@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "internal.h"
+#include "reflect.h"
 
 /* GLSL's image format qualifiers, as SPIR-V and Vulkan name them. */
 static const struct {

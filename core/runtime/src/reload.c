@@ -14,6 +14,8 @@
 #include <sys/stat.h>
 #include <time.h>
 #include "internal.h"
+#include "phases.h"
+#include "plugin_loader.h"
 
 static int same_resource(const _vrg_resource *a, const _vrg_resource *b)
 {

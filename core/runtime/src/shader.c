@@ -13,6 +13,7 @@
 #include <string.h>
 #include <unistd.h>
 #include "internal.h"
+#include "shader.h"
 
 #define SOURCE_CODE (_vrg_diag_info_of(VRG_E_SHADER_SOURCE)->code)
 

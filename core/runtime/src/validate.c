@@ -7,6 +7,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include "internal.h"
+#include "phases.h"
+#include "parse.h"
+#include "plugin_loader.h"
 
 /* ---- numbers ---- */
 

@@ -13,6 +13,7 @@
 #include <sys/inotify.h>
 #include <unistd.h>
 #include "internal.h"
+#include "watch.h"
 
 typedef struct watched_file {
     int wd;                 /* its directory's watch */

@@ -1,0 +1,28 @@
+/* reflect.c: what a compiled shader declares (its bindings and push
+ * constants), which the dispatch helper checks against what it binds. */
+#ifndef VRG_REFLECT_H
+#define VRG_REFLECT_H
+
+#include "internal.h"
+
+typedef struct _vrg_reflected_binding {
+    uint32_t set, binding;
+    VkDescriptorType type;
+    VkFormat format; /* storage images: the format qualifier (UNDEFINED: none) */
+    int readonly, writeonly; /* storage images and buffers: declared so (every member of a buffer) */
+    char name[64];
+    char where[VRG_PATH_MAX + 16]; /* FILE:LINE of its declaration */
+} _vrg_reflected_binding;
+typedef struct _vrg_reflection {
+    _vrg_reflected_binding *bindings;
+    int count, cap;
+    uint32_t push_bytes; /* the push-constant block's size, 0: none */
+    char push_name[64];
+    char push_where[VRG_PATH_MAX + 16];
+} _vrg_reflection;
+/* src: the expanded GLSL (with shader.c's #line directives), for the lines. */
+int _vrg_reflect(const uint32_t *spv, size_t words, const char *src, const char *path, _vrg_reflection *out, FILE *diag);
+void _vrg_reflection_free(_vrg_reflection *r);
+const char *_vrg_glsl_format_name(VkFormat f);
+const char *_vrg_descriptor_type_name(VkDescriptorType t);
+#endif

@@ -1,0 +1,20 @@
+/* shader.c: run-time GLSL compilation, for the dispatch helper
+ * (dispatch.c), its one user. */
+#ifndef VRG_SHADER_H
+#define VRG_SHADER_H
+
+#include "internal.h"
+#include "reflect.h"
+
+typedef struct _vrg_shader_module {
+    VkShaderModule module;
+    uint32_t local_size[3];
+    char *deps; /* the file and every file it includes, real paths, one per line (free()) */
+    _vrg_reflection refl; /* _vrg_reflection_free() */
+} _vrg_shader_module;
+/* VRG_GROUP_X/Y shaders are compiled with: the device's, or a GPU's without one. */
+void _vrg_shader_group_size(const vrg_context *ctx, uint32_t out[2]);
+/* ctx NULL: compiled and reflected for a GPU's workgroup shape, no module made. */
+int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, _vrg_shader_module *out, FILE *diag);
+int _vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t cap);
+#endif
