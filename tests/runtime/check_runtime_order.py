@@ -32,7 +32,7 @@ TIERS = [
     ("what the helpers build on",
      ["reflect.c", "capture.c", "resource.c", "watch.c", "context.c", "crash.c", "install.c", "defaults.c", "camera.c"]),
     ("the vocabulary: formats, accesses, messages",
-     ["format.c", "access.c", "diag.c"]),
+     ["format.c", "access.c", "diag.c", "file.c"]),
 ]
 
 
