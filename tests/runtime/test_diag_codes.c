@@ -9,18 +9,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "check.h"
 #include "internal.h"
 
 static int failures;
-#define CHECK(cond, ...)                                                                                                                    \
-    do {                                                                                                                                    \
-        if (!(cond)) {                                                                                                                      \
-            fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__);                                                                           \
-            fprintf(stderr, __VA_ARGS__);                                                                                                   \
-            fputc('\n', stderr);                                                                                                            \
-            failures++;                                                                                                                     \
-        }                                                                                                                                   \
-    } while (0)
 
 static char *read_all(const char *path)
 {
