@@ -1,6 +1,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include "harness.h"
 
+#include <errno.h>
+
 int failures;
 int expect_validation_messages;
 vrg_context *ctx;
@@ -60,13 +62,23 @@ void append(char **text, size_t *len, const char *fmt, ...)
 void save_file(const char *path, const char *text)
 {
     char tmp[1100];
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *f = fopen(tmp, "w");
-    if (!f)
+    if (!CHECK((size_t)snprintf(tmp, sizeof tmp, "%s.tmp", path) < sizeof tmp, "save_file: path too long: %s", path))
         return;
-    fputs(text, f);
-    fclose(f);
-    rename(tmp, path);
+    FILE *f = fopen(tmp, "w");
+    if (!CHECK(f, "save_file: cannot create %s: %s", tmp, strerror(errno)))
+        return;
+    int wrote = fputs(text, f) >= 0 && fflush(f) == 0 && !ferror(f);
+    int saved_errno = errno;
+    if (fclose(f) != 0 && wrote) {
+        wrote = 0;
+        saved_errno = errno;
+    }
+    if (!CHECK(wrote, "save_file: cannot write %s: %s", tmp, strerror(saved_errno))) {
+        remove(tmp);
+        return;
+    }
+    if (!CHECK(rename(tmp, path) == 0, "save_file: cannot rename %s to %s: %s", tmp, path, strerror(errno)))
+        remove(tmp);
 }
 
 static int run_one(const char *name, const test_case *c)

@@ -40,7 +40,8 @@ double max_diff(const vrg_image_data *img, const float *want, int channels);
 
 /* printf onto a growing heap string */
 void append(char **text, size_t *len, const char *fmt, ...);
-/* Writes text to path the way editors save: a new file renamed over the old. */
+/* Writes text to path the way editors save: a new file renamed over the old.
+ * A file that cannot be written fails the case (CHECK), saying why. */
 void save_file(const char *path, const char *text);
 
 /* A case: `run`, or `run_or_skip` where it may return SKIP; `device`: the

@@ -647,6 +647,33 @@ static void test_hot_reload_plugin(void)
     remove(so), remove(src), remove(shader), remove(path), rmdir(dir);
 }
 
+/* The harness's save_file fails the case, saying why, where the file
+ * cannot be written: a folder that does not exist, a name that is a folder. */
+static void test_save_file_errors(void)
+{
+    char dir[] = "/tmp/vrg_save_XXXXXX", missing[1100], folder[1100], inside[1100];
+    if (!CHECK(mkdtemp(dir), "mkdtemp failed"))
+        return;
+    snprintf(missing, sizeof missing, "%s/no/such/folder.txt", dir);
+    snprintf(folder, sizeof folder, "%s/folder", dir);
+    snprintf(inside, sizeof inside, "%s/folder/file", dir);
+    mkdir(folder, 0700);
+    save_file(inside, "x"); /* a folder that is not empty cannot be renamed over */
+    int before = failures;
+    save_file(missing, "text\n");
+    int missing_failed = failures - before;
+    before = failures;
+    save_file(folder, "text\n");
+    int folder_failed = failures - before;
+    failures = 0; /* the two failures asked for are not the case's */
+    CHECK(missing_failed == 1, "save_file into a missing folder: %d failures counted, want 1", missing_failed);
+    CHECK(folder_failed == 1, "save_file over a folder: %d failures counted, want 1", folder_failed);
+    char tmp[1100];
+    snprintf(tmp, sizeof tmp, "%s.tmp", folder);
+    CHECK(access(tmp, F_OK) != 0, "save_file left %s behind", tmp);
+    remove(inside), rmdir(folder), rmdir(dir);
+}
+
 int main(int argc, char **argv)
 {
     static const test_case cases[] = {
@@ -658,6 +685,7 @@ int main(int argc, char **argv)
         {"hot_reload_many_plugins", test_hot_reload_many_plugins, 1},
         {"hot_reload_many_files", test_hot_reload_many_files, 1},
         {"hot_reload_state_too_big", test_hot_reload_state_too_big, 1},
+        {"save_file_errors", test_save_file_errors, 0},
     };
     return run_case(argc, argv, cases, sizeof cases / sizeof cases[0]);
 }
