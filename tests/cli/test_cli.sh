@@ -16,6 +16,10 @@ expect_rc() { # want_rc description cmd...
     "$@" >"$out/stdout" 2>"$out/stderr"; local rc=$?
     if [ "$rc" -eq "$want" ]; then ok; else bad "$what: exit $rc, want $want"; cat "$out/stderr"; fi
 }
+# A section that cannot run here says why and checks nothing: run alone (as
+# ctest runs it) the script exits 77, ctest's SKIP_RETURN_CODE.
+skipped=
+skip() { echo "skipped: $*"; skipped="$skipped $section"; }
 has() { # file pattern description
     if grep -qE -- "$2" "$1"; then ok; else bad "$3: no '$2' in $1"; sed 's/^/    /' "$1" | head -40; fi
 }
@@ -377,11 +381,14 @@ section_gpu_timeout() { # a shader that never ends: --gpu-timeout and SIGINT
     has "$out/stderr" "frame 0: interrupted after .* pass 'spin' \(plugin spin\) still running" "SIGINT names the pass"
 }
 
-section_window() { # voxrg run under Xvfb: screenshots through the program's own option
-    # run: the window under Xvfb, a screenshot through the program's own option
-    env -u DISPLAY "$voxrg" run "$tests/graphs/blocks_wall.ini" --frames 2 >"$out/stdout" 2>"$out/stderr"
+section_no_display() { # voxrg run without a display
+    env -u DISPLAY -u WAYLAND_DISPLAY "$voxrg" run "$tests/graphs/blocks_wall.ini" --frames 2 >"$out/stdout" 2>"$out/stderr"
     [ $? -eq 1 ] && ok || bad "run without a display exits 1"
     has "$out/stderr" "no display.*voxrg render" "run without a display points to render"
+}
+
+section_window() { # voxrg run under Xvfb: screenshots through the program's own option
+    # run: the window under Xvfb, a screenshot through the program's own option
     start_xvfb || return 0
     expect_rc 0 "run under Xvfb" "$voxrg" run "$tests/graphs/blocks_wall.ini" --validate --size 192x128 --frames 4 \
         --screenshot "$out/window.png"
@@ -456,7 +463,7 @@ section_window_driven() { # voxrg run under Xvfb driven by xdotool: flight, resi
     # driven like a user (xdotool): the window resized (the graph follows),
     # W held (the camera flies forward), a right-button drag (it turns), P
     # (a screenshot of the new size), Esc (quits)
-    command -v xdotool >/dev/null || { echo "skip: xdotool not installed (scripts/setup.sh installs it)"; return 0; }
+    command -v xdotool >/dev/null || { skip "xdotool not installed (scripts/setup.sh installs it)"; return 0; }
     start_xvfb || return 0
     cat >"$out/drive.sh" <<'SH'
 #!/usr/bin/env bash
@@ -607,12 +614,13 @@ section_plugins() { # voxrg plugins
 # One X server for every window test of a run: xvfb-run around each command
 # raced its own clean-up now and then ("problem while cleaning up temporary
 # directory", exit 5, whatever the command returned). False where there is
-# none, having said why.
+# none, having said why (a skip, or a failure when it is there and does not
+# start).
 xvfb_pid=
 start_xvfb() {
     [ -n "$xvfb_pid" ] && return 0
     if ! command -v Xvfb >/dev/null; then
-        echo "skip: Xvfb not installed (scripts/setup.sh installs it)"
+        skip "Xvfb not installed (scripts/setup.sh installs it)"
         return 1
     fi
     Xvfb -displayfd 3 -screen 0 1280x1024x24 -nolisten tcp 3>"$out/xvfb.display" 2>"$out/xvfb.log" &
@@ -629,8 +637,10 @@ case " $sections all " in
 *" $only "*) ;;
 *) echo "usage: $0 VOXRG TESTS_DIR OUT_DIR [SECTION]: no section '$only' (sections: $sections)" >&2; exit 2 ;;
 esac
-for s in $sections; do
-    if [ "$only" = all ] || [ "$only" = "$s" ]; then "section_$s"; fi
+for section in $sections; do
+    if [ "$only" = all ] || [ "$only" = "$section" ]; then "section_$section"; fi
 done
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+echo "$pass passed, $fail failed${skipped:+, skipped:$skipped}"
+[ "$fail" -eq 0 ] || exit 1
+[ "$only" != all ] && [ -n "$skipped" ] && exit 77
+exit 0
