@@ -87,7 +87,8 @@ static const char *usage_plugins =
     "usage: voxrg plugins [NAME]\n"
     "Lists the plugins on the search path (<exe>/plugins, <exe>/../lib/voxrg/plugins,\n"
     "then $VOXRG_PLUGIN_PATH; a graph adds its [graph] plugin_path after those),\n"
-    "or NAME's file, slots and parameters. Files that do not load are reported.\n";
+    "or NAME's file, slots and parameters. Files that do not load are reported,\n"
+    "the rest listed, and the exit status is 1.\n";
 
 typedef struct options {
     const char *graph, *dot, *out, *json, *device, *camera, *screenshot, *ab, *record, *show;
@@ -616,13 +617,13 @@ static int cmd_plugins(int argc, char **argv)
     const char *want = argc > 0 ? argv[0] : NULL;
     const vrg_plugin_desc *list[256];
     const char *paths[256];
-    int n;
+    int n, failed = 0;
     if (want) {
         /* one plugin: found as a graph finds it, and if it does not load, why */
         if (vrg_find_plugin(want, stderr, &list[0], &paths[0]) != 0)
             return 1;
         n = 1;
-    } else if ((n = vrg_list_plugins(list, paths, 256, stderr)) > 256) {
+    } else if ((n = vrg_list_plugins(list, paths, 256, stderr, &failed)) > 256) {
         fprintf(stderr, "error: %d plugins on the search path; this listing shows at most 256\n", n);
         return 1;
     }
@@ -673,6 +674,10 @@ static int cmd_plugins(int argc, char **argv)
                 snprintf(range, sizeof range, "[%g, %g]", pd->min, pd->max);
             printf("  %-16s %-5s default %-8s %-16s %s\n", pd->name, t, def, range, pd->help ? pd->help : "");
         }
+    }
+    if (failed) { /* the rest is listed; the status says not all of it loaded */
+        fprintf(stderr, "error: %d plugin file%s on the search path did not load (reported above)\n", failed, failed == 1 ? "" : "s");
+        return 1;
     }
     return want && !found;
 }

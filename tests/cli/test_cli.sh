@@ -609,6 +609,13 @@ section_plugins() { # voxrg plugins
     expect_rc 0 "plugins pingpong" "$voxrg" plugins pingpong
     has "$out/stdout" "iterations +int +default 3" "plugin parameters"
     expect_rc 1 "plugins unknown" "$voxrg" plugins nonesuch
+    # a file on the path that does not load: reported, the rest listed, exit 1
+    mkdir -p "$out/broken" && echo "not an ELF file" >"$out/broken/garbage.so"
+    VOXRG_PLUGIN_PATH="$out/broken" "$voxrg" plugins >"$out/stdout" 2>"$out/stderr"
+    [ $? -eq 1 ] && ok || bad "plugins with a file that does not load exits 1"
+    has "$out/stdout" "^pattern +pass" "plugins lists the rest after a failure"
+    has "$out/stderr" "garbage.so" "plugins names the file that does not load"
+    has "$out/stderr" "error: 1 plugin file on the search path did not load" "plugins counts the failures"
 }
 
 # One X server for every window test of a run: xvfb-run around each command

@@ -920,13 +920,15 @@ static int by_name(const void *a, const void *b)
     return strcmp((*(const _vrg_plugin *const *)a)->name, (*(const _vrg_plugin *const *)b)->name);
 }
 
-int _vrg_plugin_list(const _vrg_plugin **out, int max, FILE *problems)
+int _vrg_plugin_list(const _vrg_plugin **out, int max, FILE *problems, int *failed)
 {
     search_path s;
     search_path_build(&s, NULL, NULL);
+    *failed = 0;
     if (s.failed) {
         _vrg_diag shown = {.out = problems ? problems : stderr, .file = "plugins"};
         _vrg_error(&shown, VRG_E_OUT_OF_MEMORY, "out of memory for the plugin search path: the listing is incomplete");
+        *failed = 1;
     }
     FILE *devnull = problems ? NULL : fopen("/dev/null", "w");
     _vrg_diag diag = {.out = problems ? problems : devnull ? devnull : stderr, .file = "plugins"};
@@ -954,6 +956,7 @@ int _vrg_plugin_list(const _vrg_plugin **out, int max, FILE *problems)
     free(s.dirs);
     if (devnull)
         fclose(devnull);
+    *failed += diag.errors;
     int n = 0;
     for (int i = 0; i < loaded_count; i++)
         if (loaded[i].name[0] && newest(loaded[i].source, 1) == &loaded[i]) { /* current versions only */
@@ -965,10 +968,13 @@ int _vrg_plugin_list(const _vrg_plugin **out, int max, FILE *problems)
     return n;
 }
 
-int vrg_list_plugins(const vrg_plugin_desc **descs, const char **paths, int max, FILE *problems)
+int vrg_list_plugins(const vrg_plugin_desc **descs, const char **paths, int max, FILE *problems, int *failed)
 {
     const _vrg_plugin *list[VRG_MAX_PLUGINS];
-    int n = _vrg_plugin_list(list, VRG_MAX_PLUGINS, problems);
+    int refused;
+    int n = _vrg_plugin_list(list, VRG_MAX_PLUGINS, problems, &refused);
+    if (failed)
+        *failed = refused;
     for (int i = 0; i < n && i < max && i < VRG_MAX_PLUGINS; i++) {
         descs[i] = list[i]->desc;
         paths[i] = list[i]->source;

@@ -23,6 +23,7 @@ void _vrg_plugin_release(const _vrg_plugin *p);
 int _vrg_plugin_reload(const char *source_path, _vrg_diag *d);
 /* Every plugin on the search path (for `voxrg plugins`), the current
  * version of each file; returns how many there are (more than max: only max
- * filled). Files that fail to load are reported to `problems` (NULL: not). */
-int _vrg_plugin_list(const _vrg_plugin **out, int max, FILE *problems);
+ * filled). Files that fail to load are reported to `problems` (NULL: not)
+ * and counted in *failed. */
+int _vrg_plugin_list(const _vrg_plugin **out, int max, FILE *problems, int *failed);
 #endif

@@ -272,9 +272,10 @@ int vrg_graph_pass_culled(const vrg_graph *g, const char *pass);
 
 /* Plugins on the search path, sorted by name, with their file paths;
  * returns how many there are (if more than max, the first max are filled).
- * A file on the path that does not load is reported to `problems` (NULL:
- * not reported). */
-int vrg_list_plugins(const vrg_plugin_desc **descs, const char **paths, int max, FILE *problems);
+ * A file on the path that does not load (or is refused) is reported to
+ * `problems` (NULL: not reported) and counted in *failed (NULL: not
+ * counted). */
+int vrg_list_plugins(const vrg_plugin_desc **descs, const char **paths, int max, FILE *problems, int *failed);
 /* The plugin NAME as a graph without plugin_path would load it: 0 with its
  * descriptor and file, or -1 after writing why to `diag` (the folders
  * searched, or why the file found did not load). */
