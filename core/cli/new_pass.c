@@ -12,10 +12,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include "new_pass.h"
 #include "voxrg/output.h"
+#include "voxrg/voxrg.h"
 
 /* Every "@NAME@" in the templates becomes the pass's name. */
 static const char *c_template =
@@ -193,6 +195,42 @@ static int valid_name(const char *name)
     return 1;
 }
 
+/* Target names CMake keeps for itself (policy CMP0037, and the targets its
+ * Makefile and Visual Studio generators add): the scaffold's CMakeLists.txt
+ * names its target after the pass. Compared without case: ALL_BUILD is
+ * Visual Studio's, INSTALL its install target. */
+static const char *const cmake_reserved[] = {
+    "all", "clean", "help", "install", "test", "package", "package_source", "depend", "edit_cache", "rebuild_cache",
+    "list_install_components", "all_build", "zero_check", "run_tests",
+};
+
+static const char *cmake_reserved_name(const char *name)
+{
+    for (size_t i = 0; i < sizeof cmake_reserved / sizeof *cmake_reserved; i++)
+        if (strcasecmp(name, cmake_reserved[i]) == 0)
+            return cmake_reserved[i];
+    return NULL;
+}
+
+/* 1 (file in `file`) when a plugin NAME is on the search path already: a
+ * shipped pass comes first and is never shadowed, so a new pass of that
+ * name would never load, and one of the user's own is a second NAME. */
+static int plugin_exists(const char *name, char *file, size_t cap)
+{
+    char *why = NULL;
+    size_t why_len = 0;
+    FILE *quiet = open_memstream(&why, &why_len); /* "not found" is the answer wanted, not an error */
+    const vrg_plugin_desc *desc;
+    const char *path;
+    int found = vrg_find_plugin(name, quiet ? quiet : stderr, &desc, &path) == 0;
+    if (found)
+        snprintf(file, cap, "%s", path);
+    if (quiet)
+        fclose(quiet);
+    free(why);
+    return found;
+}
+
 /* The template with @NAME@ replaced, malloc'd. */
 static char *instantiate(const char *tmpl, const char *name)
 {
@@ -252,6 +290,18 @@ int vrg_cli_new_pass(const char *name, const char *dir)
     if (!valid_name(name)) {
         fprintf(stderr, "error: new-pass: '%s' is not a valid pass name: a C identifier ([A-Za-z_][A-Za-z0-9_]*, "
                         "at most %d characters), used for the plugin, its files and its symbols\n", name, NEW_PASS_NAME_MAX);
+        return 2;
+    }
+    const char *reserved = cmake_reserved_name(name);
+    if (reserved) {
+        fprintf(stderr, "error: new-pass: '%s' is a target name CMake keeps for itself ('%s'): the scaffold's CMakeLists.txt "
+                        "could not build it; choose another name\n", name, reserved);
+        return 2;
+    }
+    char existing_file[4200];
+    if (plugin_exists(name, existing_file, sizeof existing_file)) {
+        fprintf(stderr, "error: new-pass: a plugin named '%s' is on the search path already (%s): graphs would load that one "
+                        "(built-in and installed plugins are never shadowed); choose another name\n", name, existing_file);
         return 2;
     }
     const char *tmpls[] = {c_template, comp_template, cmake_template, graph_template};

@@ -618,6 +618,19 @@ section_plugins() { # voxrg plugins
     has "$out/stderr" "error: 1 plugin file on the search path did not load" "plugins counts the failures"
 }
 
+section_new_pass() { # new-pass: names it refuses, and one it writes
+    for name in all install ALL_BUILD; do
+        expect_rc 2 "new-pass $name" "$voxrg" new-pass "$name" --dir "$out/$name"
+        has "$out/stderr" "'$name' is a target name CMake keeps for itself" "new-pass $name says why"
+        [ ! -e "$out/$name" ] && ok || bad "new-pass $name wrote $out/$name"
+    done
+    expect_rc 2 "new-pass tonemap (a shipped pass)" "$voxrg" new-pass tonemap --dir "$out/tonemap"
+    has "$out/stderr" "a plugin named 'tonemap' is on the search path already \(.*/tonemap\.so\)" "new-pass tonemap names the shipped file"
+    [ ! -e "$out/tonemap" ] && ok || bad "new-pass tonemap wrote $out/tonemap"
+    expect_rc 0 "new-pass tint" "$voxrg" new-pass tint --dir "$out/tint"
+    [ -s "$out/tint/tint.c" ] && [ -s "$out/tint/CMakeLists.txt" ] && ok || bad "new-pass tint wrote no tint.c or CMakeLists.txt"
+}
+
 # One X server for every window test of a run: xvfb-run around each command
 # raced its own clean-up now and then ("problem while cleaning up temporary
 # directory", exit 5, whatever the command returned). False where there is
