@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Plugins as a hostile world hands them over: graph-local plugins that try
-to shadow shipped ones, truncated builds, garbage, a FIFO named like a
+to shadow shipped ones, plugins anyone may replace (a warning), truncated builds, garbage, a FIFO named like a
 plugin, a pass that crashes, and hot-reload faults while `render --watch`
 runs (a good build copied over the loaded file in place, a truncated build,
 garbage, the graph deleted, a half-written graph). None may crash voxrg;
@@ -119,6 +119,30 @@ def policy_case(d):
     check(rc == 1 and "searched:" in err and "(built-in)" in err, "policy: plugins NAME does not say where it looked:\n%s" % err)
 
 
+# --- code anyone may replace ---------------------------------------------------------
+def writable_case(d):
+    """A plugin file others may write, or one in a folder others may write
+    (without the sticky bit), loads with a warning naming the path."""
+    folder = os.path.join(d, "ww")
+    os.makedirs(folder)
+    so = os.path.join(folder, "paint.so")
+    build(PAINT, so, ["VERSION=1", 'DIR="%s"' % d])
+    graph = os.path.join(d, "paint.ini")
+    save(graph, GRAPH % ("plugin_path = ww\n", "paint"))
+    for folder_mode, file_mode, named in ((0o755, 0o755, None), (0o777, 0o755, "its folder %s is writable by every user" % folder),
+                                          (0o1777, 0o755, None), (0o755, 0o666, "(%s) is writable by every user" % so)):
+        os.chmod(folder, folder_mode)
+        os.chmod(so, file_mode)
+        rc, out, err = run(["check", graph, "--no-device"])
+        what = "writable: folder %o, file %o" % (folder_mode, file_mode)
+        check(rc == 0, "%s: exit %d, want 0 (a warning, not an error)\n%s" % (what, rc, err))
+        if named:
+            check(re.search(r"paint\.ini:7: warning\[VRG-W007\]: plugin 'paint' .*" + re.escape(named), err), "%s: no warning naming it:\n%s" % (what, err))
+        else:
+            check("VRG-W007" not in err, "%s: a warning where none is due:\n%s" % (what, err))
+    os.chmod(folder, 0o755)
+
+
 # --- files that are no plugin ------------------------------------------------------
 def broken_files_case(d):
     good = os.path.join(d, "good.so")
@@ -144,7 +168,8 @@ def broken_files_case(d):
     rc, out, err = run(["plugins", "paint"], {"VOXRG_PLUGIN_PATH": lib}, timeout=60)
     check(rc == 1 and "not a regular file" in err, "FIFO plugin: exit %d\n%s" % (rc, err))
     rc, out, err = run(["plugins"], {"VOXRG_PLUGIN_PATH": lib}, timeout=60)
-    check(rc == 0 and "paint.so" in err and "not a regular file" in err, "FIFO plugin in the listing: exit %d\n%s" % (rc, err))
+    check(rc == 1 and "paint.so" in err and "not a regular file" in err and re.search(r"^pattern +pass", out, re.M),
+          "FIFO plugin in the listing: exit %d, want 1 with the rest listed\n%s" % (rc, err))
 
 
 # --- descriptors of other sizes (headers older or newer than voxrg's) ---
@@ -286,7 +311,7 @@ def watch_case(d):
 def main():
     shutil.rmtree(OUT, ignore_errors=True)
     os.makedirs(TMPDIR)
-    for name, case in (("policy", policy_case), ("broken_files", broken_files_case), ("desc_size", desc_size_case), ("crash", crash_case), ("watch", watch_case)):
+    for name, case in (("policy", policy_case), ("broken_files", broken_files_case), ("desc_size", desc_size_case), ("writable", writable_case), ("crash", crash_case), ("watch", watch_case)):
         d = os.path.join(OUT, name)
         os.makedirs(d)
         try:

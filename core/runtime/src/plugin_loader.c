@@ -640,6 +640,23 @@ static int copy_desc(_vrg_plugin *p, uint32_t size, _vrg_diag *d, int line)
 /* Loads p->source into *p: read, ELF check, private copy, entry point, ABI
  * and descriptor checks. Reports at `line` (0: none) and returns -1 on any
  * failure, with nothing left loaded. */
+/* Code that anyone on the machine can replace: a plugin file others may
+ * write, or one in a folder where others may rename files (world-writable
+ * without the sticky bit, which /tmp has). Said, not refused: a folder
+ * shared on purpose is the user's choice, and the warning names it. */
+static void warn_if_writable(const _vrg_plugin *p, _vrg_diag *d, int line)
+{
+    struct stat st;
+    char dir[VRG_PATH_MAX];
+    folder_of(p->source, dir, sizeof dir);
+    if (stat(p->source, &st) == 0 && (st.st_mode & S_IWOTH))
+        _vrg_warning_at(d, line, VRG_W_PLUGIN_WRITABLE, "plugin '%s' (%s) is writable by every user: anyone on this machine can change the code it runs "
+                        "(chmod o-w it)", p->name, p->source);
+    else if (stat(dir, &st) == 0 && (st.st_mode & S_IWOTH) && !(st.st_mode & S_ISVTX))
+        _vrg_warning_at(d, line, VRG_W_PLUGIN_WRITABLE, "plugin '%s' (%s): its folder %s is writable by every user: anyone on this machine can replace "
+                        "the plugin (chmod o-w the folder)", p->name, p->source, dir);
+}
+
 static int load_file(_vrg_plugin *p, _vrg_diag *d, int line)
 {
     char why[1024];
@@ -655,6 +672,8 @@ static int load_file(_vrg_plugin *p, _vrg_diag *d, int line)
     if (!problem && !(p->handle = open_private(p, data, size, &p->keep_fd, why, sizeof why)))
         problem = why;
     free(data);
+    if (!problem)
+        warn_if_writable(p, d, line);
     if (problem) {
         unload(p);
         /* dlerror's words for a library it needs that no search found */
