@@ -60,7 +60,6 @@ static const vrg_plugin_desc desc = {
     .name = "accumulate",
     .kind = VRG_PLUGIN_PASS,
     .help = "progressive accumulation for a still camera (resets when it moves); samples_per_frame renders a converged reference",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

@@ -55,7 +55,6 @@ static const vrg_plugin_desc desc = {
     .name = "ao",
     .kind = VRG_PLUGIN_PASS,
     .help = "ambient occlusion: fraction of cosine-weighted hemisphere rays that travel `radius` blocks unoccluded",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

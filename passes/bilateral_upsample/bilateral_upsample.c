@@ -65,7 +65,6 @@ static const vrg_plugin_desc desc = {
     .name = "bilateral_upsample",
     .kind = VRG_PLUGIN_PASS,
     .help = "low-resolution illumination to the full G-buffer: bilinear over the texels on each pixel's surface",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

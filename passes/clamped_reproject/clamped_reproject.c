@@ -125,7 +125,6 @@ static const vrg_plugin_desc desc = {
     .name = "clamped_reproject",
     .kind = VRG_PLUGIN_PASS,
     .help = "temporal accumulation with neighbourhood clamping, a fast history, anti-lag and the effective sample count",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

@@ -68,7 +68,6 @@ static const vrg_plugin_desc desc = {
     .name = "combine",
     .kind = VRG_PLUGIN_PASS,
     .help = "illumination L (radiance / albedo) from sun visibility, AO and indirect; mode physical or thesis",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

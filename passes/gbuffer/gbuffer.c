@@ -54,7 +54,6 @@ static const vrg_plugin_desc desc = {
     .name = "gbuffer",
     .kind = VRG_PLUGIN_PASS,
     .help = "primary rays: position, depth, normal, albedo (textured), ids, motion vectors; sky on a miss",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

@@ -47,7 +47,6 @@ static const vrg_plugin_desc desc = {
     .name = "gbuffer_downsample",
     .kind = VRG_PLUGIN_PASS,
     .help = "the G-buffer at half resolution (position, normal, ids, motion), one full-resolution pixel per pixel",
-    .shader_dir = VRG_PLUGIN_DIR,
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,

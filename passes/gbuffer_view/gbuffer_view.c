@@ -45,7 +45,6 @@ static const vrg_plugin_desc desc = {
     .name = "gbuffer_view",
     .kind = VRG_PLUGIN_PASS,
     .help = "debug mosaic of the G-buffer: normals, depth, albedo, motion",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

@@ -42,7 +42,6 @@ static const vrg_plugin_desc desc = {
     .name = "haze",
     .kind = VRG_PLUGIN_PASS,
     .help = "distance haze toward the sky colour: hides a streamed world's edge and the void below the horizon",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

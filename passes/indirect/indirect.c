@@ -78,7 +78,6 @@ static const vrg_plugin_desc desc = {
     .name = "indirect",
     .kind = VRG_PLUGIN_PASS,
     .help = "one-bounce diffuse indirect light: cosine-weighted rays, sun (with a shadow ray) and ambient sky at the hit, sky on a miss",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

@@ -62,7 +62,6 @@ static const vrg_plugin_desc desc = {
     .name = "mean_variance",
     .kind = VRG_PLUGIN_PASS,
     .help = "variance of the accumulated mean: moments' variance / effective sample count, spatial while history is young",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

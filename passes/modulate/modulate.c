@@ -26,7 +26,6 @@ static const vrg_plugin_desc desc = {
     .name = "modulate",
     .kind = VRG_PLUGIN_PASS,
     .help = "colour = albedo x illumination (sky passes through)",
-    .shader_dir = VRG_PLUGIN_DIR,
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,

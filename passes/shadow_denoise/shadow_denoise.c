@@ -114,7 +114,6 @@ static const vrg_plugin_desc desc = {
     .name = "shadow_denoise",
     .kind = VRG_PLUGIN_PASS,
     .help = "sun visibility filter whose radius follows the penumbra width (occluder distance, sun radius, view depth), plane edge-stopping",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

@@ -137,7 +137,6 @@ static const vrg_plugin_desc desc = {
     .name = "sparse_atrous",
     .kind = VRG_PLUGIN_PASS,
     .help = "cheaper a-trous: 3x3 taps with step doubling, steered by the variance of the mean and the history length",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

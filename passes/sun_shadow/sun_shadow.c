@@ -75,7 +75,6 @@ static const vrg_plugin_desc desc = {
     .name = "sun_shadow",
     .kind = VRG_PLUGIN_PASS,
     .help = "sun visibility: shadow rays toward the sun's disc (soft), or exactly toward the sun (sun_radius = 0)",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

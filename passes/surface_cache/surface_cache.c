@@ -280,7 +280,6 @@ static const vrg_plugin_desc desc = {
     .name = "surface_cache",
     .kind = VRG_PLUGIN_PASS,
     .help = "world-space cache: samples averaged per cell of a hashed grid over the surfaces, across frames",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

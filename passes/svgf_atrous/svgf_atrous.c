@@ -145,7 +145,6 @@ static const vrg_plugin_desc desc = {
     .name = "svgf_atrous",
     .kind = VRG_PLUGIN_PASS,
     .help = "SVGF edge-avoiding a-trous filter: iterations, 3x3 or 5x5, position/normal/luminance edge-stopping, variance skip, feedback",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

@@ -93,7 +93,6 @@ static const vrg_plugin_desc desc = {
     .name = "svgf_reproject",
     .kind = VRG_PLUGIN_PASS,
     .help = "SVGF temporal accumulation: reprojected history with disocclusion tests (id, normal, plane), colour and luminance moments",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

@@ -89,7 +89,6 @@ static const vrg_plugin_desc desc = {
     .name = "svgf_variance",
     .kind = VRG_PLUGIN_PASS,
     .help = "luminance variance for the a-trous filter: spatial (thesis, 7x7 with Bessel) or temporal (SVGF moments)",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

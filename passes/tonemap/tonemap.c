@@ -42,7 +42,6 @@ static const vrg_plugin_desc desc = {
     .name = "tonemap",
     .kind = VRG_PLUGIN_PASS,
     .help = "exposure, a filmic curve (aces, reinhard, linear) and sRGB encoding into rgba8",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

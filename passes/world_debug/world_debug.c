@@ -45,7 +45,6 @@ static const vrg_plugin_desc desc = {
     .name = "world_debug",
     .kind = VRG_PLUGIN_PASS,
     .help = "debug view of the voxel world: primary rays, shaded (textured) albedo / normals / block ids / distance",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

@@ -146,7 +146,6 @@ static const vrg_plugin_desc desc = {
     .name = "blocks",
     .kind = VRG_PLUGIN_SCENE,
     .help = "a world of boxes listed in the graph (box = x0 y0 z0 x1 y1 z1 block)",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

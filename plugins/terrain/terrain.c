@@ -287,7 +287,6 @@ static const vrg_plugin_desc desc = {
     .name = "terrain",
     .kind = VRG_PLUGIN_SCENE,
     .help = "procedural terrain: Perlin heights, Voronoi biomes, trees, chunks streamed around the camera",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

@@ -424,7 +424,6 @@ static const vrg_plugin_desc desc = {
     .name = "vox",
     .kind = VRG_PLUGIN_SCENE,
     .help = "a MagicaVoxel model (.vox): models, palette, materials and scene graph placed in the world",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

@@ -18,8 +18,8 @@ block() {
 }
 # NAME's .c and .comp, and its graph (the block after the line starting
 # with GRAPH_MARKER), compiled with the page's command and this build's
-# paths; a plugin author's warnings are errors here, so the page's tables
-# stay clean under -Wextra
+# paths (NAME.so beside NAME/, where its shader is read); a plugin author's
+# warnings are errors here, so the page's tables stay clean under -Wextra
 build_example() {
     name=$1 marker=$2
     mkdir -p "$out/$name"
@@ -29,7 +29,7 @@ build_example() {
     for f in $name/$name.c $name/$name.comp $name.ini; do
         [ -s "$out/$f" ] || { echo "FAIL: docs/plugin-abi.md has no $f block"; exit 1; }
     done
-    if ! gcc -std=c11 -Wall -Wextra -Werror -fPIC -shared -I"$src/core/runtime/include" -DVRG_PLUGIN_DIR="\"$out/$name\"" \
+    if ! gcc -std=c11 -Wall -Wextra -Werror -fPIC -shared -I"$src/core/runtime/include" \
         "$out/$name/$name.c" -o "$out/$name.so" -L"$libdir" -lvoxrg 2> "$out/gcc-$name.log"; then
         echo "FAIL: the page's $name.c does not compile:"; cat "$out/gcc-$name.log"; exit 1
     fi

@@ -6,7 +6,9 @@
 # voxrg scaffolds a pass (new-pass), CMake builds it with find_package(voxrg)
 # against the moved prefix, and the docs' invert pass (docs/plugin-abi.md)
 # is compiled with pkg-config; both load in graphs beside shipped passes and
-# render under --validate, and `voxrg plugins NAME` finds each.
+# render under --validate, and `voxrg plugins NAME` finds each. No installed
+# binary names the build or source tree, and an installed shader removed is
+# an error naming it.
 # A host program linked with libvoxrg only (not libvoxrg_voxel) renders a
 # graph whose scene plugin needs libvoxrg_voxel: the loader finds it from
 # the installed plugin's RUNPATH, not the copy it loads.
@@ -20,6 +22,19 @@ fail() { echo "FAIL: $*"; exit 1; }
 cmake --install "$build" --prefix "$out/installed" > "$out/install.log" 2>&1 || { cat "$out/install.log"; fail "cmake --install"; }
 mv "$out/installed" "$out/prefix" || fail "cannot move the prefix"
 prefix=$out/prefix
+
+# no installed program or library names the source or build tree (no
+# compiled-in folder, no debug info's paths, no RUNPATH): what is installed
+# does not depend on where it was built, and never reads the checkout
+for dir in "$src" "$build"; do
+    for form in "$dir" "$(cd "$dir" && pwd -P)"; do
+        find "$prefix" -type f | while read -r f; do
+            [ "$(head -c 4 "$f")" = "$(printf '\177ELF')" ] || continue
+            strings -a "$f" | grep -qF -- "$form" && echo "$f"
+        done > "$out/named.txt"
+        [ -s "$out/named.txt" ] && { cat "$out/named.txt"; fail "installed binaries name $form (from the build or source tree)"; }
+    done
+done
 # a cleared environment: only what a user's shell has (and the sanitizers'
 # settings of the sanitizer build)
 run() {
@@ -138,15 +153,16 @@ mkdir -p invert
 block '`passes/invert/invert.c`:' > invert/invert.c
 block '`passes/invert/invert.comp`:' > invert/invert.comp
 [ -s invert/invert.c ] && [ -s invert/invert.comp ] || fail "docs/plugin-abi.md has no invert.c or invert.comp block"
+# (built beside the folder invert/, where its shader is read from)
 run PKG_CONFIG_PATH="$prefix/lib/pkgconfig" sh -c 'gcc -std=c11 -fPIC -shared $(pkg-config --cflags voxrg) \
-    -DVRG_PLUGIN_DIR="\"$PWD/invert\"" invert/invert.c -o invert/invert.so $(pkg-config --libs voxrg)' > invert_build.log 2>&1 ||
+    invert/invert.c -o invert.so $(pkg-config --libs voxrg)' > invert_build.log 2>&1 ||
     { cat invert_build.log; fail "the docs' invert.c does not build with pkg-config"; }
 cat > invert.ini <<'INI'
 [graph]
 output      = ldr
 width       = 160
 height      = 90
-plugin_path = invert
+plugin_path = .
 
 [camera]
 position = -20 60 20
@@ -177,7 +193,7 @@ INI
 run "$voxrg" render invert.ini --validate --frames 1 --out invert/out > invert_render.log 2>&1 ||
     { cat invert_render.log; fail "the invert graph does not render"; }
 [ -s invert/out/ldr.png ] || fail "invert wrote no ldr.png"
-run VOXRG_PLUGIN_PATH="$out/work/invert" "$voxrg" plugins invert > plugins_invert.txt 2>&1 &&
+run VOXRG_PLUGIN_PATH="$out/work" "$voxrg" plugins invert > plugins_invert.txt 2>&1 &&
     grep -q "strength" plugins_invert.txt || { cat plugins_invert.txt; fail "voxrg plugins invert"; }
 
 # an installed plugin's shaders are read from the prefix, not from the tree
@@ -185,4 +201,12 @@ run VOXRG_PLUGIN_PATH="$out/work/invert" "$voxrg" plugins invert > plugins_inver
 printf '#version 460\nthis is not glsl\n' > "$prefix/lib/voxrg/plugins/tonemap/tonemap.comp"
 run "$voxrg" render invert.ini --frames 1 --out invert/broken > broken.log 2>&1 && fail "a broken installed shader rendered"
 grep -q "$prefix/lib/voxrg/plugins/tonemap/tonemap.comp:2: error\[VRG-E063\]" broken.log || { cat broken.log; fail "the installed shader was not the one compiled"; }
+# an installed shader that is missing is an error naming where it was
+# looked for: never a shader read from the tree the plugin was built in
+rm "$prefix/lib/voxrg/plugins/tonemap/tonemap.comp"
+run "$voxrg" render invert.ini --frames 1 --out invert/missing > missing.log 2>&1 && fail "a graph rendered without the installed tonemap.comp"
+grep -q "shader 'tonemap.comp' not found (searched $prefix/lib/voxrg/plugins/tonemap/tonemap.comp," missing.log ||
+    { cat missing.log; fail "the missing installed shader is not named with its path"; }
+sed -n "s/.*shader 'tonemap.comp' not found (searched \(.*\))$/\1/p" missing.log | tr ',' '\n' | sed 's/^ //' > searched.txt
+grep -v "^$prefix/" searched.txt && { cat missing.log; fail "the missing shader was looked for outside the prefix"; }
 echo "install: ok"

@@ -228,9 +228,10 @@ static int same_bindings(const bound_set *a, const bound_set *b)
 /* The file of a shader the pass names; -1 after reporting where it looked. */
 static int shader_path(vrg_pass *p, const char *shader, char *path, size_t cap)
 {
-    if (_vrg_shader_resolve(p, shader, path, cap) == 0)
+    char searched[2048];
+    if (_vrg_shader_resolve(p, shader, path, cap, searched, sizeof searched) == 0)
         return 0;
-    return _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "shader '%s' not found (searched the plugin's folder, $VOXRG_SHADER_PATH, shaders/)", shader);
+    return _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "shader '%s' not found (searched %s)", shader, searched);
 }
 
 /* pixel.glsl's vrg_pixel: a group shades a tile of the device's shape, so a

@@ -414,10 +414,10 @@ uint32_t _vrg_format_channels(VkFormat f);
 /* ---- install.c ---- */
 /* The folder of libvoxrg's own file; "" if unknown. */
 const char *_vrg_lib_dir(void);
-/* 1 while libvoxrg (or a test linking it statically) runs from its build
- * folder and not from an installed layout: the source tree's shaders and
- * the build's plugins are then searched too. */
-int _vrg_build_tree(void);
+/* The build's plugin folder while libvoxrg (or a program linking it
+ * statically) runs from voxrg's build, told by the file voxrg-build-tree
+ * beside it; "" for an installed copy. */
+const char *_vrg_build_plugin_dir(void);
 
 static inline const vrg_slot_desc *vrg_slot(const vrg_pass *p, int i) { return &p->plugin->desc->slots[i]; }
 

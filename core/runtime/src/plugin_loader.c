@@ -219,12 +219,10 @@ static void search_path_build(search_path *s, const char *graph_path, const char
         if (slash)
             *slash = '\0';
         add_dir(s, DIR_BUILTIN, dir, (size_t)snprintf(dir, sizeof dir, "%s/plugins", exe));
-#if defined(VRG_BUILD_PLUGIN_DIR) && defined(VRG_BUILD_DIR)
         /* tests and fuzzers run from other folders of the build; an
          * installed voxrg never searches the folder it was built in */
-        if (_vrg_build_tree())
-            add_dir(s, DIR_BUILTIN, VRG_BUILD_PLUGIN_DIR, strlen(VRG_BUILD_PLUGIN_DIR));
-#endif
+        const char *built = _vrg_build_plugin_dir();
+        add_dir(s, DIR_BUILTIN, built, strlen(built));
     }
     if (*_vrg_lib_dir())
         add_dir(s, DIR_INSTALLED, dir, (size_t)snprintf(dir, sizeof dir, "%s/voxrg/plugins", _vrg_lib_dir()));

@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include "internal.h"
 #include "shader.h"
@@ -55,36 +56,64 @@ static int override(const char *name, char *out, size_t cap)
     return exists(out) ? 0 : -1;
 }
 
-/* An installed plugin's shaders lie in a folder named after it next to its
- * .so (PREFIX/lib/voxrg/plugins/NAME/): searched before the folder compiled
- * into the plugin, so that an installed copy never reads the tree it was
- * built from. In a build tree that folder does not exist. */
-static int installed_shader(const vrg_pass *p, const char *name, char *out, size_t cap)
+/* A plugin's own shader folder: NAME/ beside its NAME.so. Installed, that
+ * is PREFIX/lib/voxrg/plugins/NAME/; in voxrg's build the build links it
+ * to the pass's source folder. 0 with the shader's file in out; 1 when the
+ * folder exists and lacks the shader; -1 when there is no such folder. */
+static int own_folder_shader(const vrg_pass *p, const char *name, char *out, size_t cap)
 {
     const char *so = p->plugin->source;
     const char *slash = strrchr(so, '/');
     if (!slash)
         return -1;
+    snprintf(out, cap, "%.*s/%s", (int)(slash - so), so, p->plugin->name);
+    struct stat st;
+    if (stat(out, &st) != 0 || !S_ISDIR(st.st_mode))
+        return -1;
     snprintf(out, cap, "%.*s/%s/%s", (int)(slash - so), so, p->plugin->name, name);
-    return exists(out) ? 0 : -1;
+    return exists(out) ? 0 : 1;
 }
 
-int _vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t cap)
+/* One more place searched, for the message of a shader not found. */
+static void searched_add(char *searched, size_t cap, const char *place)
 {
+    size_t n = searched ? strlen(searched) : cap;
+    if (n < cap)
+        snprintf(searched + n, cap - n, "%s%s", n ? ", " : "", place);
+}
+
+int _vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t cap, char *searched, size_t searched_cap)
+{
+    if (searched_cap)
+        searched[0] = '\0';
     if (name[0] == '/') {
         snprintf(out, cap, "%s", name);
-        return exists(out) ? 0 : -1;
+        if (exists(out))
+            return 0;
+        searched_add(searched, searched_cap, out);
+        return -1;
     }
     if (override(name, out, cap) == 0)
         return 0;
-    if (p && installed_shader(p, name, out, cap) == 0)
+    if (getenv("VOXRG_SHADER_OVERRIDE"))
+        searched_add(searched, searched_cap, "$VOXRG_SHADER_OVERRIDE");
+    /* a plugin with its own folder (every installed one) reads its shaders
+     * there and nowhere else of its own: never from the folder it was
+     * built in, which shader_dir may name */
+    int own = p ? own_folder_shader(p, name, out, cap) : -1;
+    if (own == 0)
         return 0;
-    if (p && p->plugin->desc->shader_dir) {
+    if (own == 1)
+        searched_add(searched, searched_cap, out);
+    if (own < 0 && p && p->plugin->desc->shader_dir) {
         snprintf(out, cap, "%s/%s", p->plugin->desc->shader_dir, name);
         if (exists(out))
             return 0;
+        searched_add(searched, searched_cap, out);
     }
     const char *env = getenv("VOXRG_SHADER_PATH");
+    if (env && *env)
+        searched_add(searched, searched_cap, "$VOXRG_SHADER_PATH");
     while (env && *env) {
         const char *c = strchr(env, ':');
         int len = c ? (int)(c - env) : (int)strlen(env);
@@ -99,8 +128,12 @@ int _vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t c
     snprintf(out, cap, "%s/shaders/%s", data, name);
     if (exists(out))
         return 0;
+    searched_add(searched, searched_cap, out);
     snprintf(out, cap, "%s/%s", data, name);
-    return exists(out) ? 0 : -1;
+    if (exists(out))
+        return 0;
+    searched_add(searched, searched_cap, out);
+    return -1;
 }
 
 /* glslang 12's C API has no include callbacks, so #include is expanded

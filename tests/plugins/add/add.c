@@ -22,7 +22,6 @@ static const vrg_plugin_desc desc = {
     .name = "add",
     .kind = VRG_PLUGIN_PASS,
     .help = "test: sum = a + b",
-    .shader_dir = VRG_PLUGIN_DIR,
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,

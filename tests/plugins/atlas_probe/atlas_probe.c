@@ -19,7 +19,6 @@ static const vrg_plugin_desc desc = {
     .name = "atlas_probe",
     .kind = VRG_PLUGIN_PASS,
     .help = "test: atlas texels at every mip level",
-    .shader_dir = VRG_PLUGIN_DIR,
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,

@@ -20,7 +20,6 @@ static const vrg_plugin_desc desc = {
     .name = "buffer_to_image",
     .kind = VRG_PLUGIN_PASS,
     .help = "test: r32f image of a uint buffer",
-    .shader_dir = VRG_PLUGIN_DIR,
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,

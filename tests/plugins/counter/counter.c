@@ -32,7 +32,6 @@ static const vrg_plugin_desc desc = {
     .name = "counter",
     .kind = VRG_PLUGIN_PASS,
     .help = "test: counts frames through its own history",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

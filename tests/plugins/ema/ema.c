@@ -38,7 +38,6 @@ static const vrg_plugin_desc desc = {
     .name = "ema",
     .kind = VRG_PLUGIN_PASS,
     .help = "test: temporal accumulation, mix(history, src, alpha)",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

@@ -33,7 +33,6 @@ static const vrg_plugin_desc desc = {
     .name = "fill_buffer",
     .kind = VRG_PLUGIN_PASS,
     .help = "test: buffer of 1024 uints, data[i] = i * mul",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

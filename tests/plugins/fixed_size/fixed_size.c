@@ -19,7 +19,6 @@ static const vrg_plugin_desc desc = {
     .name = "fixed_size",
     .kind = VRG_PLUGIN_PASS,
     .help = "test: copy whose input must be full size",
-    .shader_dir = VRG_PLUGIN_DIR,
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,

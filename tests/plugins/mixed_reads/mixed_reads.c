@@ -21,7 +21,6 @@ static const vrg_plugin_desc desc = {
     .name = "mixed_reads",
     .kind = VRG_PLUGIN_PASS,
     .help = "test: dst = src (sampled) + aux (storage read)",
-    .shader_dir = VRG_PLUGIN_DIR,
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,

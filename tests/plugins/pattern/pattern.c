@@ -26,7 +26,6 @@ static const vrg_plugin_desc desc = {
     .name = "pattern",
     .kind = VRG_PLUGIN_PASS,
     .help = "test: UV gradient, blue = value",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

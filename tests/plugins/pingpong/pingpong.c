@@ -61,7 +61,6 @@ static const vrg_plugin_desc desc = {
     .name = "pingpong",
     .kind = VRG_PLUGIN_PASS,
     .help = "test: dst = src + iterations, through two internal images",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

@@ -72,7 +72,6 @@ static const vrg_plugin_desc desc = {
     .name = "ring_probe",
     .kind = VRG_PLUGIN_PASS,
     .help = "test: copies the frame index from its host ring after a slow dispatch",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

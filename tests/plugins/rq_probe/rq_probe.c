@@ -19,7 +19,6 @@ static const vrg_plugin_desc desc = {
     .name = "rq_probe",
     .kind = VRG_PLUGIN_PASS,
     .help = "test: primary-ray hit distance through ray queries",
-    .shader_dir = VRG_PLUGIN_DIR,
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,

@@ -19,7 +19,6 @@ static const vrg_plugin_desc desc = {
     .name = "scene_color",
     .kind = VRG_PLUGIN_PASS,
     .help = "test: fills an image with a uniform-buffer colour",
-    .shader_dir = VRG_PLUGIN_DIR,
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,

@@ -25,7 +25,6 @@ static const vrg_plugin_desc desc = {
     .name = "spin",
     .kind = VRG_PLUGIN_PASS,
     .help = "test: loops until a count reaches stop (-1: forever)",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

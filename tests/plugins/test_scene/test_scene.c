@@ -27,7 +27,6 @@ static const vrg_plugin_desc desc = {
     .name = "test_scene",
     .kind = VRG_PLUGIN_SCENE,
     .help = "test: scene constants (r, g, b, 1)",
-    .shader_dir = VRG_PLUGIN_DIR, /* no shaders; set for uniformity */
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

@@ -21,7 +21,6 @@ static const vrg_plugin_desc desc = {
     .name = "texel_quads",
     .kind = VRG_PLUGIN_PASS,
     .help = "test: rgba32f image of a buffer read as rgba32ui texels",
-    .shader_dir = VRG_PLUGIN_DIR,
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,

@@ -30,7 +30,6 @@ static const vrg_plugin_desc desc = {
     .name = "world_probe",
     .kind = VRG_PLUGIN_PASS,
     .help = "test: world buffer contents at pseudo-random positions",
-    .shader_dir = VRG_PLUGIN_DIR,
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

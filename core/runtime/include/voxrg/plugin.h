@@ -146,7 +146,11 @@ typedef struct vrg_plugin_desc {
     const char *name;
     vrg_plugin_kind kind;
     const char *help;
-    /* Directory searched first for this plugin's shaders (VRG_PLUGIN_DIR). */
+    /* A folder of this plugin's shaders, searched when the folder NAME/
+     * beside its NAME.so does not exist (an installed plugin's shaders are
+     * there, and only there): a plugin built outside voxrg reads them
+     * where they are written (VRG_PLUGIN_DIR of voxrg_add_pass). May be
+     * NULL. */
     const char *shader_dir;
     const vrg_param_desc *params;
     uint32_t param_count;
@@ -456,8 +460,10 @@ typedef struct vrg_binding {
 } vrg_binding;
 
 typedef struct vrg_dispatch_desc {
-    /* GLSL compute shader. Relative paths are searched in the plugin's
-     * shader_dir, then $VOXRG_SHADER_PATH, then the source tree's shaders/. */
+    /* GLSL compute shader. A relative path is searched in the folder NAME/
+     * beside the plugin's NAME.so (else its shader_dir), then
+     * $VOXRG_SHADER_PATH, then the data folder's shaders/ (docs/plugin-abi.md,
+     * "The dispatch helper"). */
     const char *shader;
     /* Set 0, binding i = bindings[i]. When none are given, every slot of
      * the pass is bound in declaration order (unconnected optional inputs
