@@ -5,8 +5,9 @@
 # folder its shaders are read where they are written (VRG_PLUGIN_DIR is the
 # folder of the first shader, so saving one hot-reloads it); `cmake --install`
 # copies NAME.so to DESTINATION (default lib/voxrg/plugins under the install
-# prefix) and its shaders to DESTINATION/NAME/, where the runtime looks first
-# for an installed plugin's shaders. A scene plugin of the voxel world adds
+# prefix) and its shaders to DESTINATION/NAME/, where the runtime looks for
+# an installed plugin's shaders (and only there: where that folder exists,
+# VRG_PLUGIN_DIR is not searched). A scene plugin of the voxel world adds
 # LIBRARIES voxrg::voxel. Built and installed, NAME.so has a RUNPATH to this
 # SDK's lib folder, so it finds libvoxrg_voxel (and the rest) wherever the
 # host program comes from.
