@@ -596,7 +596,7 @@ static int cmd_run(int argc, char **argv)
         return usage_error(usage_run, "--scale and --size both set the render size: give one%s", "");
     /* --size alone: a window that shows the render pixel for pixel */
     vrg_run_options r = {.graph = o.graph, .device = o.device, .camera = o.camera, .screenshot = o.screenshot, .ab = o.ab, .record = o.record,
-                         .show = o.show,
+                         .show = o.show, .out = o.out,
                          .sets = o.sets,
                          .set_count = (uint32_t)o.set_count,
                          .window_w = o.window_w ? o.window_w : o.width, .window_h = o.window_h ? o.window_h : o.height,

@@ -3,9 +3,11 @@
 #include <stdint.h>
 #include <stdio.h>
 #define VRG_OVERLAY_LINES 64
+#define VRG_OVERLAY_GLYPH_W 5 /* a glyph's pixels, before the scale */
+#define VRG_OVERLAY_GLYPH_H 8
 #define VRG_OVERLAY_GLYPH_SCALE 2
-#define VRG_OVERLAY_CELL_W (4 * VRG_OVERLAY_GLYPH_SCALE)
-#define VRG_OVERLAY_LINE_H (6 * VRG_OVERLAY_GLYPH_SCALE)
+#define VRG_OVERLAY_CELL_W ((VRG_OVERLAY_GLYPH_W + 1) * VRG_OVERLAY_GLYPH_SCALE)
+#define VRG_OVERLAY_LINE_H ((VRG_OVERLAY_GLYPH_H + 1) * VRG_OVERLAY_GLYPH_SCALE)
 #define VRG_OVERLAY_PAD 4
 /* Lines of text for one box. */
 typedef struct vrg_overlay {
@@ -23,6 +25,9 @@ void vrg_overlay_clear(vrg_overlay *o);
 void vrg_overlay_line(vrg_overlay *o, const char *text);
 void vrg_overlay_layer_clear(vrg_overlay_layer *l);
 void vrg_overlay_box(vrg_overlay_layer *l, int x, int y, int w, int h, const uint8_t rgba[4]);
+/* The glyph of c: VRG_OVERLAY_GLYPH_H rows, bit VRG_OVERLAY_GLYPH_W - 1 the leftmost pixel. */
+const uint8_t *vrg_overlay_glyph(char c);
+/* text with its top-left at (x, y), each glyph pixel a square of VRG_OVERLAY_GLYPH_SCALE. */
 void vrg_overlay_text(vrg_overlay_layer *l, int x, int y, const char *text, const uint8_t rgba[4]);
 int vrg_overlay_text_width(const char *text);
 /* A line from (x0, y0) to (x1, y1), window pixels, thickness pixels wide;

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 #include "bench.h"
 #include "edit.h"
 #include "overlay.h"
@@ -17,6 +18,7 @@
 #include "run.h"
 #include "util.h"
 #include "voxrg/camera.h"
+#include "voxrg/edits.h"
 #include "voxrg/world.h"
 #include "voxrg/output.h"
 #include "voxrg/png.h"
@@ -78,8 +80,9 @@ typedef struct window_state {
     VkDeviceSize staging_size;
     vrg_overlay_layer layer;
     vrg_panel panel;
-    int save_requested;  /* Ctrl+S */
+    int save_requested;  /* Ctrl+S; 2: Ctrl+Shift+S (save as: the name is asked for), 3: the name typed */
     int s_saves;         /* S went down with Ctrl: no flying back until it is up */
+    int typing_began;    /* the key that began typing ('/') is not typed */
     vrg_graph *g, *gb;   /* this frame's graphs, for the panel's keys */
     int mouse_was_down, mouse_on_panel; /* a left press that fell on the panel drags there, not the divider */
     /* showing a resource other than the output: Tab / Shift+Tab / 0-9 */
@@ -89,6 +92,7 @@ typedef struct window_state {
     /* block editing (edit.h): a right press that moves less than
      * CLICK_SLOP pixels before its release places; more is a look */
     vrg_cli_edit edit;
+    char replayed[2][160]; /* "replayed N ... from FILE" of A's and B's journals, shown up to the first edit */
     double right_moved;
     int right_hit;
     vrg_world_hit right_at; /* what was under the cursor at the right press */
@@ -221,11 +225,14 @@ static void fly(window_state *w, vrg_camera *cam, float dt)
     /* Ctrl+S saves: its S does not fly, up to its release */
     float f = w->s_saves ? 0.0f : (float)(glfwGetKey(win, GLFW_KEY_W) == GLFW_PRESS) - (float)(glfwGetKey(win, GLFW_KEY_S) == GLFW_PRESS);
     float r = (float)(glfwGetKey(win, GLFW_KEY_D) == GLFW_PRESS) - (float)(glfwGetKey(win, GLFW_KEY_A) == GLFW_PRESS);
+    if (w->panel.typing) /* the keys spell a filter or a file name */
+        f = r = 0;
     /* Shift with an arrow is the panel's fine step, not a descent */
     int arrow = glfwGetKey(win, GLFW_KEY_LEFT) == GLFW_PRESS || glfwGetKey(win, GLFW_KEY_RIGHT) == GLFW_PRESS ||
                 glfwGetKey(win, GLFW_KEY_UP) == GLFW_PRESS || glfwGetKey(win, GLFW_KEY_DOWN) == GLFW_PRESS;
     float u = (float)(glfwGetKey(win, GLFW_KEY_SPACE) == GLFW_PRESS) -
               (float)(glfwGetKey(win, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS && !(w->panel.open && arrow));
+    u = w->panel.typing ? 0 : u;
     for (int i = 0; i < 3; i++)
         move[i] = f * fwd[i] + r * right[i];
     move[1] += u;
@@ -272,12 +279,27 @@ static int hovered(window_state *w, vrg_world_hit *hit)
     return !vrg_panel_contains(&w->panel, x, y) && vrg_cli_edit_pick(w->g, x, y, fw, fh, hit);
 }
 
+/* A journal read at start-up changes the world before the first frame:
+ * said in the terminal and the overlay, with the file to remove to start
+ * from the world as generated. */
+static void say_replayed(window_state *w, int side, const vrg_graph *g)
+{
+    const vrg_edits *journal = vrg_graph_edits(g);
+    int n = journal ? vrg_edits_records(journal) : 0;
+    if (!n)
+        return;
+    snprintf(w->replayed[side], sizeof w->replayed[side], "%sreplayed %d edit record%s from %.100s", w->gb ? (side ? "B: " : "A: ") : "", n,
+             n == 1 ? "" : "s", vrg_edits_path(journal));
+    fprintf(stderr, "edits: %s (remove it to start from the unedited world)\n", w->replayed[side]);
+}
+
 /* Edits apply at once, between frames (events are polled then), on the
  * graph whose last frame the window shows. */
 static void edit_action(window_state *w, vrg_cli_edit_action action, const vrg_world_hit *hit)
 {
     if (!w->g)
         return;
+    w->replayed[0][0] = w->replayed[1][0] = '\0';
     if (w->gb) {
         snprintf(w->edit.status, sizeof w->edit.status, "no editing with --ab (each side has its own world)");
         fprintf(stderr, "edit: %s\n", w->edit.status);
@@ -306,6 +328,28 @@ static void on_mouse_button(GLFWwindow *win, int button, int action, int mods)
         edit_action(w, VRG_CLI_EDIT_PLACE, w->right_hit ? &w->right_at : NULL);
 }
 
+/* While the panel takes typing (its filter, a save-as name), keys edit the
+ * text: Enter ends it, Esc cancels, Backspace takes a character back, Up
+ * and Down still select; the characters come through on_char. */
+static void typing_key(window_state *w, vrg_graph *edited, int key)
+{
+    if (key == GLFW_KEY_ENTER || key == GLFW_KEY_KP_ENTER || key == GLFW_KEY_ESCAPE) {
+        if (vrg_panel_type_end(&w->panel, key != GLFW_KEY_ESCAPE))
+            w->save_requested = 3;
+    } else if (key == GLFW_KEY_BACKSPACE)
+        vrg_panel_backspace(&w->panel);
+    else if (key == GLFW_KEY_UP || key == GLFW_KEY_DOWN)
+        vrg_panel_select(&w->panel, edited, key == GLFW_KEY_DOWN ? 1 : -1);
+}
+
+static void on_char(GLFWwindow *win, unsigned int codepoint)
+{
+    window_state *w = glfwGetWindowUserPointer(win);
+    if (w->panel.typing && !w->typing_began)
+        vrg_panel_type(&w->panel, codepoint);
+    w->typing_began = 0;
+}
+
 static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
 {
     (void)scancode;
@@ -313,16 +357,27 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
     int arrow = key == GLFW_KEY_UP || key == GLFW_KEY_DOWN || key == GLFW_KEY_LEFT || key == GLFW_KEY_RIGHT;
     if (key == GLFW_KEY_S && action == GLFW_RELEASE)
         w->s_saves = 0;
-    if (action != GLFW_PRESS && !(action == GLFW_REPEAT && arrow))
+    if (action != GLFW_PRESS && !(action == GLFW_REPEAT && (arrow || key == GLFW_KEY_BACKSPACE)))
         return;
     /* the panel's keys act at once, in order (several may come in one poll) */
     vrg_graph *edited = w->panel.side && w->gb ? w->gb : w->g;
-    if (w->panel.open && (key == GLFW_KEY_UP || key == GLFW_KEY_DOWN))
+    w->typing_began = 0;
+    if (w->panel.typing)
+        typing_key(w, edited, key);
+    else if (w->panel.open && (key == GLFW_KEY_SLASH || key == GLFW_KEY_KP_DIVIDE)) {
+        vrg_panel_filter_begin(&w->panel);
+        w->typing_began = 1; /* the '/' itself comes as a character next: not part of the filter */
+    } else if (w->panel.open && (key == GLFW_KEY_UP || key == GLFW_KEY_DOWN))
         vrg_panel_select(&w->panel, edited, key == GLFW_KEY_DOWN ? 1 : -1);
+    else if (w->panel.open && (key == GLFW_KEY_PAGE_UP || key == GLFW_KEY_PAGE_DOWN))
+        vrg_panel_jump(&w->panel, edited, key == GLFW_KEY_PAGE_DOWN ? 1 : -1);
     else if (w->panel.open && arrow)
         vrg_panel_step(&w->panel, edited, key == GLFW_KEY_RIGHT ? 1 : -1, (mods & GLFW_MOD_SHIFT) != 0);
-    else if (key == GLFW_KEY_S && (mods & GLFW_MOD_CONTROL))
-        w->save_requested = w->s_saves = 1;
+    else if (key == GLFW_KEY_S && (mods & GLFW_MOD_CONTROL)) {
+        w->save_requested = mods & GLFW_MOD_SHIFT ? 2 : 1;
+        w->s_saves = 1;
+        w->panel.open |= w->save_requested == 2; /* the name is typed in the panel */
+    }
     else if (key == GLFW_KEY_Z && (mods & GLFW_MOD_CONTROL))
         edit_action(w, mods & GLFW_MOD_SHIFT ? VRG_CLI_EDIT_REDO : VRG_CLI_EDIT_UNDO, NULL);
     else if (key == GLFW_KEY_Y && (mods & GLFW_MOD_CONTROL))
@@ -589,6 +644,25 @@ static void write_screenshot(window_state *w, const char *screenshot)
     free(img.pixels);
 }
 
+/* The next screenshot's name, OUT/screenshot-NNN.png, the first number
+ * from *shot on that no file has (earlier runs' screenshots stay), its
+ * folder created if missing: 0, or -1 after a message. */
+static int next_screenshot(const char *out, int *shot, char *file, size_t cap)
+{
+    if (vrg_cli_out_dir(out) != 0)
+        return -1;
+    for (; *shot < 100000; ++*shot) {
+        snprintf(file, cap, "%s/screenshot-%03d.png", out, *shot);
+        if (access(file, F_OK) != 0) {
+            ++*shot;
+            return 0;
+        }
+    }
+    file[0] = '\0';
+    fprintf(stderr, "error: %s holds screenshots up to screenshot-99999.png: no number left\n", out);
+    return -1;
+}
+
 /* One presentation: the display stage's result copied onto the next
  * swapchain image (a blit: it converts to the swapchain's format). */
 static int present(window_state *w, VkImage src, VkExtent2D src_ext, VkImage src_b, VkExtent2D ext_b, const char *screenshot, int as_is)
@@ -712,6 +786,9 @@ static void fill_overlay(window_state *w, const vrg_run_options *o, vrg_graph *g
         vrg_overlay_line(&ov, line);
         err += len + (end ? 1 : 0);
     }
+    for (int k = 0; k < 2; k++)
+        if (w->replayed[k][0])
+            vrg_overlay_line(&ov, w->replayed[k]);
     vrg_world_hit hover;
     int hover_on = hovered(w, &hover);
     /* only while there is something to say: the rates' line stays alone otherwise */
@@ -766,8 +843,15 @@ static void drive_panel(window_state *w, const vrg_run_options *o, vrg_graph *g,
     if (!held)
         w->panel.dragging = w->mouse_on_panel = 0;
     w->mouse_was_down = held;
-    if (w->save_requested)
-        (void)vrg_panel_save(&w->panel, x, x == gb ? o->ab : o->graph);
+    const char *file = x == gb ? o->ab : o->graph;
+    char name[VRG_CLI_PATH];
+    if (w->save_requested == 1)
+        (void)vrg_panel_save(&w->panel, x, file);
+    else if (w->save_requested == 2) {
+        vrg_panel_save_as_name(file, name, sizeof name);
+        vrg_panel_save_as_begin(&w->panel, name);
+    } else if (w->save_requested == 3)
+        (void)vrg_panel_save_as(&w->panel, x, file, w->panel.save_name);
     w->save_requested = 0;
 }
 
@@ -809,6 +893,7 @@ int vrg_cli_run(const vrg_run_options *o)
     }
     glfwSetWindowUserPointer(w.window, &w);
     glfwSetKeyCallback(w.window, on_key);
+    glfwSetCharCallback(w.window, on_char);
     glfwSetScrollCallback(w.window, on_scroll);
     glfwSetMouseButtonCallback(w.window, on_mouse_button);
     if (glfwCreateWindowSurface(w.dev->instance, w.window, NULL, &w.surface) != VK_SUCCESS) {
@@ -866,6 +951,10 @@ int vrg_cli_run(const vrg_run_options *o)
         goto out;
     if (o->record && !(record_out = vrg_output_open(o->record)))
         goto out;
+    w.gb = gb;
+    say_replayed(&w, 0, g);
+    if (gb)
+        say_replayed(&w, 1, gb);
     record = record_out ? vrg_output_stream(record_out) : NULL;
     if (record)
         fprintf(record, "# recorded by voxrg run %s\n# time  x y z  yaw pitch\n", o->graph);
@@ -957,8 +1046,8 @@ int vrg_cli_run(const vrg_run_options *o)
         char file[VRG_CLI_PATH] = "";
         if (o->screenshot && last_frame)
             snprintf(file, sizeof file, "%s", o->screenshot);
-        else if (w.screenshot_requested)
-            snprintf(file, sizeof file, "screenshot-%03d.png", shots++);
+        else if (w.screenshot_requested && next_screenshot(o->out, &shots, file, sizeof file) != 0)
+            w.screenshot_failed = 1;
         w.screenshot_requested = 0;
         if (ensure_staging(&w, 2 * overlay_bytes(&w)) != 0) {
             rc = 1;

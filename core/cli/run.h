@@ -6,6 +6,7 @@ typedef struct vrg_run_options {
     const char *ab;     /* a second graph shown right of a draggable divider */
     const char *record; /* write the flight as a camera path here */
     const char *show;   /* a resource to show instead of the output */
+    const char *out;    /* the folder screenshots (P, F12) go to, created when the first is taken */
     const char *const *sets;
     uint32_t set_count;
     uint32_t window_w, window_h; /* 0: 1280x720, at most the screen */

@@ -9,6 +9,9 @@
  * the target's name; the folder is synced after it, so that the rename
  * itself survives a crash.
  *
+ * The file put in place has the mode of the one it replaces (a new one
+ * the umask's).
+ *
  * A target that is not a regular file (a device such as /dev/stdout, a
  * pipe) cannot be replaced and is not: it is written directly. A symbolic
  * link to a file is followed, so that the file it names is replaced and
@@ -145,7 +148,10 @@ static vrg_output *output_open(const char *path, int *err)
         temp_name(out->tmp, sizeof out->tmp, out->base);
         fd = openat(out->dir_fd, out->tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     }
-    if (fd < 0 || (out->fd = dup(fd)) < 0 || !(out->f = fdopen(fd, "wb"))) {
+    /* a file replaced keeps its permissions (a 0600 file stays private);
+     * a new one gets the umask's */
+    int mode_failed = fd >= 0 && stat(copy, &st) == 0 && S_ISREG(st.st_mode) && fchmod(fd, st.st_mode & 07777) != 0;
+    if (fd < 0 || mode_failed || (out->fd = dup(fd)) < 0 || !(out->f = fdopen(fd, "wb"))) {
         *err = errno;
         if (fd >= 0 && !out->f)
             close(fd);

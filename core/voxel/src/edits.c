@@ -340,6 +340,7 @@ void vrg_edits_close(vrg_edits *e)
 
 int vrg_edits_records(const vrg_edits *e) { return e->records; }
 long vrg_edits_dropped_bytes(const vrg_edits *e) { return e->dropped; }
+const char *vrg_edits_path(const vrg_edits *e) { return e->path; }
 
 static int sync_folder(const char *path)
 {

@@ -34,6 +34,8 @@ void vrg_edits_close(vrg_edits *e);
 /* Records read or written, and the bytes of a torn last record dropped when opened. */
 int vrg_edits_records(const vrg_edits *e);
 long vrg_edits_dropped_bytes(const vrg_edits *e);
+/* The journal's path, as opened. */
+const char *vrg_edits_path(const vrg_edits *e);
 /* The block the edits leave at (x, y, z): 1 and *b, or 0 when unchanged. */
 int vrg_edits_block(const vrg_edits *e, int x, int y, int z, vrg_block *b);
 /* Writes the edited blocks of chunk (cx, cy, cz) into blocks (a chunk being
