@@ -601,7 +601,7 @@ static int cmd_run(int argc, char **argv)
                          .set_count = (uint32_t)o.set_count,
                          .window_w = o.window_w ? o.window_w : o.width, .window_h = o.window_h ? o.window_h : o.height,
                          .width = o.width, .height = o.height,
-                         .scale = o.scale > 0 ? o.scale : o.width ? 1.0 : 0.5, .filter = o.filter < 0 ? 1 : o.filter,
+                         .scale = o.scale > 0 ? o.scale : o.width ? 1.0 : 0.5, .scale_auto = !(o.scale > 0) && !o.width, .filter = o.filter < 0 ? 1 : o.filter,
                          .frames = frames_given ? o.frames : 0, .validate = o.validate, .gpu_timeout_s = o.gpu_timeout_s};
     return vrg_cli_run(&r);
 }

@@ -11,6 +11,7 @@
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
+#include "auto_scale.h"
 #include "bench.h"
 #include "edit.h"
 #include "overlay.h"
@@ -71,6 +72,8 @@ typedef struct window_state {
     int srgb;            /* the output holds linear values: let the swapchain encode them */
     int bilinear;        /* the upscale to the window: N toggles */
     double scale;        /* render size / window size, unless fixed */
+    int scale_auto;      /* the scale adapts to the frame time (a CPU device, no --scale) */
+    vrg_auto_scale autos;
     uint32_t fixed_w, fixed_h; /* --size: the render size whatever the window */
     /* host-visible staging: the overlay layer (window-sized RGBA, read by the
      * display stage), then a screenshot of what is shown */
@@ -775,8 +778,11 @@ static void fill_overlay(window_state *w, const vrg_run_options *o, vrg_graph *g
     else if (vrg_graph_reload_ms(g) >= 0)
         snprintf(reload, sizeof reload, "  reloaded %.0f ms", vrg_graph_reload_ms(g));
     vrg_overlay_clear(&ov);
-    snprintf(line, sizeof line, "%.1f fps %.1f ms  %ux%u  %.60s%s%s", smooth_ms > 0 ? 1e3 / smooth_ms : 0.0, smooth_ms, rw, rh, w->shown_name,
-             reload, w->paused ? "  paused" : "");
+    char scale[48] = "";
+    if (!w->fixed_w)
+        snprintf(scale, sizeof scale, "  scale %g%s", w->scale, w->scale_auto ? " (auto, CPU)" : "");
+    snprintf(line, sizeof line, "%.1f fps %.1f ms  %ux%u%s  %.60s%s%s", smooth_ms > 0 ? 1e3 / smooth_ms : 0.0, smooth_ms, rw, rh, scale,
+             w->shown_name, reload, w->paused ? "  paused" : "");
     vrg_overlay_line(&ov, line);
     const char *err = vrg_graph_reload_error(g) ? vrg_graph_reload_error(g) : gb ? vrg_graph_reload_error(gb) : NULL;
     for (int n = 0; err && *err && n < 3; n++) { /* its first lines: FILE:LINE: error: ... */
@@ -823,6 +829,36 @@ static VkExtent2D render_size(const window_state *w, uint32_t width, uint32_t he
         return (VkExtent2D){w->fixed_w, w->fixed_h};
     uint32_t rw = (uint32_t)lround(width * w->scale), rh = (uint32_t)lround(height * w->scale);
     return (VkExtent2D){rw ? rw : 1, rh ? rh : 1};
+}
+
+/* The graphs at the render size for the window (after a resize or a new
+ * scale), said with why: 0, or -1 (the error printed). */
+static int fit_graphs(window_state *w, vrg_graph *g, vrg_graph *gb, const char *why)
+{
+    uint32_t was_w, was_h, now_w, now_h;
+    vrg_graph_size(g, &was_w, &was_h);
+    VkExtent2D want = render_size(w, w->sc.extent.width, w->sc.extent.height);
+    if ((want.width != was_w || want.height != was_h) &&
+        (vrg_graph_resize(g, want.width, want.height) != 0 || (gb && vrg_graph_resize(gb, want.width, want.height) != 0)))
+        return -1;
+    vrg_graph_size(g, &now_w, &now_h);
+    if (now_w != was_w || now_h != was_h)
+        fprintf(stderr, "%s: graph%s now %ux%u, history reset\n", why, gb ? "s" : "", now_w, now_h);
+    return 0;
+}
+
+/* A CPU device renders at a scale that keeps the window near
+ * VRG_AUTO_SCALE_FPS, unless --scale or --size says otherwise. */
+static void choose_scale_auto(window_state *w, const vrg_run_options *o)
+{
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(w->dev->physical_device, &props);
+    if (!o->scale_auto || props.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU)
+        return;
+    w->scale_auto = 1;
+    w->scale = w->autos.scale = VRG_AUTO_SCALE_START;
+    fprintf(stderr, "render scale %g (auto: %s is a CPU device; it adapts towards %g fps, --scale S or --size WxH fixes it)\n", w->scale, w->dev->name,
+            VRG_AUTO_SCALE_FPS);
 }
 
 /* The panel's mouse, on the graph it edits; Ctrl+S saves. */
@@ -918,6 +954,7 @@ int vrg_cli_run(const vrg_run_options *o)
     VkFenceCreateInfo fci = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     vkCreateFence(w.dev->device, &fci, NULL, &w.done);
 
+    choose_scale_auto(&w, o);
     int fb_w, fb_h;
     glfwGetFramebufferSize(w.window, &fb_w, &fb_h);
     VkExtent2D render = render_size(&w, fb_w > 0 ? (uint32_t)fb_w : (uint32_t)win_w, fb_h > 0 ? (uint32_t)fb_h : (uint32_t)win_h);
@@ -1085,22 +1122,23 @@ int vrg_cli_run(const vrg_run_options *o)
         glfwGetFramebufferSize(w.window, &fw, &fh);
         if (pr > 0 || (fw > 0 && fh > 0 && ((uint32_t)fw != w.sc.extent.width || (uint32_t)fh != w.sc.extent.height))) {
             vkDeviceWaitIdle(w.dev->device);
-            uint32_t was_w, was_h, now_w, now_h;
-            vrg_graph_size(g, &was_w, &was_h);
-            if (create_swapchain(&w, w.sc.handle) < 0) {
-                rc = 1;
-                break;
-            }
             /* the same scale of the new size (a fixed --size stays) */
-            VkExtent2D want = render_size(&w, w.sc.extent.width, w.sc.extent.height);
-            if ((want.width != was_w || want.height != was_h) &&
-                (vrg_graph_resize(g, want.width, want.height) != 0 || (gb && vrg_graph_resize(gb, want.width, want.height) != 0))) {
+            if (create_swapchain(&w, w.sc.handle) < 0 || fit_graphs(&w, g, gb, "window resized") != 0) {
                 rc = 1;
                 break;
             }
-            vrg_graph_size(g, &now_w, &now_h);
-            if (now_w != was_w || now_h != was_h)
-                fprintf(stderr, "window resized: graph%s now %ux%u, history reset\n", gb ? "s" : "", now_w, now_h);
+            vrg_auto_scale_restart(&w.autos);
+        } else if (w.scale_auto && (w.paused || changed))
+            vrg_auto_scale_restart(&w.autos); /* not frames rendered as usual */
+        else if (w.scale_auto && vrg_auto_scale_frame(&w.autos, dt * 1e3)) { /* the frame rate seen: frames in flight make a frame's own calls no measure */
+            char why[96];
+            snprintf(why, sizeof why, "auto scale %g (%.1f fps at %g)", w.autos.scale, 1e3 / w.autos.mean_ms, w.scale);
+            w.scale = w.autos.scale;
+            vkDeviceWaitIdle(w.dev->device);
+            if (fit_graphs(&w, g, gb, why) != 0) {
+                rc = 1;
+                break;
+            }
         }
         if (t - title_at > 0.5) { /* the figures in the title too */
             double gpu[2] = {0, 0};

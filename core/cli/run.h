@@ -12,6 +12,7 @@ typedef struct vrg_run_options {
     uint32_t window_w, window_h; /* 0: 1280x720, at most the screen */
     uint32_t width, height;      /* a fixed render size; 0: the window's times scale */
     double scale;                /* render size / window size, (0, 1] */
+    int scale_auto;              /* neither --scale nor --size: on a CPU device, adapted (auto_scale.h) */
     int filter;                  /* the upscale to the window: 0 nearest, 1 bilinear */
     uint32_t frames;        /* 0: until the window closes */
     int validate;

@@ -173,6 +173,29 @@ static int test_commit(void)
     return 0;
 }
 
+/* a file replaced keeps its mode (0600 stays private, 0755 executable);
+ * a new one gets the umask's */
+static int test_mode(void)
+{
+    static const mode_t modes[] = {0600, 0755, 0640};
+    char path[256];
+    struct stat st;
+    for (size_t i = 0; i < sizeof modes / sizeof modes[0]; i++) {
+        snprintf(path, sizeof path, "%s/m%zu.txt", dir, i);
+        put(path + strlen(dir) + 1, "old\n");
+        CHECK(chmod(path, modes[i]) == 0, "chmod: %s", strerror(errno));
+        CHECK(vrg_output_write(path, "new\n", 4) == 0, "replace %s", path);
+        CHECK(stat(path, &st) == 0 && (st.st_mode & 07777) == modes[i], "%04o became %04o", (unsigned)modes[i], (unsigned)(st.st_mode & 07777));
+        CHECK(!strcmp(get(path + strlen(dir) + 1), "new\n"), "%s: %s", path, get(path + strlen(dir) + 1));
+    }
+    mode_t mask = umask(077);
+    snprintf(path, sizeof path, "%s/new.txt", dir);
+    CHECK(vrg_output_write(path, "n", 1) == 0, "new file");
+    umask(mask);
+    CHECK(stat(path, &st) == 0 && (st.st_mode & 0777) == 0600, "a new file under umask 077: %04o", (unsigned)(st.st_mode & 0777));
+    return 0;
+}
+
 static const char *probed;
 static int probe(void) { return vrg_output_dir_check(probed); }
 
@@ -217,7 +240,7 @@ int main(int argc, char **argv)
     static const struct {
         const char *name;
         int (*fn)(void);
-    } cases[] = {{"full_disk", test_full_disk}, {"commit", test_commit}, {"dir_check", test_dir_check}};
+    } cases[] = {{"full_disk", test_full_disk}, {"commit", test_commit}, {"dir_check", test_dir_check}, {"mode", test_mode}};
     for (size_t i = 0; argc == 2 && i < sizeof cases / sizeof cases[0]; i++)
         if (!strcmp(argv[1], cases[i].name)) {
             snprintf(dir, sizeof dir, "output-%s-XXXXXX", cases[i].name);
@@ -231,6 +254,6 @@ int main(int argc, char **argv)
             printf("%s: %s\n", cases[i].name, failures ? "FAILED" : "ok");
             return failures != 0;
         }
-    fprintf(stderr, "usage: test_output full_disk|commit|dir_check\n");
+    fprintf(stderr, "usage: test_output full_disk|commit|dir_check|mode\n");
     return 2;
 }
