@@ -4,20 +4,20 @@ the cursor over the terrain, a left click removes the block (the journal
 beside the graph gains a record, the picture changes), Ctrl+Z restores the
 picture, a right click places the selected type against the face hit (the
 block beside the restored one), a right drag still turns the view and
-places nothing; a graph without a journal edits in memory and says so.
+places nothing; a graph without a journal edits in memory and says so; the
+next run says that it replays the journal; screenshots go to out/,
+numbered on from those there.
 Usage: test_run_edit.py VOXRG TESTS_DIR OUT_DIR"""
 import os
-import re
 import shutil
 import struct
-import subprocess
 import sys
 import time
 
 sys.dont_write_bytecode = True
 voxrg, tests, out = sys.argv[1:4]
 sys.path.insert(0, os.path.join(tests, "cli"))
-from png_pixels import load  # noqa: E402
+from window import Window, Xvfb, available, changed, xdo  # noqa: E402
 
 TERRAIN = """[graph]
 name   = edit_terrain
@@ -45,71 +45,6 @@ mode      = 0
 """
 
 
-def xdo(*args):
-    subprocess.run(["xdotool", *args], check=True, timeout=60)
-
-
-class Window:
-    def __init__(self, graph, cwd):
-        self.cwd, self.log = cwd, os.path.join(cwd, "run.stderr")
-        self.err = open(self.log, "w")
-        self.proc = subprocess.Popen([voxrg, "run", graph, "--validate", "--window", "160x100", "--scale", "1"], cwd=cwd,
-                                     stdout=subprocess.DEVNULL, stderr=self.err)
-        self.wid = subprocess.run(["xdotool", "search", "--sync", "--name", "^voxrg"], capture_output=True, text=True,
-                                  timeout=120).stdout.split()[0]
-        self.wait(lambda: "fps" in subprocess.run(["xdotool", "getwindowname", self.wid], capture_output=True, text=True).stdout,
-                  "frames shown")
-        xdo("windowfocus", "--sync", self.wid)
-        self.shots = 0
-
-    def wait(self, cond, what, seconds=60):
-        end = time.time() + seconds
-        while time.time() < end:
-            if cond():
-                return
-            if self.proc.poll() is not None:
-                break
-            time.sleep(0.1)
-        sys.exit(f"FAIL: waiting for {what}; voxrg said:\n" + open(self.log).read()[-3000:])
-
-    def stderr_has(self, pattern, count=1):
-        self.wait(lambda: len(re.findall(pattern, open(self.log).read())) >= count, f"'{pattern}' x{count}")
-        return re.findall(pattern, open(self.log).read())[count - 1]
-
-    def screenshot(self):
-        name = f"screenshot-{self.shots:03d}.png"
-        self.shots += 1
-        xdo("key", "p")
-        self.stderr_has("wrote " + name)
-        return load(os.path.join(self.cwd, name))
-
-    def settled(self):
-        """A screenshot equal to the one before: streaming has loaded what the camera sees."""
-        last = self.screenshot()
-        for _ in range(30):
-            shot = self.screenshot()
-            if pixels(shot) == pixels(last):
-                return shot
-            last = shot
-        sys.exit("FAIL: the picture never settled")
-
-    def close(self):
-        xdo("key", "Escape")
-        rc = self.proc.wait(timeout=120)
-        self.err.close()
-        if rc != 0:
-            sys.exit(f"FAIL: voxrg run exited {rc}:\n" + open(self.log).read()[-3000:])
-
-
-def pixels(shot):
-    w, h, px = shot
-    return [px(x, y) for y in range(h) for x in range(w)]
-
-
-def changed(a, b):
-    return sum(1 for p, q in zip(pixels(a), pixels(b)) if max(abs(i - j) for i, j in zip(p, q)) > 8)
-
-
 def records(journal):
     data = open(journal, "rb").read()
     n = struct.unpack("<I", data[8:12])[0]
@@ -119,26 +54,14 @@ def records(journal):
 
 
 def main():
-    if not shutil.which("Xvfb") or not shutil.which("xdotool"):
-        print("skip: Xvfb or xdotool not installed (scripts/setup.sh installs them)")
+    if available():
+        print("skip: " + available())
         return 77
     shutil.rmtree(out, ignore_errors=True)
     os.makedirs(out)
-    display_file = os.path.join(out, "xvfb.display")
-    with open(display_file, "w") as f:
-        xvfb = subprocess.Popen(["Xvfb", "-displayfd", str(f.fileno()), "-screen", "0", "640x480x24", "-nolisten", "tcp"],
-                                pass_fds=(f.fileno(),), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    try:
-        for _ in range(100):
-            if open(display_file).read().strip():
-                break
-            time.sleep(0.1)
-        os.environ["DISPLAY"] = ":" + open(display_file).read().split()[0]
+    with Xvfb(out):
         terrain(os.path.join(out, "terrain"))
         no_journal(os.path.join(out, "blocks"))
-    finally:
-        xvfb.kill()
-        xvfb.wait()
     print("ok")
     return 0
 
@@ -148,7 +71,7 @@ def terrain(d):
     with open(os.path.join(d, "terrain.ini"), "w") as f:
         f.write(TERRAIN)
     journal = os.path.join(d, "terrain.ini.edits")
-    win = Window("terrain.ini", d)
+    win = Window(voxrg, "terrain.ini", d)
     xdo("key", "h")  # the picture alone (the overlay's rates change every frame)
     xdo("mousemove", "--window", win.wid, "80", "50")
     win.settled()
@@ -185,12 +108,23 @@ def terrain(d):
     win.screenshot()
     assert len(records(journal)) == 3, records(journal)
     win.close()
+    assert "edits: replayed" not in win.said(), "a new journal was said to be replayed"
+    # screenshots went to out/, none beside the graph
+    assert not [f for f in os.listdir(d) if f.endswith(".png")], os.listdir(d)
+    taken = sorted(os.listdir(os.path.join(d, "out")))
+    assert taken[0] == "screenshot-000.png" and len(taken) == win.shots, taken
+    # the next run replays the journal and says so; its screenshots follow the earlier ones
+    win = Window(voxrg, "terrain.ini", d)
+    win.stderr_has(r"edits: replayed 3 edit records from terrain\.ini\.edits \(remove it to start from the unedited world\)")
+    win.screenshot()
+    assert os.path.exists(os.path.join(d, "out", f"screenshot-{len(taken):03d}.png")), sorted(os.listdir(os.path.join(d, "out")))
+    win.close()
 
 
 def no_journal(d):
     """blocks has no journal: the click edits the world in memory, undo says why it cannot."""
     os.makedirs(d)
-    win = Window(os.path.join(tests, "graphs", "blocks_wall.ini"), d)
+    win = Window(voxrg, os.path.join(tests, "graphs", "blocks_wall.ini"), d)
     xdo("key", "h")
     xdo("mousemove", "--window", win.wid, "80", "50")
     before = win.settled()
