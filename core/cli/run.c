@@ -753,7 +753,8 @@ static void fill_details(vrg_overlay *ov, const vrg_run_options *o, vrg_graph *g
         "ctrl+z: undo, ctrl+y ctrl+shift+z: redo",
         "tab 0-9: show an image, t [ ]: day, f: pause, p: screenshot",
         "n: nearest/bilinear, h: hide, f1: these details, esc: quit",
-        "m f2: parameters (ctrl+s: save, b: edit a or b)",
+        "m f2: parameters (/: filter, pgup pgdn: pass, b: edit a or b)",
+        "ctrl+s: save into the graph, ctrl+shift+s: save as a new file",
     };
     for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
         vrg_overlay_line(ov, keys[i]);

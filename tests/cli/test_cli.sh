@@ -404,11 +404,22 @@ assert (w, h) == (192, 128), (w, h)
 colours = {px(x, y) for y in range(40, h) for x in range(w)}
 assert len(colours) > 20, len(colours)
 white = sum(px(x, y) == (255, 255, 255) for y in range(0, 30) for x in range(w))
-band = [px(x, 1) for x in range(0, 60)] + [px(x, 15) for x in range(0, 60)]  # above and below the text
-sky = [px(x, 24) for x in range(0, 60)]  # below the band
+band = [px(x, 1) for x in range(0, 60)] + [px(x, 23) for x in range(0, 60)]  # above and below the text (rows 4 to 19)
+sky = [px(x, 30) for x in range(0, 60)]  # below the band (26 rows: a line of 18 and the padding)
 assert white > 100 and max(map(max, band)) < min(map(max, sky)) and len(set(band)) > 1, (white, band[:4], sky[:4])
 PY
     then ok; else bad "window screenshot shows the scene and the overlay"; fi
+    # a CPU device without --scale or --size: the scale starts at 0.25 and
+    # adapts (a window of 128x72 on blocks_wall is fast: it doubles); with
+    # --scale it stays
+    expect_rc 0 "run on a CPU device picks the scale" "$voxrg" run "$tests/graphs/blocks_wall.ini" --window 128x72 --frames 60
+    if grep -q "^voxrg: device llvmpipe" "$out/stderr"; then
+        has "$out/stderr" "^render scale 0\.25 \(auto: llvmpipe.* is a CPU device; it adapts towards 15 fps, --scale S or --size WxH fixes it\)" \
+            "run says it picked the scale"
+        has "$out/stderr" "^auto scale 0\.5 \([0-9.]+ fps at 0\.25\): graph now 64x36, history reset" "fast frames double the auto scale"
+    fi
+    expect_rc 0 "run --scale keeps the scale" "$voxrg" run "$tests/graphs/blocks_wall.ini" --window 128x72 --scale 0.25 --frames 30
+    ! grep -q "auto" "$out/stderr" && ok || bad "--scale given: the scale changed on its own"
     # no graph: the shipped interactive graph (issue 19), at half the window
     expect_rc 0 "run without a graph" "$voxrg" run --validate --window 192x108 --frames 2 --screenshot "$out/default.png"
     has "$out/stderr" "no graph given: running .*/graphs/interactive.ini" "run without a graph opens interactive.ini"
@@ -469,8 +480,8 @@ section_window_driven() { # voxrg run under Xvfb driven by xdotool: flight, resi
 #!/usr/bin/env bash
 set -u
 voxrg=$1 graph=$2 out=$3
-cd "$out" && rm -f screenshot-000.png
-"$voxrg" run "$graph" --validate --window 192x128 --scale 1 --record drive.path >drive.stdout 2>drive.stderr &
+cd "$out" && rm -rf shots
+"$voxrg" run "$graph" --validate --window 192x128 --scale 1 --record drive.path --out shots >drive.stdout 2>drive.stderr &
 pid=$!
 # a failing step shows what the window said (expect_rc prints stderr)
 fail() { kill $pid; echo "drive step $1 failed; voxrg's stderr:" >&2; tail -20 drive.stderr >&2; exit "$1"; }
@@ -485,7 +496,7 @@ xdotool keydown w && sleep 1 && xdotool keyup w
 xdotool mousemove --window "$wid" 80 50 mousedown 3 && sleep 0.3
 for _ in $(seq 10); do xdotool mousemove_relative -- 8 0; sleep 0.05; done
 xdotool mouseup 3
-xdotool key p && wait_for "wrote screenshot-000.png" || fail 5
+xdotool key p && wait_for "wrote shots/screenshot-000.png" || fail 5
 xdotool key Escape
 wait $pid || { rc=$?; tail -20 drive.stderr >&2; exit $rc; }
 SH
@@ -495,7 +506,7 @@ import math, sys
 sys.dont_write_bytecode = True
 sys.path.insert(0, sys.argv[2])
 from png_pixels import load
-w, h, px = load(sys.argv[1] + "/screenshot-000.png")
+w, h, px = load(sys.argv[1] + "/shots/screenshot-000.png")
 assert (w, h) == (160, 100), (w, h)
 # below the overlay: the scene (by now the lit white floor fills it), not a black or uncleared window
 bottom = [px(x, y) for y in range(h - 20, h) for x in range(w)]
@@ -528,14 +539,14 @@ SH
     expect_rc 0 "a resized window keeps the render scale" timeout 300 bash "$out/scale.sh" "$voxrg" "$tests/graphs/blocks_wall.ini" "$out"
     # the parameter panel driven by keys: open it (M), hide the overlay
     # (H: the screenshots show the picture alone), scene.time_of_day
-    # 10 -> 12 and view.exposure (absent from the file) 0.35 -> 0.4, a
+    # 10 -> 12 and view.exposure (absent from the file) 0.35 -> 0.6, a
     # screenshot of the live tweak, Ctrl+S, the reload, a screenshot
     mkdir -p "$out/panel" && cp "$tests/graphs/blocks_wall.ini" "$out/panel/panel.ini"
     cat >"$out/panel.sh" <<'SH'
 #!/usr/bin/env bash
 set -u
 voxrg=$1 out=$2
-cd "$out" && rm -f screenshot-00[0-2].png
+cd "$out" && rm -rf out
 "$voxrg" run panel.ini --validate --window 192x128 --scale 1 --record panel.path >panel.stdout 2>panel.stderr &
 pid=$!
 fail() { kill $pid; echo "panel step $1 failed; voxrg's stderr:" >&2; tail -20 panel.stderr >&2; exit "$1"; }
@@ -544,17 +555,17 @@ wid=$(timeout 120 xdotool search --sync --name '^voxrg' | head -1)
 wait_for() { for _ in $(seq 600); do grep -q "$1" panel.stderr && return 0; sleep 0.1; done; return 1; }
 for _ in $(seq 600); do xdotool getwindowname "$wid" | grep -q fps && break; sleep 0.1; done
 xdotool windowfocus --sync "$wid"
-xdotool key m h p && wait_for "wrote screenshot-000.png" || fail 4
+xdotool key m h p && wait_for "wrote out/screenshot-000.png" || fail 4
 # rows: scene's box, time_of_day, day_length, traversal, then view's mode, shadows, exposure
-xdotool key Down Right Right Down Down Down Down Down Right Right Right Right Right p && wait_for "wrote screenshot-001.png" || fail 5
+xdotool key Down Right Right Down Down Down Down Down Right Right Right Right Right p && wait_for "wrote out/screenshot-001.png" || fail 5
 xdotool key ctrl+s && wait_for "saved 2 values to panel.ini" && wait_for "reloaded:" || fail 6
-xdotool key p && wait_for "wrote screenshot-002.png" || fail 7
+xdotool key p && wait_for "wrote out/screenshot-002.png" || fail 7
 xdotool key Escape
 wait $pid || { rc=$?; tail -20 panel.stderr >&2; exit $rc; }
 SH
     expect_rc 0 "the parameter panel driven by xdotool" timeout 300 bash "$out/panel.sh" "$voxrg" "$out/panel"
     diff "$tests/graphs/blocks_wall.ini" "$out/panel/panel.ini" >"$out/panel/diff"
-    printf '18c18\n< time_of_day = 10\n---\n> time_of_day = 12\n24a25\n> exposure = 0.4\n' >"$out/panel/diff.want"
+    printf '18c18\n< time_of_day = 10\n---\n> time_of_day = 12\n24a25\n> exposure = 0.6\n' >"$out/panel/diff.want"
     cmp -s "$out/panel/diff" "$out/panel/diff.want" && ok || { bad "the panel's save changed more than the two values"; cat "$out/panel/diff"; }
     expect_rc 0 "the saved graph renders" "$voxrg" render "$out/panel/panel.ini" --size 192x128 --out "$out/panel/render"
     if python3 - "$out/panel" "$tests/cli" <<'PY'
@@ -563,7 +574,7 @@ sys.dont_write_bytecode = True
 sys.path.insert(0, sys.argv[2])
 from png_pixels import load
 d = sys.argv[1]
-before, live, reloaded, render = (load(d + f) for f in ("/screenshot-000.png", "/screenshot-001.png", "/screenshot-002.png", "/render/view.png"))
+before, live, reloaded, render = (load(d + f) for f in ("/out/screenshot-000.png", "/out/screenshot-001.png", "/out/screenshot-002.png", "/render/view.png"))
 def diff(a, b):
     (w, h, pa), (w2, h2, pb) = a, b
     assert (w, h) == (w2, h2), ((w, h), (w2, h2))
@@ -596,7 +607,7 @@ wait $pid || { rc=$?; tail -20 ab.stderr >&2; exit $rc; }
 SH
     expect_rc 0 "the --ab panel edits B" timeout 300 bash "$out/panel_ab.sh" "$voxrg" "$out/panel"
     cmp -s "$tests/graphs/blocks_wall.ini" "$out/panel/a.ini" && ok || bad "--ab: the panel on B changed a.ini"
-    diff "$tests/graphs/blocks_wall.ini" "$out/panel/b.ini" | grep -qx "> exposure = 0.36" && ok || bad "--ab: b.ini did not get B's exposure"
+    diff "$tests/graphs/blocks_wall.ini" "$out/panel/b.ini" | grep -qx "> exposure = 0.4" && ok || bad "--ab: b.ini did not get B's exposure"
 }
 
 section_plugins() { # voxrg plugins
