@@ -9,7 +9,6 @@ next run says that it replays the journal; screenshots go to out/,
 numbered on from those there.
 Usage: test_run_edit.py VOXRG TESTS_DIR OUT_DIR"""
 import os
-import shutil
 import struct
 import sys
 import time
@@ -17,7 +16,7 @@ import time
 sys.dont_write_bytecode = True
 voxrg, tests, out = sys.argv[1:4]
 sys.path.insert(0, os.path.join(tests, "cli"))
-from window import Window, Xvfb, available, changed, xdo  # noqa: E402
+from window import Window, changed, run_cases, xdo  # noqa: E402
 
 TERRAIN = """[graph]
 name   = edit_terrain
@@ -54,20 +53,10 @@ def records(journal):
 
 
 def main():
-    if available():
-        print("skip: " + available())
-        return 77
-    shutil.rmtree(out, ignore_errors=True)
-    os.makedirs(out)
-    with Xvfb(out):
-        terrain(os.path.join(out, "terrain"))
-        no_journal(os.path.join(out, "blocks"))
-    print("ok")
-    return 0
+    return run_cases(out, (terrain, no_journal))
 
 
 def terrain(d):
-    os.makedirs(d)
     with open(os.path.join(d, "terrain.ini"), "w") as f:
         f.write(TERRAIN)
     journal = os.path.join(d, "terrain.ini.edits")
@@ -123,7 +112,6 @@ def terrain(d):
 
 def no_journal(d):
     """blocks has no journal: the click edits the world in memory, undo says why it cannot."""
-    os.makedirs(d)
     win = Window(voxrg, os.path.join(tests, "graphs", "blocks_wall.ini"), d)
     xdo("key", "h")
     xdo("mousemove", "--window", win.wid, "80", "50")

@@ -14,14 +14,13 @@ Xvfb), each step checked in the graph file the save writes:
   the other name keeps the old text.
 Usage: test_run_panel.py VOXRG TESTS_DIR OUT_DIR"""
 import os
-import shutil
 import stat
 import sys
 
 sys.dont_write_bytecode = True
 voxrg, tests, out = sys.argv[1:4]
 sys.path.insert(0, os.path.join(tests, "cli"))
-from window import Window, Xvfb, available, xdo  # noqa: E402
+from window import Window, run_cases, xdo  # noqa: E402
 
 GRAPH = os.path.join(tests, "graphs", "blocks_wall.ini")
 ORIGINAL = open(GRAPH).read()
@@ -96,18 +95,7 @@ def hard_link(d):
 
 
 def main():
-    if available():
-        print("skip: " + available())
-        return 77
-    shutil.rmtree(out, ignore_errors=True)
-    os.makedirs(out)
-    with Xvfb(out):
-        for case in (jump_step_set_back, filter_read_only_save_as, hard_link):
-            d = os.path.join(out, case.__name__)
-            os.makedirs(d)
-            case(d)
-    print("ok")
-    return 0
+    return run_cases(out, (jump_step_set_back, filter_read_only_save_as, hard_link))
 
 
 if __name__ == "__main__":

@@ -40,6 +40,23 @@ class Xvfb:
         self.proc.wait()
 
 
+def run_cases(out, cases):
+    """Each case(folder) in out/CASE under one X server: the test's exit
+    status (77: skipped, saying why)."""
+    if available():
+        print("skip: " + available())
+        return 77
+    shutil.rmtree(out, ignore_errors=True)
+    os.makedirs(out)
+    with Xvfb(out):
+        for case in cases:
+            d = os.path.join(out, case.__name__)
+            os.makedirs(d)
+            case(d)
+    print("ok")
+    return 0
+
+
 def xdo(*args):
     subprocess.run(["xdotool", *args], check=True, timeout=60)
 
