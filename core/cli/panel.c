@@ -298,8 +298,9 @@ static void row_text(vrg_panel *p, vrg_graph *g, const row *r, char *line, size_
         snprintf(value, sizeof value, pd->type == VRG_PARAM_FLOAT ? "%.6g" : "%.0f", value_of(p, g, r));
     if (pd->type != VRG_PARAM_STRING && pd->type != VRG_PARAM_BOOL && (pd->min != 0 || pd->max != 0))
         snprintf(range, sizeof range, "[%g..%g]", pd->min, pd->max);
-    snprintf(line, cap, " %c %-16s %10s %-14s%s", c ? '*' : ' ', pd->name, value, range,
-             pd->type == VRG_PARAM_STRING ? " edit the file" : needs_reload(pd) ? " reload" : "");
+    /* the range, or what to do instead, after the value: no padding after it, the panel is as wide as its longest line */
+    snprintf(line, cap, " %c %-16s %10s %s%s", c ? '*' : ' ', pd->name, value, pd->type == VRG_PARAM_STRING ? "edit the file" : range,
+             pd->type != VRG_PARAM_STRING && needs_reload(pd) ? " reload" : "");
 }
 
 void vrg_panel_draw(vrg_panel *p, vrg_graph *g, const char *file, vrg_overlay_layer *l)
