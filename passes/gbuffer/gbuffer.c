@@ -1,7 +1,9 @@
 /* G-buffer: one primary ray per pixel through the world (DDA, or ray
  * queries when the scene built a TLAS), writing what the lighting passes and
  * the denoiser need. On a miss: sky radiance in albedo, zero normal, w = 0
- * in position, ids 0. */
+ * in position, ids 0. emission (optional, written only when read): the
+ * emissive scale of the block hit (world.glsl's material_emissive), 0 on a
+ * miss; modulate adds albedo x emission to the pixel. */
 #include "voxrg/plugin.h"
 
 static const vrg_param_desc params[] = {
@@ -27,6 +29,9 @@ static const vrg_slot_desc slots[] = {
      .help = "block id, chunk (object) id + 1; 0 0 on sky"},
     {.name = "motion", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16_SFLOAT,
      .help = "pixels from where the surface was last frame to where it is now (about 1e4 when it was behind the previous camera)"},
+    {.name = "emission", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16_SFLOAT, .flags = VRG_SLOT_OPTIONAL,
+     .help = "emitted radiance scale e of the block hit (it emits albedo x e); 0 on sky and where nothing emits (written only when read)"},
+    /* the acceleration structure stays last: an absent one is not bound */
     {.name = "tlas", .dir = VRG_IN, .kind = VRG_ACCEL, .access = VRG_ACCESS_RAY_QUERY, .flags = VRG_SLOT_OPTIONAL,
      .help = "the scene's TLAS: trace with ray queries (traversal = rayquery)"},
 };
@@ -39,12 +44,14 @@ typedef struct gbuffer_push {
 /* every dispatch execute() records: checked by `voxrg check` */
 static const vrg_dispatch_desc dispatches[] = {
     {.shader = "gbuffer.comp", .push_size = sizeof(gbuffer_push), .pixel_loop = 1},
+    {.shader = "gbuffer.comp", .defines = "EMISSION=1", .push_size = sizeof(gbuffer_push), .pixel_loop = 1},
 };
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     gbuffer_push pc = {(float)vrg_param(pass, "max_distance"), vrg_param_int(pass, "textures") && vrg_res_connected(vrg_pass_res(pass, "atlas"))};
-    vrg_dispatch_desc d = dispatches[0];
+    /* the unconnected emission is a 1x1 stand-in the shader does not write */
+    vrg_dispatch_desc d = dispatches[vrg_res_connected(vrg_pass_res(pass, "emission")) ? 1 : 0];
     d.push = &pc;
     (void)vrg_dispatch(pass, cmd, &d);
 }
@@ -53,7 +60,7 @@ static const vrg_plugin_desc desc = {
     .abi_version = VRG_ABI_VERSION,
     .name = "gbuffer",
     .kind = VRG_PLUGIN_PASS,
-    .help = "primary rays: position, depth, normal, albedo (textured), ids, motion vectors; sky on a miss",
+    .help = "primary rays: position, depth, normal, albedo (textured), ids, motion vectors, emission; sky on a miss",
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,

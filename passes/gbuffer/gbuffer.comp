@@ -14,10 +14,18 @@ layout(binding = 5, rgba16f) uniform writeonly image2D out_normal;
 layout(binding = 6, rgba16f) uniform writeonly image2D out_albedo;
 layout(binding = 7, rg32ui) uniform writeonly uimage2D out_ids;
 layout(binding = 8, rg16f) uniform writeonly image2D out_motion;
+layout(binding = 9, r16f) uniform writeonly image2D out_emission;  // with EMISSION (the output is read)
 layout(push_constant) uniform Params {
     float max_distance;
     int textured;
 } params;
+
+void store_emission(ivec2 p, float e)
+{
+#ifdef EMISSION
+    imageStore(out_emission, p, vec4(e));
+#endif
+}
 
 // Where a world point (w = 1) or direction (w = 0) was on screen last frame, in pixels.
 // Behind the previous camera (clip w <= 0) the projection would mirror it
@@ -46,6 +54,7 @@ void shade(ivec2 p)
         imageStore(out_albedo, p, vec4(frame_sky(d), 1.0));
         imageStore(out_ids, p, uvec4(0u));
         imageStore(out_motion, p, vec4(vec2(p) - previous_pixel(vec4(d, 0.0), vec2(size)), 0.0, 0.0));
+        store_emission(p, 0.0);
         return;
     }
     vec3 hp = o + d * h.t;
@@ -62,6 +71,7 @@ void shade(ivec2 p)
     imageStore(out_albedo, p, vec4(albedo, 1.0));
     imageStore(out_ids, p, uvec4(h.block, uint(h.chunk) + 1u, 0u, 0u));
     imageStore(out_motion, p, vec4(vec2(p) - previous_pixel(vec4(hp, 1.0), vec2(size)), 0.0, 0.0));
+    store_emission(p, material_emissive(h.block));
 }
 
 void main()

@@ -3,7 +3,7 @@
  * world (DDA, or ray queries when the scene built a TLAS). Each ray brings
  * back the radiance L_in arriving along it:
  *   miss (nothing within max_distance):  L_in = frame_sky(d)
- *   hit block b, face normal n2, at x2:  L_in = albedo(b, n2) * (sun_radiance * max(n2.L, 0) * V + ambient)
+ *   hit block b, face normal n2, at x2:  L_in = albedo(b, n2) * (sun_radiance * max(n2.L, 0) * V + ambient + e(b))
  * L = sun_dir; V = 1 if the shadow ray from x2 + n2 * 1e-3 toward L travels
  * max_distance unoccluded (else 0; always 1 with shadow = 0; not traced when
  * n2.L <= 0 or the sun is below the horizon). The issue's "albedo x (sun
@@ -13,6 +13,9 @@
  * and the same for every face orientation. sun_radiance and ambient are
  * already reflected (outgoing) radiance of a white Lambertian surface, so
  * the bracket times albedo is the hit's outgoing radiance, with no 1/pi.
+ * e(b) is the block's emissive scale (world.glsl's material_emissive, 0 for
+ * blocks that do not emit): an emitting block sends albedo * e(b) (the
+ * emitters' light reaches a surface in one bounce: docs/world.md).
  * albedo(b, n2): material_albedo(b), or, with the atlas connected and
  * textures = 1, the mean of the face's atlas tile (mip level 4: one texel per
  * tile; differs from the material's for grass sides and bottoms).

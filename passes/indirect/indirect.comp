@@ -24,7 +24,8 @@ layout(push_constant) uniform Params {
 
 const uint SALT = 0x494e0003u;  // this pass's random stream
 
-// Radiance leaving the face n2 of block b at x2 toward the first surface.
+// Radiance leaving the face n2 of block b at x2 toward the first surface:
+// what it reflects and what it emits (albedo x its emissive scale).
 vec3 bounce(vec3 x2, ivec3 n2, uint b)
 {
     vec3 albedo = params.textured != 0 ? textureLod(atlas, world_atlas_uv(b, n2, vec2(0.5)), 4.0).rgb : material_albedo(b);
@@ -35,7 +36,7 @@ vec3 bounce(vec3 x2, ivec3 n2, uint b)
         v = 0.0;
     else if (params.shadow != 0 && trace_any(x2 + vec3(n2) * 1e-3, l, params.max_distance))
         v = 0.0;
-    return albedo * (frame.sun_radiance.rgb * ndl * v + frame.ambient.rgb);
+    return albedo * (frame.sun_radiance.rgb * ndl * v + frame.ambient.rgb + material_emissive(b));
 }
 
 void shade(ivec2 p)

@@ -6,6 +6,7 @@ layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
 layout(binding = 0) uniform sampler2D in_illumination;
 layout(binding = 1) uniform sampler2D in_albedo;
 layout(binding = 2, rgba16f) uniform writeonly image2D out_color;
+layout(binding = 3) uniform sampler2D in_emission;  // read with EMISSION (connected)
 
 void shade(ivec2 p)
 {
@@ -15,6 +16,9 @@ void shade(ivec2 p)
     // inputs may differ in size: nearest texel under the pixel
     vec3 l = texelFetch(in_illumination, vrg_pixel_in(p, size, textureSize(in_illumination, 0)), 0).rgb;
     vec3 a = texelFetch(in_albedo, vrg_pixel_in(p, size, textureSize(in_albedo, 0)), 0).rgb;
+#ifdef EMISSION
+    l += texelFetch(in_emission, vrg_pixel_in(p, size, textureSize(in_emission, 0)), 0).r;  // emits albedo x e
+#endif
     imageStore(out_color, p, vec4(a * l, 1.0));
 }
 

@@ -37,6 +37,7 @@ static const vrg_slot_desc slots[] = {VRG_SCENE_SLOTS};
 #define WORLD_HEIGHT 256 /* y in [0, 256): 16 chunks, the terrain's largest height */
 #define GROUND_MARGIN 2  /* chunks of ground around the model: its shadow lands on it */
 #define EMISSIVE_SCALE 4.0f /* MagicaVoxel's _emit 1 shines like the lamp block */
+_Static_assert(EMISSIVE_SCALE * VOX_EMIT_MAX <= VRG_MATERIAL_EMISSIVE_MAX, "the reader's limit keeps every vox material within the world's");
 
 typedef struct placed {
     vox_scene vox;
@@ -244,9 +245,30 @@ static float colour_distance(uint32_t a, uint32_t b)
     return d;
 }
 
-/* Palette index -> block id: the used colours become materials, the most
- * used first; when the world has fewer free ids than colours, the rest take
- * their nearest kept colour, and the user is told. */
+/* Whether kept colour a stands in better than kept colour b for colour c:
+ * one that emits as c does (or not at all, as c) first, then the nearest. */
+static int better_stand_in(const vox_scene *v, int c, int a, int b)
+{
+    int a_same = v->emissive[a] == v->emissive[c], b_same = v->emissive[b] == v->emissive[c];
+    if (a_same != b_same)
+        return a_same;
+    return colour_distance(v->palette[c], v->palette[a]) < colour_distance(v->palette[c], v->palette[b]);
+}
+
+/* Whether colour a takes a block id before colour b: emitting colours
+ * first (an emitter must not lose its light to a stand-in), then the most
+ * used; ties by index, so the same file gives the same ids. */
+static int takes_id_first(const vox_scene *v, const long long used[256], int a, int b)
+{
+    if ((v->emissive[a] > 0) != (v->emissive[b] > 0))
+        return v->emissive[a] > 0;
+    return used[a] > used[b] || (used[a] == used[b] && a < b);
+}
+
+/* Palette index -> block id: the used colours become materials, emitting
+ * and most used first; when the world has fewer free ids than colours, the
+ * rest take their nearest kept colour (one that emits alike where there
+ * is one), and the user is told. */
 static int make_materials(vrg_pass *pass, const placed *p, vrg_world *w, vrg_block block_of[256])
 {
     long long used[256] = {0};
@@ -259,8 +281,8 @@ static int make_materials(vrg_pass *pass, const placed *p, vrg_world *w, vrg_blo
     for (int c = 1; c < 256; c++)
         if (used[c])
             order[n++] = c;
-    for (int i = 1; i < n; i++) /* most used first; ties by index: the same file gives the same ids */
-        for (int j = i; j > 0 && (used[order[j]] > used[order[j - 1]] || (used[order[j]] == used[order[j - 1]] && order[j] < order[j - 1])); j--) {
+    for (int i = 1; i < n; i++)
+        for (int j = i; j > 0 && takes_id_first(&p->vox, used, order[j], order[j - 1]); j--) {
             int t = order[j];
             order[j] = order[j - 1];
             order[j - 1] = t;
@@ -282,7 +304,7 @@ static int make_materials(vrg_pass *pass, const placed *p, vrg_world *w, vrg_blo
     for (int i = kept; i < n; i++) {
         int c = order[i], best = order[0];
         for (int j = 1; j < kept; j++)
-            if (colour_distance(p->vox.palette[c], p->vox.palette[order[j]]) < colour_distance(p->vox.palette[c], p->vox.palette[best]))
+            if (better_stand_in(&p->vox, c, order[j], best))
                 best = order[j];
         block_of[c] = block_of[best];
     }

@@ -3,6 +3,7 @@
  * materials and the scene graph. Every chunk header is (id, content bytes,
  * children bytes); both sizes are checked against the bytes left in the
  * enclosing chunk before they are used. */
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -131,7 +132,8 @@ typedef struct attrs {
     int has_r, r;
     int has_t, t[3];
     int emit;        /* _type is _emit */
-    float emit_value, flux;
+    /* MATL numbers as written ("" when absent): checked where the material id is known */
+    char emit_value[32], weight[32], flux[32];
 } attrs;
 
 static int key_is(const uint8_t *k, uint32_t n, const char *want) { return n == strlen(want) && memcmp(k, want, n) == 0; }
@@ -142,6 +144,17 @@ static void value_text(const uint8_t *v, uint32_t n, char *out, size_t out_size)
     size_t m = n < out_size - 1 ? n : out_size - 1;
     memcpy(out, v, m);
     out[m] = '\0';
+}
+
+/* A number's text. Empty, too long for out or holding a NUL, it is made
+ * text that parses as no number ("" is kept for an absent key). */
+static void number_text(const uint8_t *v, uint32_t n, char *out, size_t out_size)
+{
+    value_text(v, n, out, out_size);
+    if (n == 0)
+        snprintf(out, out_size, " ");
+    else if (n >= out_size || memchr(v, 0, n))
+        memcpy(out + strlen(out) - (strlen(out) < 3 ? strlen(out) : 3), "...", 4);
 }
 
 static int get_dict(reader *r, cursor *c, attrs *a)
@@ -177,9 +190,11 @@ static int get_dict(reader *r, cursor *c, attrs *a)
         } else if (key_is(k, kn, "_type"))
             a->emit = strcmp(text, "_emit") == 0;
         else if (key_is(k, kn, "_emit"))
-            a->emit_value = strtof(text, NULL);
+            number_text(v, vn, a->emit_value, sizeof a->emit_value);
+        else if (key_is(k, kn, "_weight"))
+            number_text(v, vn, a->weight, sizeof a->weight);
         else if (key_is(k, kn, "_flux"))
-            a->flux = strtof(text, NULL);
+            number_text(v, vn, a->flux, sizeof a->flux);
     }
     return 0;
 }
@@ -369,6 +384,26 @@ static int read_rgba(reader *r, cursor *c)
     return 0;
 }
 
+/* A MATL number: absent is 0; else a finite decimal >= 0. The text is shown
+ * with bytes outside printable ASCII as '?' (it is the file's, not ours). */
+static int matl_number(reader *r, int id, const char *key, const char *text, double *out)
+{
+    char *end;
+    *out = 0;
+    if (!text[0])
+        return 0;
+    double v = strtod(text, &end);
+    if (*end == '\0' && isfinite(v) && v >= 0) {
+        *out = v;
+        return 0;
+    }
+    char shown[sizeof ((attrs *)0)->flux];
+    size_t n = strlen(text);
+    for (size_t i = 0; i <= n; i++)
+        shown[i] = i < n && (text[i] < 0x20 || text[i] > 0x7e) ? '?' : text[i];
+    return fail(r, "material %d: %s = '%s' is not a finite number >= 0", id, key, shown);
+}
+
 static int read_matl(reader *r, cursor *c)
 {
     int32_t id = 0;
@@ -378,8 +413,19 @@ static int read_matl(reader *r, cursor *c)
     if (id < 0 || id > 256)
         return fail(r, "material id %d is outside 0..256", id);
     /* MagicaVoxel writes ids 0..256; only 1..255 name palette colours a voxel can use */
-    if (id >= 1 && id <= 255 && a.emit)
-        r->out->emissive[id] = (a.emit_value > 0 ? a.emit_value : 0) * (1 + (a.flux > 0 ? a.flux : 0));
+    if (id < 1 || id > 255 || !a.emit)
+        return 0;
+    /* the strength is _emit; files of MagicaVoxel 0.99.1 (the format's
+     * description) give it as _weight */
+    int weight = !a.emit_value[0] && a.weight[0];
+    const char *key = weight ? "_weight" : "_emit";
+    double strength, flux;
+    if (matl_number(r, id, key, weight ? a.weight : a.emit_value, &strength) != 0 || matl_number(r, id, "_flux", a.flux, &flux) != 0)
+        return -1;
+    double emit = strength * (1 + flux);
+    if (emit > VOX_EMIT_MAX)
+        return fail(r, "material %d: %s x (1 + _flux) = %g x (1 + %g) = %g, more than %g", id, key, strength, flux, emit, (double)VOX_EMIT_MAX);
+    r->out->emissive[id] = (float)emit;
     return 0;
 }
 

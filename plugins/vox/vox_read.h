@@ -13,6 +13,9 @@
 #include <stdint.h>
 
 #define VOX_MAX_DIM 256 /* a model's side: voxel coordinates are bytes */
+/* The most a MATL _emit material may emit, _emit x (1 + _flux): more is an
+ * error (the scene multiplies it by 4, VRG_MATERIAL_EMISSIVE_MAX). */
+#define VOX_EMIT_MAX 25.0
 
 typedef struct vox_model {
     int size[3];           /* x, y, z (z up), each 1..VOX_MAX_DIM */
@@ -30,7 +33,7 @@ typedef struct vox_instance {
 
 typedef struct vox_scene {
     uint32_t palette[256];  /* index i: R | G << 8 | B << 16 | A << 24; index 0 unused */
-    float emissive[256];    /* MATL _emit materials: emitted radiance scale, else 0 */
+    float emissive[256];    /* MATL _type _emit: _emit (else _weight) x (1 + _flux), in 0..VOX_EMIT_MAX; else 0 */
     int model_count;
     vox_model *models;
     int instance_count;

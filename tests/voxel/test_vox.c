@@ -291,6 +291,83 @@ static void test_bad_files(void)
     free(f.d), free(b.d);
 }
 
+/* A one-voxel model of palette index 9 and a MATL for material 9 of n
+ * key-value pairs: MATL's header is at byte 64. */
+static buf matl_file(int n, const char *const *kv)
+{
+    static const uint8_t voxel9[] = {0, 0, 0, 9};
+    buf b = {0}, c = {0};
+    model(&b, 1, 1, 1, 1, voxel9);
+    put32(&c, 9);
+    put_dict(&c, n, kv);
+    chunk(&b, "MATL", &c);
+    buf f = file_of(&b);
+    free(b.d), free(c.d);
+    return f;
+}
+
+static float emissive_of(int n, const char *const *kv)
+{
+    buf f = matl_file(n, kv);
+    vox_scene s;
+    char err[512] = "";
+    float e = -1;
+    if (vox_read(f.d, f.n, "ok.vox", &s, err, sizeof err) == 0) {
+        e = s.emissive[9];
+        vox_free(&s);
+    }
+    CHECK(e >= 0, "%s = %s: %s", kv[2], kv[3], err);
+    free(f.d);
+    return e;
+}
+
+/* MATL emission: _type _emit materials emit _emit (else _weight) x (1 +
+ * _flux); a value that is no finite number >= 0, or an emission over
+ * VOX_EMIT_MAX, is an error naming the file, the chunk's byte and the
+ * material (not a silent 0, nor a NaN or infinity sent to the GPU). */
+static void test_emit_values(void)
+{
+    const char *emit_flux[] = {"_type", "_emit", "_emit", "0.5", "_flux", "1"};
+    CHECK(emissive_of(3, emit_flux) == 1.0f, "_emit 0.5, _flux 1: 0.5 x 2");
+    const char *weight[] = {"_type", "_emit", "_weight", "0.25"};
+    CHECK(emissive_of(2, weight) == 0.25f, "_weight: the strength of files without _emit");
+    const char *diffuse[] = {"_type", "_diffuse", "_emit", "0.5"};
+    CHECK(emissive_of(2, diffuse) == 0.0f, "a _diffuse material does not emit");
+    const char *at_max[] = {"_type", "_emit", "_emit", "5", "_flux", "4"};
+    CHECK(emissive_of(3, at_max) == (float)VOX_EMIT_MAX, "5 x (1 + 4) is the most allowed");
+
+    static const struct {
+        const char *key, *value, *says;
+    } bad[] = {
+        {"_emit", "nan", "_emit = 'nan' is not a finite number >= 0"},
+        {"_emit", "inf", "_emit = 'inf' is not a finite number >= 0"},
+        {"_emit", "-1", "_emit = '-1' is not a finite number >= 0"},
+        {"_emit", "1e999", "_emit = '1e999' is not a finite number"},
+        {"_emit", "bright", "_emit = 'bright' is not a finite number"},
+        {"_emit", "", "_emit = ' ' is not a finite number"},
+        {"_emit", "0.50000000000000000000000000000000001", "is not a finite number"}, /* longer than the reader keeps */
+        {"_emit", "1e6", "_emit x (1 + _flux) = 1e+06 x (1 + 0) = 1e+06, more than 25"},
+        {"_flux", "-2", "_flux = '-2' is not a finite number >= 0"},
+        {"_flux", "nan", "_flux = 'nan' is not a finite number >= 0"},
+        {"_flux", "\033[2J", "_flux = '?[2J' is not"}, /* the terminal sees no escape */
+        {"_flux", "30", "= 1 x (1 + 30) = 31, more than 25"},
+        {"_weight", "-0.5", "_weight = '-0.5' is not a finite number >= 0"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        const char *kv[] = {"_type", "_emit", "_emit", "1", bad[i].key, bad[i].value};
+        int n = 3;
+        if (strcmp(bad[i].key, "_emit") == 0)
+            kv[3] = bad[i].value, n = 2;
+        else if (strcmp(bad[i].key, "_weight") == 0)
+            kv[2] = "_weight", kv[3] = bad[i].value, n = 2;
+        buf f = matl_file(n, kv);
+        char what[128];
+        snprintf(what, sizeof what, "%s = '%s'", bad[i].key, bad[i].value);
+        expect_error(&f, what, "chunk 'MATL' at byte 64: material 9: ", bad[i].says);
+        free(f.d);
+    }
+}
+
 static uint8_t *read_file(const char *path, size_t *n)
 {
     FILE *f = fopen(path, "rb");
@@ -734,6 +811,97 @@ static int test_vox_render(void)
     return 0;
 }
 
+static void write_seed(const char *dir, const char *name, buf f);
+
+/* One voxel of default palette index 1 (white) whose MATL emits strength. */
+static void write_emitter(const char *path, const char *strength)
+{
+    static const uint8_t voxel1[] = {0, 0, 0, 1};
+    buf b = {0}, c = {0};
+    model(&b, 1, 1, 1, 1, voxel1);
+    put32(&c, 1);
+    const char *kv[] = {"_type", "_emit", "_emit", strength};
+    put_dict(&c, 2, kv);
+    chunk(&b, "MATL", &c);
+    const char *slash = strrchr(path, '/');
+    write_seed(tmpdir, slash + 1, file_of(&b));
+    free(b.d), free(c.d);
+}
+
+typedef struct emit_means {
+    double emitter, ground; /* linear luminance of the emitter's pixels, of the ground within 2 blocks of it */
+    int emitter_pixels, ground_pixels;
+} emit_means;
+
+static int render_emitter(const char *strength, emit_means *m)
+{
+    char path[600], file[700];
+    snprintf(path, sizeof path, "%s/emit-%s.vox", tmpdir, strength);
+    write_emitter(path, strength);
+    snprintf(file, sizeof file, "scene.file=%s", path);
+    const char *sets[] = {file};
+    static const char *const reads[] = {"color", "gbuffer.ids", "gbuffer.position"};
+    vrg_graph *g = load_with("vox_emit.ini", sets, 1, reads, 3);
+    vrg_image_data color = {0}, ids = {0}, pos = {0};
+    int ok = g && vrg_graph_frame(g) == 0 && vrg_graph_read(g, "color", &color) == 0 && vrg_graph_read(g, "gbuffer.ids", &ids) == 0 &&
+             vrg_graph_read(g, "gbuffer.position", &pos) == 0;
+    CHECK(ok, "emit %s: render failed", strength);
+    memset(m, 0, sizeof *m);
+    for (uint32_t y = 0; ok && y < color.height; y++)
+        for (uint32_t x = 0; x < color.width; x++) {
+            double lum = 0.2126 * px(&color, x, y, 0) + 0.7152 * px(&color, x, y, 1) + 0.0722 * px(&color, x, y, 2);
+            int id = (int)px(&ids, x, y, 0);
+            /* the voxel takes the first free id; it sits on the ground near x = z = 0 */
+            if (id == VRG_BLOCK_COUNT)
+                m->emitter += lum, m->emitter_pixels++;
+            else if (id == VRG_BLOCK_WHITE && fabsf(px(&pos, x, y, 0)) < 2 && fabsf(px(&pos, x, y, 2)) < 2)
+                m->ground += lum, m->ground_pixels++;
+        }
+    CHECK(!ok || (m->emitter_pixels > 20 && m->ground_pixels > 50), "emit %s: the view holds %d pixels of the voxel, %d of the ground near it", strength,
+          m->emitter_pixels, m->ground_pixels);
+    if (m->emitter_pixels)
+        m->emitter /= m->emitter_pixels;
+    if (m->ground_pixels)
+        m->ground /= m->ground_pixels;
+    free(color.pixels), free(ids.pixels), free(pos.pixels);
+    vrg_graph_destroy(g);
+    return ok;
+}
+
+/* An emitting voxel at midnight: seen directly it shows its light (white,
+ * emissive 4 x _emit), and the ground beside it is brighter than beside
+ * the same voxel with _emit 0, lit through the indirect rays. A graph
+ * whose vox file holds a bad _emit does not load, and says why. */
+static void test_emit_light(void)
+{
+    make_tmpdir();
+    emit_means dark, lit;
+    if (!render_emitter("0", &dark) || !render_emitter("1", &lit))
+        return;
+    CHECK(dark.emitter < 0.5, "_emit 0: the voxel is lit by the moon and sky only (%.3f)", dark.emitter);
+    CHECK(lit.emitter > 4.0, "_emit 1: the voxel shows albedo x (light + 4) (%.3f)", lit.emitter);
+    CHECK(lit.ground > 1.5 * dark.ground + 0.05, "the ground beside the voxel: %.3f with _emit 1, %.3f with _emit 0", lit.ground, dark.ground);
+
+    char path[600], file[700], *log = NULL;
+    size_t len = 0;
+    snprintf(path, sizeof path, "%s/emit-nan.vox", tmpdir);
+    write_emitter(path, "nan");
+    snprintf(file, sizeof file, "scene.file=%s", path);
+    const char *sets[] = {file};
+    char graph[700];
+    snprintf(graph, sizeof graph, "%s/graphs/vox_emit.ini", TEST_DIR);
+    FILE *diag = open_memstream(&log, &len);
+    vrg_graph_desc d = {.path = graph, .overrides = sets, .override_count = 1, .diag = diag};
+    vrg_graph *g = NULL;
+    int rc = vrg_graph_load(ctx, &d, &g);
+    fclose(diag);
+    CHECK(rc != 0, "a vox file with _emit = nan loaded");
+    CHECK(log && strstr(log, "emit-nan.vox: chunk 'MATL' at byte 64: material 1: _emit = 'nan' is not a finite number >= 0"),
+          "the error: %s", log ? log : "(no message)");
+    vrg_graph_destroy(g);
+    free(log);
+}
+
 /* Streaming terrain: an edit made through the graph's journal is in the
  * chunk when a new graph generates that chunk again (the integration hook). */
 static void test_terrain_edits(void)
@@ -759,8 +927,6 @@ static void test_terrain_edits(void)
           w ? vrg_world_block(w, 3, 2, 5) : -1);
     vrg_graph_destroy(g);
 }
-
-static void write_seed(const char *dir, const char *name, buf f);
 
 /* A model placed outside the world's limits (|x|, |z| <= 512, 0 <= y < 256)
  * is an error at the file's line naming the file and the blocks it spans,
@@ -808,6 +974,8 @@ static const test_case cases[] = {
     {"edits_bad_records", test_edits_bad_records, 0, NULL},
     {"edits_lost", test_edits_lost, 0, NULL},
     {"vox_render", NULL, 1, test_vox_render},
+    {"vox_emit_values", test_emit_values, 0, NULL},
+    {"vox_emit_light", test_emit_light, 1, NULL},
 };
 
 static void write_seed(const char *dir, const char *name, buf f)

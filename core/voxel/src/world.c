@@ -140,7 +140,7 @@ vrg_world *vrg_world_create(int radius_chunks, int height_chunks)
  * VRG_ATLAS_TILES: a run-time material needs a block id and a tile. */
 int vrg_world_add_material(vrg_world *w, const vrg_material *m)
 {
-    if (w->material_count >= MAX_MATERIALS || w->next_tile >= VRG_ATLAS_TILES)
+    if (w->material_count >= MAX_MATERIALS || w->next_tile >= VRG_ATLAS_TILES || !(m->emissive >= 0 && m->emissive <= VRG_MATERIAL_EMISSIVE_MAX))
         return -1;
     int id = w->material_count++;
     vrg_material *dst = &w->materials[id];

@@ -53,8 +53,12 @@ typedef struct vrg_material {
     uint8_t tile_top, tile_side, tile_bottom; /* texture atlas tiles */
     uint32_t flags;
     float albedo[3];   /* mean linear albedo (what the atlas tiles average to) */
-    float emissive;    /* emitted radiance scale, 0 for none */
+    float emissive;    /* emitted radiance scale e: the block emits albedo x e; 0 for none */
 } vrg_material;
+
+/* The largest emissive scale: the light near an emitter, and its square (a
+ * denoiser's moments), stay well inside half floats (65504). */
+#define VRG_MATERIAL_EMISSIVE_MAX 100.0f
 
 /* The built-in table, indexed by block id; VRG_BLOCK_COUNT entries. */
 const vrg_material *vrg_materials(void);
@@ -96,7 +100,8 @@ int vrg_world_chunk_count(const vrg_world *w);
  * palette colours). Each gets the next block id and its own atlas tile,
  * flat at its albedo (vrg_world_atlas_generate); the name is copied
  * (VRG_MATERIAL_NAME_MAX - 1 characters kept). Returns the id, or -1 when
- * no block id or tile is left. */
+ * no block id or tile is left or the emissive scale is not in
+ * [0, VRG_MATERIAL_EMISSIVE_MAX]. */
 #define VRG_MATERIAL_NAME_MAX 24
 int vrg_world_add_material(vrg_world *w, const vrg_material *m);
 /* How many more materials vrg_world_add_material accepts. */
