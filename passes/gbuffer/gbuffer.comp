@@ -59,7 +59,8 @@ void shade(ivec2 p)
     }
     vec3 hp = o + d * h.t;
     vec3 n = vec3(h.normal);
-    vec3 albedo = material_albedo(h.block);
+    vec4 material = material_albedo_emissive(h.block);
+    vec3 albedo = material.rgb;
     if (params.textured != 0) {
         float pixel_angle = 2.0 * length(frame.camera_up.xyz) / float(size.y);
         float lod = world_texture_lod(h.t, pixel_angle, abs(dot(n, d)));
@@ -71,7 +72,7 @@ void shade(ivec2 p)
     imageStore(out_albedo, p, vec4(albedo, 1.0));
     imageStore(out_ids, p, uvec4(h.block, uint(h.chunk) + 1u, 0u, 0u));
     imageStore(out_motion, p, vec4(vec2(p) - previous_pixel(vec4(hp, 1.0), vec2(size)), 0.0, 0.0));
-    store_emission(p, material_emissive(h.block));
+    store_emission(p, material.w);
 }
 
 void main()

@@ -28,7 +28,8 @@ const uint SALT = 0x494e0003u;  // this pass's random stream
 // what it reflects and what it emits (albedo x its emissive scale).
 vec3 bounce(vec3 x2, ivec3 n2, uint b)
 {
-    vec3 albedo = params.textured != 0 ? textureLod(atlas, world_atlas_uv(b, n2, vec2(0.5)), 4.0).rgb : material_albedo(b);
+    vec4 material = material_albedo_emissive(b);
+    vec3 albedo = params.textured != 0 ? textureLod(atlas, world_atlas_uv(b, n2, vec2(0.5)), 4.0).rgb : material.rgb;
     vec3 l = frame.sun_dir.xyz;
     float ndl = max(dot(vec3(n2), l), 0.0);
     float v = 1.0;
@@ -36,7 +37,7 @@ vec3 bounce(vec3 x2, ivec3 n2, uint b)
         v = 0.0;
     else if (params.shadow != 0 && trace_any(x2 + vec3(n2) * 1e-3, l, params.max_distance))
         v = 0.0;
-    return albedo * (frame.sun_radiance.rgb * ndl * v + frame.ambient.rgb + material_emissive(b));
+    return albedo * (frame.sun_radiance.rgb * ndl * v + frame.ambient.rgb + material.w);
 }
 
 void shade(ivec2 p)

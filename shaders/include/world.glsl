@@ -113,11 +113,11 @@ uint world_block(ivec3 p)
     return base < 0 ? 0u : world_block_local(base, p & 15);
 }
 
-vec3 material_albedo(uint id)
-{
-    return uintBitsToFloat(world_texel((WORLD_MATERIALS + id * 8u) >> 2u).xyz);  // one texel
-}
-float material_emissive(uint id) { return uintBitsToFloat(world_word(uint(WORLD_MATERIALS + id * 8u + 3u))); }
+// A material's first texel: its albedo (xyz) and emissive scale (w; the
+// block emits albedo x w).
+vec4 material_albedo_emissive(uint id) { return uintBitsToFloat(world_texel((WORLD_MATERIALS + id * 8u) >> 2u)); }
+vec3 material_albedo(uint id) { return material_albedo_emissive(id).xyz; }
+float material_emissive(uint id) { return material_albedo_emissive(id).w; }
 uint material_flags(uint id) { return world_word(uint(WORLD_MATERIALS + id * 8u + 4u)); }
 // Atlas tile of a face: 0 top, 1 side, 2 bottom.
 uint material_tile(uint id, int face) { return world_word(uint(WORLD_MATERIALS + id * 8u + 5u + uint(face))); }
