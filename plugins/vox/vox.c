@@ -36,8 +36,8 @@ static const vrg_slot_desc slots[] = {VRG_SCENE_SLOTS};
 #define VOX_MAX_PLACED (1 << 26) /* blocks written by all instances: a bound on the work, beside the world's */
 #define WORLD_HEIGHT 256 /* y in [0, 256): 16 chunks, the terrain's largest height */
 #define GROUND_MARGIN 2  /* chunks of ground around the model: its shadow lands on it */
-#define EMISSIVE_SCALE 4.0f /* MagicaVoxel's _emit 1 shines like the lamp block */
-_Static_assert(EMISSIVE_SCALE * VOX_EMIT_MAX <= VRG_MATERIAL_EMISSIVE_MAX, "the reader's limit keeps every vox material within the world's");
+#define EMISSIVE_SCALE 4 /* MagicaVoxel's _emit 1 shines like the lamp block */
+_Static_assert(EMISSIVE_SCALE * VOX_EMIT_MAX <= (int)VRG_MATERIAL_EMISSIVE_MAX, "the reader's limit keeps every vox material within the world's");
 
 typedef struct placed {
     vox_scene vox;

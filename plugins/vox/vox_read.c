@@ -126,6 +126,8 @@ static int get_string(reader *r, cursor *c, const uint8_t **s, uint32_t *len)
     return 0;
 }
 
+#define MATL_NUMBER_CHARS 32 /* a MATL number's text, NUL included: longer ones are errors */
+
 /* The attributes this reader uses, from a DICT (others are skipped). */
 typedef struct attrs {
     int hidden;
@@ -133,7 +135,7 @@ typedef struct attrs {
     int has_t, t[3];
     int emit;        /* _type is _emit */
     /* MATL numbers as written ("" when absent): checked where the material id is known */
-    char emit_value[32], weight[32], flux[32];
+    char emit_value[MATL_NUMBER_CHARS], weight[MATL_NUMBER_CHARS], flux[MATL_NUMBER_CHARS];
 } attrs;
 
 static int key_is(const uint8_t *k, uint32_t n, const char *want) { return n == strlen(want) && memcmp(k, want, n) == 0; }
@@ -397,7 +399,7 @@ static int matl_number(reader *r, int id, const char *key, const char *text, dou
         *out = v;
         return 0;
     }
-    char shown[sizeof ((attrs *)0)->flux];
+    char shown[MATL_NUMBER_CHARS];
     size_t n = strlen(text);
     for (size_t i = 0; i <= n; i++)
         shown[i] = i < n && (text[i] < 0x20 || text[i] > 0x7e) ? '?' : text[i];
@@ -424,7 +426,7 @@ static int read_matl(reader *r, cursor *c)
         return -1;
     double emit = strength * (1 + flux);
     if (emit > VOX_EMIT_MAX)
-        return fail(r, "material %d: %s x (1 + _flux) = %g x (1 + %g) = %g, more than %g", id, key, strength, flux, emit, (double)VOX_EMIT_MAX);
+        return fail(r, "material %d: %s x (1 + _flux) = %g x (1 + %g) = %g, more than %d", id, key, strength, flux, emit, VOX_EMIT_MAX);
     r->out->emissive[id] = (float)emit;
     return 0;
 }

@@ -15,7 +15,7 @@
 #define VOX_MAX_DIM 256 /* a model's side: voxel coordinates are bytes */
 /* The most a MATL _emit material may emit, _emit x (1 + _flux): more is an
  * error (the scene multiplies it by 4, VRG_MATERIAL_EMISSIVE_MAX). */
-#define VOX_EMIT_MAX 25.0
+#define VOX_EMIT_MAX 25
 
 typedef struct vox_model {
     int size[3];           /* x, y, z (z up), each 1..VOX_MAX_DIM */
