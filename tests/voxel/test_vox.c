@@ -813,8 +813,9 @@ static int test_vox_render(void)
 
 static void write_seed(const char *dir, const char *name, buf f);
 
-/* One voxel of default palette index 1 (white) whose MATL emits strength. */
-static void write_emitter(const char *path, const char *strength)
+/* Writes TMPDIR/emit-STRENGTH.vox, one voxel of default palette index 1
+ * (white) whose MATL emits strength, and the --set naming it into set. */
+static void write_emitter(const char *strength, char *set, size_t set_size)
 {
     static const uint8_t voxel1[] = {0, 0, 0, 1};
     buf b = {0}, c = {0};
@@ -823,9 +824,11 @@ static void write_emitter(const char *path, const char *strength)
     const char *kv[] = {"_type", "_emit", "_emit", strength};
     put_dict(&c, 2, kv);
     chunk(&b, "MATL", &c);
-    const char *slash = strrchr(path, '/');
-    write_seed(tmpdir, slash + 1, file_of(&b));
+    char name[64];
+    snprintf(name, sizeof name, "emit-%s.vox", strength);
+    write_seed(tmpdir, name, file_of(&b));
     free(b.d), free(c.d);
+    snprintf(set, set_size, "scene.file=%s/%s", tmpdir, name);
 }
 
 typedef struct emit_means {
@@ -835,10 +838,8 @@ typedef struct emit_means {
 
 static int render_emitter(const char *strength, emit_means *m)
 {
-    char path[600], file[700];
-    snprintf(path, sizeof path, "%s/emit-%s.vox", tmpdir, strength);
-    write_emitter(path, strength);
-    snprintf(file, sizeof file, "scene.file=%s", path);
+    char file[700];
+    write_emitter(strength, file, sizeof file);
     const char *sets[] = {file};
     static const char *const reads[] = {"color", "gbuffer.ids", "gbuffer.position"};
     vrg_graph *g = load_with("vox_emit.ini", sets, 1, reads, 3);
@@ -882,13 +883,10 @@ static void test_emit_light(void)
     CHECK(lit.emitter > 4.0, "_emit 1: the voxel shows albedo x (light + 4) (%.3f)", lit.emitter);
     CHECK(lit.ground > 1.5 * dark.ground + 0.05, "the ground beside the voxel: %.3f with _emit 1, %.3f with _emit 0", lit.ground, dark.ground);
 
-    char path[600], file[700], *log = NULL;
+    char file[700], graph[700], *log = NULL;
     size_t len = 0;
-    snprintf(path, sizeof path, "%s/emit-nan.vox", tmpdir);
-    write_emitter(path, "nan");
-    snprintf(file, sizeof file, "scene.file=%s", path);
+    write_emitter("nan", file, sizeof file);
     const char *sets[] = {file};
-    char graph[700];
     snprintf(graph, sizeof graph, "%s/graphs/vox_emit.ini", TEST_DIR);
     FILE *diag = open_memstream(&log, &len);
     vrg_graph_desc d = {.path = graph, .overrides = sets, .override_count = 1, .diag = diag};
