@@ -292,6 +292,34 @@ static int make_jobs(const options *o, job *jobs, vrg_cmp_result *r)
     return 0;
 }
 
+/* A variant whose world differs from the first graph's: its listed graph
+ * shares that world (it was checked first), so its overrides of the scene
+ * are the cause. Names the variant once and each such override with the
+ * value it replaces; the runtime's reason would name the one graph file's
+ * [scene] line twice. */
+static void variant_world_error(const options *o, const job *j, const vrg_cmp_result *r, int c, vrg_graph *first, vrg_graph *g, const char *why)
+{
+    int named = 0;
+    fprintf(stderr, "error: --variant %s: ", o->variants[c - o->graph_count]);
+    for (int pass = 0; pass < 2 && !named; pass++) /* numbers that differ; else any scene override (a text parameter) */
+        for (int k = 0; k < j->set_count; k++) {
+            const char *set = j->sets[k], *eq = strchr(set, '=');
+            char key[256];
+            double was = 0, is = 0;
+            if (strncmp(set, "scene.", 6) != 0 || !eq || (size_t)(eq - set) >= sizeof key)
+                continue;
+            snprintf(key, sizeof key, "%.*s", (int)(eq - set), set);
+            int numeric = vrg_graph_get_param(first, key, &was) == 0 && vrg_graph_get_param(g, key, &is) == 0 && was != is;
+            if (pass == 0 && numeric)
+                fprintf(stderr, "%s%s changes the scene (%s has %g)", named++ ? ", " : "", set, r->cand[0].name, was);
+            else if (pass == 1)
+                fprintf(stderr, "%s%s changes the scene", named++ ? ", " : "", set);
+        }
+    if (!named)
+        fputs(why, stderr);
+    fprintf(stderr, ": candidates must render the same frames; a variant sets parameters of passes, not of the scene\n");
+}
+
 /* Loads each candidate and the reference without a device: parameters,
  * variants, then the same world and size everywhere. Sets the size and
  * the camera (the first graph's, when no path is given). */
@@ -315,7 +343,10 @@ static int check_all(const options *o, job *jobs, vrg_cmp_result *r, vrg_camera 
             vrg_graph_size(g, &r->width, &r->height);
         } else {
             if (vrg_graph_same_world(first, g, why, sizeof why) != 0) {
-                fprintf(stderr, "error: %s: candidates must render the same frames\n", why);
+                if (jobs[i].base >= 0)
+                    variant_world_error(o, &jobs[i], r, i, first, g, why);
+                else
+                    fprintf(stderr, "error: %s: candidates must render the same frames\n", why);
                 rc = -1;
             }
             vrg_graph_destroy(g);

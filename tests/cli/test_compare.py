@@ -9,7 +9,8 @@
 - a candidate identical to the reference: PSNR at the cap, SSIM 1, FLIP 0,
   temporal error 0.
 - errors: another scene, another size, a missing reference, a variant with
-  an unknown parameter: exit 1, a clear message, no report left behind.
+  an unknown parameter, a variant that changes the scene: exit 1, a clear
+  message, no report left behind.
 - names: variant names outside the safe set refused; graph names that
   would overwrite the reference's frames or break metrics.csv handled.
 - variants of a named graph (NAME@GRAPH:...): a variant of the second graph
@@ -179,6 +180,9 @@ def errors():
         ("another size", [raw, small, "--reference", ref], r"sizes differ: .*raw\.ini is 640x360, .*small\.ini 320x360"),
         ("a missing reference", [raw, "--reference", os.path.join(out, "nope.ini")], r"reference graph .*nope\.ini: No such file"),
         ("an unknown parameter", [raw, "--variant", "x:ao.nope=1", "--reference", ref], r"has no parameter 'nope'.*\n.*candidate 'x'"),
+        # the variant named once, with the value it replaces (not the graph's [scene] line twice)
+        ("a variant of the scene", [raw, "--variant", "v:ao.rays=2,scene.radius=2", "--reference", ref],
+         r"(?m)^error: --variant v:ao\.rays=2,scene\.radius=2: scene\.radius=2 changes the scene \(raw has 13\): candidates must render the same frames"),
     ]
     open(os.path.join(out, "report.html"), "w").write("<!-- an earlier run's -->")
     for what, args, pattern in cases:
