@@ -661,7 +661,27 @@ static void check_prev_of_persistent(vrg_graph *g)
     }
 }
 
-static void resolve_resources(vrg_graph *g)
+/* 1 when a pass or the scene has an out.SLOT key naming `name` (with or
+ * without an '@' suffix) that wrote nothing: the pass, its plugin or the
+ * binding was refused, and that error is the cause to read. "Never
+ * written" would only follow from it, and print before it when its line
+ * comes first. */
+static int write_refused(const vrg_graph *g, const _vrg_ast *a, const char *name)
+{
+    if (!g->diag.errors)
+        return 0;
+    for (int i = 0; i < a->key_count; i++) {
+        const _vrg_key *k = &a->keys[i];
+        const char *arg;
+        sec_kind kind = section_kind(a->sections[k->section_index].name, &arg);
+        size_t len = strcspn(k->value, "@");
+        if ((kind == SEC_PASS || kind == SEC_SCENE) && strncmp(k->name, "out.", 4) == 0 && len == strlen(name) && strncmp(k->value, name, len) == 0)
+            return 1;
+    }
+    return 0;
+}
+
+static void resolve_resources(vrg_graph *g, const _vrg_ast *a)
 {
     for (int ri = 0; ri < g->res_count; ri++) {
         _vrg_resource *r = &g->res[ri];
@@ -748,7 +768,7 @@ static void resolve_resources(vrg_graph *g)
                 continue;
             }
             _vrg_resource *r = &g->res[b->res];
-            if (r->writer < 0 && r->writer_unknown)
+            if (r->writer < 0 && (r->writer_unknown || write_refused(g, a, r->name)))
                 continue;
             if (r->writer < 0) {
                 _vrg_error_at(&g->diag, b->line, VRG_E_NEVER_WRITTEN, "some pass must write it (out.SLOT = NAME), or fix the name",
@@ -978,7 +998,7 @@ int _vrg_validate(vrg_graph *g, const _vrg_ast *ast, const vrg_graph_desc *desc)
         if (section_kind(ast->sections[si].name, &arg) == SEC_RESOURCE)
             resource_section(g, ast, si, arg);
     }
-    resolve_resources(g);
+    resolve_resources(g, ast);
     check_prev_of_persistent(g);
     check_conflicting_uses(g);
     if (graph_si >= 0) {
@@ -987,8 +1007,8 @@ int _vrg_validate(vrg_graph *g, const _vrg_ast *ast, const vrg_graph_desc *desc)
                 _vrg_error_at(&g->diag, ast->sections[graph_si].line, VRG_E_NO_OUTPUT, "add 'output = RESOURCE' to [graph]", "the graph has no output");
         } else {
             g->output = _vrg_graph_find_resource(g, g->output_name);
-            if (g->output >= 0 && g->res[g->output].writer_unknown)
-                ; /* its writer's plugin failed to load: already reported */
+            if ((g->output >= 0 && g->res[g->output].writer_unknown) || write_refused(g, ast, g->output_name))
+                ; /* its writer, its writer's plugin or the binding was refused: already reported */
             else if (g->output < 0 || g->res[g->output].writer < 0)
                 _vrg_error_at(&g->diag, g->output_line, VRG_E_OUTPUT_NEVER_WRITTEN, "name a resource some pass writes", "output resource '%s' is never written",
                              g->output_name);
