@@ -495,6 +495,28 @@ static void test_edits_roundtrip(void)
     vrg_world_destroy(w);
 }
 
+/* A journal from another world whose key holds a terminal escape and a
+ * forged line: the refusal quotes the key escaped, no control byte in it. */
+static void test_edits_foreign_key(void)
+{
+    make_tmpdir();
+    char path[512], err[1024];
+    snprintf(path, sizeof path, "%s/foreign.edits", tmpdir);
+    unlink(path);
+    vrg_world *w = small_world();
+    vrg_edits *e = vrg_edits_open(path, "x\x1b[31mred\nother.ini:1: error[VRG-E001]: forged", err, sizeof err);
+    CHECK(e && vrg_edits_set(e, w, 1, 2, 3, VRG_BLOCK_AIR, err, sizeof err) == 0, "%s", err);
+    vrg_edits_close(e);
+    e = vrg_edits_open(path, "test seed=1", err, sizeof err);
+    int controls = 0;
+    for (const char *c = err; *c; c++)
+        controls += (unsigned char)*c < 0x20 || *c == 0x7f;
+    CHECK(!e && strstr(err, "another world ('x\\x1b[31mred\\nother.ini:1: error[VRG-E001]: forged'), this scene is 'test seed=1'") && !controls,
+          "key mismatch: '%s'", err);
+    vrg_edits_close(e);
+    vrg_world_destroy(w);
+}
+
 /* op i of the writer's fixed sequence, in a 4 x 4 x 4 corner of chunk 0 */
 static int run_op(vrg_edits *e, vrg_world *w, long i, char *err, size_t n)
 {
@@ -968,6 +990,7 @@ static const test_case cases[] = {
     {"vox_real_files", NULL, 0, test_real_files},
     {"edits_roundtrip", test_edits_roundtrip, 0, NULL},
     {"edits_torn", test_edits_torn, 0, NULL},
+    {"edits_foreign_key", test_edits_foreign_key, 0, NULL},
     {"edits_kill", test_edits_kill, 0, NULL},
     {"edits_bad_records", test_edits_bad_records, 0, NULL},
     {"edits_lost", test_edits_lost, 0, NULL},

@@ -50,6 +50,8 @@ typedef struct _vrg_diag_info {
 const _vrg_diag_info *_vrg_diag_info_of(_vrg_diag_code code);
 void _vrg_error_at(_vrg_diag *d, int line, _vrg_diag_code code, const char *hint, const char *fmt, ...) __attribute__((format(printf, 5, 6)));
 void _vrg_error(_vrg_diag *d, _vrg_diag_code code, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+/* An error without a line, with a hint. */
+void _vrg_error_hint(_vrg_diag *d, _vrg_diag_code code, const char *hint, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
 void _vrg_warning_at(_vrg_diag *d, int line, _vrg_diag_code code, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
 void _vrg_diag_flush(_vrg_diag *d);
 /* vrg_pass_error with the code of a problem the runtime finds (pass_api.c) */

@@ -118,7 +118,7 @@ static void fail(_vrg_diag *d, int line, _vrg_diag_code code, const char *hint, 
     if (line > 0)
         _vrg_error_at(d, line, code, hint, "%s", msg);
     else if (hint)
-        _vrg_error(d, code, "%s\n  hint: %s", msg, hint);
+        _vrg_error_hint(d, code, hint, "%s", msg);
     else
         _vrg_error(d, code, "%s", msg);
 }

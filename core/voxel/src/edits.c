@@ -199,9 +199,11 @@ static int load(vrg_edits *e, const uint8_t *d, size_t size, char *err, size_t n
     uint32_t flen = get32(d + 8);
     if (flen >= VRG_EDITS_KEY_MAX || 12 + (size_t)flen + 4 > size || crc32(d, 12 + flen) != get32(d + 12 + flen))
         return failf(err, n, "%s: the header is damaged (its checksum does not match)", e->path);
-    if (flen != klen || memcmp(d + 12, e->key, klen) != 0)
-        return failf(err, n, "%s: these edits belong to another world ('%.*s'), this scene is '%s': move the file away or set the scene's edits parameter",
-                     e->path, (int)flen, (const char *)(d + 12), e->key);
+    if (flen != klen || memcmp(d + 12, e->key, klen) != 0) {
+        char theirs[4 * VRG_EDITS_KEY_MAX], ours[4 * VRG_EDITS_KEY_MAX]; /* the file's bytes, quoted as text */
+        return failf(err, n, "%s: these edits belong to another world ('%s'), this scene is '%s': move the file away or set the scene's edits parameter",
+                     e->path, vrg_escape(theirs, sizeof theirs, (const char *)(d + 12), flen), vrg_escape(ours, sizeof ours, e->key, klen));
+    }
     size_t pos = header_bytes(e);
     for (; pos + RECORD <= size; pos += RECORD) {
         const uint8_t *r = d + pos;

@@ -283,6 +283,17 @@ int vrg_pass_error_at(vrg_pass *pass, int line, const char *fmt, ...) __attribut
 /* A warning at a line of the graph file (0: naming the pass instead): the
  * pass goes on (VRG-W006). */
 void vrg_pass_warn_at(vrg_pass *pass, int line, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+/* Text read from a file, made safe to quote in a message: copies `len`
+ * bytes of `text` into `out` (`cap` bytes, always terminated) as a
+ * terminal shows them, with every byte that is not shown as text written
+ * \xNN (\n, \r, \t for those): control characters, DEL, C1 controls,
+ * line separators, bidirectional controls and bytes that are not UTF-8.
+ * So a file's bytes cannot move the cursor, recolour the terminal or forge
+ * a line of their own. Backslashes stay, so escaping twice changes
+ * nothing. Too long for `cap`, it is cut at a character and ends in
+ * "...". Messages of the runtime (vrg_pass_error...) are escaped so
+ * already; a plugin needs this for text it prints itself. Returns out. */
+const char *vrg_escape(char *out, size_t cap, const char *text, size_t len);
 /* The graph file's path as the host gave it ("" for a graph loaded from
  * text): files a parameter names are relative to its folder. */
 const char *vrg_pass_graph_path(const vrg_pass *pass);
