@@ -247,7 +247,7 @@ static void fly(window_state *w, vrg_camera *cam, float dt)
     glfwGetCursorPos(win, &mx, &my);
     if (look && w->looking) {
         w->right_moved += fabs(mx - w->mouse_x) + fabs(my - w->mouse_y);
-        cam->yaw -= (float)(mx - w->mouse_x) * 0.15f;
+        cam->yaw = remainderf(cam->yaw - (float)(mx - w->mouse_x) * 0.15f, 360.0f); /* in [-180, 180]: graphs and paths hold yaw to +-360 */
         cam->pitch -= (float)(my - w->mouse_y) * 0.15f;
         cam->pitch = cam->pitch > 89 ? 89 : cam->pitch < -89 ? -89 : cam->pitch;
     }
@@ -1036,9 +1036,9 @@ int vrg_cli_run(const vrg_run_options *o)
             vrg_camera_path_eval(&path, (float)(frames * vrg_graph_frame_seconds(g)), &cam);
         else
             fly(&w, &cam, dt);
-        if (record)
+        if (record) /* yaw in [-180, 180] (a path's is unwrapped past 360): the path unwraps it again when played */
             fprintf(record, "%.4f  %.3f %.3f %.3f  %.2f %.2f\n", frames * vrg_graph_frame_seconds(g), cam.position[0], cam.position[1],
-                    cam.position[2], cam.yaw, cam.pitch);
+                    cam.position[2], remainderf(cam.yaw, 360.0f), cam.pitch);
         drive_panel(&w, o, g, gb);
         if (gb && !w.mouse_on_panel && glfwGetMouseButton(w.window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) { /* drag the divider */
             int ww, wh;

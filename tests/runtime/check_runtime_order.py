@@ -33,6 +33,8 @@ TIERS = [
      ["reflect.c", "capture.c", "resource.c", "watch.c", "context.c", "crash.c", "install.c", "defaults.c", "camera.c"]),
     ("the vocabulary: formats, accesses, messages",
      ["format.c", "access.c", "diag.c", "file.c"]),
+    ("the text a message quotes",
+     ["escape.c"]),
 ]
 
 

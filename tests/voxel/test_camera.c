@@ -405,8 +405,18 @@ static int test_path_errors(void)
         {"0 0 0 0 0 0\n0x10 0 0 0 0 0\n", {"bad.path:2: error: '0x10' is not a decimal number"}},
         {"0 0 0 0 0 0\n1 0 0 0 0x1p2 0\n", {"bad.path:2: error: '0x1p2' is not a decimal number"}},
         /* positions within the world (VRG_WORLD_LIMIT) */
-        {"0 0 40 0 0 0\n1 3e9 40 0 0 0\n", {"bad.path:2: error: position 3e+09 40 0 is outside the world"}},
-        {"0 0 40 -1048577 0 0\n", {"bad.path:1: error: position 0 40 -1.04858e+06 is outside the world"}},
+        {"0 0 40 0 0 0\n1 3e9 40 0 0 0\n", {"bad.path:2: error: position 3e9 40 0 is outside the world"}},
+        {"0 0 40 -1048577 0 0\n", {"bad.path:1: error: position 0 40 -1048577 is outside the world"}},
+        /* yaw within [camera]'s range (vrg_camera_angle_range), the value as written */
+        {"0 0 0 0 1e30 0\n", {"bad.path:1: error: yaw 1e30 is outside [-360, 360]"}},
+        {"0 0 0 0 -360.5 0\n", {"bad.path:1: error: yaw -360.5 is outside [-360, 360]"}},
+        /* two times written apart that are one float: said so, not "0 is not after 0" */
+        {"0 0 0 0 0 0\n1e-300 0 0 0 0 0\n",
+         {"bad.path:2: error: time 1e-300 is not after 0 (the keyframe on line 1): as 32-bit floats, which hold times, both are 0"}},
+        {"1 0 0 0 0 0\n1.00000001 0 0 0 0 0\n",
+         {"bad.path:2: error: time 1.00000001 is not after 1 (the keyframe on line 1): as 32-bit floats, which hold times, both are 1"}},
+        /* a field's text is quoted escaped: no terminal control from the file */
+        {"0 0 0 0 0 0\n1 \x1b[2J\x1b[31m 0 0 0 0\n", {"bad.path:2: error: '\\x1b[2J\\x1b[31m' is not a number"}},
         {"", {"bad.path:1: error: no keyframes"}},
         {"# only comments\n\n; and blanks\n   \n", {"bad.path:1: error: no keyframes"}},
         /* every bad line is reported, and an order check skips bad lines */

@@ -15,6 +15,21 @@ void vrg_camera_default(vrg_camera *c)
     c->far_plane = 1000.0f;
 }
 
+int vrg_camera_angle_range(const char *angle, double *lo, double *hi)
+{
+    static const struct {
+        const char *name;
+        double lo, hi;
+    } ranges[] = {{"yaw", -360, 360}, {"pitch", -89, 89}, {"fov", 1, 179}};
+    for (size_t i = 0; i < sizeof ranges / sizeof *ranges; i++)
+        if (strcmp(angle, ranges[i].name) == 0) {
+            *lo = ranges[i].lo;
+            *hi = ranges[i].hi;
+            return 0;
+        }
+    return -1;
+}
+
 static double clampd(double v, double lo, double hi) { return v < lo ? lo : v > hi ? hi : v; }
 
 int vrg_camera_position_in_world(const float p[3])

@@ -254,7 +254,7 @@ static void camera_position(vrg_graph *g, const _vrg_key *k, float out[3])
     /* checked as doubles: one beyond float's range must not be converted */
     if (!(fabs(d[0]) <= VRG_WORLD_LIMIT && fabs(d[1]) <= VRG_WORLD_LIMIT && fabs(d[2]) <= VRG_WORLD_LIMIT)) {
         char hint[96];
-        snprintf(hint, sizeof hint, "X, Y and Z lie in [%g, %g] blocks (VRG_WORLD_LIMIT)", -VRG_WORLD_LIMIT, VRG_WORLD_LIMIT);
+        snprintf(hint, sizeof hint, "X, Y and Z lie in [%.0f, %.0f] blocks (VRG_WORLD_LIMIT)", -VRG_WORLD_LIMIT, VRG_WORLD_LIMIT);
         _vrg_error_at(&g->diag, k->line, VRG_E_OUT_OF_RANGE, hint, "'position = %s' is outside the world", k->value);
         return;
     }
@@ -276,7 +276,8 @@ static void camera_section(vrg_graph *g, const _vrg_ast *a, int si)
             camera_position(g, k, c->position);
         else if (strcmp(k->name, "yaw") == 0 || strcmp(k->name, "pitch") == 0 || strcmp(k->name, "fov") == 0) {
             int is_pitch = k->name[0] == 'p', is_fov = k->name[0] == 'f';
-            double lo = is_fov ? 1 : is_pitch ? -89 : -360, hi = is_fov ? 179 : is_pitch ? 89 : 360;
+            double lo, hi;
+            vrg_camera_angle_range(k->name, &lo, &hi); /* the camera paths' too */
             char hint[64];
             snprintf(hint, sizeof hint, "degrees in [%g, %g]", lo, hi);
             if (parse_double(k->value, &v) != 0)

@@ -22,15 +22,18 @@ static void error_at(FILE *diag, const char *name, int line, const char *hint, c
 
 static int is_space(char ch) { return ch == ' ' || ch == '\t' || ch == '\r' || ch == '\v' || ch == '\f'; }
 
-/* Reads one field [s, s+len) as a finite float. Returns 0, or -1 with the
+/* A field as written, escaped for a message (it is the file's text). */
+static const char *as_written(const char *s, size_t len, char *out, size_t cap) { return vrg_escape(out, cap, s, len); }
+
+/* Reads one field [s, s+len) as a finite float. Returns 0 with the value
+ * as written in *written (a double) and as kept in *value, or -1 with the
  * reason in msg. The token is copied because strtod would otherwise skip
  * newlines and read into the next line. */
-static int parse_field(const char *s, size_t len, float *value, char *msg, size_t msg_size)
+static int parse_field(const char *s, size_t len, double *written, float *value, char *msg, size_t msg_size)
 {
-    char buf[64];
-    int shown = len > 40 ? 40 : (int)len;
+    char buf[64], shown[4 * 40 + 4];
     if (len >= sizeof buf) {
-        snprintf(msg, msg_size, "'%.*s...' is not a number", shown, s);
+        snprintf(msg, msg_size, "'%s' is not a number", as_written(s, len, shown, sizeof shown));
         return -1;
     }
     memcpy(buf, s, len);
@@ -38,26 +41,45 @@ static int parse_field(const char *s, size_t len, float *value, char *msg, size_
     char *end;
     double v = strtod(buf, &end);
     if (end != buf + len) {
-        snprintf(msg, msg_size, "'%s' is not a number", buf);
+        snprintf(msg, msg_size, "'%s' is not a number", as_written(s, len, shown, sizeof shown));
         return -1;
     }
     /* decimal only, as graph files (validate.c): strtod also takes hex */
     if (strpbrk(buf, "xX")) {
-        snprintf(msg, msg_size, "'%s' is not a decimal number", buf);
+        snprintf(msg, msg_size, "'%s' is not a decimal number", as_written(s, len, shown, sizeof shown));
         return -1;
     }
     /* strtod accepts "nan" and "inf", and a finite double can overflow float */
     if (!isfinite(v) || !isfinite((float)v)) {
-        snprintf(msg, msg_size, "'%s' is not a finite number", buf);
+        snprintf(msg, msg_size, "'%s' is not a finite number", as_written(s, len, shown, sizeof shown));
         return -1;
     }
+    *written = v;
     *value = (float)v;
     return 0;
 }
 
-/* Parses the line [s, e): 1 = a keyframe in *key, 0 = nothing (blank or
- * comment), -1 = an error reported. */
-static int parse_line(const char *name, int line, const char *s, const char *e, vrg_camera_key *key, FILE *diag)
+/* Yaw and pitch within the ranges a graph's [camera] holds them to. */
+static int angle_ok(const char *angle, double v, const char *tok, size_t len, char *msg, size_t msg_size)
+{
+    double lo, hi;
+    char shown[4 * 64];
+    vrg_camera_angle_range(angle, &lo, &hi);
+    if (v >= lo && v <= hi)
+        return 1;
+    snprintf(msg, msg_size, "%s %s is outside [%g, %g]", angle, as_written(tok, len, shown, sizeof shown), lo, hi);
+    return 0;
+}
+
+/* A keyframe line's time as written, for the order check's message. */
+typedef struct written_time {
+    double value;
+    char text[4 * 64];
+} written_time;
+
+/* Parses the line [s, e): 1 = a keyframe in *key (its time as written in
+ * *time), 0 = nothing (blank or comment), -1 = an error reported. */
+static int parse_line(const char *name, int line, const char *s, const char *e, vrg_camera_key *key, written_time *time, FILE *diag)
 {
     const char *tok[FIELDS];
     size_t tok_len[FIELDS];
@@ -78,32 +100,52 @@ static int parse_line(const char *name, int line, const char *s, const char *e, 
     }
     if (n == 0)
         return 0;
-    char msg[160];
+    char msg[1024];
     if (n != FIELDS) {
         snprintf(msg, sizeof msg, "expected %d fields (time x y z yaw pitch), found %d", FIELDS, n);
         error_at(diag, name, line, "one keyframe per line: seconds, then position in blocks, then yaw and pitch in degrees", msg);
         return -1;
     }
     float v[FIELDS];
+    double d[FIELDS];
     for (int i = 0; i < FIELDS; i++)
-        if (parse_field(tok[i], tok_len[i], &v[i], msg, sizeof msg) < 0) {
+        if (parse_field(tok[i], tok_len[i], &d[i], &v[i], msg, sizeof msg) < 0) {
             error_at(diag, name, line, "fields are decimal numbers such as 12, -3.5 or 1e2", msg);
             return -1;
         }
-    if (v[5] < -89.0f || v[5] > 89.0f) {
-        snprintf(msg, sizeof msg, "pitch %g is outside [-89, 89]", v[5]);
+    if (!angle_ok("yaw", d[4], tok[4], tok_len[4], msg, sizeof msg)) {
+        error_at(diag, name, line, "any direction is within one turn either way, as in a graph's [camera]", msg);
+        return -1;
+    }
+    if (!angle_ok("pitch", d[5], tok[5], tok_len[5], msg, sizeof msg)) {
         error_at(diag, name, line, "the camera cannot look straight up or down", msg);
         return -1;
     }
-    if (!vrg_camera_position_in_world(&v[1])) {
-        char hint_world[96];
-        snprintf(msg, sizeof msg, "position %g %g %g is outside the world", v[1], v[2], v[3]);
-        snprintf(hint_world, sizeof hint_world, "x, y and z lie in [%g, %g] (VRG_WORLD_LIMIT)", -VRG_WORLD_LIMIT, VRG_WORLD_LIMIT);
+    if (!(fabs(d[1]) <= VRG_WORLD_LIMIT && fabs(d[2]) <= VRG_WORLD_LIMIT && fabs(d[3]) <= VRG_WORLD_LIMIT)) {
+        char hint_world[96], x[4 * 64], y[4 * 64], z[4 * 64];
+        snprintf(msg, sizeof msg, "position %s %s %s is outside the world", as_written(tok[1], tok_len[1], x, sizeof x),
+                 as_written(tok[2], tok_len[2], y, sizeof y), as_written(tok[3], tok_len[3], z, sizeof z));
+        snprintf(hint_world, sizeof hint_world, "x, y and z lie in [%.0f, %.0f] (VRG_WORLD_LIMIT)", -VRG_WORLD_LIMIT, VRG_WORLD_LIMIT);
         error_at(diag, name, line, hint_world, msg);
         return -1;
     }
     *key = (vrg_camera_key){v[0], {v[1], v[2], v[3]}, v[4], v[5]};
+    time->value = d[0];
+    as_written(tok[0], tok_len[0], time->text, sizeof time->text);
     return 1;
+}
+
+/* Times are kept as floats: two written times can differ and still be one
+ * float (1e-300 and 0), and the message says so rather than "0 is not
+ * after 0". */
+static void order_error(FILE *diag, const char *name, int line, const written_time *t, const vrg_camera_key *key, const written_time *prev,
+                        int prev_line)
+{
+    char msg[1024];
+    int n = snprintf(msg, sizeof msg, "time %s is not after %s (the keyframe on line %d)", t->text, prev->text, prev_line);
+    if (t->value > prev->value && n > 0 && (size_t)n < sizeof msg)
+        snprintf(msg + n, sizeof msg - (size_t)n, ": as 32-bit floats, which hold times, both are %.9g", (double)key->time);
+    error_at(diag, name, line, "keyframe times must strictly increase", msg);
 }
 
 int vrg_camera_path_parse(const char *name, const char *text, vrg_camera_path *out, FILE *diag)
@@ -113,6 +155,7 @@ int vrg_camera_path_parse(const char *name, const char *text, vrg_camera_path *o
     const char *nm = out->path;
     int errors = 0, cap = 0, prev_line = 0;
     vrg_camera_key *keys = NULL;
+    written_time prev_time = {0};
     int count = 0;
     const char *s = text ? text : "";
     for (int line = 1;; line++) {
@@ -120,16 +163,14 @@ int vrg_camera_path_parse(const char *name, const char *text, vrg_camera_path *o
         if (!e)
             e = s + strlen(s);
         vrg_camera_key key;
-        int r = parse_line(nm, line, s, e, &key, diag);
+        written_time time;
+        int r = parse_line(nm, line, s, e, &key, &time, diag);
         if (r < 0)
             errors++;
         /* Order is checked against the last good key, so one bad line does
          * not also make the next one look out of order. */
         if (r > 0 && count > 0 && !(key.time > keys[count - 1].time)) {
-            char msg[160];
-            snprintf(msg, sizeof msg, "time %g is not after %g (the keyframe on line %d)", key.time,
-                     keys[count - 1].time, prev_line);
-            error_at(diag, nm, line, "keyframe times must strictly increase", msg);
+            order_error(diag, nm, line, &time, &key, &prev_time, prev_line);
             errors++;
             r = 0;
         }
@@ -146,6 +187,7 @@ int vrg_camera_path_parse(const char *name, const char *text, vrg_camera_path *o
             }
             keys[count++] = key;
             prev_line = line;
+            prev_time = time;
         }
         if (!*e)
             break;

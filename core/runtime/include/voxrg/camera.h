@@ -55,6 +55,12 @@ float vrg_world_clamp(float v);
  * conversion can never be out of int's range. */
 int vrg_world_floor(float v);
 
+/* The range, in degrees, of each camera angle a file gives: "yaw" in
+ * [-360, 360] (any direction, turning either way), "pitch" in [-89, 89]
+ * (never straight up or down), "fov" in [1, 179]. A graph's [camera] and
+ * camera paths refuse values outside it. 0 with *lo and *hi set, or -1 for
+ * another name. */
+int vrg_camera_angle_range(const char *angle, double *lo, double *hi);
 /* Origin, yaw 0, pitch 0 and the defaults above. */
 void vrg_camera_default(vrg_camera *c);
 /* Unit view direction (the formula above). */

@@ -15,8 +15,9 @@ extern "C" {
  * A text file, one keyframe per line:  time x y z yaw pitch
  * (seconds, blocks, degrees), fields separated by spaces or tabs. '#' or ';'
  * starts a comment (to the end of the line); blank lines are ignored. Times
- * strictly increase; pitch is within [-89, 89]; x, y and z are within
- * VRG_WORLD_LIMIT; at least one keyframe. Numbers are decimal, as in graph
+ * strictly increase (as floats); yaw and pitch are within
+ * vrg_camera_angle_range's ranges, as a graph's [camera]; x, y and z are
+ * within VRG_WORLD_LIMIT; at least one keyframe. Numbers are decimal, as in graph
  * files: hexadecimal, "inf" and "nan" are refused. */
 typedef struct vrg_camera_key {
     float time, position[3], yaw, pitch;
@@ -30,7 +31,7 @@ typedef struct vrg_camera_path {
 
 /* Both return 0, or -1 after printing "NAME:LINE: error: message" and a
  * "  hint: ..." line to diag (NULL: stderr) for every bad line: wrong field
- * count, not a number (hexadecimal included), NaN/inf, pitch out of range,
+ * count, not a number (hexadecimal included), NaN/inf, yaw or pitch out of range,
  * a position outside the world, time not increasing; and
  * "NAME:1: error: ..." when there is no keyframe at all (load: "FILE: error:
  * cannot open/read camera path: why" when the file itself fails). On -1, *out holds no
