@@ -138,6 +138,32 @@ static void placed_free(placed *p)
     memset(p, 0, sizeof *p);
 }
 
+/* position = X Y Z: three decimal integers, each within the world (x and
+ * z in [-WORLD_XZ, WORLD_XZ], y in [0, WORLD_HEIGHT)). Read with range
+ * checks, so a number beyond int's range is named as written, not wrapped. */
+static int parse_position(vrg_pass *pass, const char *ps, int pos[3])
+{
+    static const long long lo[3] = {-WORLD_XZ, 0, -WORLD_XZ}, hi[3] = {WORLD_XZ, WORLD_HEIGHT - 1, WORLD_XZ};
+    int line = vrg_param_line(pass, "position");
+    const char *s = ps;
+    for (int a = 0; a < 3; a++) {
+        s += strspn(s, " \t");
+        size_t len = strcspn(s, " \t");
+        char *end;
+        errno = 0;
+        long long v = strtoll(s, &end, 10);
+        if (len == 0 || end != s + len)
+            return vrg_pass_error_at(pass, line, "position = '%s': expected 'X Y Z' (integers, blocks)", ps);
+        if (errno == ERANGE || v < lo[a] || v > hi[a])
+            return vrg_pass_error_at(pass, line, "position = '%s': %c = %.*s is outside [%lld, %lld] (blocks)", ps, "xyz"[a], (int)len, s, lo[a], hi[a]);
+        pos[a] = (int)v;
+        s += len;
+    }
+    if (s[strspn(s, " \t")] != '\0')
+        return vrg_pass_error_at(pass, line, "position = '%s': expected 'X Y Z' (integers, blocks)", ps);
+    return 0;
+}
+
 /* Reads the file and places the model: everything check() and create()
  * need, every error at its parameter's line. */
 static int place(vrg_pass *pass, placed *p)
@@ -158,11 +184,10 @@ static int place(vrg_pass *pass, placed *p)
         return rc;
     }
     int pos[3], scale = vrg_param_int(pass, "scale");
-    char extra;
     const char *ps = vrg_param_string(pass, "position");
-    if (sscanf(ps, "%d %d %d %c", &pos[0], &pos[1], &pos[2], &extra) != 3) {
+    if (parse_position(pass, ps, pos) != 0) {
         placed_free(p);
-        return vrg_pass_error_at(pass, vrg_param_line(pass, "position"), "position = '%s': expected 'X Y Z' (integers, blocks)", ps);
+        return -1;
     }
     const char *ground = vrg_param_string(pass, "ground");
     int no_ground = strcmp(ground, "none") == 0;

@@ -595,11 +595,17 @@ static int read_main(reader *r)
 {
     const uint8_t *d = r->data;
     r->offset = 0;
-    if (r->size < 8 || memcmp(d, "VOX ", 4) != 0)
+    size_t head = r->size < 4 ? r->size : 4;
+    if (r->size == 0)
+        return fail(r, "the file is empty: a MagicaVoxel file starts with 'VOX '");
+    if (memcmp(d, "VOX ", head) != 0)
         return fail(r, "not a MagicaVoxel file (it does not start with 'VOX ')");
+    if (r->size < 20) { /* "VOX " and its start both: cut off, not another format */
+        r->offset = r->size;
+        return fail(r, "the file is truncated: it ends after %zu bytes, before 'VOX ', its version and MAIN's chunk header (20 bytes) are whole",
+                    r->size);
+    }
     r->offset = 8;
-    if (r->size < 20)
-        return fail(r, "the file ends before its MAIN chunk");
     chunk_id(d + 8, r->chunk);
     if (memcmp(d + 8, "MAIN", 4) != 0)
         return fail(r, "the first chunk is not MAIN");

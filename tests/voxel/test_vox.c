@@ -211,6 +211,13 @@ static void test_bad_files(void)
         buf t = {f.d, n, n};
         expect_error(&t, "truncated", "bad.vox", NULL);
     }
+    /* cut off in the header: truncated (its size said), not another format */
+    for (size_t n = 1; n < 20; n++) {
+        buf t = {f.d, n, n};
+        char size[64];
+        snprintf(size, sizeof size, "at byte %zu: the file is truncated: it ends after %zu bytes", n, n);
+        expect_error(&t, "cut off in the header", size, "(20 bytes)");
+    }
     f.d[0] = 'X';
     expect_error(&f, "wrong magic", "not a MagicaVoxel file", "at byte 0");
     free(f.d);
@@ -949,8 +956,10 @@ static void test_terrain_edits(void)
 }
 
 /* A model placed outside the world's limits (|x|, |z| <= 512, 0 <= y < 256)
- * is an error at the file's line naming the file and the blocks it spans,
- * not a world of that size. */
+ * is an error, not a world of that size: a position outside them at the
+ * position's line, with the number as written (never wrapped to an int)
+ * and the range; a model that reaches beyond them from inside at the
+ * file's line, naming the file and the blocks it spans. */
 static void test_too_large(void)
 {
     make_tmpdir();
@@ -958,9 +967,18 @@ static void test_too_large(void)
     char path[600];
     snprintf(path, sizeof path, "%s/small.vox", tmpdir);
     write_seed(tmpdir, "small.vox", one_model(4, 4, 4, 1, voxel));
+    static const char spans[] = "too_large.ini:7: error[VRG-E058]: ";
     static const struct {
-        const char *position, *scale;
-    } outside[] = {{"600 1 0", "1"}, {"0 1 -700", "1"}, {"0 254 0", "1"}, {"500 1 0", "16"}};
+        const char *position, *scale, *message;
+    } outside[] = {
+        {"600 1 0", "1", "too_large.ini:8: error[VRG-E058]: position = '600 1 0': x = 600 is outside [-512, 512] (blocks)"},
+        {"0 1 -700", "1", "too_large.ini:8: error[VRG-E058]: position = '0 1 -700': z = -700 is outside [-512, 512] (blocks)"},
+        {"99999999999 1 0", "1", "too_large.ini:8: error[VRG-E058]: position = '99999999999 1 0': x = 99999999999 is outside [-512, 512] (blocks)"},
+        {"0 -99999999999999999999 0", "1", "position = '0 -99999999999999999999 0': y = -99999999999999999999 is outside [0, 255] (blocks)"},
+        {"0 1 0x10", "1", "too_large.ini:8: error[VRG-E058]: position = '0 1 0x10': expected 'X Y Z' (integers, blocks)"},
+        {"0 254 0", "1", spans},
+        {"500 1 0", "16", spans},
+    };
     for (size_t i = 0; i < sizeof outside / sizeof outside[0]; i++) {
         char text[1600], *log = NULL;
         size_t len = 0;
@@ -975,8 +993,12 @@ static void test_too_large(void)
         int rc = vrg_graph_load(ctx, &d, &g);
         fclose(diag);
         CHECK(rc != 0, "position %s scale %s: a model outside the world loaded", outside[i].position, outside[i].scale);
-        CHECK(log && strstr(log, "too_large.ini:7: error") && strstr(log, "small.vox: the model spans blocks") && strstr(log, "the world holds 0 <= y < 256"),
-              "position %s scale %s: %s", outside[i].position, outside[i].scale, log ? log : "(no message)");
+        if (outside[i].message == spans)
+            CHECK(log && strstr(log, spans) && strstr(log, "small.vox: the model spans blocks") && strstr(log, "the world holds 0 <= y < 256"),
+                  "position %s scale %s: %s", outside[i].position, outside[i].scale, log ? log : "(no message)");
+        else
+            CHECK(log && strstr(log, outside[i].message), "position %s scale %s: no '%s' in: %s", outside[i].position, outside[i].scale, outside[i].message,
+                  log ? log : "(no message)");
         vrg_graph_destroy(g);
         free(log);
     }
