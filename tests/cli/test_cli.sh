@@ -100,6 +100,17 @@ section_check_render() { # check's report and --dot, render's files and JSON, ou
     has "$out/stdout" "^memory: transient naive .*aliased .*saved [1-9][0-9]*\.[0-9]%" "check memory line"
     has "$out/alias.dot" "^digraph" "dot file"
     has "$out/alias.dot" "style=dashed" "dot culled pass"
+    # a culled pass is a warning at its line in every command that loads the graph
+    culled="^$tests/graphs/alias.ini:36: warning\[VRG-W008\]: pass 'unused' is culled \(not run\): no pass reads its outputs \('nobody_reads'\)"
+    has "$out/stderr" "$culled" "check warns of the culled pass"
+    expect_rc 0 "render alias.ini" "$voxrg" render "$tests/graphs/alias.ini" --validate --frames 1 --out "$out/alias"
+    has "$out/stderr" "$culled" "render warns of the culled pass"
+    expect_rc 0 "compare alias.ini" "$voxrg" compare "$tests/graphs/alias.ini" --reference "$tests/graphs/alias.ini" --frames 1 --warmup 0 \
+        --size 16x16 --out "$out/alias_compare" --cache "$out/alias_cache"
+    has "$out/stderr" "$culled" "compare warns of the culled pass"
+    # culled because its only reader is culled: that reader named
+    expect_rc 0 "check shadow_denoise.ini" "$voxrg" check "$tests/graphs/shadow_denoise.ini" --no-device
+    has "$out/stderr" "shadow_denoise.ini:30: warning\[VRG-W008\]: pass 'shadow' is culled \(not run\): its outputs \('shadow.visibility', 'shadow.occluder'\) are read only by passes culled themselves \('denoise'\)" "culled reader named"
 
     # check without a device gives the same schedule
     expect_rc 0 "check --no-device" "$voxrg" check "$tests/graphs/history.ini" --no-device

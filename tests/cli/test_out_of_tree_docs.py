@@ -19,6 +19,7 @@ Two blocks are not run quite as a user runs them:
   ends it with exit 0: no validation message. The files are put back and
   rebuilt before the compare block.
 Usage: test_out_of_tree_docs.py BUILD_DIR SOURCE_DIR OUT_DIR"""
+import json
 import os
 import re
 import shlex
@@ -263,6 +264,23 @@ def hot_reload(text):
     check(cmake_build().returncode == 0, "the restored fog.c does not build")
 
 
+def compared_graph(out):
+    """The compare block compares a graph that runs the new pass: fog is in
+    raw-fog's timed passes (culled passes are not), its frames differ from
+    raw's, and no pass was culled (the warning every command prints)."""
+    csv = open(fog("compare/metrics.csv")).read()
+    check(",raw-fog," in csv or "\nraw-fog," in csv, "compare: no raw-fog rows in metrics.csv:\n" + csv[:2000])
+    check(os.path.exists(fog("compare/report.html")), "compare: no report.html")
+    check("VRG-W008" not in out and "is culled" not in out, "compare: a pass is culled:\n" + out[-3000:])
+    cands = {c["name"]: c for c in json.load(open(fog("compare/metrics.json")))["candidates"]}
+    if not check("raw-fog" in cands and "raw" in cands, "compare: candidates %s, want raw-fog and raw" % sorted(cands)):
+        return
+    check("fog" in [p["name"] for p in cands["raw-fog"]["passes"]],
+          "compare: raw-fog ran no pass 'fog' (culled?): passes %s" % [p["name"] for p in cands["raw-fog"]["passes"]])
+    check(cands["raw-fog"]["summary"]["psnr"] != cands["raw"]["summary"]["psnr"],
+          "compare: raw-fog scores as raw does (PSNR %s): the fog pass changed nothing" % cands["raw"]["summary"]["psnr"])
+
+
 def main():
     shutil.rmtree(OUT, ignore_errors=True)
     os.makedirs(HOME)
@@ -292,9 +310,7 @@ def main():
                 check("file: %s" % fog("build/fog.so") in out, "voxrg plugins fog did not find ~/fog/build/fog.so:\n" + out)
                 check(os.path.getsize(fog("out/ldr.png")) > 0, "voxrg render wrote no ~/fog/out/ldr.png")
             if heading.startswith("Compare"):
-                csv = open(fog("compare/metrics.csv")).read()
-                check(",raw-fog," in csv or "\nraw-fog," in csv, "compare: no raw-fog rows in metrics.csv:\n" + csv[:2000])
-                check(os.path.exists(fog("compare/report.html")), "compare: no report.html")
+                compared_graph(out)
     except (RuntimeError, OSError, StopIteration) as e:
         check(False, str(e))
     print("out-of-tree docs: %s" % ("FAILED (%d)" % len(failures) if failures else "ok"))

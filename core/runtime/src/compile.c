@@ -20,6 +20,45 @@ static void mark_alive(vrg_graph *g, int pi, int *alive)
             mark_alive(g, g->res[p->slots[s].res].writer, alive);
 }
 
+/* Appends 'name' to a list of names in out (cap bytes), "..." once full. */
+static void list_name(char *out, size_t cap, const char *name)
+{
+    size_t n = strlen(out);
+    if (n + strlen(name) + 8 >= cap) {
+        if (!strstr(out, "..."))
+            snprintf(out + n, cap - n, ", ...");
+        return;
+    }
+    snprintf(out + n, cap - n, "%s'%s'", n ? ", " : "", name);
+}
+
+/* A culled pass is not created or run: as good as not written. Says so
+ * at the pass's line, and why: nothing reads what it writes, or only
+ * passes culled themselves do. */
+static void warn_culled(vrg_graph *g, const vrg_pass *p)
+{
+    char outputs[256] = "", readers[256] = "";
+    for (int s = 0; s < (int)p->plugin->desc->slot_count; s++)
+        if (vrg_slot(p, s)->dir == VRG_OUT && p->slots[s].res >= 0)
+            list_name(outputs, sizeof outputs, g->res[p->slots[s].res].name);
+    for (int i = 0; i < g->pass_count; i++) {
+        const vrg_pass *q = &g->passes[i];
+        int reads = 0;
+        for (int t = 0; t < (int)q->plugin->desc->slot_count && !reads; t++)
+            reads = vrg_slot(q, t)->dir == VRG_IN && q->slots[t].res >= 0 && g->res[q->slots[t].res].writer == p - g->passes;
+        if (reads)
+            list_name(readers, sizeof readers, q->name);
+    }
+    if (readers[0])
+        _vrg_warning_at(&g->diag, p->line, VRG_W_PASS_CULLED,
+                        "pass '%s' is culled (not run): its outputs (%s) are read only by passes culled themselves (%s); connect one of them to "
+                        "what reaches the output '%s', or remove them", p->name, outputs, readers, g->output_name);
+    else
+        _vrg_warning_at(&g->diag, p->line, VRG_W_PASS_CULLED,
+                        "pass '%s' is culled (not run): no pass reads its outputs (%s), and none is the output '%s'; connect one to a pass "
+                        "that is run (in.SLOT = NAME), or remove the pass", p->name, outputs[0] ? outputs : "none", g->output_name);
+}
+
 static void cull(vrg_graph *g)
 {
     int alive[VRG_MAX_PASSES] = {0};
@@ -31,8 +70,11 @@ static void cull(vrg_graph *g)
     for (int i = 0; i < g->pass_count; i++)
         if (g->passes[i].is_scene)
             mark_alive(g, i, alive);
-    for (int i = 0; i < g->pass_count; i++)
+    for (int i = 0; i < g->pass_count; i++) {
+        if (!alive[i] && !g->passes[i].culled) /* once: compile runs again after create */
+            warn_culled(g, &g->passes[i]);
         g->passes[i].culled = !alive[i];
+    }
 }
 
 /* ---- order: Kahn's algorithm, ties broken by file order, scene first ---- */

@@ -99,6 +99,7 @@
     X(VRG_W_UNUSED_BINDING, "VRG-W004", "unused-binding", "a dispatch binds a slot or resource at a binding its shader does not declare") \
     X(VRG_W_ACCESS_QUALIFIER, "VRG-W005", "access-qualifier", "a storage binding bound for reading (writing) only is not declared readonly (writeonly)") \
     X(VRG_W_PASS_WARNING, "VRG-W006", "pass-warning", "a pass's plugin warns about its input (vrg_pass_warn_at) and goes on") \
-    X(VRG_W_PLUGIN_WRITABLE, "VRG-W007", "plugin-writable", "a plugin's file, or its folder, is writable by every user")
+    X(VRG_W_PLUGIN_WRITABLE, "VRG-W007", "plugin-writable", "a plugin's file, or its folder, is writable by every user") \
+    X(VRG_W_PASS_CULLED, "VRG-W008", "pass-culled", "a pass is culled: nothing it writes reaches the output, a history resource or a read-back")
 
 #endif
