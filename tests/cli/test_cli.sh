@@ -261,6 +261,10 @@ GLSL
     expect_rc 1 "shader error in the main file" env VOXRG_SHADER_PATH="$out/sh" "$voxrg" render "$tests/graphs/shader_file.ini" --out "$out/sh_bad2"
     has "$out/stderr" "^$out/sh/user.comp:3: error\[VRG-E063\]:.*undefined_call" "main-file error names file and line"
     has "$out/stderr" "shader_file.ini:8: error\[VRG-E060\]: pass 'user'" "the failing pass is named at its line"
+    # a shader's text quoted in a message is escaped: no terminal control from the file
+    printf '#version 450\n#include "no\033[2Jsuch.glsl"\nlayout(local_size_x = 8) in;\nvoid main() { }\n' >"$out/sh/user.comp"
+    expect_rc 1 "an #include name with an escape" env VOXRG_SHADER_PATH="$out/sh" "$voxrg" render "$tests/graphs/shader_file.ini" --out "$out/sh_bad3"
+    has "$out/stderr" "^$out/sh/user.comp:2: error\[VRG-E063\]: cannot find include file \"no\\\\x1b\[2Jsuch.glsl\"$" "the include's name escaped"
 }
 
 section_camera_device() { # camera paths, determinism of the terrain, ray query, --device, plugins beside a graph

@@ -226,14 +226,15 @@ static void expand(expand_ctx *e, const char *path, const char *text, int depth)
                     q++;
                 char close = *q == '"' ? '"' : *q == '<' ? '>' : 0;
                 const char *qe = close ? memchr(q + 1, close, (size_t)(p + n - q - 1)) : NULL;
-                char name[512], resolved[VRG_PATH_MAX];
+                char name[512], resolved[VRG_PATH_MAX], quoted[4 * 512];
                 if (!qe || (size_t)(qe - q - 1) >= sizeof name) {
                     fprintf(e->diag, "%s:%d: error[%s]: malformed #include\n", path, line, SOURCE_CODE);
                     e->failed = 1;
                 } else {
                     snprintf(name, sizeof name, "%.*s", (int)(qe - q - 1), q + 1);
                     if (resolve_include(path, name, resolved, sizeof resolved) != 0) {
-                        fprintf(e->diag, "%s:%d: error[%s]: cannot find include file \"%s\"\n", path, line, SOURCE_CODE, name);
+                        fprintf(e->diag, "%s:%d: error[%s]: cannot find include file \"%s\"\n", path, line, SOURCE_CODE,
+                                vrg_escape(quoted, sizeof quoted, name, strlen(name)));
                         e->failed = 1;
                     } else if (depth > 16) {
                         fprintf(e->diag, "%s:%d: error[%s]: #include nested too deeply\n", path, line, SOURCE_CODE);
@@ -305,12 +306,13 @@ static void print_log(FILE *f, const char *path, const char *log)
             const char *num = colon ? colon + 1 : NULL, *q = num;
             while (q && q < stop && *q >= '0' && *q <= '9')
                 q++;
+            char quoted[4096]; /* glslang quotes the shader's text: escaped */
             if (colon && q > num && q < stop && *q == ':') {
                 int main_file = colon - rest == 1 && rest[0] == '0';
-                fprintf(f, "%.*s:%.*s: %s[%s]:%.*s\n", main_file ? (int)strlen(path) : (int)(colon - rest), main_file ? path : rest, (int)(q - num),
-                        num, kind, code, (int)(stop - q - 1), q + 1);
+                fprintf(f, "%.*s:%.*s: %s[%s]:%s\n", main_file ? (int)strlen(path) : (int)(colon - rest), main_file ? path : rest, (int)(q - num),
+                        num, kind, code, vrg_escape(quoted, sizeof quoted, q + 1, (size_t)(stop - q - 1)));
             } else
-                fprintf(f, "%s: %s[%s]: %.*s\n", path, kind, code, (int)(stop - rest), rest);
+                fprintf(f, "%s: %s[%s]: %s\n", path, kind, code, vrg_escape(quoted, sizeof quoted, rest, (size_t)(stop - rest)));
         }
         log = end ? end + 1 : log + n;
     }
