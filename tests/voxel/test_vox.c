@@ -511,10 +511,10 @@ static void test_edits_foreign_key(void)
     snprintf(path, sizeof path, "%s/foreign.edits", tmpdir);
     unlink(path);
     vrg_world *w = small_world();
-    vrg_edits *e = vrg_edits_open(path, "x\x1b[31mred\nother.ini:1: error[VRG-E001]: forged", err, sizeof err);
+    vrg_edits *e = vrg_edits_open(path, "x\x1b[31mred\nother.ini:1: error[VRG-E001]: forged", w, err, sizeof err);
     CHECK(e && vrg_edits_set(e, w, 1, 2, 3, VRG_BLOCK_AIR, err, sizeof err) == 0, "%s", err);
     vrg_edits_close(e);
-    e = vrg_edits_open(path, "test seed=1", err, sizeof err);
+    e = vrg_edits_open(path, "test seed=1", w, err, sizeof err);
     int controls = 0;
     for (const char *c = err; *c; c++)
         controls += (unsigned char)*c < 0x20 || *c == 0x7f;
