@@ -49,31 +49,31 @@ static void set_block(vrg_cli_edit *e, vrg_graph *g, const int at[3], vrg_block 
 {
     vrg_world *w = vrg_graph_world(g);
     vrg_edits *journal = vrg_graph_edits(g);
-    char err[512] = "";
+    char err[VRG_CLI_PATH + 256] = "";
     if (!journal)
         set_in_memory(e, w, at, b, shown);
     else if (vrg_edits_set(journal, w, at[0], at[1], at[2], b, err, sizeof err) != 0)
-        snprintf(e->status, sizeof e->status, "edit failed: %.130s", err);
+        snprintf(e->status, sizeof e->status, "edit failed: %s", err);
     else /* a notice (the journal written again) is news the user needs */
-        snprintf(e->status, sizeof e->status, "%s %s at %d %d %d%s%.130s", b ? "placed" : "removed", type_name(w, shown), at[0], at[1], at[2],
+        snprintf(e->status, sizeof e->status, "%s %s at %d %d %d%s%s", b ? "placed" : "removed", type_name(w, shown), at[0], at[1], at[2],
                  err[0] ? "; " : "", err);
 }
 
 static void undo_redo(vrg_cli_edit *e, vrg_graph *g, int redo)
 {
     vrg_edits *journal = vrg_graph_edits(g);
-    char err[512] = "";
+    char err[VRG_CLI_PATH + 256] = "";
     if (!journal) {
         snprintf(e->status, sizeof e->status, "no journal (a graph from text, or edits = none): nothing to %s", redo ? "redo" : "undo");
         return;
     }
     int r = redo ? vrg_edits_redo(journal, vrg_graph_world(g), err, sizeof err) : vrg_edits_undo(journal, vrg_graph_world(g), err, sizeof err);
     if (r < 0)
-        snprintf(e->status, sizeof e->status, "%s failed: %.130s", redo ? "redo" : "undo", err);
+        snprintf(e->status, sizeof e->status, "%s failed: %s", redo ? "redo" : "undo", err);
     else if (r)
         snprintf(e->status, sizeof e->status, "nothing to %s", redo ? "redo" : "undo");
     else
-        snprintf(e->status, sizeof e->status, "%s done%s%.130s", redo ? "redo" : "undo", err[0] ? "; " : "", err);
+        snprintf(e->status, sizeof e->status, "%s done%s%s", redo ? "redo" : "undo", err[0] ? "; " : "", err);
 }
 
 void vrg_cli_edit_apply(vrg_cli_edit *e, vrg_graph *g, vrg_cli_edit_action action, const vrg_world_hit *hit)

@@ -7,11 +7,12 @@
 #define VOXRG_CLI_EDIT_H
 #include <stddef.h>
 #include "overlay.h"
+#include "util.h"
 #include "voxrg/camera.h"
 #include "voxrg/world.h"
 typedef struct vrg_cli_edit {
     vrg_block type;   /* what a right click places: E / Q cycle */
-    char status[160]; /* the last edit's result or error */
+    char status[VRG_CLI_PATH + 512]; /* the last edit's result or error, whole (the overlay clips it, the terminal has it all) */
 } vrg_cli_edit;
 typedef enum vrg_cli_edit_action { VRG_CLI_EDIT_REMOVE, VRG_CLI_EDIT_PLACE, VRG_CLI_EDIT_UNDO, VRG_CLI_EDIT_REDO } vrg_cli_edit_action;
 /* The block shown at framebuffer pixel (fx, fy) of an fb_w x fb_h window

@@ -45,8 +45,9 @@ static const char *usage_new_pass =
     "Writes a ready out-of-tree pass into DIR (default: NAME; created if missing):\n"
     "NAME.c (a tint of an input image, hazed toward the horizon with the scene's\n"
     "frame uniforms: camera and sky), NAME.comp, a CMakeLists.txt that builds it\n"
-    "against an installed voxrg (find_package(voxrg CONFIG), voxrg_add_pass) and\n"
-    "NAME.ini, a graph that runs it between shipped passes. NAME is a C identifier.\n"
+    "against an installed voxrg (find_package(voxrg CONFIG), voxrg_add_pass),\n"
+    "README.md (what it does, slots, parameters, cost, debug outputs) and NAME.ini,\n"
+    "a graph that runs it between shipped passes. NAME is a C identifier.\n"
     "Existing files are never overwritten. docs/out-of-tree.md.\n";
 
 static const char *usage_check =

@@ -72,7 +72,6 @@ static const char *c_template =
     "    .name = \"@NAME@\",\n"
     "    .kind = VRG_PLUGIN_PASS,\n"
     "    .help = \"colour x tint, hazed toward the horizon (an out-of-tree pass)\",\n"
-    "    .shader_dir = VRG_PLUGIN_DIR,\n"
     "    .params = params,\n"
     "    .param_count = sizeof params / sizeof params[0],\n"
     "    .slots = slots,\n"
@@ -134,6 +133,43 @@ static const char *cmake_template =
     "# in lib/voxrg/plugins of the install prefix\n"
     "voxrg_add_pass(@NAME@ SOURCES @NAME@.c SHADERS @NAME@.comp)\n"
     "set_target_properties(@NAME@ PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR})\n";
+
+/* The one form of a pass's README (docs/plugin-abi.md, "A pass's README"). */
+static const char *readme_template =
+    "# @NAME@\n"
+    "\n"
+    "## What it does\n"
+    "\n"
+    "Multiplies its input's colour by a tint and mixes in the sky's colour\n"
+    "where the view ray meets the horizon (the frame uniforms' camera and sky).\n"
+    "Put it after `modulate`, before `tonemap`.\n"
+    "\n"
+    "## Slots\n"
+    "\n"
+    "| slot | kind | format | access | size | holds |\n"
+    "|---|---|---|---|---|---|\n"
+    "| `in.color` | image | any | sampled | any size | linear colour |\n"
+    "| `in.frame` | buffer | - | uniform | any | the scene's per-frame uniforms (camera, sun, sky) |\n"
+    "| `out.tinted` | image | rgba16f | storage-write | scale 1 | the colour, tinted and hazed |\n"
+    "\n"
+    "## Parameters\n"
+    "\n"
+    "| parameter | type | default | range | what it does |\n"
+    "|---|---|---|---|---|\n"
+    "| `red` | float | 1 | [0, 16] | multiplies red |\n"
+    "| `green` | float | 1 | [0, 16] | multiplies green |\n"
+    "| `blue` | float | 1 | [0, 16] | multiplies blue |\n"
+    "| `strength` | float | 1 | [0, 1] | 0: the input as it is, 1: fully tinted |\n"
+    "| `haze` | float | 0 | [0, 1] | the sky's colour mixed in where the view ray meets the horizon (0: none) |\n"
+    "\n"
+    "## Cost\n"
+    "\n"
+    "One texel read and one write per pixel; measure it with\n"
+    "`voxrg render @NAME@.ini --json timings.json`.\n"
+    "\n"
+    "## Debug outputs\n"
+    "\n"
+    "None.\n";
 
 static const char *graph_template =
     "; @NAME@ between shipped passes: the G-buffer's albedo, tinted and hazed,\n"
@@ -258,7 +294,7 @@ typedef struct scaffold_file {
 } scaffold_file;
 
 static const scaffold_file files[] = {
-    {".c", 0, NULL}, {".comp", 0, NULL}, {"CMakeLists.txt", 1, NULL}, {".ini", 0, NULL},
+    {".c", 0, NULL}, {".comp", 0, NULL}, {"CMakeLists.txt", 1, NULL}, {".ini", 0, NULL}, {"README.md", 1, NULL},
 };
 
 static void file_path(char *out, size_t cap, const char *dir, const char *name, int i)
@@ -304,7 +340,8 @@ int vrg_cli_new_pass(const char *name, const char *dir)
                         "(built-in and installed plugins are never shadowed); choose another name\n", name, existing_file);
         return 2;
     }
-    const char *tmpls[] = {c_template, comp_template, cmake_template, graph_template};
+    const char *tmpls[] = {c_template, comp_template, cmake_template, graph_template, readme_template};
+    _Static_assert(sizeof tmpls / sizeof tmpls[0] == sizeof files / sizeof files[0], "a template for every scaffold file");
     const int count = (int)(sizeof files / sizeof files[0]);
     char path[4200];
     int existing = 0;

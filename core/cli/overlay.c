@@ -4,6 +4,7 @@
  * (shaders/display.comp) blends over the picture: drawn at the window's
  * resolution, whatever the render scale. */
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 #include "overlay.h"
 

@@ -1,7 +1,6 @@
 #ifndef VOXRG_CLI_OVERLAY_H
 #define VOXRG_CLI_OVERLAY_H
 #include <stdint.h>
-#include <stdio.h>
 #define VRG_OVERLAY_LINES 64
 #define VRG_OVERLAY_GLYPH_W 5 /* a glyph's pixels, before the scale */
 #define VRG_OVERLAY_GLYPH_H 8

@@ -95,7 +95,7 @@ typedef struct window_state {
     /* block editing (edit.h): a right press that moves less than
      * CLICK_SLOP pixels before its release places; more is a look */
     vrg_cli_edit edit;
-    char replayed[2][160]; /* "replayed N ... from FILE" of A's and B's journals, shown up to the first edit */
+    char replayed[2][VRG_CLI_PATH + 64]; /* "replayed N ... from FILE" of A's and B's journals, shown up to the first edit */
     double right_moved;
     int right_hit;
     vrg_world_hit right_at; /* what was under the cursor at the right press */
@@ -291,7 +291,7 @@ static void say_replayed(window_state *w, int side, const vrg_graph *g)
     int n = journal ? vrg_edits_records(journal) : 0;
     if (!n)
         return;
-    snprintf(w->replayed[side], sizeof w->replayed[side], "%sreplayed %d edit record%s from %.100s", w->gb ? (side ? "B: " : "A: ") : "", n,
+    snprintf(w->replayed[side], sizeof w->replayed[side], "%sreplayed %d edit record%s from %s", w->gb ? (side ? "B: " : "A: ") : "", n,
              n == 1 ? "" : "s", vrg_edits_path(journal));
     fprintf(stderr, "edits: %s (remove it to start from the unedited world)\n", w->replayed[side]);
 }

@@ -174,9 +174,11 @@ static int place(vrg_pass *pass, placed *p)
     if (!file[0])
         return vrg_pass_error(pass, "file = the .vox file to show (relative to the graph file)");
     resolve(pass, file, p->path, sizeof p->path);
-    if (read_all(p->path, &p->bytes, &p->size) != 0)
-        return vrg_pass_error_at(pass, file_line, "file = '%s': cannot read %s: %s (the shipped vox graphs expect ../shared/vox beside the project, docs/world.md)",
-                                 file, p->path, vrg_open_strerror(errno));
+    if (read_all(p->path, &p->bytes, &p->size) != 0) {
+        int missing = errno == ENOENT; /* only then is the shipped graphs' model folder the likely cause */
+        return vrg_pass_error_at(pass, file_line, "file = '%s': cannot read %s: %s%s", file, p->path, vrg_open_strerror(errno),
+                                 missing ? " (the shipped vox graphs expect ../shared/vox beside the project, docs/world.md)" : "");
+    }
     char err[512];
     if (vox_read(p->bytes, p->size, p->path, &p->vox, err, sizeof err) != 0) {
         int rc = vrg_pass_error_at(pass, file_line, "%s", err);

@@ -13,6 +13,8 @@
                 headings) naming each parameter `voxrg plugins NAME` lists
   tmp_citations no doc cites a script or graph in a temporary folder, which
                 its reader does not have
+  frame_uniforms plugin-abi.md's table of the frame uniforms is frame.glsl's
+                block: names, types, order and size
 usage: test_docs_true.py PART SOURCE_DIR [VOXRG]   (each problem on a line
 of its own, FILE[:LINE]: ...; exit 1 if there is any)"""
 import glob
@@ -319,6 +321,36 @@ def part_tmp_citations(root, _voxrg):
             for m in re.finditer(r"/tmp/[\w./-]*\.(?:sh|py|ini|path)\b", line):
                 problems.append(f"{path}:{number}: cites {m.group(0)}, a file in a temporary folder its reader "
                                 "does not have: show the command, or ship the script in scripts/")
+    return problems
+
+
+# ---- frame uniforms --------------------------------------------------------
+STD140_SIZE = {"mat4": 64, "vec4": 16, "uvec4": 16, "ivec4": 16}
+
+
+def part_frame_uniforms(root, _voxrg):
+    """plugin-abi.md's table of the frame block: the fields of frame.glsl's
+    block, in its order, with its types, and the block's size as stated."""
+    glsl = read(os.path.join(root, "shaders", "include", "frame.glsl"))
+    block = re.search(r"uniform FrameUniforms\s*\{(.*?)\}\s*frame;", glsl, re.S)
+    if not block:
+        return ["shaders/include/frame.glsl: no `uniform FrameUniforms { ... } frame;` block"]
+    members = re.findall(r"^\s*(\w+)\s+(\w+);", block.group(1), re.M)
+    page = os.path.join(root, "docs", "plugin-abi.md")
+    text = read(page)
+    problems = []
+    rows = [(m.group(1), m.group(2)) for m in re.finditer(r"^\| `(\w+)` \| `(\w+)` \|", text, re.M)]
+    if [(name, kind) for kind, name in members] != rows:
+        problems.append(f"{page}: the frame uniforms' table lists {rows}, frame.glsl declares "
+                        f"{[(name, kind) for kind, name in members]}")
+    unknown = [kind for kind, _ in members if kind not in STD140_SIZE]
+    if unknown:
+        problems.append(f"frame.glsl: member types {unknown}: add their std140 sizes to this check")
+    size = sum(STD140_SIZE.get(kind, 0) for kind, _ in members)
+    said = re.search(r"std140,\s*(\d+)\s*bytes", text)
+    if not said or int(said.group(1)) != size:
+        problems.append(f"{page}: the frame block is {size} bytes (std140, all members 16-byte multiples), "
+                        f"the page says {said.group(1) if said else 'nothing'}")
     return problems
 
 

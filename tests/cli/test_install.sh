@@ -119,7 +119,7 @@ grep -q "rendered 96x54" host.log || { cat host.log; fail "the host rendered no 
 mkdir -p stray/a/b && cp "$prefix/lib/voxrg/plugins/terrain.so" stray/a/b/stray.so
 sed -e 's/^plugin = terrain$/plugin = stray/' -e 's|^\[graph\]$|[graph]\nplugin_path = stray/a/b|' host.ini > stray.ini
 run ./host stray.ini > stray.log 2>&1 && fail "the stray plugin without its library loaded"
-grep -q "stray.ini:13: error\[VRG-E051\]: cannot load plugin 'stray' from $out/work/stray/a/b/stray.so: libvoxrg_voxel.so.0.1: cannot open shared object file" stray.log ||
+grep -q "stray.ini:13: error\[VRG-E051\]: cannot load plugin 'stray' from $out/work/stray/a/b/stray.so: libvoxrg_voxel.so.0.[0-9]*: cannot open shared object file" stray.log ||
     { cat stray.log; fail "the missing library is not named with the plugin's path"; }
 grep -q "hint: a library it needs is on neither its RUNPATH" stray.log || { cat stray.log; fail "no hint about the plugin's RUNPATH"; }
 
@@ -127,6 +127,9 @@ grep -q "hint: a library it needs is on neither its RUNPATH" stray.log || { cat 
 run "$voxrg" new-pass 9lives > bad_name.txt 2>&1
 [ $? -eq 2 ] && grep -q "not a valid pass name" bad_name.txt || { cat bad_name.txt; fail "new-pass accepted 9lives"; }
 run "$voxrg" new-pass tint > new_pass.txt 2>&1 || { cat new_pass.txt; fail "voxrg new-pass tint"; }
+# its README in the one form of a pass folder's (docs/plugin-abi.md)
+[ "$(grep '^## ' tint/README.md 2>/dev/null | tr '\n' '|')" = "## What it does|## Slots|## Parameters|## Cost|## Debug outputs|" ] ||
+    { cat tint/README.md; fail "the scaffold's README.md is not in the pass README form"; }
 run "$voxrg" new-pass tint > again.txt 2>&1
 [ $? -eq 1 ] && grep -q "tint/tint.c exists; nothing was written" again.txt || { cat again.txt; fail "new-pass overwrote tint/"; }
 (run cmake -S tint -B tint/build -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_FLAGS=-Werror &&
@@ -140,6 +143,25 @@ run "$voxrg" render tint/tint.ini --validate --frames 1 --set tint.haze=0 --out 
 cmp -s tint/out/ldr.png tint/out0/ldr.png && fail "the scaffold's haze (its frame uniforms) changes nothing"
 run VOXRG_PLUGIN_PATH="$out/work/tint/build" "$voxrg" plugins tint > plugins_tint.txt 2>&1 &&
     grep -q "file: $out/work/tint/build/tint.so" plugins_tint.txt || { cat plugins_tint.txt; fail "voxrg plugins tint"; }
+# installed, the scaffolded pass names neither its source nor its build
+# folder, and reads its shader from its own installed folder only: with
+# the source folder gone it still renders, and its installed shader
+# removed is an error naming that file
+run cmake --install tint/build --prefix "$out/work/tint_prefix" > tint_install.log 2>&1 || { cat tint_install.log; fail "cmake --install of the scaffolded pass"; }
+tint_so=$out/work/tint_prefix/lib/voxrg/plugins/tint.so
+[ -f "$tint_so" ] && [ -f "$out/work/tint_prefix/lib/voxrg/plugins/tint/tint.comp" ] || fail "the scaffolded pass installed no tint.so or tint/tint.comp"
+strings -a "$tint_so" | grep -F -e "$out/work/tint" > tint_named.txt && { cat tint_named.txt; fail "the installed tint.so names its source or build folder"; }
+mv tint tint_src || fail "cannot move the scaffold's source away"
+sed -e 's|^plugin_path *=.*$|plugin_path = ../tint_prefix/lib/voxrg/plugins|' tint_src/tint.ini > tint_installed.ini
+mkdir -p tint && cp tint_installed.ini tint/tint.ini
+run "$voxrg" render tint/tint.ini --validate --frames 1 --out tint/out_installed > tint_installed.log 2>&1 ||
+    { cat tint_installed.log; fail "the installed scaffolded pass does not render without its source folder"; }
+rm "$out/work/tint_prefix/lib/voxrg/plugins/tint/tint.comp"
+run "$voxrg" render tint/tint.ini --frames 1 --out tint/out_missing > tint_missing.log 2>&1 && fail "tint rendered without its installed shader"
+grep -q "shader 'tint.comp' not found (searched $out/work/tint_prefix/lib/voxrg/plugins/tint/tint.comp" tint_missing.log ||
+    { cat tint_missing.log; fail "the missing installed shader of tint is not named"; }
+grep -q "tint_src" tint_missing.log && { cat tint_missing.log; fail "the installed tint searched its source folder"; }
+rm -rf tint && mv tint_src tint || fail "cannot move the scaffold back"
 
 # the docs' invert pass, built with pkg-config against the prefix only
 page="$src/docs/plugin-abi.md"

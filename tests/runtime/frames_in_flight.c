@@ -29,10 +29,8 @@ static vrg_graph *probe_graph_to(int frames, double spin, FILE *diag)
     const char *sets[] = {set};
     vrg_graph_desc d = {.path = "<ring_probe>", .text = text, .overrides = sets, .override_count = 1, .readback = reads, .readback_count = 1, .diag = diag};
     vrg_graph *g = NULL;
-    if (vrg_graph_load(ctx, &d, &g) != 0) {
-        failures++;
+    if (!CHECK(vrg_graph_load(ctx, &d, &g) == 0, "the ring_probe graph (%d frames, spin %g) does not load", frames, spin))
         return NULL;
-    }
     return g;
 }
 

@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "check.h"
 #include "internal.h"
 #include "plugin_loader.h"
 
@@ -24,10 +25,7 @@ static void expect(const char *what, const vrg_plugin_desc *desc, const char *wa
     int rc = _vrg_plugin_check_desc(desc, "p", "/plugins/p.so", &d, 3);
     fclose(mem);
     int ok = want ? rc != 0 && strstr(text, want) && strstr(text, "/plugins/p.so") && strstr(text, "t.ini:3:") : rc == 0 && len == 0;
-    if (!ok) {
-        fprintf(stderr, "FAIL %s: rc %d, want %s '%s', got:\n%s\n", what, rc, want ? "an error with" : "no error", want ? want : "", text);
-        failures++;
-    }
+    CHECK(ok, "%s: rc %d, want %s '%s', got:\n%s", what, rc, want ? "an error with" : "no error", want ? want : "", text);
     free(text);
 }
 

@@ -1026,10 +1026,9 @@ static void write_seed(const char *dir, const char *name, buf f)
     char path[600];
     snprintf(path, sizeof path, "%s/%s", dir, name);
     FILE *out = fopen(path, "wb");
-    if (!out || fwrite(f.d, 1, f.n, out) != f.n)
-        failures++;
+    CHECK(out && fwrite(f.d, 1, f.n, out) == f.n, "cannot write the seed %s", path);
     if (out)
-        fclose(out);
+        CHECK(fclose(out) == 0, "cannot write the seed %s", path);
     free(f.d);
 }
 

@@ -7,6 +7,7 @@
  * Errors come out as FILE:LINE: error[VRG-E063]: MESSAGE (warnings VRG-W003). */
 #include <glslang/Include/glslang_c_interface.h>
 #include <glslang/Public/resource_limits_c.h>
+#include <limits.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -71,15 +72,29 @@ static int own_folder_shader(const vrg_pass *p, const char *name, char *out, siz
     if (stat(out, &st) != 0 || !S_ISDIR(st.st_mode))
         return -1;
     snprintf(out, cap, "%.*s/%s/%s", (int)(slash - so), so, p->plugin->name, name);
-    return exists(out) ? 0 : 1;
+    if (!exists(out))
+        return 1;
+    /* the folder is a link to the sources in a build: messages and watches
+     * name the file the user edits */
+    char real[PATH_MAX];
+    if (realpath(out, real) && strlen(real) < cap)
+        memcpy(out, real, strlen(real) + 1);
+    return 0;
 }
 
-/* One more place searched, for the message of a shader not found. */
+/* Appends a place to the list of places searched; a list that does not fit
+ * ends in "..." (said, not silently cut). */
 static void searched_add(char *searched, size_t cap, const char *place)
 {
-    size_t n = searched ? strlen(searched) : cap;
-    if (n < cap)
-        snprintf(searched + n, cap - n, "%s%s", n ? ", " : "", place);
+    static const char more[] = ", ...";
+    if (!searched || cap < sizeof more)
+        return;
+    size_t n = strlen(searched);
+    if (n >= sizeof more - 1 && strcmp(searched + n - (sizeof more - 1), more) == 0)
+        return; /* already cut */
+    int w = snprintf(searched + n, cap - n, "%s%s", n ? ", " : "", place);
+    if (w < 0 || (size_t)w >= cap - n) /* did not fit: mark the cut */
+        memcpy(searched + cap - sizeof more, more, sizeof more);
 }
 
 int _vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t cap, char *searched, size_t searched_cap)

@@ -28,7 +28,7 @@ extern "C" {
  * vrg_plugin_desc are compatible. 2: the layers split (the scene glue moved
  * to libvoxrg_voxel; vrg_pass_set_world became vrg_pass_share) and frames
  * in flight (what the host may write when; vrg_scene_gpu's staging ring). */
-#define VRG_ABI_VERSION 2u
+#define VRG_ABI_VERSION 3u
 #define VRG_PLUGIN_ENTRY_SYMBOL "vrg_plugin_entry"
 #define VRG_EXPORT __attribute__((visibility("default")))
 
@@ -146,11 +146,10 @@ typedef struct vrg_plugin_desc {
     const char *name;
     vrg_plugin_kind kind;
     const char *help;
-    /* A folder of this plugin's shaders, searched when the folder NAME/
-     * beside its NAME.so does not exist (an installed plugin's shaders are
-     * there, and only there): a plugin built outside voxrg reads them
-     * where they are written (VRG_PLUGIN_DIR of voxrg_add_pass). May be
-     * NULL. */
+    /* A folder of this plugin's shaders, searched only when the folder
+     * NAME/ beside its NAME.so does not exist (where voxrg_add_pass and
+     * voxrg's own build put them, installed or not). An absolute path here
+     * is compiled into the plugin: prefer NAME/. May be NULL. */
     const char *shader_dir;
     const vrg_param_desc *params;
     uint32_t param_count;
