@@ -16,6 +16,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include "compare_cases.h"
 #include "compare_result.h"
 #include "report.h"
 #include "util.h"
@@ -27,12 +28,12 @@
 #include "voxrg/voxrg.h"
 
 #define MAX_SETS 64
-#define MAX_GRAPHS 8
 #define RESERVED_NAME "reference" /* frames/reference-NNNNN.png */
 
 const char *const vrg_cli_compare_usage =
     "usage: voxrg compare A.ini [B.ini ...] --reference REF.ini [--variant NAME[@GRAPH]:PASS.PARAM=VALUE,...]...\n"
-    "                     [--camera PATH] [--start N] [--frames N] [--size WxH] [--warmup N] [--out DIR]\n"
+    "                     [--grid [@GRAPH:]PASS.PARAM=A,B,...]... [--baseline NAME]\n"
+    "                     [--cases FILE | [--camera PATH] [--start N] [--frames N] [--size WxH] [--warmup N]] [--out DIR]\n"
     "                     [--ref-set PASS.PARAM=VALUE]... [--cache DIR] [--validate] [--device NAME|INDEX]\n"
     "Renders every candidate (each graph, and each --variant: the graph GRAPH names, a\n"
     "listed graph's candidate name, path or file name, else the first graph, with those\n"
@@ -48,18 +49,27 @@ const char *const vrg_cli_compare_usage =
     "first graph's [camera]; --start N begins at the path's frame N (at the graph's\n"
     "fps; warm-up counts from there); --ref-set changes the reference (e.g. fewer samples:\n"
     "converge.samples_per_frame=64). Graphs whose scene, seed, fps or size differ are\n"
-    "an error.\n";
+    "an error. --grid adds a variant per value (per combination of the values of\n"
+    "several --grid of one graph), named GRAPH-PARAMVALUE..., of the first graph or GRAPH.\n"
+    "--cases FILE runs every [case NAME] of the case file (camera, start, frames,\n"
+    "warmup, size and scene.PARAM overrides) and judges each candidate against the\n"
+    "--baseline candidate (default the first) over the cases.\n";
 
 typedef struct options {
-    const char *graphs[MAX_GRAPHS];
+    const char **graphs; /* [argc] each, as the arguments are at most */
     int graph_count;
-    const char *variants[VRG_CMP_MAX_CANDIDATES];
-    int variant_count;
-    const char *reference, *camera, *out, *cache, *device;
+    const char **variants; /* given, then the grids' expanded (owned: from variant_count_given on) */
+    int variant_count, variant_count_given;
+    const char **grids;
+    int grid_count;
+    const char *reference, *camera, *out, *cache, *device, *cases, *baseline;
     const char *ref_sets[MAX_SETS];
     int ref_set_count;
     uint32_t width, height, frames, warmup, start;
-    int validate, help;
+    int validate, help, case_options;
+    /* the case being run: its scene.PARAM=VALUE overrides, for every graph */
+    char *const *scene;
+    int scene_count;
 } options;
 
 /* one candidate to render: a graph and its overrides */
@@ -94,17 +104,17 @@ static int parse_count(const char *s, uint32_t lo, uint32_t hi, uint32_t *out)
  * hidden names, nothing to quote, and not the reference's frames' name. */
 static int variant_name_ok(const char *name, size_t len)
 {
-    if (len < 1 || len > 63 || name[0] == '.' || name[len - 1] == '.')
-        return 0;
-    for (size_t i = 0; i < len; i++)
-        if (!isalnum((unsigned char)name[i]) && !strchr("_-.", name[i]))
-            return 0;
-    return !(len == strlen(RESERVED_NAME) && !strncmp(name, RESERVED_NAME, len));
+    return vrg_cmp_name_ok(name, len) && !(len == strlen(RESERVED_NAME) && !strncmp(name, RESERVED_NAME, len));
 }
 
 static int parse_options(int argc, char **argv, options *o)
 {
     memset(o, 0, sizeof *o);
+    o->graphs = calloc((size_t)argc + 1, sizeof *o->graphs);
+    o->variants = calloc((size_t)argc + 1, sizeof *o->variants);
+    o->grids = calloc((size_t)argc + 1, sizeof *o->grids);
+    if (!o->graphs || !o->variants || !o->grids)
+        return usage_error("out of memory%s", "");
     o->frames = 30;
     o->warmup = 5;
     o->out = "compare";
@@ -120,8 +130,6 @@ static int parse_options(int argc, char **argv, options *o)
             continue;
         }
         if (a[0] != '-') {
-            if (o->graph_count == MAX_GRAPHS)
-                return usage_error("at most %s graphs", "8");
             o->graphs[o->graph_count++] = a;
             continue;
         }
@@ -147,10 +155,16 @@ static int parse_options(int argc, char **argv, options *o)
             if (!variant_name_ok(next, name_len))
                 return usage_error("--variant '%s': a name is 1 to 63 of A-Z a-z 0-9 _ - and dots (not first or last), "
                                    "and not 'reference'", next);
-            if (o->variant_count == VRG_CMP_MAX_CANDIDATES)
-                return usage_error("too many --variant options (at most %s)", "16");
             o->variants[o->variant_count++] = next;
-        } else if (!strcmp(a, "--ref-set")) {
+        } else if (!strcmp(a, "--grid")) {
+            const char *eq = strchr(next, '='), *at_end = next[0] == '@' ? strchr(next, ':') : next;
+            if (!eq || !at_end || at_end > eq || !strchr(at_end, '.') || strchr(at_end, '.') > eq || !eq[1] || next[1] == ':')
+                return usage_error("--grid '%s': expected [@GRAPH:]PASS.PARAM=VALUE,VALUE,...", next);
+            o->grids[o->grid_count++] = next;
+        } else if (!strcmp(a, "--cases"))
+            o->cases = next;
+        else if (!strcmp(a, "--baseline"))
+            o->baseline = next; else if (!strcmp(a, "--ref-set")) {
             if (o->ref_set_count == MAX_SETS)
                 return usage_error("too many --ref-set options%s", "");
             o->ref_sets[o->ref_set_count++] = next;
@@ -175,6 +189,10 @@ static int parse_options(int argc, char **argv, options *o)
     }
     if (o->help)
         return 0;
+    o->variant_count_given = o->variant_count; /* the grids' come after, owned */
+    o->case_options = o->camera || o->start || o->width || warmup_given || o->frames != 30;
+    if (o->cases && o->case_options)
+        return usage_error("--cases %s: --camera, --start, --frames, --warmup and --size are the case file's keys", o->cases);
     if (!o->graph_count)
         return usage_error("no candidate graph given%s", "");
     if (!o->reference)
@@ -199,15 +217,134 @@ static const char *stem(const char *path, char *buf, size_t cap)
     return buf;
 }
 
+/* a graph with its overrides, then the case's scene overrides */
 static vrg_graph *load(vrg_context *ctx, const char *graph, const char *const *sets, int set_count, const options *o)
 {
-    vrg_graph_desc d = {.path = graph, .overrides = sets, .override_count = (uint32_t)set_count, .width = o->width, .height = o->height};
+    const char *all[2 * MAX_SETS];
+    int n = 0;
+    for (int i = 0; i < set_count && n < 2 * MAX_SETS; i++)
+        all[n++] = sets[i];
+    for (int i = 0; i < o->scene_count && n < 2 * MAX_SETS; i++)
+        all[n++] = o->scene[i];
+    vrg_graph_desc d = {.path = graph, .overrides = all, .override_count = (uint32_t)n, .width = o->width, .height = o->height};
     vrg_graph *g = NULL;
     if (vrg_graph_load(ctx, &d, &g) != 0) {
         vrg_graph_destroy(g);
         return NULL;
     }
     return g;
+}
+
+/* ---- grids: each --grid's values, the product per graph, as variants ---- */
+
+/* GRAPH's short form for names: its file name without the extension */
+static void grid_prefix(const options *o, const char *grid, char *out, size_t cap)
+{
+    char buf[256];
+    const char *graph = o->graphs[0];
+    if (grid[0] == '@') {
+        snprintf(buf, sizeof buf, "%.*s", (int)(strchr(grid, ':') - grid - 1), grid + 1);
+        graph = buf;
+    }
+    stem(graph, out, cap);
+}
+
+/* the part of a grid after "@GRAPH:" */
+static const char *grid_axis(const char *grid) { return grid[0] == '@' ? strchr(grid, ':') + 1 : grid; }
+
+static int same_graph(const char *a, const char *b)
+{
+    size_t la = a[0] == '@' ? (size_t)(strchr(a, ':') - a) : 0, lb = b[0] == '@' ? (size_t)(strchr(b, ':') - b) : 0;
+    return la == lb && !strncmp(a, b, la);
+}
+
+static long grid_values(const char *grid)
+{
+    long values = 1;
+    for (const char *c = strchr(grid, '=') + 1; *c; c++)
+        values += *c == ',';
+    return values;
+}
+
+/* one variant of the grids axes[0..n) (one graph's): the combination
+ * `index`, the first axis varying slowest, as "NAME[@GRAPH]:SETS"; NAME is
+ * GRAPH's file name and "-PARAMVALUE" per axis, with what a name cannot
+ * hold as '_' */
+static char *grid_variant(const options *o, const char **axes, int n, long index)
+{
+    char name[512], sets[1024];
+    size_t nl, sl = 0;
+    grid_prefix(o, axes[0], name, sizeof name);
+    nl = strlen(name);
+    long stride = 1;
+    for (int a = 1; a < n; a++)
+        stride *= grid_values(axes[a]);
+    for (int a = 0; a < n; a++) {
+        const char *axis = grid_axis(axes[a]), *eq = strchr(axis, '='), *dot = strchr(axis, '.');
+        long pick = index / stride % grid_values(axes[a]);
+        stride /= a + 1 < n ? grid_values(axes[a + 1]) : 1;
+        const char *v = eq + 1;
+        for (long k = 0; k < pick; k++)
+            v = strchr(v, ',') + 1;
+        int vl = (int)strcspn(v, ",");
+        if (nl < sizeof name)
+            nl += (size_t)snprintf(name + nl, sizeof name - nl, "-%.*s%.*s", (int)(eq - dot - 1), dot + 1, vl, v);
+        if (sl < sizeof sets)
+            sl += (size_t)snprintf(sets + sl, sizeof sets - sl, "%s%.*s%.*s", a ? "," : "", (int)(eq - axis + 1), axis, vl, v);
+    }
+    for (char *c = name; *c; c++)
+        if (!isalnum((unsigned char)*c) && !strchr("_-.", *c))
+            *c = '_';
+    size_t cap = sizeof name + sizeof sets + 8;
+    char *spec = malloc(cap);
+    if (spec)
+        snprintf(spec, cap, "%s%.*s:%s", name, axes[0][0] == '@' ? (int)(strchr(axes[0], ':') - axes[0]) : 0, axes[0], sets);
+    return spec;
+}
+
+/* Appends the grids' variants to o->variants: per graph (in the order of
+ * its first --grid) the product of its grids' values. */
+static int expand_grids(options *o)
+{
+    for (int g = 0; g < o->grid_count; g++) {
+        int first = 1;
+        for (int k = 0; k < g; k++)
+            first &= !same_graph(o->grids[k], o->grids[g]);
+        if (!first)
+            continue;
+        const char *axes[64];
+        int n = 0;
+        long total = 1;
+        for (int k = g; k < o->grid_count; k++)
+            if (same_graph(o->grids[k], o->grids[g])) {
+                if (n == 64) {
+                    fprintf(stderr, "error: more than 64 --grid of one graph\n");
+                    return -1;
+                }
+                axes[n++] = o->grids[k];
+                total *= grid_values(o->grids[k]);
+                if (total > 100000) {
+                    fprintf(stderr, "error: --grid %s: more than 100000 combinations\n", o->grids[k]);
+                    return -1;
+                }
+            }
+        const char **grown = realloc(o->variants, sizeof *grown * (size_t)(o->variant_count + total + 1));
+        if (!grown)
+            return -1;
+        o->variants = grown;
+        for (long i = 0; i < total; i++) {
+            char *spec = grid_variant(o, axes, n, i);
+            size_t len = strcspn(spec ? spec : "", "@:");
+            if (!spec || !variant_name_ok(spec, len)) {
+                fprintf(stderr, "error: --grid %s: the variant name '%.*s' is not 1 to 63 of A-Z a-z 0-9 _ - and dots\n", axes[0],
+                        (int)len, spec ? spec : "");
+                free(spec);
+                return -1;
+            }
+            o->variants[o->variant_count++] = spec;
+        }
+    }
+    return 0;
 }
 
 /* The listed graph whose candidate name, path as given or file name is
@@ -254,10 +391,6 @@ static int make_jobs(const options *o, job *jobs, vrg_cmp_result *r)
         }
     }
     for (int v = 0; v < o->variant_count; v++, n++) {
-        if (n == VRG_CMP_MAX_CANDIDATES) {
-            fprintf(stderr, "error: at most %d candidates\n", VRG_CMP_MAX_CANDIDATES);
-            return -1;
-        }
         const char *spec = o->variants[v], *colon = strchr(spec, ':');
         size_t name_len = strcspn(spec, "@:");
         job *j = &jobs[n];
@@ -495,6 +628,8 @@ static int reference_frames(vrg_context *ctx, const options *o, const vrg_camera
     free(text);
     for (int i = 0; i < o->ref_set_count; i++)
         base = fnv(base, o->ref_sets[i], strlen(o->ref_sets[i]) + 1);
+    for (int i = 0; i < o->scene_count; i++) /* a case's scene, applied after the --ref-sets */
+        base = fnv(base, o->scene[i], strlen(o->scene[i]) + 1);
     base = fnv(base, &r->width, sizeof r->width);
     base = fnv(base, &r->height, sizeof r->height);
     vrg_graph *g = NULL;
@@ -591,20 +726,19 @@ static int render_candidate(vrg_context *ctx, const options *o, const job *j, vr
     for (int m = 0; m < VRG_CMP_METRICS; m++)
         c->per_frame[m] = calloc(o->frames, sizeof(double));
     uint32_t sub = vrg_graph_subframes(g);
-    /* Every frame first, back to back, then the metrics and files: on a
-     * CPU device the metrics computed between frames evicted the caches the
-     * graph's next frame runs in, so the timings measured compare as much
-     * as the graph (docs/compare.md). The frames are kept in memory, as the
-     * reference's are. */
-    uint8_t **frames = calloc(o->frames, sizeof *frames);
-    int rc = frames ? 0 : -1, written = 1;
+    /* Each frame is scored and written as it comes, so memory holds no
+     * more than two frames of a candidate whatever the frame count; on a
+     * CPU device (lavapipe) the scoring between frames evicts caches the
+     * next frame runs in (docs/compare.md, "GPU time"). */
+    int rc = 0, written = 1;
     for (uint32_t k = 0; k < o->frames && rc == 0; k++) {
         vrg_camera cam;
         camera_at(path, fixed, (o->start + k) * frame_s, &cam);
         vrg_graph_set_camera(g, &cam);
         for (uint32_t s = 0; s < sub && rc == 0; s++)
             rc = vrg_graph_frame(g);
-        if (rc == 0 && !(frames[k] = read_output(g)))
+        uint8_t *rgb = NULL;
+        if (rc == 0 && !(rgb = read_output(g)))
             rc = -1;
         if (rc != 0)
             break;
@@ -615,11 +749,6 @@ static int render_candidate(vrg_context *ctx, const options *o, const job *j, vr
             total += v > 0 ? v : 0;
         }
         ms[k * (np + 1) + np] = total;
-        progress(c->name, k + 1, o->frames, tty);
-    }
-    for (uint32_t k = 0; k < o->frames && rc == 0; k++) {
-        uint8_t *rgb = frames[k];
-        frames[k] = NULL;
         char file[VRG_CLI_PATH + VRG_CLI_PATH];
         snprintf(file, sizeof file, "%s/%s-%05u.png", frames_dir, c->name, k);
         rc = vrg_png_write_rgb8(file, rgb, r->width, r->height); /* says why it failed, naming the file */
@@ -640,13 +769,8 @@ static int render_candidate(vrg_context *ctx, const options *o, const job *j, vr
         prev = cur, cur = t;
         t = refp;
         refp = refc, refc = t;
-        char what[112]; /* progress() shows 24 characters: the name last */
-        snprintf(what, sizeof what, "scoring %s", c->name);
-        progress(what, k + 1, o->frames, tty);
+        progress(c->name, k + 1, o->frames, tty);
     }
-    for (uint32_t k = 0; frames && k < o->frames; k++)
-        free(frames[k]);
-    free(frames);
     if (rc == 0) { /* timings from warmup on */
         uint32_t from = o->warmup, count = o->frames - from;
         double *v = malloc(sizeof(double) * count);
@@ -707,7 +831,7 @@ static void csv_field(FILE *f, const char *s)
     fputc('"', f);
 }
 
-static int write_csv(const char *dir, const vrg_cmp_result *r)
+static int write_csv(const char *dir, const vrg_cmp_run *run)
 {
     char final[VRG_CLI_PATH];
     snprintf(final, sizeof final, "%s/metrics.csv", dir);
@@ -715,73 +839,147 @@ static int write_csv(const char *dir, const vrg_cmp_result *r)
     if (!out)
         return -1;
     FILE *f = vrg_output_stream(out);
-    fprintf(f, "candidate,frame,warmup,psnr,ssim,flip,temporal\n");
-    for (int i = 0; i < r->count; i++)
-        for (uint32_t k = 0; k < r->frames; k++) {
-            csv_field(f, r->cand[i].name);
-            fprintf(f, ",%u,%d", k, k < r->warmup);
-            for (int m = 0; m < VRG_CMP_METRICS; m++) {
-                fputc(',', f);
-                num(f, r->cand[i].per_frame[m][k], 0);
+    fprintf(f, "%scandidate,frame,warmup,psnr,ssim,flip,temporal\n", run->cases_file ? "case," : "");
+    for (int c = 0; c < run->case_count; c++) {
+        const vrg_cmp_result *r = &run->cases[c];
+        for (int i = 0; i < r->count; i++)
+            for (uint32_t k = 0; k < r->frames; k++) {
+                if (run->cases_file)
+                    fprintf(f, "%s,", r->case_name); /* a case name needs no quotes */
+                csv_field(f, r->cand[i].name);
+                fprintf(f, ",%u,%d", k, k < r->warmup);
+                for (int m = 0; m < VRG_CMP_METRICS; m++) {
+                    fputc(',', f);
+                    num(f, r->cand[i].per_frame[m][k], 0);
+                }
+                fputc('\n', f);
             }
-            fputc('\n', f);
-        }
+    }
     return vrg_output_commit(out);
 }
 
-static int write_json(const char *dir, const vrg_cmp_result *r)
+/* one case's settings and candidates, as members of an object (indented by `in`) */
+static void json_case(FILE *f, const vrg_cmp_result *r, const char *in)
 {
-    char final[VRG_CLI_PATH], e1[2100], e2[2100], e3[2100];
-    snprintf(final, sizeof final, "%s/metrics.json", dir);
-    vrg_output *out = vrg_output_open(final);
-    if (!out)
-        return -1;
-    FILE *f = vrg_output_stream(out);
-    fprintf(f, "{\n  \"reference\": {\"graph\": \"%s\", \"overrides\": \"%s\", \"frames_from_cache\": %u},\n",
+    char e1[2100], e2[2100], e3[2100];
+    fprintf(f, "%s\"reference\": {\"graph\": \"%s\", \"overrides\": \"%s\", \"frames_from_cache\": %u},\n", in,
             vrg_cli_json_str(r->reference, e1, sizeof e1), vrg_cli_json_str(r->reference_overrides, e2, sizeof e2), r->reference_cached);
-    fprintf(f, "  \"camera\": %s%s%s,\n", r->camera ? "\"" : "", r->camera ? vrg_cli_json_str(r->camera, e1, sizeof e1) : "null",
+    fprintf(f, "%s\"camera\": %s%s%s,\n", in, r->camera ? "\"" : "", r->camera ? vrg_cli_json_str(r->camera, e1, sizeof e1) : "null",
             r->camera ? "\"" : "");
-    fprintf(f, "  \"device\": \"%s\",\n  \"width\": %u,\n  \"height\": %u,\n  \"start\": %u,\n  \"frames\": %u,\n  \"warmup\": %u,\n",
-            vrg_cli_json_str(r->device, e1, sizeof e1), r->width, r->height, r->start, r->frames, r->warmup);
-    fprintf(f, "  \"psnr_cap_db\": %g,\n  \"candidates\": [", VRG_PSNR_MAX_DB);
+    fprintf(f, "%s\"device\": \"%s\",\n%s\"width\": %u,\n%s\"height\": %u,\n%s\"start\": %u,\n%s\"frames\": %u,\n%s\"warmup\": %u,\n", in,
+            vrg_cli_json_str(r->device, e1, sizeof e1), in, r->width, in, r->height, in, r->start, in, r->frames, in, r->warmup);
+    fprintf(f, "%s\"psnr_cap_db\": %g,\n%s\"candidates\": [", in, VRG_PSNR_MAX_DB, in);
     for (int i = 0; i < r->count; i++) {
         const vrg_cmp_candidate *c = &r->cand[i];
-        fprintf(f, "%s\n    {\"name\": \"%s\", \"graph\": \"%s\", \"overrides\": \"%s\", ", i ? "," : "",
+        fprintf(f, "%s\n%s  {\"name\": \"%s\", \"graph\": \"%s\", \"overrides\": \"%s\", ", i ? "," : "", in,
                 vrg_cli_json_str(c->name, e1, sizeof e1), vrg_cli_json_str(c->graph, e2, sizeof e2),
                 vrg_cli_json_str(c->overrides, e3, sizeof e3));
         /* the listed graph a variant changes, by its candidate name: two listings may share a path */
         if (c->base >= 0)
-            fprintf(f, "\"variant_of\": \"%s\",\n      \"summary\": {", vrg_cli_json_str(r->cand[c->base].name, e1, sizeof e1));
+            fprintf(f, "\"variant_of\": \"%s\",\n%s    \"summary\": {", vrg_cli_json_str(r->cand[c->base].name, e1, sizeof e1), in);
         else
-            fputs("\"variant_of\": null,\n      \"summary\": {", f);
+            fprintf(f, "\"variant_of\": null,\n%s    \"summary\": {", in);
         for (int m = 0; m < VRG_CMP_METRICS; m++) {
             fprintf(f, "\"%s\": ", vrg_cmp_metric_names[m]);
             num(f, c->summary[m], 1);
             fputs(", ", f);
         }
-        fprintf(f, "\"gpu_ms_mean\": %.9g, \"gpu_ms_p95\": %.9g},\n      \"passes\": [", c->gpu_mean_ms, c->gpu_p95_ms);
+        fprintf(f, "\"gpu_ms_mean\": %.9g, \"gpu_ms_p95\": %.9g},\n%s    \"passes\": [", c->gpu_mean_ms, c->gpu_p95_ms, in);
         for (int p = 0; p < c->pass_count; p++)
             fprintf(f, "%s{\"name\": \"%s\", \"mean_ms\": %.9g, \"p95_ms\": %.9g}", p ? ", " : "",
                     vrg_cli_json_str(c->passes[p].name, e1, sizeof e1), c->passes[p].mean_ms, c->passes[p].p95_ms);
-        fputs("],\n      \"frames\": [", f);
+        fprintf(f, "],\n%s    \"frames\": [", in);
         for (uint32_t k = 0; k < r->frames; k++) {
-            fprintf(f, "%s\n        {\"frame\": %u", k ? "," : "", k);
+            fprintf(f, "%s\n%s      {\"frame\": %u", k ? "," : "", in, k);
             for (int m = 0; m < VRG_CMP_METRICS; m++) {
                 fprintf(f, ", \"%s\": ", vrg_cmp_metric_names[m]);
                 num(f, c->per_frame[m][k], 1);
             }
             fputc('}', f);
         }
-        fputs("\n      ]}", f);
+        fprintf(f, "\n%s    ]}", in);
     }
-    fputs("\n  ]\n}\n", f);
+    fprintf(f, "\n%s]", in);
+}
+
+/* per metric: {"psnr": V, ...} of one of the verdict's arrays */
+static void json_metrics(FILE *f, const char *key, const double *v, const int *iv)
+{
+    fprintf(f, "\"%s\": {", key);
+    for (int m = 0; m < VRG_CMP_METRICS; m++) {
+        fprintf(f, "%s\"%s\": ", m ? ", " : "", vrg_cmp_metric_names[m]);
+        if (v)
+            num(f, v[m], 1);
+        else
+            fprintf(f, "%d", iv[m]);
+    }
+    fputc('}', f);
+}
+
+static void json_verdict(FILE *f, const vrg_cmp_run *run)
+{
+    char e1[2100];
+    const vrg_cmp_result *r0 = &run->cases[0];
+    fprintf(f, "  \"baseline\": \"%s\",\n  \"verdict\": [", vrg_cli_json_str(r0->cand[run->baseline].name, e1, sizeof e1));
+    for (int i = 0; i < r0->count; i++) {
+        const vrg_cmp_verdict *v = &run->verdict[i];
+        fprintf(f, "%s\n    {\"candidate\": \"%s\", ", i ? "," : "", vrg_cli_json_str(r0->cand[i].name, e1, sizeof e1));
+        json_metrics(f, "mean_difference", v->mean_diff, NULL);
+        fputs(", ", f);
+        json_metrics(f, "wins", NULL, v->wins);
+        fputs(", ", f);
+        json_metrics(f, "losses", NULL, v->losses);
+        fputs(", ", f);
+        json_metrics(f, "ties", NULL, v->ties);
+        fputs(",\n     \"worst\": {", f);
+        for (int m = 0; m < VRG_CMP_METRICS; m++) {
+            fprintf(f, "%s\"%s\": ", m ? ", " : "", vrg_cmp_metric_names[m]);
+            if (v->worst[m] < 0)
+                fputs("null", f);
+            else {
+                fprintf(f, "{\"case\": \"%s\", \"difference\": ", run->cases[v->worst[m]].case_name);
+                num(f, v->worst_diff[m], 1);
+                fputc('}', f);
+            }
+        }
+        fprintf(f, "},\n     \"sentence\": \"%s\"}", vrg_cli_json_str(v->sentence, e1, sizeof e1));
+    }
+    fputs("\n  ]\n", f);
+}
+
+static int write_json(const char *dir, const vrg_cmp_run *run)
+{
+    char final[VRG_CLI_PATH], e1[2100], e2[2100];
+    snprintf(final, sizeof final, "%s/metrics.json", dir);
+    vrg_output *out = vrg_output_open(final);
+    if (!out)
+        return -1;
+    FILE *f = vrg_output_stream(out);
+    fputs("{\n", f);
+    if (!run->cases_file)
+        json_case(f, &run->cases[0], "  ");
+    else {
+        fprintf(f, "  \"cases_file\": \"%s\",\n  \"cases\": [", vrg_cli_json_str(run->cases_file, e1, sizeof e1));
+        for (int c = 0; c < run->case_count; c++) {
+            const vrg_cmp_result *r = &run->cases[c];
+            fprintf(f, "%s\n    {\"name\": \"%s\",\n     \"scene\": \"%s\",\n", c ? "," : "", r->case_name,
+                    vrg_cli_json_str(r->scene, e2, sizeof e2));
+            json_case(f, r, "     ");
+            fputs("}", f);
+        }
+        fputs("\n  ]", f);
+    }
+    fputs(",\n", f);
+    json_verdict(f, run);
+    fputs("}\n", f);
     return vrg_output_commit(out);
 }
 
 static void print_summary(const vrg_cmp_result *r)
 {
-    printf("\n%u frames at %ux%u, summary from frame %u on; reference %s%s%s\n", r->frames, r->width, r->height, r->warmup, r->reference,
-           r->reference_overrides[0] ? " with " : "", r->reference_overrides);
+    printf("\n%s%s%u frames at %ux%u, summary from frame %u on; reference %s%s%s\n", r->case_name[0] ? r->case_name : "",
+           r->case_name[0] ? ": " : "", r->frames, r->width, r->height, r->warmup, r->reference, r->reference_overrides[0] ? " with " : "",
+           r->reference_overrides);
     printf("%-20s %11s %8s %8s %10s %10s %10s\n", "candidate", "PSNR dB", "SSIM", "FLIP", "temporal", "GPU ms", "p95 ms");
     int best[VRG_CMP_METRICS + 1];
     for (int m = 0; m < VRG_CMP_METRICS; m++)
@@ -796,93 +994,216 @@ static void print_summary(const vrg_cmp_result *r)
     printf("* best in the column\n");
 }
 
-static void free_result(vrg_cmp_result *r)
+static void free_shown(vrg_cmp_result *r)
 {
-    for (int i = 0; i < r->count; i++) {
-        for (int m = 0; m < VRG_CMP_METRICS; m++)
-            free(r->cand[i].per_frame[m]);
-        for (int s = 0; s < VRG_CMP_MAX_SHOWN; s++)
+    for (int i = 0; r->cand && i < r->count; i++)
+        for (int s = 0; s < VRG_CMP_MAX_SHOWN; s++) {
             free(r->cand[i].shown[s]), free(r->cand[i].flip_map[s]);
+            r->cand[i].shown[s] = NULL, r->cand[i].flip_map[s] = NULL;
+        }
+    for (int s = 0; s < VRG_CMP_MAX_SHOWN; s++)
+        free(r->reference_shown[s]), r->reference_shown[s] = NULL;
+}
+
+static void free_run(vrg_cmp_run *run)
+{
+    for (int c = 0; c < run->case_count; c++) {
+        vrg_cmp_result *r = &run->cases[c];
+        free_shown(r);
+        for (int i = 0; r->cand && i < r->count; i++)
+            for (int m = 0; m < VRG_CMP_METRICS; m++)
+                free(r->cand[i].per_frame[m]);
+        free(r->cand);
     }
+    free(run->cases);
+    free(run->verdict);
+}
+
+/* the settings of case c: compare's options with the case's keys */
+static options case_options(const options *o, const vrg_cmp_case_spec *spec)
+{
+    options co = *o;
+    co.camera = spec->camera[0] ? spec->camera : NULL;
+    co.start = spec->start, co.frames = spec->frames, co.warmup = spec->warmup;
+    co.width = spec->width, co.height = spec->height;
+    co.scene = spec->scene, co.scene_count = spec->scene_count;
+    return co;
+}
+
+/* what a case needs to run, checked and loaded before any case runs */
+typedef struct case_setup {
+    vrg_camera fixed;
+    double frame_s;
+    vrg_camera_path path;
+    char frames_dir[VRG_CLI_PATH];
+} case_setup;
+
+/* One case: the reference frames (written, kept for scoring), then each
+ * candidate; its part of the report goes to `sections`, after which the
+ * frames it showed are freed. */
+static int run_case(vrg_context *ctx, const options *co, job *jobs, vrg_cmp_result *r, case_setup *cs, FILE *sections, int tty)
+{
+    uint32_t picks[3] = {co->warmup, co->warmup + (co->frames - 1 - co->warmup) / 2, co->frames - 1};
+    for (int i = 0; i < 3; i++) /* shown: the first frame after warmup, the middle, the last */
+        if (!r->shown_count || r->shown[r->shown_count - 1] != (int)picks[i])
+            r->shown[r->shown_count++] = (int)picks[i];
+    r->device = vrg_context_device(ctx)->name;
+    if (r->case_name[0])
+        fprintf(stderr, "case %s\n", r->case_name);
+    uint8_t **ref = calloc(co->frames, sizeof *ref);
+    int rc = ref ? reference_frames(ctx, co, &cs->path, &cs->fixed, cs->frame_s, ref, r, tty) : -1;
+    char file[VRG_CLI_PATH + 32];
+    for (uint32_t k = 0; rc == 0 && k < co->frames; k++) {
+        snprintf(file, sizeof file, "%s/reference-%05u.png", cs->frames_dir, k);
+        rc = vrg_png_write_rgb8(file, ref[k], r->width, r->height);
+    }
+    for (int i = 0; rc == 0 && i < r->count; i++)
+        rc = render_candidate(ctx, co, &jobs[i], &r->cand[i], &cs->path, &cs->fixed, cs->frame_s, ref, r, cs->frames_dir, tty);
+    for (int s = 0; rc == 0 && s < r->shown_count; s++)
+        r->reference_shown[s] = ref[r->shown[s]], ref[r->shown[s]] = NULL;
+    for (uint32_t k = 0; ref && k < co->frames; k++)
+        free(ref[k]);
+    free(ref);
+    if (rc == 0 && vrg_cmp_report_case(sections, r) != 0)
+        rc = -1;
+    free_shown(r);
+    return rc;
+}
+
+/* --baseline: a candidate's name; its index, or -1 after a usage error */
+static int find_baseline(const options *o, const vrg_cmp_result *r)
+{
+    if (!o->baseline)
+        return 0;
+    for (int i = 0; i < r->count; i++)
+        if (!strcmp(r->cand[i].name, o->baseline))
+            return i;
+    fprintf(stderr, "error: --baseline %s: no candidate of that name; the candidates are", o->baseline);
+    for (int i = 0; i < r->count; i++)
+        fprintf(stderr, "%s %s", i ? "," : "", r->cand[i].name);
+    fprintf(stderr, "\n%s", vrg_cli_compare_usage);
+    return -1;
+}
+
+/* The run's cases (the case file's, or one from the options) with their
+ * candidates named and each case checked and its camera path loaded:
+ * every error before any rendering. 0, -1 (error) or 2 (usage). */
+static int set_up(options *o, vrg_cmp_case_spec *specs, int spec_count, job **jobs, vrg_cmp_run *run, case_setup **setups)
+{
+    int count = o->graph_count + o->variant_count;
+    *jobs = calloc((size_t)count, sizeof **jobs);
+    run->cases = calloc((size_t)spec_count, sizeof *run->cases);
+    *setups = calloc((size_t)spec_count, sizeof **setups);
+    if (!*jobs || !run->cases || !*setups)
+        return -1;
+    run->case_count = spec_count;
+    for (int c = 0; c < spec_count; c++)
+        if (!(run->cases[c].cand = calloc((size_t)count, sizeof *run->cases[c].cand)))
+            return -1;
+    int rc = make_jobs(o, *jobs, &run->cases[0]);
+    if (rc != 0)
+        return rc;
+    if ((run->baseline = find_baseline(o, &run->cases[0])) < 0)
+        return 2;
+    for (int c = 0; c < spec_count; c++) {
+        vrg_cmp_result *r = &run->cases[c];
+        options co = case_options(o, &specs[c]);
+        for (int i = 0; c && i < count; i++) { /* the same candidates in every case */
+            vrg_cmp_candidate *d = &r->cand[i], *s = &run->cases[0].cand[i];
+            memcpy(d->name, s->name, sizeof d->name), memcpy(d->graph, s->graph, sizeof d->graph);
+            memcpy(d->overrides, s->overrides, sizeof d->overrides), d->base = s->base;
+        }
+        r->count = count;
+        snprintf(r->case_name, sizeof r->case_name, "%s", specs[c].name);
+        for (int i = 0, n = 0; i < co.scene_count && n < (int)sizeof r->scene; i++)
+            n += snprintf(r->scene + n, sizeof r->scene - (size_t)n, "%s%s", i ? "," : "", co.scene[i]);
+        r->reference = o->reference;
+        r->camera = co.camera;
+        r->frames = co.frames, r->warmup = co.warmup, r->start = co.start;
+        for (int i = 0, n = 0; i < o->ref_set_count && n < (int)sizeof r->reference_overrides; i++)
+            n += snprintf(r->reference_overrides + n, sizeof r->reference_overrides - (size_t)n, "%s%s", i ? "," : "", o->ref_sets[i]);
+        case_setup *cs = &(*setups)[c];
+        if (r->case_name[0] && check_all(&co, *jobs, r, &cs->fixed, &cs->frame_s) != 0) {
+            fprintf(stderr, "  (in %s:%d: [case %s])\n", o->cases, specs[c].line, r->case_name);
+            return -1;
+        }
+        if (!r->case_name[0] && check_all(&co, *jobs, r, &cs->fixed, &cs->frame_s) != 0)
+            return -1;
+        if (co.camera && vrg_camera_path_load(co.camera, &cs->path, stderr) != 0)
+            return -1;
+        snprintf(cs->frames_dir, sizeof cs->frames_dir, "%s/frames%s%s", o->out, r->case_name[0] ? "/" : "", r->case_name);
+    }
+    return 0;
 }
 
 int vrg_cli_compare(int argc, char **argv)
 {
     options o;
     int rc = parse_options(argc, argv, &o);
-    if (rc || o.help)
+    if (rc || o.help) {
+        free(o.graphs), free(o.variants), free(o.grids);
         return rc ? rc : (fputs(vrg_cli_compare_usage, stdout), 0);
+    }
+    vrg_cmp_case_spec *specs = NULL, one = {.start = o.start, .frames = o.frames, .warmup = o.warmup, .width = o.width, .height = o.height};
+    int spec_count = 1;
+    if (o.camera)
+        snprintf(one.camera, sizeof one.camera, "%s", o.camera);
+    vrg_cmp_run run = {.cases_file = o.cases};
+    job *jobs = NULL;
+    case_setup *setups = NULL;
+    vrg_context *ctx = NULL;
+    FILE *sections = NULL;
+    char file[VRG_CLI_PATH], cache[VRG_CLI_PATH];
+    static const char *outputs[] = {"report.html", "metrics.json", "metrics.csv"};
     if (access(o.reference, R_OK) != 0) {
         fprintf(stderr, "error: reference graph %s: %s\n", o.reference, strerror(errno));
-        return 1;
-    }
-    static vrg_cmp_result r;
-    static job jobs[VRG_CMP_MAX_CANDIDATES];
-    memset(&r, 0, sizeof r);
-    memset(jobs, 0, sizeof jobs);
-    r.reference = o.reference;
-    r.camera = o.camera;
-    r.frames = o.frames;
-    r.warmup = o.warmup;
-    r.start = o.start;
-    for (int i = 0, n = 0; i < o.ref_set_count; i++)
-        n += snprintf(r.reference_overrides + n, sizeof r.reference_overrides - (size_t)n, "%s%s", i ? "," : "", o.ref_sets[i]);
-    /* nothing of an earlier report may pass for this run's, failed or not */
-    char frames_dir[VRG_CLI_PATH], file[VRG_CLI_PATH];
-    snprintf(frames_dir, sizeof frames_dir, "%s/frames", o.out);
-    static const char *outputs[] = {"report.html", "metrics.json", "metrics.csv"};
-    for (int i = 0; i < 3; i++) {
+        rc = 1;
+    } else if (expand_grids(&o) != 0)
+        rc = 2;
+    else if (o.cases && vrg_cmp_cases_load(o.cases, &specs, &spec_count) != 0)
+        rc = 1;
+    if (rc)
+        goto done;
+    for (int i = 0; i < 3; i++) { /* nothing of an earlier report may pass for this run's, failed or not */
         snprintf(file, sizeof file, "%s/%s", o.out, outputs[i]);
         remove(file);
     }
-    vrg_camera fixed;
-    double frame_s = 0;
-    vrg_camera_path path = {0};
-    if ((rc = make_jobs(&o, jobs, &r)) != 0)
-        return rc > 0 ? rc : 1;
-    if (check_all(&o, jobs, &r, &fixed, &frame_s) != 0)
-        return 1;
-    if (o.camera && vrg_camera_path_load(o.camera, &path, stderr) != 0)
-        return 1;
-    char cache[VRG_CLI_PATH];
-    if (vrg_cli_out_dir(o.out) != 0 || vrg_cli_out_dir(frames_dir) != 0 || vrg_cli_out_dir(cache_dir(&o, cache, sizeof cache)) != 0) {
-        vrg_camera_path_free(&path);
-        return 1;
+    if ((rc = set_up(&o, specs ? specs : &one, spec_count, &jobs, &run, &setups)) != 0) {
+        rc = rc > 0 ? rc : 1;
+        goto done;
     }
-    /* shown in the report: the first frame after warmup, the middle, the last */
-    uint32_t picks[3] = {o.warmup, o.warmup + (o.frames - 1 - o.warmup) / 2, o.frames - 1};
-    for (int i = 0; i < 3; i++)
-        if (!r.shown_count || r.shown[r.shown_count - 1] != (int)picks[i])
-            r.shown[r.shown_count++] = (int)picks[i];
-    vrg_context *ctx = NULL;
+    rc = vrg_cli_out_dir(o.out) != 0 || vrg_cli_out_dir(cache_dir(&o, cache, sizeof cache)) != 0;
+    snprintf(file, sizeof file, "%s/frames", o.out);
+    rc = rc || vrg_cli_out_dir(file) != 0;
+    for (int c = 0; c < spec_count && !rc; c++)
+        rc = vrg_cli_out_dir(setups[c].frames_dir) != 0;
     vrg_context_desc cd = {.validate = o.validate, .device = o.device};
-    if (vrg_context_create(&cd, &ctx) != 0) {
-        vrg_camera_path_free(&path);
-        return 1;
+    if (rc || !(sections = tmpfile()) || vrg_context_create(&cd, &ctx) != 0) {
+        rc = 1;
+        goto done;
     }
-    r.device = vrg_context_device(ctx)->name;
     int tty = isatty(2);
-    uint8_t **ref = calloc(o.frames, sizeof *ref);
-    rc = reference_frames(ctx, &o, &path, &fixed, frame_s, ref, &r, tty);
-    for (uint32_t k = 0; rc == 0 && k < o.frames; k++) {
-        snprintf(file, sizeof file, "%s/reference-%05u.png", frames_dir, k);
-        rc = vrg_png_write_rgb8(file, ref[k], r.width, r.height);
+    for (int c = 0; c < spec_count && rc == 0; c++) {
+        options co = case_options(&o, specs ? &specs[c] : &one);
+        rc = run_case(ctx, &co, jobs, &run.cases[c], &setups[c], sections, tty);
     }
-    for (int i = 0; rc == 0 && i < r.count; i++)
-        rc = render_candidate(ctx, &o, &jobs[i], &r.cand[i], &path, &fixed, frame_s, ref, &r, frames_dir, tty);
-    for (int s = 0; rc == 0 && s < r.shown_count; s++)
-        r.reference_shown[s] = ref[r.shown[s]], ref[r.shown[s]] = NULL;
     uint32_t errors = vrg_context_validation_errors(ctx);
     if (errors) {
         fprintf(stderr, "error: %u validation message%s (see above)\n", errors, errors == 1 ? "" : "s");
         rc = 1;
     }
+    if (rc == 0)
+        rc = vrg_cmp_judge(&run);
     if (rc == 0) {
         snprintf(file, sizeof file, "%s/report.html", o.out);
-        rc = write_csv(o.out, &r) || write_json(o.out, &r) || vrg_cmp_write_report(file, &r) ? 1 : 0;
+        rc = write_csv(o.out, &run) || write_json(o.out, &run) || vrg_cmp_write_report(file, &run, sections) ? 1 : 0;
     }
     if (rc == 0) {
-        print_summary(&r);
+        for (int c = 0; c < run.case_count; c++)
+            print_summary(&run.cases[c]);
+        printf("\n");
+        for (int i = 0; i < run.cases[0].count; i++)
+            printf("%s\n", run.verdict[i].sentence);
         printf("wrote %s/report.html, metrics.json, metrics.csv and frames/\n", o.out);
     } else {
         for (int i = 0; i < 3; i++) { /* a failed run leaves no report */
@@ -891,14 +1212,21 @@ int vrg_cli_compare(int argc, char **argv)
         }
         rc = 1;
     }
-    for (uint32_t k = 0; k < o.frames; k++)
-        free(ref[k]);
-    free(ref);
-    for (int s = 0; s < r.shown_count; s++)
-        free(r.reference_shown[s]);
-    free_result(&r);
-    vrg_camera_path_free(&path);
-    vrg_cli_exit_if_gpu_busy(ctx, rc);
-    vrg_context_destroy(ctx);
+done:
+    if (sections)
+        fclose(sections);
+    for (int c = 0; setups && c < spec_count; c++)
+        vrg_camera_path_free(&setups[c].path);
+    free(setups);
+    free_run(&run);
+    free(jobs);
+    vrg_cmp_cases_free(specs, specs ? spec_count : 0);
+    for (int v = o.variant_count_given; v < o.variant_count; v++)
+        free((char *)o.variants[v]);
+    free(o.graphs), free(o.variants), free(o.grids);
+    if (ctx) {
+        vrg_cli_exit_if_gpu_busy(ctx, rc);
+        vrg_context_destroy(ctx);
+    }
     return rc;
 }

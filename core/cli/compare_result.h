@@ -1,11 +1,13 @@
 #ifndef VOXRG_CLI_COMPARE_RESULT_H
 #define VOXRG_CLI_COMPARE_RESULT_H
-/* What `voxrg compare` measured: each candidate's metrics per frame and
- * their summaries, pass timings and the frames shown; the measuring
- * (compare.c) fills it in, the report (report.c) and the files read it. */
+/* What `voxrg compare` measured: per case, each candidate's metrics per
+ * frame and their summaries, pass timings and the frames shown; and over
+ * the cases, each candidate against the baseline (the verdict). The
+ * measuring (compare.c) fills it in, the report (report.c) and the files
+ * read it. */
+#include <stddef.h>
 #include <stdint.h>
 
-#define VRG_CMP_MAX_CANDIDATES 16
 #define VRG_CMP_MAX_SHOWN 3
 #define VRG_CMP_MAX_PASSES 64
 
@@ -34,7 +36,10 @@ typedef struct vrg_cmp_candidate {
     float *flip_map[VRG_CMP_MAX_SHOWN];
 } vrg_cmp_candidate;
 
+/* One case: its settings and every candidate's results on it. */
 typedef struct vrg_cmp_result {
+    char case_name[64];             /* "" for a run without --cases */
+    char scene[1024];               /* the case's scene.PARAM=VALUE overrides, comma-separated */
     const char *reference;          /* graph file */
     char reference_overrides[1024];
     const char *camera;             /* path file, or NULL: the first graph's [camera] */
@@ -44,10 +49,37 @@ typedef struct vrg_cmp_result {
     uint32_t reference_cached;      /* reference frames taken from the cache */
     int shown[VRG_CMP_MAX_SHOWN], shown_count;
     uint8_t *reference_shown[VRG_CMP_MAX_SHOWN];
-    vrg_cmp_candidate cand[VRG_CMP_MAX_CANDIDATES];
+    vrg_cmp_candidate *cand;        /* [count], the same candidates in every case */
     int count;
 } vrg_cmp_result;
 
+/* One candidate over the cases, against the baseline candidate: per
+ * metric the mean of its summary's difference to the baseline's, the
+ * cases it is better, worse and equal on, and its worst case. */
+typedef struct vrg_cmp_verdict {
+    double mean_diff[VRG_CMP_METRICS];
+    int wins[VRG_CMP_METRICS], losses[VRG_CMP_METRICS], ties[VRG_CMP_METRICS];
+    int worst[VRG_CMP_METRICS];      /* the case with the worst difference; -1 when none is worse */
+    double worst_diff[VRG_CMP_METRICS];
+    char sentence[512];
+} vrg_cmp_verdict;
+
+/* The whole run: the cases, then the verdict of each candidate. */
+typedef struct vrg_cmp_run {
+    const char *cases_file;         /* NULL without --cases */
+    vrg_cmp_result *cases;          /* [case_count] */
+    int case_count;
+    int baseline;                   /* the candidate the others are measured against */
+    vrg_cmp_verdict *verdict;       /* [candidate count] */
+} vrg_cmp_run;
+
 /* The candidate with the best summary of metric m (or GPU ms, m = -1). */
 int vrg_cmp_best(const vrg_cmp_result *r, int m);
+
+/* A candidate's or case's name, part of file names and a CSV field: 1 to
+ * 63 of A-Z a-z 0-9 _ - and dots, not first or last. */
+int vrg_cmp_name_ok(const char *name, size_t len);
+
+/* Fills run->verdict (allocated here) from the cases' summaries. 0 or -1. */
+int vrg_cmp_judge(vrg_cmp_run *run);
 #endif

@@ -265,6 +265,7 @@ static const char *style =
     ".axis{stroke:#444}.grid{stroke:#eee}.tick{font-size:10px;text-anchor:end}.xtick{font-size:10px;text-anchor:middle}"
     ".warmup{fill:#f0f0f0}.label{font-size:12px;text-anchor:end}.total{font-size:12px}"
     ".legend span{margin-right:14px;white-space:nowrap}.legend i{display:inline-block;width:12px;height:12px;margin-right:4px;vertical-align:-1px}"
+    "table.matrix td small{color:#555}ul.verdict li{margin:4px 0}"
     ".frames{display:flex;flex-wrap:wrap;gap:8px;align-items:flex-start}.frames img{display:block;max-width:100%;image-rendering:pixelated}";
 
 static void settings(FILE *f, const vrg_cmp_result *r)
@@ -389,18 +390,20 @@ static int frames(FILE *f, const vrg_cmp_result *r)
     return rc;
 }
 
-int vrg_cmp_write_report(const char *path, const vrg_cmp_result *r)
+int vrg_cmp_report_case(FILE *f, const vrg_cmp_result *r)
 {
-    vrg_output *out = vrg_output_open(path);
-    if (!out)
-        return -1;
-    FILE *f = vrg_output_stream(out);
-    fprintf(f, "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>voxrg compare: ");
-    for (int i = 0; i < r->count; i++) {
-        fputs(i ? ", " : "", f);
-        esc(f, r->cand[i].name);
+    if (r->case_name[0]) {
+        fputs("<h2 class=\"case\" id=\"case-", f);
+        esc(f, r->case_name);
+        fputs("\">case ", f);
+        esc(f, r->case_name);
+        if (r->scene[0]) {
+            fputs(" <small>(", f);
+            esc(f, r->scene);
+            fputs(")</small>", f);
+        }
+        fputs("</h2>\n", f);
     }
-    fprintf(f, "</title>\n<style>%s</style>\n</head>\n<body>\n<h1>voxrg compare</h1>\n", style);
     settings(f, r);
     fputs("<h2>Summary</h2>\n", f);
     summary(f, r);
@@ -417,9 +420,136 @@ int vrg_cmp_write_report(const char *path, const vrg_cmp_result *r)
     bars(f, r);
     fputs("<h2>Frames</h2>\n", f);
     int rc = frames(f, r);
+    if (rc != 0)
+        fprintf(stderr, "error: the report of case '%s': a frame could not be encoded\n", r->case_name);
+    return rc;
+}
+
+/* a cell's background: green where better than the baseline, red where
+ * worse, the stronger the larger the difference against the largest in
+ * the table */
+static void cell_color(FILE *f, double gain, double largest)
+{
+    if (isnan(gain) || gain == 0 || largest <= 0) {
+        fputs("#fff", f);
+        return;
+    }
+    double t = fabs(gain) / largest;
+    int fade = (int)(255 - 120 * (t > 1 ? 1 : t));
+    fprintf(f, gain > 0 ? "rgb(%d,255,%d)" : "rgb(255,%d,%d)", fade, fade);
+}
+
+/* metric m over the cases (rows) and candidates (columns), each cell its
+ * summary and its difference to the baseline's; then the verdict's rows */
+static void matrix(FILE *f, const vrg_cmp_run *run, int m)
+{
+    static const char *fmt[VRG_CMP_METRICS] = {"%.2f", "%.4f", "%.4f", "%.5f"}, *dfmt[VRG_CMP_METRICS] = {"%+.2f", "%+.4f", "%+.4f", "%+.5f"};
+    const vrg_cmp_result *r0 = &run->cases[0];
+    double largest = 0;
+    for (int c = 0; c < run->case_count; c++)
+        for (int i = 0; i < r0->count; i++) {
+            double d = fabs(run->cases[c].cand[i].summary[m] - run->cases[c].cand[run->baseline].summary[m]);
+            largest = d > largest ? d : largest;
+        }
+    fprintf(f, "<h3>%s %s</h3>\n<table class=\"matrix\"><thead><tr><th>case</th>", vrg_cmp_metric_labels[m],
+            vrg_cmp_metric_higher_better[m] ? "&#8593;" : "&#8595;");
+    for (int i = 0; i < r0->count; i++) {
+        fputs("<th>", f);
+        esc(f, r0->cand[i].name);
+        fputs(i == run->baseline ? " (baseline)</th>" : "</th>", f);
+    }
+    fputs("</tr></thead><tbody>\n", f);
+    for (int c = 0; c < run->case_count; c++) {
+        const vrg_cmp_result *r = &run->cases[c];
+        fputs("<tr><td>", f);
+        esc(f, r->case_name[0] ? r->case_name : "the run");
+        fputs("</td>", f);
+        for (int i = 0; i < r->count; i++) {
+            double v = r->cand[i].summary[m], d = v - r->cand[run->baseline].summary[m];
+            fprintf(f, "<td class=\"num\" data-cell=\"%s\" data-case=\"", vrg_cmp_metric_names[m]);
+            esc(f, r->case_name);
+            fputs("\" data-candidate-name=\"", f);
+            esc(f, r->cand[i].name);
+            fprintf(f, "\" data-value=\"%.9g\" data-difference=\"%.9g\" style=\"background:", v, d);
+            cell_color(f, vrg_cmp_metric_higher_better[m] ? d : -d, largest);
+            fputs("\">", f);
+            fprintf(f, fmt[m], v);
+            if (i != run->baseline) {
+                fputs(" <small>(", f);
+                fprintf(f, dfmt[m], d);
+                fputs(")</small>", f);
+            }
+            fputs("</td>", f);
+        }
+        fputs("</tr>\n", f);
+    }
+    fputs("<tr><th>mean difference</th>", f);
+    for (int i = 0; i < r0->count; i++) {
+        fputs("<td class=\"num\">", f);
+        fprintf(f, dfmt[m], run->verdict[i].mean_diff[m]);
+        fputs("</td>", f);
+    }
+    fputs("</tr>\n<tr><th>better / worse / equal</th>", f);
+    for (int i = 0; i < r0->count; i++)
+        fprintf(f, "<td class=\"num\">%d / %d / %d</td>", run->verdict[i].wins[m], run->verdict[i].losses[m], run->verdict[i].ties[m]);
+    fputs("</tr>\n<tr><th>worst case</th>", f);
+    for (int i = 0; i < r0->count; i++) {
+        const vrg_cmp_verdict *v = &run->verdict[i];
+        fputs("<td class=\"num\">", f);
+        if (i != run->baseline && v->worst[m] >= 0) {
+            esc(f, run->cases[v->worst[m]].case_name[0] ? run->cases[v->worst[m]].case_name : "the run");
+            fputc(' ', f);
+            fprintf(f, dfmt[m], v->worst_diff[m]);
+        }
+        fputs("</td>", f);
+    }
+    fputs("</tr>\n</tbody></table>\n", f);
+}
+
+static void verdict(FILE *f, const vrg_cmp_run *run)
+{
+    fputs("<h2>Verdict</h2>\n<ul class=\"verdict\">", f);
+    for (int i = 0; i < run->cases[0].count; i++) {
+        fputs("<li>", f);
+        esc(f, run->verdict[i].sentence);
+        fputs("</li>", f);
+    }
+    fputs("</ul>\n<p>Each cell: the candidate's summary on the case and, in brackets, its difference to the baseline's; green where "
+          "better, red where worse.</p>\n",
+          f);
+    for (int m = 0; m < VRG_CMP_METRICS; m++)
+        if (m != VRG_CMP_SSIM)
+            matrix(f, run, m);
+}
+
+int vrg_cmp_write_report(const char *path, const vrg_cmp_run *run, FILE *sections)
+{
+    vrg_output *out = vrg_output_open(path);
+    if (!out)
+        return -1;
+    FILE *f = vrg_output_stream(out);
+    const vrg_cmp_result *r0 = &run->cases[0];
+    fprintf(f, "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>voxrg compare: ");
+    for (int i = 0; i < r0->count; i++) {
+        fputs(i ? ", " : "", f);
+        esc(f, r0->cand[i].name);
+    }
+    fprintf(f, "</title>\n<style>%s</style>\n</head>\n<body>\n<h1>voxrg compare</h1>\n", style);
+    if (run->cases_file) {
+        fputs("<p>Cases from ", f);
+        esc(f, run->cases_file);
+        fprintf(f, ": %d.</p>\n", run->case_count);
+    }
+    verdict(f, run);
+    char buf[65536];
+    size_t n;
+    int rc = fflush(sections) != 0 || fseek(sections, 0, SEEK_SET) != 0;
+    while (!rc && (n = fread(buf, 1, sizeof buf, sections)) > 0)
+        rc = fwrite(buf, 1, n, f) != n;
+    rc |= ferror(sections);
     fputs("</body>\n</html>\n", f);
     if (rc != 0) {
-        fprintf(stderr, "error: cannot write %s: a frame could not be encoded\n", path);
+        fprintf(stderr, "error: cannot write %s: the cases' part could not be read back\n", path);
         vrg_output_abort(out);
         return -1;
     }
