@@ -612,6 +612,32 @@ static uint8_t *read_output(vrg_graph *g)
     return rgb;
 }
 
+/* A moving sun (the scene's day_length > 0), held where the candidates
+ * see it: the reference's clock runs `subframes` times as fast (frame
+ * index k * subframes) and would run on during the accumulation, so its
+ * clock is stopped and its time of day set per frame. */
+typedef struct sun_clock {
+    double start_hours, day_length; /* day_length 0: no moving sun */
+} sun_clock;
+
+static int stop_sun(vrg_graph *g, sun_clock *sun)
+{
+    sun->day_length = 0;
+    if (vrg_graph_get_param(g, "scene.day_length", &sun->day_length) != 0 || sun->day_length <= 0) {
+        sun->day_length = 0; /* none, or a scene without one */
+        return 0;
+    }
+    return vrg_graph_get_param(g, "scene.time_of_day", &sun->start_hours) != 0 || vrg_graph_set_param(g, "scene.day_length", 0) != 0 ? -1 : 0;
+}
+
+/* the time of day the candidates' sun shows at t seconds */
+static int set_sun(vrg_graph *g, const sun_clock *sun, double t)
+{
+    if (!sun->day_length)
+        return 0;
+    return vrg_graph_set_param(g, "scene.time_of_day", fmod(sun->start_hours + 24.0 * t / sun->day_length, 24.0));
+}
+
 /* The reference at every frame: each rendered on its own (history reset,
  * frame index k * subframes) so a frame is alike whether cached or not. */
 static int reference_frames(vrg_context *ctx, const options *o, const vrg_camera_path *path, const vrg_camera *fixed, double frame_s,
@@ -633,6 +659,7 @@ static int reference_frames(vrg_context *ctx, const options *o, const vrg_camera
     base = fnv(base, &r->width, sizeof r->width);
     base = fnv(base, &r->height, sizeof r->height);
     vrg_graph *g = NULL;
+    sun_clock sun = {0};
     int rc = 0, cache_bad = 0;
     for (uint32_t k = 0; k < o->frames && rc == 0; k++) {
         vrg_camera cam;
@@ -656,12 +683,16 @@ static int reference_frames(vrg_context *ctx, const options *o, const vrg_camera
             free(ref[k]);
             ref[k] = NULL;
         }
-        if (!g && !(g = load(ctx, o->reference, o->ref_sets, o->ref_set_count, o))) {
+        if (!g && (!(g = load(ctx, o->reference, o->ref_sets, o->ref_set_count, o)) || stop_sun(g, &sun) != 0)) {
             rc = -1;
             break;
         }
         uint32_t sub = vrg_graph_subframes(g);
         vrg_graph_set_frame_index(g, (uint64_t)index * sub);
+        if (set_sun(g, &sun, index * frame_s) != 0) {
+            rc = -1;
+            break;
+        }
         vrg_graph_set_camera(g, &cam);
         for (uint32_t s = 0; s < sub && rc == 0; s++)
             rc = vrg_graph_frame(g);
@@ -726,15 +757,21 @@ static int render_candidate(vrg_context *ctx, const options *o, const job *j, vr
     for (int m = 0; m < VRG_CMP_METRICS; m++)
         c->per_frame[m] = calloc(o->frames, sizeof(double));
     uint32_t sub = vrg_graph_subframes(g);
+    /* the path's frame, as the reference's: the same simulated time (a moving sun) */
+    if (o->start)
+        vrg_graph_set_frame_index(g, (uint64_t)o->start * sub);
+    sun_clock sun = {0}; /* a graph that accumulates runs its clock fast, as the reference's */
+    int rc = sub > 1 ? stop_sun(g, &sun) : 0, written = 1;
     /* Each frame is scored and written as it comes, so memory holds no
      * more than two frames of a candidate whatever the frame count; on a
      * CPU device (lavapipe) the scoring between frames evicts caches the
      * next frame runs in (docs/compare.md, "GPU time"). */
-    int rc = 0, written = 1;
     for (uint32_t k = 0; k < o->frames && rc == 0; k++) {
         vrg_camera cam;
         camera_at(path, fixed, (o->start + k) * frame_s, &cam);
         vrg_graph_set_camera(g, &cam);
+        if ((rc = set_sun(g, &sun, (o->start + k) * frame_s)) != 0)
+            break;
         for (uint32_t s = 0; s < sub && rc == 0; s++)
             rc = vrg_graph_frame(g);
         uint8_t *rgb = NULL;
