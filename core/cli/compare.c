@@ -1161,7 +1161,8 @@ static int set_up(options *o, vrg_cmp_case_spec *specs, int spec_count, job **jo
             n += snprintf(r->reference_overrides + n, sizeof r->reference_overrides - (size_t)n, "%s%s", i ? "," : "", o->ref_sets[i]);
         case_setup *cs = &(*setups)[c];
         if (r->case_name[0] && check_all(&co, *jobs, r, &cs->fixed, &cs->frame_s) != 0) {
-            fprintf(stderr, "  (in %s:%d: [case %s])\n", o->cases, specs[c].line, r->case_name);
+            fprintf(stderr, "%s:%d: error: [case %s]: the graphs do not load, or differ, with its settings (above)\n", o->cases, specs[c].line,
+                    r->case_name);
             return -1;
         }
         if (!r->case_name[0] && check_all(&co, *jobs, r, &cs->fixed, &cs->frame_s) != 0)
