@@ -230,18 +230,27 @@ def names():
     check({"reference-00000.png", "reference-1-00000.png", 'a,"b-00000.png', "v-1.b_2-00001.png"} <= frames, "frames/: %s" % sorted(frames))
 
 
+def small_world(text):
+    """A graph's text with a world cheap to generate: radius 2 is all haze
+    from the graphs' camera (the haze pass fades it out by its edge), so
+    tonemap skips haze."""
+    m = re.search(r"\[pass haze\][^\[]*?in\.color\s*=\s*(\S+)", text)
+    text = text.replace("radius      = 13", "radius      = 2")
+    return text.replace("in.color = hazed", "in.color = " + m.group(1)) if m else text
+
+
+def small_graphs(out, edit=lambda text: text):
+    """raw.ini, thesis.ini and reference.ini (as converged.ini) in out, small_world and edit applied."""
+    os.makedirs(out, exist_ok=True)
+    paths = [os.path.join(out, n) for n in ("raw.ini", "thesis.ini", "converged.ini")]
+    for src, dst in zip(("raw.ini", "thesis.ini", "reference.ini"), paths):
+        open(dst, "w").write(edit(small_world(open(os.path.join(GRAPHS, src)).read())))
+    return paths
+
+
 def variant_graph():
     out = os.path.join(OUT, "variant-graph")
-    os.makedirs(out, exist_ok=True)
-    # cheap to generate; a world of radius 2 is all haze from the graphs'
-    # camera (the haze pass fades it out by its edge): tonemap skips haze
-    def small_world(text):
-        m = re.search(r"\[pass haze\][^\[]*?in\.color\s*=\s*(\S+)", text)
-        text = text.replace("radius      = 13", "radius      = 2")
-        return text.replace("in.color = hazed", "in.color = " + m.group(1)) if m else text
-    raw, thesis, ref = (os.path.join(out, n) for n in ("raw.ini", "thesis.ini", "converged.ini"))
-    for src, dst in (("raw.ini", raw), ("thesis.ini", thesis), ("reference.ini", ref)):
-        open(dst, "w").write(small_world(open(os.path.join(GRAPHS, src)).read()))
+    raw, thesis, ref = small_graphs(out)
     run = ["--reference", ref, "--ref-set", "converge.samples_per_frame=2", "--size", "32x18", "--frames", "2", "--warmup", "0"]
     # not listed, or listed twice: refused before any work, the candidates named
     for graphs, want, pattern in (([raw, thesis], "svgf", r"'svgf' is not a listed graph; the listed graphs are raw \(.*raw\.ini\), thesis \("),
@@ -267,8 +276,191 @@ def variant_graph():
           "report.html: t1's row does not say it is a variant of thesis")
 
 
+METRICS = ("psnr", "ssim", "flip", "temporal")
+SMALL = ["--ref-set", "converge.samples_per_frame=2"]
+
+
+def frame_numbers(candidate):
+    return [f[m] for f in candidate["frames"] for m in METRICS]
+
+
+def cases():
+    """A case file of 2 cases x 2 candidates (and a variant identical to
+    the baseline) gives the matrix that separate runs with the same
+    settings give, number for number; the verdict counts the cases each
+    candidate wins, loses and ties; metrics.csv has a row per case x
+    candidate x frame; each case's frames have their own folder."""
+    out = os.path.join(OUT, "cases")
+    raw, thesis, ref = small_graphs(out)
+    walk = os.path.join(GRAPHS, "paths", "walk.path")
+    case_file = os.path.join(out, "two.cases")
+    open(case_file, "w").write("; two small cases\n[case walk]\ncamera = %s\nstart = 10\nframes = 3\nwarmup = 1\nsize = 32x18\n\n"
+                               "[case dusk]\nframes = 2\nwarmup = 0\nsize = 33x19\nscene.time_of_day = 17.5\n" % os.path.relpath(walk, out))
+    # same:ao.rays=4 is raw itself (raw.ini has rays = 4): it ties with raw on every case
+    check("rays        = 4" in open(raw).read(), "raw.ini's ao.rays is no longer 4: change the variant")
+    rc, stdout, stderr = compare(raw, thesis, "--variant", "same:ao.rays=4", "--reference", ref, *SMALL, "--cases", case_file, out=out)
+    if not check(rc == 0, "compare --cases: exit %d\n%s" % (rc, stderr[-3000:])):
+        return
+    j = json.load(open(os.path.join(out, "metrics.json")))
+    check([c["name"] for c in j["cases"]] == ["walk", "dusk"] and j["baseline"] == "raw", "cases, baseline: %s" % j.get("baseline"))
+    # the same settings as separate runs: the walk from the options, the dusk from graphs whose time of day is 17.5
+    sep = os.path.join(out, "separate")
+    rc1, _, e1 = compare(raw, thesis, "--reference", ref, *SMALL, "--camera", walk, "--start", "10", "--frames", "3", "--warmup", "1",
+                         "--size", "32x18", out=os.path.join(sep, "walk"))
+    dusk = small_graphs(os.path.join(sep, "dusk-graphs"), lambda text: text.replace("time_of_day = 15", "time_of_day = 17.5"))
+    rc2, _, e2 = compare(dusk[0], dusk[1], "--reference", dusk[2], *SMALL, "--frames", "2", "--warmup", "0", "--size", "33x19",
+                         out=os.path.join(sep, "dusk"))
+    if not check(rc1 == 0 and rc2 == 0, "separate runs: exit %d, %d\n%s%s" % (rc1, rc2, e1[-2000:], e2[-2000:])):
+        return
+    for k, name in enumerate(("walk", "dusk")):
+        alone = {c["name"]: c for c in json.load(open(os.path.join(sep, name, "metrics.json")))["candidates"]}
+        mine = {c["name"]: c for c in j["cases"][k]["candidates"]}
+        for cand in ("raw", "thesis"):
+            check(frame_numbers(mine[cand]) == frame_numbers(alone[cand]) and
+                  [mine[cand]["summary"][m] for m in METRICS] == [alone[cand]["summary"][m] for m in METRICS],
+                  "case %s, %s: %s, alone %s" % (name, cand, mine[cand]["summary"], alone[cand]["summary"]))
+        check(frame_numbers(mine["same"]) == frame_numbers(mine["raw"]), "case %s: same (raw itself) has other numbers" % name)
+    check(j["cases"][1]["scene"] == "scene.time_of_day=17.5" and j["cases"][1]["width"] == 33, "dusk's settings: %s" % j["cases"][1]["scene"])
+    # the verdict: wins counted from the summaries; the identical variant ties everywhere
+    verdict = {v["candidate"]: v for v in j["verdict"]}
+    for m in METRICS:
+        sign = 1 if m in ("psnr", "ssim") else -1
+        diffs = [sign * (c["candidates"][1]["summary"][m] - c["candidates"][0]["summary"][m]) for c in j["cases"]]
+        got = verdict["thesis"]
+        check((got["wins"][m], got["losses"][m], got["ties"][m]) == (sum(d > 0 for d in diffs), sum(d < 0 for d in diffs), sum(d == 0 for d in diffs)),
+              "thesis %s: wins/losses/ties %s %s %s, differences %s" % (m, got["wins"][m], got["losses"][m], got["ties"][m], diffs))
+        check((verdict["same"]["wins"][m], verdict["same"]["losses"][m], verdict["same"]["ties"][m]) == (0, 0, 2), "same %s: %s" % (m, verdict["same"]))
+    wins = verdict["thesis"]["wins"]
+    want = "thesis: beats raw on %d of 2 cases in PSNR and %d in FLIP" % (wins["psnr"], wins["flip"])
+    check(verdict["thesis"]["sentence"].startswith(want) and want in stdout, "sentence: %r, want %r" % (verdict["thesis"]["sentence"], want))
+    check(verdict["same"]["sentence"].startswith("same: beats raw on 0 of 2 cases in PSNR and 0 in FLIP (worse on 0 and 0, equal on 2 and 2)"),
+          "same's sentence: %r" % verdict["same"]["sentence"])
+    rows = [l.split(",") for l in open(os.path.join(out, "metrics.csv")).read().split("\n") if l]
+    check(rows[0][:2] == ["case", "candidate"] and len(rows) == 1 + 3 * 3 + 3 * 2, "metrics.csv: %d rows, header %s" % (len(rows), rows[0]))
+    check(all(os.path.exists(os.path.join(out, "frames", c, "%s-%05d.png" % (n, k))) for c, f in (("walk", 3), ("dusk", 2))
+              for n in ("reference", "raw", "thesis", "same") for k in range(f)), "frames/CASE/ misses PNGs")
+    page_text = open(os.path.join(out, "report.html")).read()
+    page = Page()
+    page.feed(page_text)
+    page.close()
+    check(not page.errors and not page.stack, "report.html nesting: %s, unclosed %s" % (page.errors[:3], page.stack))
+    cells = re.findall(r'data-cell="(\w+)" data-case="([^"]*)" data-candidate-name="([^"]*)" data-value="([^"]*)"', page_text)
+    check(len(cells) == 3 * 2 * 3, "matrix cells: %d" % len(cells))
+    by_case = {c["name"]: {x["name"]: x for x in c["candidates"]} for c in j["cases"]}
+    check(all(float(v) == by_case[case][cand]["summary"][m] for m, case, cand, v in cells), "a matrix cell differs from metrics.json")
+    check(all(v["sentence"].replace("&", "&amp;") in page_text for v in j["verdict"]), "report.html lacks a verdict sentence")
+    # --baseline picks another candidate
+    rc, _, stderr = compare(raw, thesis, "--reference", ref, *SMALL, "--cases", case_file, "--baseline", "thesis", out=out + "-b")
+    if check(rc == 0, "--baseline thesis: exit %d\n%s" % (rc, stderr[-2000:])):
+        jb = json.load(open(os.path.join(out + "-b", "metrics.json")))
+        check(jb["baseline"] == "thesis" and jb["verdict"][0]["sentence"].startswith("raw: beats thesis on ") and
+              jb["verdict"][1]["sentence"] == "thesis: the baseline", "--baseline thesis: %s" % jb["verdict"])
+    rc, _, stderr = compare(raw, "--reference", ref, "--cases", case_file, "--baseline", "nobody", out=out + "-b")
+    check(rc == 2 and "--baseline nobody: no candidate of that name; the candidates are raw" in stderr, "--baseline nobody: %d\n%s" % (rc, stderr))
+
+
+def case_errors():
+    """A bad case file: every mistake named by file:line, exit 1, before any
+    work; the case options beside --cases are a usage error."""
+    out = os.path.join(OUT, "case-errors")
+    raw, thesis, ref = small_graphs(out)
+    bad = os.path.join(out, "bad.cases")
+    open(bad, "w").write("; comment\nframes = 3\n[case a]\nsize = 8x8\nframs = 3\nscene.time_of_day = 3\nscene.time_of_day = 4\n"
+                         "[cas b]\n[case c d]\n[case e]\nwarmup = 9\nframes = 2\nstart = -1\njunk\ncamera =\n[case a]\n")
+    rc, _, stderr = compare(raw, "--reference", ref, "--cases", bad, out=out)
+    want = ["bad.cases:2: error: 'frames' is outside a [case NAME] section",
+            "bad.cases:4: error: size = 8x8: compare needs at least 11x11 pixels",
+            "bad.cases:5: error: unknown key 'frams' in [case a]",
+            "bad.cases:7: error: 'scene.time_of_day' is given twice in [case a]",
+            "bad.cases:8: error: unknown section '[cas b]'",
+            "bad.cases:9: error: [case c d]: not a usable case name",
+            "bad.cases:13: error: start = -1: not a frame number",
+            "bad.cases:14: error: 'junk': expected KEY = VALUE",
+            "bad.cases:15: error: 'camera' has no value",
+            "bad.cases:10: error: [case e]: warmup must be below frames",
+            "bad.cases:16: error: [case a] is given twice (first at line 3)"]
+    check(rc == 1 and all(w in stderr for w in want), "bad case file: exit %d, missing %s in:\n%s" % (rc, [w for w in want if w not in stderr], stderr))
+    check(not os.path.exists(os.path.join(out, "frames")), "a bad case file wrote frames")
+    # a scene parameter the scene does not have: the case's line and the parameter
+    open(bad, "w").write("[case a]\nsize = 32x18\n\n[case b]\nsize = 32x18\nscene.sunniness = 3\n")
+    rc, _, stderr = compare(raw, "--reference", ref, "--cases", bad, out=out)
+    check(rc == 1 and "'scene.sunniness=3': pass 'scene' has no parameter 'sunniness'" in stderr and
+          "bad.cases:4: error: [case b]:" in stderr, "unknown scene parameter: exit %d\n%s" % (rc, stderr))
+    for empty in ("", "; nothing\n"):
+        open(bad, "w").write(empty)
+        rc, _, stderr = compare(raw, "--reference", ref, "--cases", bad, out=out)
+        check(rc == 1 and "bad.cases: error: no [case NAME] section" in stderr, "empty case file: exit %d\n%s" % (rc, stderr))
+    rc, _, stderr = compare(raw, "--reference", ref, "--cases", os.path.join(out, "none.cases"), out=out)
+    check(rc == 1 and "none.cases: error: cannot read the case file" in stderr, "missing case file: exit %d\n%s" % (rc, stderr))
+    rc, _, stderr = compare(raw, "--reference", ref, "--cases", bad, "--size", "32x18", out=out)
+    check(rc == 2 and "are the case file's keys" in stderr, "--cases with --size: exit %d\n%s" % (rc, stderr))
+
+
+def shipped_cases():
+    """The shipped case files load and pass every check (graphs, scene
+    overrides, sizes, paths) with the graphs they are for: the run stops
+    only at the device, which comes after every check."""
+    out = os.path.join(OUT, "shipped")
+    for graphs, ref, cases_file in ((["raw.ini", "thesis.ini"], "reference.ini", "terrain.cases"),
+                                    (["vox-knight.ini"], "reference-vox.ini", "vox.cases")):
+        path = os.path.join(GRAPHS, "cases", cases_file)
+        names = re.findall(r"^\[case (\S+)\]", open(path).read(), re.M)
+        rc, _, stderr = compare(*[os.path.join(GRAPHS, g) for g in graphs], "--reference", os.path.join(GRAPHS, ref), "--cases", path,
+                                "--device", "no-such-device", out=out)
+        check(rc == 1 and re.match(r"error: device 'no-such-device'[^\n]*matches no device", stderr), "%s: exit %d\n%s" % (cases_file, rc, stderr[-3000:]))
+        check(len(names) == len(set(names)), "%s: case names repeat" % cases_file)
+    terrain = open(os.path.join(GRAPHS, "cases", "terrain.cases")).read()
+    check(len(re.findall(r"^\[case ", terrain, re.M)) >= 12, "terrain.cases has fewer than 12 cases")
+
+
+def grid():
+    """--grid: the product of one graph's lists, named deterministically,
+    of the first graph or of @GRAPH; more than 16 candidates run."""
+    out = os.path.join(OUT, "grid")
+    raw, thesis, ref = small_graphs(out)
+    run = ["--reference", ref, *SMALL, "--size", "32x18", "--frames", "2", "--warmup", "0"]
+    rc, _, stderr = compare(raw, thesis, "--grid", "ao.rays=1,2", "--grid", "tonemap.exposure=0.5,2", "--grid", "@thesis:atrous.iterations=1",
+                            *run, out=out)
+    if check(rc == 0, "grid: exit %d\n%s" % (rc, stderr[-3000:])):
+        c = json.load(open(os.path.join(out, "metrics.json")))["candidates"]
+        got = [(x["name"], x["overrides"], x["variant_of"]) for x in c]
+        check(got == [("raw", "", None), ("thesis", "", None),
+                      ("raw-rays1-exposure0.5", "ao.rays=1,tonemap.exposure=0.5", "raw"), ("raw-rays1-exposure2", "ao.rays=1,tonemap.exposure=2", "raw"),
+                      ("raw-rays2-exposure0.5", "ao.rays=2,tonemap.exposure=0.5", "raw"), ("raw-rays2-exposure2", "ao.rays=2,tonemap.exposure=2", "raw"),
+                      ("thesis-iterations1", "atrous.iterations=1", "thesis")], "grid candidates: %s" % got)
+    values = ",".join("%.1f" % (0.5 + 0.1 * i) for i in range(17))
+    rc, stdout, stderr = compare(raw, "--grid", "tonemap.exposure=" + values, *run, out=out + "-17")
+    if check(rc == 0, "a grid of 17: exit %d\n%s" % (rc, stderr[-3000:])):
+        c = json.load(open(os.path.join(out + "-17", "metrics.json")))["candidates"]
+        check(len(c) == 18 and c[-1]["name"] == "raw-exposure2.1" and len(c[-1]["frames"]) == 2, "a grid of 17: %d candidates" % len(c))
+        check(len(set(tuple(frame_numbers(x)) for x in c[1:])) == 17, "the grid's 17 exposures do not all differ")
+    for bad, why in (("ao.rays", "expected [@GRAPH:]PASS.PARAM=VALUE"), ("@:ao.rays=1", "expected"), ("rays=1", "expected")):
+        rc, _, stderr = compare(raw, "--grid", bad, *run, out=out + "-bad")
+        check(rc == 2 and why in stderr, "--grid %s: exit %d\n%s" % (bad, rc, stderr[-1000:]))
+    rc, _, stderr = compare(raw, "--grid", "tonemap.exposure=1,x y", *run, out=out + "-bad")
+    check(rc == 1 and "tonemap.exposure=x y" in stderr, "--grid with a bad value: exit %d\n%s" % (rc, stderr[-1000:]))
+
+
+def moving_sun():
+    """A moving sun: the reference (whose clock runs samples_per_frame
+    times as fast) shows the sun where the candidates see it. Frame 6 of a
+    day of 2.4 s from 15:00 is 16:00: the same frames as a still sun at
+    16:00."""
+    out = os.path.join(OUT, "moving-sun")
+    raw, thesis, ref = small_graphs(out)
+    case_file = os.path.join(out, "sun.cases")
+    open(case_file, "w").write("[case moving]\nstart = 6\nframes = 1\nwarmup = 0\nsize = 32x18\nscene.day_length = 2.4\n\n"
+                               "[case still]\nstart = 6\nframes = 1\nwarmup = 0\nsize = 32x18\nscene.time_of_day = 16\n")
+    rc, _, stderr = compare(raw, "--reference", ref, *SMALL, "--cases", case_file, out=out)
+    if not check(rc == 0, "moving sun: exit %d\n%s" % (rc, stderr[-3000:])):
+        return
+    frame = lambda case, name: open(os.path.join(out, "frames", case, name + "-00000.png"), "rb").read()
+    check(frame("moving", "raw") == frame("still", "raw"), "the candidate's sun at frame 6 is not 16:00")
+    check(frame("moving", "reference") == frame("still", "reference"), "the reference's sun at frame 6 is not the candidates'")
+
+
 # one line: tests/cli/CMakeLists.txt reads the names from it
-CASES = (errors, names, variant_graph, identical, e2e)
+CASES = (errors, names, variant_graph, identical, e2e, cases, case_errors, shipped_cases, grid, moving_sun)
 
 
 def main():
