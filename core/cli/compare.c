@@ -66,7 +66,7 @@ typedef struct options {
     const char *ref_sets[MAX_SETS];
     int ref_set_count;
     uint32_t width, height, frames, warmup, start;
-    int validate, help, case_options;
+    int validate, help;
     /* the case being run: its scene.PARAM=VALUE overrides, for every graph */
     char *const *scene;
     int scene_count;
@@ -119,6 +119,7 @@ static int parse_options(int argc, char **argv, options *o)
     o->warmup = 5;
     o->out = "compare";
     int warmup_given = 0;
+    const char *case_option = NULL; /* the last given of the options a case file's keys replace */
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -136,6 +137,8 @@ static int parse_options(int argc, char **argv, options *o)
         if (!next)
             return usage_error("%s needs a value", a);
         i++;
+        if (!strcmp(a, "--camera") || !strcmp(a, "--start") || !strcmp(a, "--frames") || !strcmp(a, "--warmup") || !strcmp(a, "--size"))
+            case_option = a;
         if (!strcmp(a, "--reference"))
             o->reference = next;
         else if (!strcmp(a, "--camera"))
@@ -190,9 +193,8 @@ static int parse_options(int argc, char **argv, options *o)
     if (o->help)
         return 0;
     o->variant_count_given = o->variant_count; /* the grids' come after, owned */
-    o->case_options = o->camera || o->start || o->width || warmup_given || o->frames != 30;
-    if (o->cases && o->case_options)
-        return usage_error("--cases %s: --camera, --start, --frames, --warmup and --size are the case file's keys", o->cases);
+    if (o->cases && case_option)
+        return usage_error("--cases with %s: --camera, --start, --frames, --warmup and --size are the case file's keys", case_option);
     if (!o->graph_count)
         return usage_error("no candidate graph given%s", "");
     if (!o->reference)
@@ -220,15 +222,19 @@ static const char *stem(const char *path, char *buf, size_t cap)
 /* a graph with its overrides, then the case's scene overrides */
 static vrg_graph *load(vrg_context *ctx, const char *graph, const char *const *sets, int set_count, const options *o)
 {
-    const char *all[2 * MAX_SETS];
+    const char **all = malloc(sizeof *all * (size_t)(set_count + o->scene_count + 1));
+    if (!all)
+        return NULL;
     int n = 0;
-    for (int i = 0; i < set_count && n < 2 * MAX_SETS; i++)
+    for (int i = 0; i < set_count; i++)
         all[n++] = sets[i];
-    for (int i = 0; i < o->scene_count && n < 2 * MAX_SETS; i++)
+    for (int i = 0; i < o->scene_count; i++)
         all[n++] = o->scene[i];
     vrg_graph_desc d = {.path = graph, .overrides = all, .override_count = (uint32_t)n, .width = o->width, .height = o->height};
     vrg_graph *g = NULL;
-    if (vrg_graph_load(ctx, &d, &g) != 0) {
+    int rc = vrg_graph_load(ctx, &d, &g);
+    free(all);
+    if (rc != 0) {
         vrg_graph_destroy(g);
         return NULL;
     }
@@ -292,6 +298,10 @@ static char *grid_variant(const options *o, const char **axes, int n, long index
         if (sl < sizeof sets)
             sl += (size_t)snprintf(sets + sl, sizeof sets - sl, "%s%.*s%.*s", a ? "," : "", (int)(eq - axis + 1), axis, vl, v);
     }
+    if (sl >= sizeof sets) {
+        fprintf(stderr, "error: --grid %s: a variant's overrides are longer than %zu characters\n", axes[0], sizeof sets - 1);
+        return NULL;
+    }
     for (char *c = name; *c; c++)
         if (!isalnum((unsigned char)*c) && !strchr("_-.", *c))
             *c = '_';
@@ -334,10 +344,12 @@ static int expand_grids(options *o)
         o->variants = grown;
         for (long i = 0; i < total; i++) {
             char *spec = grid_variant(o, axes, n, i);
-            size_t len = strcspn(spec ? spec : "", "@:");
-            if (!spec || !variant_name_ok(spec, len)) {
+            if (!spec)
+                return -1;
+            size_t len = strcspn(spec, "@:");
+            if (!variant_name_ok(spec, len)) {
                 fprintf(stderr, "error: --grid %s: the variant name '%.*s' is not 1 to 63 of A-Z a-z 0-9 _ - and dots\n", axes[0],
-                        (int)len, spec ? spec : "");
+                        (int)len, spec);
                 free(spec);
                 return -1;
             }

@@ -393,7 +393,7 @@ def case_errors():
     rc, _, stderr = compare(raw, "--reference", ref, "--cases", os.path.join(out, "none.cases"), out=out)
     check(rc == 1 and "none.cases: error: cannot read the case file" in stderr, "missing case file: exit %d\n%s" % (rc, stderr))
     rc, _, stderr = compare(raw, "--reference", ref, "--cases", bad, "--size", "32x18", out=out)
-    check(rc == 2 and "are the case file's keys" in stderr, "--cases with --size: exit %d\n%s" % (rc, stderr))
+    check(rc == 2 and "--cases with --size: --camera, --start, --frames, --warmup and --size are the case file's keys" in stderr, "--cases with --size: exit %d\n%s" % (rc, stderr))
 
 
 def shipped_cases():
