@@ -88,11 +88,67 @@ static int image(FILE *f, const uint8_t *rgb, uint32_t w, uint32_t h, int scale,
     return 0;
 }
 
-static uint8_t *heat_map(const float *map, size_t n)
+/* FLIP map, 0 to `range` over the error colours (above it: the top colour) */
+static uint8_t *heat_map(const float *map, size_t n, double range)
 {
     uint8_t *rgb = malloc(n * 3);
     for (size_t i = 0; rgb && i < n; i++)
-        vrg_error_color(map[i], rgb + 3 * i);
+        vrg_error_color((float)fmin(map[i] / range, 1.0), rgb + 3 * i);
+    return rgb;
+}
+
+/* signed: blue where below the reference, red where above, white equal,
+ * full at +-range */
+static void signed_color(double d, double range, uint8_t rgb[3])
+{
+    double t = fmin(fabs(d) / range, 1.0);
+    uint8_t fade = (uint8_t)lround(255 * (1 - t));
+    rgb[0] = d > 0 ? 255 : fade, rgb[1] = fade, rgb[2] = d < 0 ? 255 : fade;
+}
+
+static double luma(const uint8_t *p) { return (0.2989 * p[0] + 0.5870 * p[1] + 0.1140 * p[2]) / 255.0; }
+
+/* 1, 2 or 5 times a power of ten, at least v: a scale's end that reads well */
+static double nice_ceil(double v)
+{
+    double p = pow(10, floor(log10(v)));
+    return v <= p ? p : v <= 2 * p ? 2 * p : v <= 5 * p ? 5 * p : 10 * p;
+}
+
+static int cmp_float(const void *a, const void *b)
+{
+    float x = *(const float *)a, y = *(const float *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* The scale of shown frame s's maps: the 99th percentile of the FLIP
+ * errors (signed = 0) or of |luma difference| (signed = 1) over the
+ * candidates, so that denoiser-level errors are seen, not only outliers;
+ * at least 0.001, at most 1. */
+static double map_range(const vrg_cmp_result *r, int s, int is_signed)
+{
+    size_t n = (size_t)r->width * r->height, total = 0;
+    float *v = malloc(sizeof *v * n * (size_t)(r->count ? r->count : 1));
+    for (int i = 0; v && i < r->count; i++)
+        for (size_t p = 0; p < n; p++)
+            if (!is_signed && r->cand[i].flip_map[s])
+                v[total++] = r->cand[i].flip_map[s][p];
+            else if (is_signed && r->cand[i].shown[s])
+                v[total++] = (float)fabs(luma(r->cand[i].shown[s] + 3 * p) - luma(r->reference_shown[s] + 3 * p));
+    double q = 1;
+    if (v && total) {
+        qsort(v, total, sizeof *v, cmp_float);
+        q = v[(size_t)(0.99 * (double)(total - 1))];
+    }
+    free(v);
+    return nice_ceil(fmin(fmax(q, 0.001), 1.0));
+}
+
+static uint8_t *signed_map(const uint8_t *cand, const uint8_t *ref, size_t n, double range)
+{
+    uint8_t *rgb = malloc(n * 3);
+    for (size_t i = 0; rgb && i < n; i++)
+        signed_color(luma(cand + 3 * i) - luma(ref + 3 * i), range, rgb + 3 * i);
     return rgb;
 }
 
@@ -165,8 +221,14 @@ static void plot(FILE *f, const vrg_cmp_result *r, int m)
     uint32_t step = r->frames > 10 ? (r->frames + 9) / 10 : 1;
     for (uint32_t k = 0; k < r->frames; k += step)
         fprintf(f, "<text class=\"xtick\" x=\"%.1f\" y=\"%d\">%u</text>", PX((double)k), PLOT_H - PAD_B + 16, k);
+    /* the first candidates drawn widest, each later one narrower on top and
+     * dashed by its round of the colours: a line under an equal one shows */
+    static const char *const dashes[] = {"none", "6 3", "2 2", "8 3 2 3"};
     for (int i = 0; i < r->count; i++) {
-        fprintf(f, "<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"2\" points=\"", cand_color(i));
+        double width = r->count > 1 ? 4.5 - 3.0 * i / (r->count - 1) : 2;
+        int round = i / (int)(sizeof series / sizeof series[0]);
+        fprintf(f, "<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"%.2f\" stroke-dasharray=\"%s\" stroke-opacity=\"0.9\" points=\"",
+                cand_color(i), width, dashes[round % 4]);
         for (uint32_t k = 0; k < r->frames; k++)
             if (!isnan(r->cand[i].per_frame[m][k]))
                 fprintf(f, "%.1f,%.1f ", PX((double)k), PY(r->cand[i].per_frame[m][k]));
@@ -356,22 +418,39 @@ static int frames(FILE *f, const vrg_cmp_result *r)
                     r->cand[i].per_frame[VRG_CMP_FLIP][r->shown[s]]);
         }
         fputs("</div>\n<div class=\"frames\">", f);
-        /* the ramp under the reference's column, the maps under the candidates' */
+        /* the colour bar under the reference's column, the maps under the candidates' */
+        double range = map_range(r, s, 0), srange = map_range(r, s, 1);
         uint8_t ramp[256 * 12 * 3];
         for (int x = 0; x < 256; x++)
             for (int y = 0; y < 12; y++)
                 vrg_error_color(x / 255.0f, ramp + 3 * (y * 256 + x));
         fputs("<figure>", f);
-        rc |= image(f, ramp, 256, 12, 1, "FLIP colour scale, 0 to 1");
-        fputs("<figcaption>FLIP error: 0 (left) to 1 (right)</figcaption></figure>", f);
+        rc |= image(f, ramp, 256, 12, 1, "FLIP colour bar");
+        fprintf(f, "<figcaption>FLIP error: 0 (left) to %g and above (right); the 99th percentile of the maps</figcaption></figure>", range);
         for (int i = 0; i < r->count && rc == 0; i++) {
-            uint8_t *heat = heat_map(r->cand[i].flip_map[s], (size_t)w * h);
+            uint8_t *heat = heat_map(r->cand[i].flip_map[s], (size_t)w * h, range);
             fputs("<figure>", f);
             rc |= heat ? image(f, heat, w, h, fscale, "FLIP map") : -1;
             fputs("<figcaption>FLIP map: ", f);
             esc(f, r->cand[i].name);
             fputs("</figcaption></figure>", f);
             free(heat);
+        }
+        fputs("</div>\n<div class=\"frames\">", f);
+        for (int x = 0; x < 256; x++)
+            for (int y = 0; y < 12; y++)
+                signed_color((x - 127.5) / 127.5 * srange, srange, ramp + 3 * (y * 256 + x));
+        fputs("<figure>", f);
+        rc |= image(f, ramp, 256, 12, 1, "signed difference colour bar");
+        fprintf(f, "<figcaption>candidate &#8722; reference, luma: &#8722;%g (blue) to +%g (red)</figcaption></figure>", srange, srange);
+        for (int i = 0; i < r->count && rc == 0; i++) {
+            uint8_t *diff = signed_map(r->cand[i].shown[s], r->reference_shown[s], (size_t)w * h, srange);
+            fputs("<figure>", f);
+            rc |= diff ? image(f, diff, w, h, fscale, "signed difference") : -1;
+            fputs("<figcaption>difference: ", f);
+            esc(f, r->cand[i].name);
+            fputs("</figcaption></figure>", f);
+            free(diff);
         }
         fprintf(f, "</div>\n<p>Zoomed: the %ux%u window at (%u, %u) with the largest FLIP error summed over the candidates.</p>\n"
                    "<div class=\"frames crop\">",

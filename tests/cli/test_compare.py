@@ -127,8 +127,14 @@ def e2e():
     best = re.findall(r'<td class="num best" data-metric="(\w+)"', open(os.path.join(out, "report.html")).read())
     check(sorted(best) == sorted(["psnr", "ssim", "flip", "temporal", "gpu_ms_mean"]), "one best mark per column: %s" % best)
     pngs = [s for s in page.images if s.startswith("data:image/png;base64,")]
-    # per shown frame: reference + 2 candidates, the ramp + 2 maps, 3 crops
-    check(len(pngs) == len(page.images) == 3 * 9, "report images: %d inline of %d" % (len(pngs), len(page.images)))
+    # per shown frame: reference + 2 candidates, a colour bar + 2 FLIP maps, a colour bar + 2 signed differences, 3 crops
+    check(len(pngs) == len(page.images) == 3 * 12, "report images: %d inline of %d" % (len(pngs), len(page.images)))
+    # the maps' scales: the 99th percentile of the errors, which for these denoisers is far below 1
+    text = open(os.path.join(out, "report.html")).read()
+    ranges = [float(x) for x in re.findall(r"FLIP error: 0 \(left\) to ([0-9.e+-]+) and above", text)]
+    signed = re.findall(r"candidate &#8722; reference, luma: &#8722;([0-9.e+-]+) \(blue\) to \+([0-9.e+-]+) \(red\)", text)
+    check(len(ranges) == 3 and all(0.001 <= x < 1 for x in ranges), "FLIP map ranges: %s" % ranges)
+    check(len(signed) == 3 and all(a == b and 0.001 <= float(a) <= 1 for a, b in signed), "signed difference ranges: %s" % signed)
     check(all(base64.b64decode(s.split(",", 1)[1])[:8] == b"\x89PNG\r\n\x1a\n" for s in pngs), "an inline image is not a PNG")
     check(page.svgs == 5 and page.polylines == 4 * 2, "plots: %d svg, %d polylines" % (page.svgs, page.polylines))
     # csv = json
