@@ -1087,10 +1087,24 @@ typedef struct case_setup {
     char frames_dir[VRG_CLI_PATH];
 } case_setup;
 
-/* One case: the reference frames (written, kept for scoring), then each
- * candidate; its part of the report goes to `sections`, after which the
- * frames it showed are freed. */
-static int run_case(vrg_context *ctx, const options *co, job *jobs, vrg_cmp_result *r, case_setup *cs, FILE *sections, int tty)
+/* The run's work: one task per (case, candidate), case by case; the
+ * tasks of a case share its reference frames (rendered, or taken from the
+ * cache, when its first task comes), so a slice of the tasks can run on
+ * its own. */
+typedef struct task {
+    int case_index, candidate;
+} task;
+
+/* the current case's reference frames, kept for scoring its candidates */
+typedef struct case_frames {
+    int case_index; /* -1: none yet */
+    uint8_t **ref;
+    uint32_t frames;
+} case_frames;
+
+/* The reference frames of case c (written to its frames folder), and the
+ * frames its report shows. */
+static int case_begin(vrg_context *ctx, const options *co, vrg_cmp_result *r, case_setup *cs, case_frames *cf, int c, int tty)
 {
     uint32_t picks[3] = {co->warmup, co->warmup + (co->frames - 1 - co->warmup) / 2, co->frames - 1};
     for (int i = 0; i < 3; i++) /* shown: the first frame after warmup, the middle, the last */
@@ -1099,24 +1113,57 @@ static int run_case(vrg_context *ctx, const options *co, job *jobs, vrg_cmp_resu
     r->device = vrg_context_device(ctx)->name;
     if (r->case_name[0])
         fprintf(stderr, "case %s\n", r->case_name);
-    uint8_t **ref = calloc(co->frames, sizeof *ref);
-    int rc = ref ? reference_frames(ctx, co, &cs->path, &cs->fixed, cs->frame_s, ref, r, tty) : -1;
+    cf->case_index = c;
+    cf->frames = co->frames;
+    cf->ref = calloc(co->frames, sizeof *cf->ref);
+    int rc = cf->ref ? reference_frames(ctx, co, &cs->path, &cs->fixed, cs->frame_s, cf->ref, r, tty) : -1;
     char file[VRG_CLI_PATH + 32];
     for (uint32_t k = 0; rc == 0 && k < co->frames; k++) {
         snprintf(file, sizeof file, "%s/reference-%05u.png", cs->frames_dir, k);
-        rc = vrg_png_write_rgb8(file, ref[k], r->width, r->height);
+        rc = vrg_png_write_rgb8(file, cf->ref[k], r->width, r->height);
     }
-    for (int i = 0; rc == 0 && i < r->count; i++)
-        rc = render_candidate(ctx, co, &jobs[i], &r->cand[i], &cs->path, &cs->fixed, cs->frame_s, ref, r, cs->frames_dir, tty);
+    return rc;
+}
+
+/* The end of a case: after its tasks succeeded (rc 0) its part of the
+ * report goes to `sections`; then its frames are freed. */
+static int case_end(case_frames *cf, vrg_cmp_result *r, FILE *sections, int rc)
+{
     for (int s = 0; rc == 0 && s < r->shown_count; s++)
-        r->reference_shown[s] = ref[r->shown[s]], ref[r->shown[s]] = NULL;
-    for (uint32_t k = 0; ref && k < co->frames; k++)
-        free(ref[k]);
-    free(ref);
+        r->reference_shown[s] = cf->ref[r->shown[s]], cf->ref[r->shown[s]] = NULL;
+    for (uint32_t k = 0; cf->ref && k < cf->frames; k++)
+        free(cf->ref[k]);
+    free(cf->ref);
+    cf->ref = NULL;
+    cf->case_index = -1;
     if (rc == 0 && vrg_cmp_report_case(sections, r) != 0)
         rc = -1;
     free_shown(r);
     return rc;
+}
+
+/* Runs tasks[0..n): each case's reference frames when its first task
+ * comes, each candidate scored as it renders. */
+static int run_tasks(vrg_context *ctx, const options *o, const vrg_cmp_case_spec *specs, job *jobs, vrg_cmp_run *run, case_setup *setups,
+                     const task *tasks, int n, FILE *sections, int tty)
+{
+    case_frames cf = {.case_index = -1};
+    int rc = 0;
+    for (int t = 0; t < n && rc == 0; t++) {
+        int c = tasks[t].case_index, i = tasks[t].candidate;
+        vrg_cmp_result *r = &run->cases[c];
+        options co = case_options(o, &specs[c]);
+        if (cf.case_index != c) {
+            if (cf.case_index >= 0)
+                rc = case_end(&cf, &run->cases[cf.case_index], sections, rc);
+            if (rc == 0)
+                rc = case_begin(ctx, &co, r, &setups[c], &cf, c, tty);
+        }
+        if (rc == 0)
+            rc = render_candidate(ctx, &co, &jobs[i], &r->cand[i], &setups[c].path, &setups[c].fixed, setups[c].frame_s, cf.ref, r,
+                                  setups[c].frames_dir, tty);
+    }
+    return cf.case_index >= 0 ? case_end(&cf, &run->cases[cf.case_index], sections, rc) : rc;
 }
 
 /* --baseline: a candidate's name; its index, or -1 after a usage error */
@@ -1232,11 +1279,12 @@ int vrg_cli_compare(int argc, char **argv)
         rc = 1;
         goto done;
     }
-    int tty = isatty(2);
-    for (int c = 0; c < spec_count && rc == 0; c++) {
-        options co = case_options(&o, specs ? &specs[c] : &one);
-        rc = run_case(ctx, &co, jobs, &run.cases[c], &setups[c], sections, tty);
-    }
+    int count = run.cases[0].count, task_count = spec_count * count;
+    task *tasks = malloc(sizeof *tasks * (size_t)task_count);
+    for (int t = 0; tasks && t < task_count; t++)
+        tasks[t] = (task){.case_index = t / count, .candidate = t % count};
+    rc = tasks ? run_tasks(ctx, &o, specs ? specs : &one, jobs, &run, setups, tasks, task_count, sections, isatty(2)) : -1;
+    free(tasks);
     uint32_t errors = vrg_context_validation_errors(ctx);
     if (errors) {
         fprintf(stderr, "error: %u validation message%s (see above)\n", errors, errors == 1 ? "" : "s");
