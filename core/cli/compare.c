@@ -1106,8 +1106,11 @@ typedef struct case_frames {
  * frames its report shows. */
 static int case_begin(vrg_context *ctx, const options *co, vrg_cmp_result *r, case_setup *cs, case_frames *cf, int c, int tty)
 {
+    /* shown: the first frame after warmup, the middle, the last; of a
+     * case file's case only the last, where history has had the longest
+     * to go wrong, so that a report of many cases stays readable */
     uint32_t picks[3] = {co->warmup, co->warmup + (co->frames - 1 - co->warmup) / 2, co->frames - 1};
-    for (int i = 0; i < 3; i++) /* shown: the first frame after warmup, the middle, the last */
+    for (int i = r->case_name[0] ? 2 : 0; i < 3; i++)
         if (!r->shown_count || r->shown[r->shown_count - 1] != (int)picks[i])
             r->shown[r->shown_count++] = (int)picks[i];
     r->device = vrg_context_device(ctx)->name;

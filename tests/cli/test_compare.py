@@ -352,6 +352,9 @@ def cases():
     check(not page.errors and not page.stack, "report.html nesting: %s, unclosed %s" % (page.errors[:3], page.stack))
     cells = re.findall(r'data-cell="(\w+)" data-case="([^"]*)" data-candidate-name="([^"]*)" data-value="([^"]*)"', page_text)
     check(len(cells) == 3 * 2 * 3, "matrix cells: %d" % len(cells))
+    # per case its last frame: reference + 3 candidates, 2 colour bars + 3 FLIP maps + 3 differences, 4 crops
+    check(len(page.images) == 2 * 16 and re.findall(r"<h3>frame (\d+)</h3>", page_text) == ["2", "1"],
+          "case frames shown: %d images, %s" % (len(page.images), re.findall(r"<h3>frame (\d+)</h3>", page_text)))
     by_case = {c["name"]: {x["name"]: x for x in c["candidates"]} for c in j["cases"]}
     check(all(float(v) == by_case[case][cand]["summary"][m] for m, case, cand, v in cells), "a matrix cell differs from metrics.json")
     check(all(v["sentence"].replace("&", "&amp;") in page_text for v in j["verdict"]), "report.html lacks a verdict sentence")
