@@ -88,6 +88,20 @@ static int image(FILE *f, const uint8_t *rgb, uint32_t w, uint32_t h, int scale,
     return 0;
 }
 
+/* <figure> of an image made for it (freed here; NULL: it could not be
+ * made) with the caption LABEL NAME */
+static int figure(FILE *f, uint8_t *rgb, uint32_t w, uint32_t h, int scale, const char *alt, const char *label, const char *name)
+{
+    fputs("<figure>", f);
+    int rc = rgb ? image(f, rgb, w, h, scale, alt) : -1;
+    fputs("<figcaption>", f);
+    esc(f, label);
+    esc(f, name);
+    fputs("</figcaption></figure>", f);
+    free(rgb);
+    return rc;
+}
+
 /* FLIP map, 0 to `range` over the error colours (above it: the top colour) */
 static uint8_t *heat_map(const float *map, size_t n, double range)
 {
@@ -427,15 +441,8 @@ static int frames(FILE *f, const vrg_cmp_result *r)
         fputs("<figure>", f);
         rc |= image(f, ramp, 256, 12, 1, "FLIP colour bar");
         fprintf(f, "<figcaption>FLIP error: 0 (left) to %g and above (right); the 99th percentile of the maps</figcaption></figure>", range);
-        for (int i = 0; i < r->count && rc == 0; i++) {
-            uint8_t *heat = heat_map(r->cand[i].flip_map[s], (size_t)w * h, range);
-            fputs("<figure>", f);
-            rc |= heat ? image(f, heat, w, h, fscale, "FLIP map") : -1;
-            fputs("<figcaption>FLIP map: ", f);
-            esc(f, r->cand[i].name);
-            fputs("</figcaption></figure>", f);
-            free(heat);
-        }
+        for (int i = 0; i < r->count && rc == 0; i++)
+            rc |= figure(f, heat_map(r->cand[i].flip_map[s], (size_t)w * h, range), w, h, fscale, "FLIP map", "FLIP map: ", r->cand[i].name);
         fputs("</div>\n<div class=\"frames\">", f);
         for (int x = 0; x < 256; x++)
             for (int y = 0; y < 12; y++)
@@ -443,27 +450,15 @@ static int frames(FILE *f, const vrg_cmp_result *r)
         fputs("<figure>", f);
         rc |= image(f, ramp, 256, 12, 1, "signed difference colour bar");
         fprintf(f, "<figcaption>candidate &#8722; reference, luma: &#8722;%g (blue) to +%g (red)</figcaption></figure>", srange, srange);
-        for (int i = 0; i < r->count && rc == 0; i++) {
-            uint8_t *diff = signed_map(r->cand[i].shown[s], r->reference_shown[s], (size_t)w * h, srange);
-            fputs("<figure>", f);
-            rc |= diff ? image(f, diff, w, h, fscale, "signed difference") : -1;
-            fputs("<figcaption>difference: ", f);
-            esc(f, r->cand[i].name);
-            fputs("</figcaption></figure>", f);
-            free(diff);
-        }
+        for (int i = 0; i < r->count && rc == 0; i++)
+            rc |= figure(f, signed_map(r->cand[i].shown[s], r->reference_shown[s], (size_t)w * h, srange), w, h, fscale, "signed difference",
+                         "difference: ", r->cand[i].name);
         fprintf(f, "</div>\n<p>Zoomed: the %ux%u window at (%u, %u) with the largest FLIP error summed over the candidates.</p>\n"
                    "<div class=\"frames crop\">",
                 side, side, x0, y0);
-        for (int i = -1; i < r->count && rc == 0; i++) {
-            uint8_t *c = crop(i < 0 ? r->reference_shown[s] : r->cand[i].shown[s], w, x0, y0, side, side);
-            fputs("<figure>", f);
-            rc |= c ? image(f, c, side, side, scale, i < 0 ? "reference, zoomed" : r->cand[i].name) : -1;
-            fputs("<figcaption>", f);
-            esc(f, i < 0 ? "reference" : r->cand[i].name);
-            fputs("</figcaption></figure>", f);
-            free(c);
-        }
+        for (int i = -1; i < r->count && rc == 0; i++)
+            rc |= figure(f, crop(i < 0 ? r->reference_shown[s] : r->cand[i].shown[s], w, x0, y0, side, side), side, side, scale,
+                         i < 0 ? "reference, zoomed" : r->cand[i].name, "", i < 0 ? "reference" : r->cand[i].name);
         fputs("</div>\n", f);
     }
     return rc;
