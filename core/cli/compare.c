@@ -18,6 +18,7 @@
 #include <unistd.h>
 #include "compare_cases.h"
 #include "compare_result.h"
+#include "ref_cache.h"
 #include "report.h"
 #include "util.h"
 #include "voxrg/camera.h"
@@ -521,74 +522,7 @@ static int check_all(const options *o, job *jobs, vrg_cmp_result *r, vrg_camera 
     return rc;
 }
 
-/* ---- the reference, cached ---- */
-
-static uint64_t fnv(uint64_t h, const void *data, size_t n)
-{
-    const unsigned char *p = data;
-    for (size_t i = 0; i < n; i++)
-        h = (h ^ p[i]) * 1099511628211ull;
-    return h;
-}
-
-typedef struct manifest {
-    FILE *f;
-    int stale; /* while checking: a file differs */
-} manifest;
-
-/* deps file lines: "SIZE MTIME_NS PATH" of every file the frame came from */
-static void write_dep(void *user, const char *path)
-{
-    struct stat st;
-    if (stat(path, &st) == 0)
-        fprintf(((manifest *)user)->f, "%lld %lld %s\n", (long long)st.st_size,
-                (long long)st.st_mtim.tv_sec * 1000000000ll + st.st_mtim.tv_nsec, path);
-}
-
-static int deps_current(const char *deps_path)
-{
-    FILE *f = vrg_fopen_regular(deps_path, "r");
-    if (!f)
-        return 0;
-    char line[2200];
-    int ok = 1, lines = 0;
-    while (ok && fgets(line, sizeof line, f)) {
-        long long size, mtime;
-        char path[2048];
-        struct stat st;
-        line[strcspn(line, "\n")] = '\0';
-        ok = sscanf(line, "%lld %lld %2047[^\n]", &size, &mtime, path) == 3 && stat(path, &st) == 0 && st.st_size == size &&
-             (long long)st.st_mtim.tv_sec * 1000000000ll + st.st_mtim.tv_nsec == mtime;
-        lines++;
-    }
-    fclose(f);
-    return ok && lines > 0;
-}
-
-/* --cache, or the user's cache folder */
-static const char *cache_dir(const options *o, char *buf, size_t cap)
-{
-    const char *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
-    if (o->cache)
-        snprintf(buf, cap, "%s", o->cache);
-    else if (xdg && *xdg)
-        snprintf(buf, cap, "%s/voxrg/reference", xdg);
-    else
-        snprintf(buf, cap, "%s/.cache/voxrg/reference", home && *home ? home : "/tmp");
-    return buf;
-}
-
-/* A cache entry is a regular file or absent: anything else under its name
- * (a FIFO would block the reader, and the writer, for ever) is an error
- * naming it. */
-static int cache_entry_ok(const char *path)
-{
-    struct stat st;
-    if (stat(path, &st) != 0 || S_ISREG(st.st_mode))
-        return 0;
-    fprintf(stderr, "error: the reference cache's %s is not a regular file: remove it\n", path);
-    return -1;
-}
+/* ---- the reference, cached (ref_cache.c) ---- */
 
 static void progress(const char *what, uint32_t done, uint32_t total, int tty)
 {
@@ -655,45 +589,38 @@ static int set_sun(vrg_graph *g, const sun_clock *sun, double t)
 static int reference_frames(vrg_context *ctx, const options *o, const vrg_camera_path *path, const vrg_camera *fixed, double frame_s,
                             uint8_t **ref, vrg_cmp_result *r, int tty)
 {
-    char cache[VRG_CLI_PATH], file[VRG_CLI_PATH], deps[VRG_CLI_PATH];
-    cache_dir(o, cache, sizeof cache); /* checked writable before any work */
-    char *text = vrg_cli_read_text(o->reference);
-    if (!text) {
-        fprintf(stderr, "error: cannot read %s: %s\n", o->reference, vrg_open_strerror(errno));
-        return -1;
-    }
-    uint64_t base = fnv(1469598103934665603ull, text, strlen(text));
-    free(text);
-    for (int i = 0; i < o->ref_set_count; i++)
-        base = fnv(base, o->ref_sets[i], strlen(o->ref_sets[i]) + 1);
-    for (int i = 0; i < o->scene_count; i++) /* a case's scene, applied after the --ref-sets */
-        base = fnv(base, o->scene[i], strlen(o->scene[i]) + 1);
-    base = fnv(base, &r->width, sizeof r->width);
-    base = fnv(base, &r->height, sizeof r->height);
-    vrg_graph *g = NULL;
+    char dir[VRG_CLI_PATH], key[VRG_REF_KEY_HEX];
+    vrg_ref_cache cache = {0};
+    /* the key's overrides: the --ref-sets, then a case's scene (as load() applies them) */
+    const char **sets = malloc(sizeof *sets * (size_t)(o->ref_set_count + o->scene_count + 1));
+    int set_count = 0;
+    for (int i = 0; sets && i < o->ref_set_count; i++)
+        sets[set_count++] = o->ref_sets[i];
+    for (int i = 0; sets && i < o->scene_count; i++)
+        sets[set_count++] = o->scene[i];
+    /* the key's files: those of the graph loaded as the check phase did */
+    vrg_graph *g = sets ? load(NULL, o->reference, o->ref_sets, o->ref_set_count, o) : NULL;
+    int rc = g ? vrg_ref_cache_open(&cache, vrg_ref_cache_dir(o->cache, dir, sizeof dir), o->reference, g, sets, set_count, r->device,
+                                    r->width, r->height)
+               : -1, cache_bad = rc != 0;
+    free(sets);
+    vrg_graph_destroy(g);
+    g = NULL;
     sun_clock sun = {0};
-    int rc = 0, cache_bad = 0;
     for (uint32_t k = 0; k < o->frames && rc == 0; k++) {
         vrg_camera cam;
         uint32_t index = o->start + k; /* the path's frame */
         camera_at(path, fixed, index * frame_s, &cam);
-        uint64_t key = fnv(fnv(base, &index, sizeof index), cam.position, sizeof cam.position);
-        key = fnv(fnv(fnv(key, &cam.yaw, sizeof cam.yaw), &cam.pitch, sizeof cam.pitch), &cam.fov_y, sizeof cam.fov_y);
-        snprintf(file, sizeof file, "%s/%016llx.png", cache, (unsigned long long)key);
-        snprintf(deps, sizeof deps, "%s/%016llx.deps", cache, (unsigned long long)key);
-        if (cache_entry_ok(file) != 0 || cache_entry_ok(deps) != 0) {
+        vrg_ref_cache_key(&cache, index, index * frame_s, &cam, key);
+        int cached = vrg_ref_cache_read(&cache, key, r->width, r->height, &ref[k]);
+        if (cached < 0) {
             rc = -1, cache_bad = 1;
             break;
         }
-        uint32_t w, h;
-        if (deps_current(deps) && vrg_png_read_rgb8(file, &ref[k], &w, &h) == 0) {
-            if (w == r->width && h == r->height) {
-                r->reference_cached++;
-                progress("reference (cached)", k + 1, o->frames, tty);
-                continue;
-            }
-            free(ref[k]);
-            ref[k] = NULL;
+        if (cached == 0) {
+            r->reference_cached++;
+            progress("reference (cached)", k + 1, o->frames, tty);
+            continue;
         }
         if (!g && (!(g = load(ctx, o->reference, o->ref_sets, o->ref_set_count, o)) || stop_sun(g, &sun) != 0)) {
             rc = -1;
@@ -710,18 +637,12 @@ static int reference_frames(vrg_context *ctx, const options *o, const vrg_camera
             rc = vrg_graph_frame(g);
         if (rc == 0 && !(ref[k] = read_output(g)))
             rc = -1;
-        /* the PNG first, the deps (which make it valid) after */
-        if (rc == 0 && vrg_png_write_rgb8(file, ref[k], r->width, r->height) == 0) {
-            vrg_output *out = vrg_output_open(deps);
-            if (out) { /* a cache entry that cannot be written is only not cached */
-                manifest m = {.f = vrg_output_stream(out)};
-                vrg_graph_sources(g, write_dep, &m);
-                vrg_output_commit(out);
-            }
-        }
+        if (rc == 0)
+            vrg_ref_cache_write(&cache, key, g, ref[k], r->width, r->height);
         progress("reference", k + 1, o->frames, tty);
     }
     vrg_graph_destroy(g);
+    vrg_ref_cache_close(&cache);
     if (rc != 0 && !cache_bad)
         fprintf(stderr, "\nerror: the reference %s failed to render\n", o->reference);
     return rc;
@@ -1272,7 +1193,7 @@ int vrg_cli_compare(int argc, char **argv)
         rc = rc > 0 ? rc : 1;
         goto done;
     }
-    rc = vrg_cli_out_dir(o.out) != 0 || vrg_cli_out_dir(cache_dir(&o, cache, sizeof cache)) != 0;
+    rc = vrg_cli_out_dir(o.out) != 0 || vrg_cli_out_dir(vrg_ref_cache_dir(o.cache, cache, sizeof cache)) != 0;
     snprintf(file, sizeof file, "%s/frames", o.out);
     rc = rc || vrg_cli_out_dir(file) != 0;
     for (int c = 0; c < spec_count && !rc; c++)

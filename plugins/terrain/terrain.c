@@ -87,9 +87,15 @@ static void params_from(vrg_pass *pass, terrain_params *g)
 
 static int grid_radius(vrg_pass *pass) { return vrg_param_int(pass, "radius") + vrg_param_int(pass, "hysteresis"); }
 
+static void journal_path(vrg_pass *pass, char *path, size_t cap);
+
 static int check(vrg_pass *pass)
 {
     if (vrg_param_choice(pass, "stream", stream_modes, 2) < 0)
+        return -1;
+    char journal[4096];
+    journal_path(pass, journal, sizeof journal);
+    if (journal[0] && vrg_pass_input_file(pass, journal) != 0) /* its edits are part of the world */
         return -1;
     return vrg_scene_check(pass, grid_radius(pass), vrg_param_int(pass, "height_chunks"));
 }

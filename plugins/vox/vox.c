@@ -246,14 +246,35 @@ static int place(vrg_pass *pass, placed *p)
     return 0;
 }
 
+/* The edit journal's path; 0 for none ("none", or a graph from text,
+ * which has no folder to keep edits in). */
+static int journal_path(vrg_pass *pass, char *path, size_t cap)
+{
+    const char *param = vrg_param_string(pass, "edits");
+    if (strcmp(param, "none") == 0)
+        return 0;
+    if (param[0])
+        resolve(pass, param, path, cap);
+    else if (vrg_pass_graph_path(pass)[0])
+        snprintf(path, cap, "%s.edits", vrg_pass_graph_path(pass));
+    else
+        return 0;
+    return 1;
+}
+
 static int check(vrg_pass *pass)
 {
     placed p;
+    char journal[4096];
     if (place(pass, &p) != 0)
         return -1;
     int radius = p.radius, height = p.height;
+    /* the model and its edits are the world */
+    int rc = vrg_pass_input_file(pass, p.path);
     placed_free(&p);
-    return vrg_scene_check(pass, radius, height);
+    if (rc == 0 && journal_path(pass, journal, sizeof journal))
+        rc = vrg_pass_input_file(pass, journal);
+    return rc != 0 ? -1 : vrg_scene_check(pass, radius, height);
 }
 
 static float srgb_to_linear(uint8_t c)
@@ -400,16 +421,9 @@ static uint64_t fnv1a(const uint8_t *d, size_t n)
 /* The journal, keyed by what decides where the blocks are. */
 static int open_edits(vrg_pass *pass, scene *s, const placed *p)
 {
-    const char *param = vrg_param_string(pass, "edits");
-    if (strcmp(param, "none") == 0)
-        return 0;
     char path[4096], key[VRG_EDITS_KEY_MAX], err[1024];
-    if (param[0])
-        resolve(pass, param, path, sizeof path);
-    else if (vrg_pass_graph_path(pass)[0])
-        snprintf(path, sizeof path, "%s.edits", vrg_pass_graph_path(pass));
-    else
-        return 0; /* a graph from text has no folder to keep edits in */
+    if (!journal_path(pass, path, sizeof path))
+        return 0;
     snprintf(key, sizeof key, "vox file=%s bytes=%zu fnv1a=%016llx position=%s scale=%d ground=%s", file_name(p->path), p->size,
              (unsigned long long)fnv1a(p->bytes, p->size), vrg_param_string(pass, "position"), p->scale, vrg_param_string(pass, "ground"));
     s->edits = vrg_edits_open(path, key, s->gpu.world, err, sizeof err);

@@ -1,7 +1,11 @@
 /* What a host asks of a loaded graph: its passes, timings, statistics,
  * memory and placement, and whether two graphs see the same world. */
+#define _POSIX_C_SOURCE 200809L /* fileno */
+#include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 #include "internal.h"
 
 uint32_t vrg_graph_pass_count(const vrg_graph *g) { return (uint32_t)g->pass_count; }
@@ -42,6 +46,66 @@ static const vrg_pass *scene_of(const vrg_graph *g)
     return NULL;
 }
 
+/* A file's size for messages: "absent", "N bytes", or why it cannot be read. */
+static void describe(FILE *f, int err, char *buf, size_t cap)
+{
+    if (!f && err == ENOENT)
+        snprintf(buf, cap, "absent");
+    else if (!f)
+        snprintf(buf, cap, "unreadable: %s", vrg_open_strerror(err));
+    else {
+        struct stat st;
+        snprintf(buf, cap, "%lld bytes", fstat(fileno(f), &st) == 0 ? (long long)st.st_size : -1ll);
+    }
+}
+
+/* 1 when both files hold the same bytes or neither exists; else 0 with
+ * each one's state in ha / hb. */
+static int same_content(const char *a, const char *b, char *ha, char *hb, size_t cap)
+{
+    FILE *fa = vrg_fopen_regular(a, "rb");
+    int ea = fa ? 0 : errno;
+    FILE *fb = vrg_fopen_regular(b, "rb");
+    int eb = fb ? 0 : errno, same = !fa && !fb && ea == ENOENT && eb == ENOENT;
+    if (fa && fb) {
+        char x[8192], y[8192];
+        size_t nx, ny;
+        do {
+            nx = fread(x, 1, sizeof x, fa), ny = fread(y, 1, sizeof y, fb);
+            same = nx == ny && memcmp(x, y, nx) == 0;
+        } while (same && nx == sizeof x);
+        same = same && !ferror(fa) && !ferror(fb);
+    }
+    describe(fa, ea, ha, cap);
+    describe(fb, eb, hb, cap);
+    if (fa)
+        fclose(fa);
+    if (fb)
+        fclose(fb);
+    return same;
+}
+
+/* The scenes' data files (vrg_pass_input_file), pair by pair, by content:
+ * the same model in two folders is the same world; a journal beside one
+ * graph and not the other is not. */
+static int same_scene_inputs(const vrg_graph *a, const vrg_pass *sa, const vrg_graph *b, const vrg_pass *sb, char *why, size_t cap)
+{
+    if (sa->input_count != sb->input_count) {
+        snprintf(why, cap, "scenes differ: %s:%d reads %d data files, %s:%d %d", a->path, sa->line, sa->input_count, b->path, sb->line,
+                 sb->input_count);
+        return 0;
+    }
+    for (int k = 0; k < sa->input_count; k++) {
+        char ha[128], hb[128];
+        if (!same_content(sa->inputs[k], sb->inputs[k], ha, hb, sizeof ha)) {
+            snprintf(why, cap, "scenes differ: %s:%d reads %s (%s), %s:%d reads %s (%s%s)", a->path, sa->line, sa->inputs[k], ha, b->path,
+                     sb->line, sb->inputs[k], hb, strcmp(ha, hb) ? "" : ", other content");
+            return 0;
+        }
+    }
+    return 1;
+}
+
 /* Two graphs compared frame by frame must see the same world from the same
  * random sequences: the scene (plugin, every parameter), [graph] seed and
  * fps (camera paths are sampled per frame), and size. */
@@ -69,9 +133,10 @@ int vrg_graph_same_world(const vrg_graph *a, const vrg_graph *b, char *why, size
         int same = sa->string_count == sb->string_count;
         for (int k = 0; same && k < sa->string_count; k++)
             same = sa->strings[k].param == sb->strings[k].param && strcmp(sa->strings[k].value, sb->strings[k].value) == 0;
-        if (same)
+        if (!same)
+            snprintf(why, cap, "scenes differ: %s:%d and %s:%d set different text parameters (e.g. box)", a->path, sa->line, b->path, sb->line);
+        else if (same_scene_inputs(a, sa, b, sb, why, cap))
             return 0;
-        snprintf(why, cap, "scenes differ: %s:%d and %s:%d set different text parameters (e.g. box)", a->path, sa->line, b->path, sb->line);
     } else
         return 0;
     return -1;

@@ -46,6 +46,9 @@ void vrg_graph_sources(const vrg_graph *g, void (*fn)(void *user, const char *pa
             fn(user, g->passes[i].plugin->source);
     for (int i = 0; i < g->pass_count; i++)
         _vrg_pipelines_deps((vrg_pass *)&g->passes[i], fn, user);
+    for (int i = 0; i < g->pass_count; i++)
+        for (int k = 0; k < g->passes[i].input_count; k++)
+            fn(user, g->passes[i].inputs[k]);
 }
 
 /* The graph file or a plugin was saved: the host is to reload. The newest

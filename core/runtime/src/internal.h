@@ -214,6 +214,8 @@ struct vrg_pass {
     int stat_count, stat_cap;
     VkCommandBuffer cmd;      /* during execute */
     struct _vrg_shared *shared; /* vrg_pass_share */
+    char **inputs;            /* vrg_pass_input_file: data files, in the order named */
+    int input_count;
 };
 
 typedef struct _vrg_pass_figure {

@@ -128,6 +128,11 @@ void _vrg_pass_free_params(vrg_pass *p)
     free(p->strings);
     p->strings = NULL;
     p->string_count = 0;
+    for (int i = 0; i < p->input_count; i++)
+        free(p->inputs[i]);
+    free(p->inputs);
+    p->inputs = NULL;
+    p->input_count = 0;
 }
 
 static int string_param(const vrg_pass *p, const char *name)
@@ -214,6 +219,20 @@ void vrg_pass_warn_at(vrg_pass *p, int line, const char *fmt, ...)
 }
 
 const char *vrg_pass_graph_path(const vrg_pass *p) { return p->graph->loaded_from_file ? p->graph->path : ""; }
+
+int vrg_pass_input_file(vrg_pass *p, const char *path)
+{
+    char **grown = realloc(p->inputs, sizeof *grown * (size_t)(p->input_count + 1));
+    char *copy = strdup(path);
+    if (grown)
+        p->inputs = grown;
+    if (!grown || !copy) {
+        free(copy);
+        return _vrg_pass_fail(p, VRG_E_OUT_OF_MEMORY, "out of memory naming its input file %s", path);
+    }
+    p->inputs[p->input_count++] = copy;
+    return 0;
+}
 
 int vrg_pass_set_buffer_size(vrg_pass *p, const char *slot, uint64_t bytes)
 {

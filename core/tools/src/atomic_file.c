@@ -22,7 +22,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <stdint.h>
+#include <sys/random.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 #include "voxrg/output.h"
 
@@ -47,15 +50,23 @@ static int fail(const char *path, const char *what, int err)
     return -1;
 }
 
-/* A name no other writer (another process or thread, or an earlier commit
- * of this one) is using: hidden, with the target's name for whoever finds it. */
+/* A name no other writer (another thread or process, on this machine or
+ * another one sharing the folder over NFS, where process ids repeat, or an
+ * earlier commit of this one) is using: hidden, with the target's name for
+ * whoever finds it, then the host, process, a counter and random bits. */
 static void temp_name(char *buf, size_t cap, const char *base)
 {
     static unsigned counter;
-    unsigned n = __atomic_fetch_add(&counter, 1, __ATOMIC_RELAXED);
-    /* the target's name cut to 200 bytes: with the suffix it stays within
+    unsigned n = __atomic_fetch_add(&counter, 1, __ATOMIC_RELAXED), random = 0;
+    char host[64] = "";
+    if (gethostname(host, sizeof host) != 0 || strchr(host, '/'))
+        host[0] = '\0';
+    host[sizeof host - 1] = '\0';
+    if (getrandom(&random, sizeof random, GRND_NONBLOCK) != (ssize_t)sizeof random)
+        random ^= (unsigned)(uintptr_t)&random ^ (unsigned)time(NULL);
+    /* the target's name cut to 150 bytes: with the suffix it stays within
      * NAME_MAX (255) however long a valid target name is */
-    snprintf(buf, cap, ".%.200s.%ld.%u.tmp", base, (long)getpid(), n);
+    snprintf(buf, cap, ".%.150s.%.40s.%ld.%u.%08x.tmp", base, host, (long)getpid(), n, random);
 }
 
 /* The folder part of path ("." for a bare name) opened as a directory. */

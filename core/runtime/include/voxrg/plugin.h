@@ -296,6 +296,13 @@ const char *vrg_escape(char *out, size_t cap, const char *text, size_t len);
 /* The graph file's path as the host gave it ("" for a graph loaded from
  * text): files a parameter names are relative to its folder. */
 const char *vrg_pass_graph_path(const vrg_pass *pass);
+/* Names a data file whose content decides what the pass renders (a
+ * scene's model, its edit journal), from check(), which runs on every
+ * load, with or without a device. A path that does not exist is named
+ * too: creating the file changes the frames. Hosts compare and cache
+ * frames by these files' content (vrg_graph_sources lists them,
+ * vrg_graph_same_world compares a scene's). 0, or -1 after the error. */
+int vrg_pass_input_file(vrg_pass *pass, const char *path);
 /* Opens an existing file to read (or append to) only when it is a regular
  * file, without blocking: a FIFO, a device or a socket named where a file
  * belongs would block the open or never end. flags as open(2)'s, O_CLOEXEC

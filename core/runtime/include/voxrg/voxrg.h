@@ -228,8 +228,10 @@ int vrg_graph_set_param(vrg_graph *g, const char *pass_param, double value);
 /* The value in effect (numeric parameters; strings read as 0). */
 int vrg_graph_get_param(vrg_graph *g, const char *pass_param, double *value);
 /* Calls fn for each file the graph is built from: the graph file, its
- * plugins, and the shaders (with their #includes) compiled so far, i.e.
- * after a frame all those its passes use. Paths may repeat. */
+ * plugins, the shaders (with their #includes) compiled so far, i.e.
+ * after a frame all those its passes use, and the data files its passes
+ * read (vrg_pass_input_file: a scene's model and edit journal), which
+ * may not exist. Paths may repeat. */
 void vrg_graph_sources(const vrg_graph *g, void (*fn)(void *user, const char *path), void *user);
 /* While watching: the graph file was saved since it was loaded. */
 int vrg_graph_source_changed(const vrg_graph *g);
@@ -251,8 +253,10 @@ int vrg_graph_poll_changes(vrg_graph *g);
 int vrg_graph_reload(vrg_graph **g);
 void vrg_graph_size(const vrg_graph *g, uint32_t *width, uint32_t *height);
 /* 0 when a and b render the same world the same way: equal size, [graph]
- * seed and fps, and the same scene plugin with the same parameters (A/B
- * comparisons need it); else -1 with the first difference in `why`. */
+ * seed and fps, and the same scene plugin with the same parameters and
+ * data files of the same content (a model, an edit journal: both absent
+ * or byte for byte equal, wherever they are) (A/B comparisons need it);
+ * else -1 with the first difference in `why`. */
 int vrg_graph_same_world(const vrg_graph *a, const vrg_graph *b, char *why, size_t cap);
 
 typedef struct vrg_memory_stats {
