@@ -16,6 +16,11 @@
 - variants of a named graph (NAME@GRAPH:...): a variant of the second graph
   renders that graph, not the first; the report says which; a GRAPH not
   listed, or listed twice, is a usage error (exit 2) naming the candidates.
+- the reference cache: a vox scene's model is in the key by content; a
+  replaced, altered or cut-short entry is named in a warning and rendered
+  again; processes filling one cache at once leave whole entries.
+- scenes that read different data files (an edit journal beside the
+  reference only, another model under one name): an error.
 Usage: test_compare.py VOXRG SOURCE_DIR OUT_DIR [CASE]
 The cases (CASES below) are independent: ctest runs each as its own test
 (compare_CASE, each with its own OUT_DIR) so that they spread over the cores;
@@ -469,7 +474,174 @@ def moving_sun():
 
 
 # one line: tests/cli/CMakeLists.txt reads the names from it
-CASES = (errors, names, variant_graph, identical, e2e, cases, case_errors, shipped_cases, grid, moving_sun)
+
+
+def vox_bytes(size, voxels):
+    """A MagicaVoxel file: SIZE and XYZI chunks under MAIN, the default palette."""
+    import struct
+    def chunk(tag, content, children=b""):
+        return tag + struct.pack("<ii", len(content), len(children)) + content + children
+    xyzi = struct.pack("<i", len(voxels)) + b"".join(struct.pack("<4B", *v) for v in voxels)
+    return b"VOX " + struct.pack("<i", 150) + chunk(b"MAIN", b"", chunk(b"SIZE", struct.pack("<3i", *size)) + chunk(b"XYZI", xyzi))
+
+
+def vox_world(out, name, voxels):
+    """A vox scene graph (tests/graphs/vox_knight.ini) whose model is
+    model.vox beside it, holding voxels of a 4x4x4 model."""
+    os.makedirs(out, exist_ok=True)
+    graph = os.path.join(out, name)
+    open(graph, "w").write(open(os.path.join(SRC, "tests", "graphs", "vox_knight.ini")).read().replace("chr_knight.vox", "model.vox"))
+    open(os.path.join(out, "model.vox"), "wb").write(vox_bytes((4, 4, 4), voxels))
+    return graph
+
+
+TOWER = [(1, 1, z, 10) for z in range(4)]
+SLAB = [(x, y, 0, 80) for x in range(4) for y in range(4)]
+SMALL = ["--size", "32x18", "--frames", "2", "--warmup", "0"]
+
+
+def summary_psnr(out):
+    return [x["summary"]["psnr"] for x in json.load(open(os.path.join(out, "metrics.json")))["candidates"]]
+
+
+def cache_vox():
+    """The cache key covers a vox scene's model by content: another model
+    under the same name renders the reference again, and the candidate (the
+    same graph) then equals it."""
+    out = os.path.join(OUT, "cache-vox")
+    graph = vox_world(out, "knight.ini", TOWER)
+    cache = os.path.join(out, "cache")
+    run = lambda: subprocess.run([VOXRG, "compare", graph, "--reference", graph, *SMALL, "--out", os.path.join(out, "out"), "--cache", cache,
+                                  "--validate"], capture_output=True, text=True)
+    for want in (0, 2):
+        p = run()
+        if not check(p.returncode == 0, "vox compare: exit %d\n%s" % (p.returncode, p.stderr[-2000:])):
+            return
+        got = json.load(open(os.path.join(out, "out", "metrics.json")))["reference"]["frames_from_cache"]
+        check(got == want, "vox compare: %d frames from the cache, want %d" % (got, want))
+    open(os.path.join(out, "model.vox"), "wb").write(vox_bytes((4, 4, 4), SLAB))
+    p = run()
+    if check(p.returncode == 0, "vox compare, another model: exit %d\n%s" % (p.returncode, p.stderr[-2000:])):
+        j = json.load(open(os.path.join(out, "out", "metrics.json")))
+        check(j["reference"]["frames_from_cache"] == 0, "another model: %d frames taken from the cache" % j["reference"]["frames_from_cache"])
+        check(summary_psnr(os.path.join(out, "out")) == [100], "another model: PSNR %s against the reference, want 100 (the same graph)" %
+              summary_psnr(os.path.join(out, "out")))
+
+
+def world_files():
+    """Candidates and the reference whose scenes read different data files
+    render different worlds: an error before any work, naming the files.
+    An edit journal beside the reference graph only; a model of another
+    content under the same name in another folder."""
+    out = os.path.join(OUT, "world-files")
+    os.makedirs(out, exist_ok=True)
+    small = lambda text: text.replace("radius      = 13", "radius      = 2")
+    cand, ref = os.path.join(out, "cand.ini"), os.path.join(out, "ref.ini")
+    open(cand, "w").write(small(open(os.path.join(GRAPHS, "raw.ini")).read()))
+    open(ref, "w").write(small(open(os.path.join(GRAPHS, "reference.ini")).read()))
+    open(ref + ".edits", "wb").write(b"an edit journal of the reference's world only\n")
+    a = vox_world(os.path.join(out, "a"), "knight.ini", TOWER)
+    b = vox_world(os.path.join(out, "b"), "knight.ini", SLAB)
+    cases = [
+        ("a journal beside the reference", [cand, "--reference", ref],
+         r"scenes differ: .*cand\.ini:\d+ reads .*cand\.ini\.edits \(absent\), .*ref\.ini:\d+ reads .*ref\.ini\.edits \(\d+ bytes\)"
+         r".*the reference must render the candidates' frames"),
+        ("another model of the same name", [a, b, "--reference", a],
+         r"scenes differ: .*a/knight\.ini:\d+ reads .*a/model\.vox \(\d+ bytes\), .*b/knight\.ini:\d+ reads .*b/model\.vox \(\d+ bytes"
+         r"(, other content)?\).*candidates must render the same frames"),
+    ]
+    for what, args, pattern in cases:
+        rc, _, stderr = compare(*args, *SMALL, out=os.path.join(out, "out"))
+        check(rc == 1, "%s: exit %d, want 1" % (what, rc))
+        check(re.search(pattern, stderr) is not None, "%s: no /%s/ in:\n%s" % (what, pattern, stderr[-2000:]))
+        check(not os.path.exists(os.path.join(out, "out", "frames")), "%s: frames written" % what)
+    # the same journal beside both: the same world
+    shutil.copy(ref + ".edits", cand + ".edits")
+    rc, _, stderr = compare(cand, "--reference", ref, "--ref-set", "converge.samples_per_frame=1", *SMALL, out=os.path.join(out, "out"))
+    check("scenes differ" not in stderr, "the same journal beside both: %s" % stderr[-2000:])
+
+
+def cache_entries(cache):
+    """The cache's entries (not side files), oldest first."""
+    names = [n for n in os.listdir(cache) if not n.endswith(".deps") and not n.startswith(".")]
+    return sorted((os.path.join(cache, n) for n in names), key=os.path.getmtime)
+
+
+def cache_damage():
+    """A cached frame replaced by another valid one (frame 1's over frame
+    0's), one whose pixels changed, one cut short: each named in a warning
+    and rendered again, never used (the candidate, the reference's own
+    graph, keeps PSNR 100 on every frame)."""
+    out = os.path.join(OUT, "cache-damage")
+    os.makedirs(out, exist_ok=True)
+    graph = os.path.join(out, "wall.ini")
+    shutil.copy(os.path.join(SRC, "tests", "graphs", "blocks_wall.ini"), graph)
+    path = os.path.join(out, "turn.path")
+    open(path, "w").write("0.0  0 2 12  0 0\n0.1  6 4 8  40 -20\n")
+    cache = os.path.join(out, "cache")
+    def run(frames):
+        p = subprocess.run([VOXRG, "compare", graph, "--reference", graph, "--camera", path, "--size", "32x18", "--frames", str(frames),
+                            "--warmup", "0", "--out", os.path.join(out, "out"), "--cache", cache, "--validate"], capture_output=True, text=True)
+        check(p.returncode == 0, "compare: exit %d\n%s" % (p.returncode, p.stderr[-2000:]))
+        j = json.load(open(os.path.join(out, "out", "metrics.json"))) if p.returncode == 0 else None
+        return p.stderr, j
+    run(1)
+    first = cache_entries(cache)
+    run(2)
+    second = [e for e in cache_entries(cache) if e not in first]
+    if not check(len(first) == 1 and len(second) == 1, "cache entries: %s then %s" % (first, second)):
+        return
+    frame0, frame1 = first[0], second[0]
+    check(open(frame0, "rb").read() != open(frame1, "rb").read(), "frames 0 and 1 are alike: the test shows nothing")
+
+    def damaged(what, damage, reason):
+        damage()
+        stderr, j = run(2)
+        if not j:
+            return
+        frames = [f["psnr"] for f in j["candidates"][0]["frames"]]
+        check(frames == [100, 100], "%s: used (PSNR per frame %s, want 100 100)" % (what, frames))
+        check(j["reference"]["frames_from_cache"] == 1, "%s: %d frames from the cache, want 1" % (what, j["reference"]["frames_from_cache"]))
+        pattern = r"warning: the reference cache's .*%s %s.*rendering the frame again" % (re.escape(os.path.basename(frame0)), reason)
+        check(re.search(pattern, stderr) is not None, "%s: no /%s/ in:\n%s" % (what, pattern, stderr[-2000:]))
+        stderr, j = run(2)  # written again, whole
+        check(j and j["reference"]["frames_from_cache"] == 2 and "warning" not in stderr, "%s: not cached again: %s" % (what, stderr[-1000:]))
+
+    damaged("frame 1's entry copied over frame 0's", lambda: shutil.copy(frame1, frame0), "holds another frame")
+    def flip_pixel():
+        data = bytearray(open(frame0, "rb").read())
+        data[-40] ^= 0x55
+        open(frame0, "wb").write(bytes(data))
+    damaged("a changed pixel", flip_pixel, "has pixels that do not match their checksum")
+    damaged("an entry cut short", lambda: os.truncate(frame0, os.path.getsize(frame0) - 100), "is truncated")
+
+
+def cache_shared():
+    """Several compare processes filling one cache folder at once all
+    succeed; the entries they leave are whole (a run after them takes every
+    frame from the cache, without a warning) and no temporary file is left."""
+    out = os.path.join(OUT, "cache-shared")
+    os.makedirs(out, exist_ok=True)
+    graph = os.path.join(out, "wall.ini")
+    shutil.copy(os.path.join(SRC, "tests", "graphs", "blocks_wall.ini"), graph)
+    cache = os.path.join(out, "cache")
+    args = lambda i: [VOXRG, "compare", graph, "--reference", graph, "--camera", os.path.join(GRAPHS, "paths", "walk.path"), "--size", "32x18",
+                      "--frames", "6", "--warmup", "0", "--out", os.path.join(out, "out%d" % i), "--cache", cache]
+    procs = [subprocess.Popen(args(i), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) for i in range(4)]
+    for i, p in enumerate(procs):
+        stdout, stderr = p.communicate()
+        check(p.returncode == 0, "writer %d: exit %d\n%s" % (i, p.returncode, stderr[-2000:]))
+        check("warning" not in stderr, "writer %d warned:\n%s" % (i, stderr[-2000:]))
+    p = subprocess.run(args(9), capture_output=True, text=True)
+    if check(p.returncode == 0, "the reader: exit %d\n%s" % (p.returncode, p.stderr[-2000:])):
+        j = json.load(open(os.path.join(out, "out9", "metrics.json")))
+        check(j["reference"]["frames_from_cache"] == 6 and "warning" not in p.stderr,
+              "after the writers: %d of 6 frames from the cache\n%s" % (j["reference"]["frames_from_cache"], p.stderr[-2000:]))
+    check(not [n for n in os.listdir(cache) if n.startswith(".")], "temporary files left: %s" % os.listdir(cache))
+
+
+# one line: tests/cli/CMakeLists.txt reads the names from it
+CASES = (errors, names, variant_graph, identical, e2e, cases, case_errors, shipped_cases, grid, moving_sun, cache_vox, world_files, cache_damage, cache_shared)
 
 
 def main():

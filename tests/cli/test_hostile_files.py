@@ -94,7 +94,7 @@ def compare(*args, cache="cache", out="out"):
 def fifo_reference():
     rc, err = compare("--size", "32x18")
     check(rc == 0, f"the first compare (filling the cache): exit {rc}\n{err}")
-    frames = sorted(f for f in os.listdir(os.path.join(OUT, "cache")) if f.endswith(".png"))
+    frames = sorted(f for f in os.listdir(os.path.join(OUT, "cache")) if f.endswith(".frame"))
     check(len(frames) == 2, f"cached frames: {frames}")
     entry = os.path.join("cache", frames[0])
     os.unlink(os.path.join(OUT, entry))
