@@ -3,6 +3,9 @@
 # Idempotent: safe to run again; it only installs what is missing.
 # Mesa's lavapipe comes from bookworm-backports (Mesa >= 24 has VK_KHR_ray_query);
 # if that fails we keep Debian main's Mesa and voxrg runs with DDA traversal only.
+# libssl-dev: OpenSSL's libcrypto, SHA-256 for compare's reference cache keys.
+# slurm-wlm and munge: the compare_slurm test runs compare on a one-node Slurm
+# cluster it starts itself (voxrg builds and runs without them).
 set -u
 SUDO=""
 [ "$(id -u)" -eq 0 ] || SUDO="sudo"
@@ -11,7 +14,8 @@ export DEBIAN_FRONTEND=noninteractive
 PKGS="build-essential cmake pkg-config git ca-certificates
       libvulkan-dev vulkan-validationlayers vulkan-tools spirv-tools
       glslang-dev glslang-tools libspirv-cross-c-shared-dev libglfw3-dev libinih-dev libspng-dev libjemalloc-dev
-      xvfb xauth xdotool chromium clang llvm libclang-rt-14-dev python3"
+      xvfb xauth xdotool chromium clang llvm libclang-rt-14-dev python3
+      libssl-dev slurm-wlm munge"
 
 missing=""
 for p in $PKGS mesa-vulkan-drivers; do
