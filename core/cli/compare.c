@@ -600,7 +600,7 @@ static int reference_frames(vrg_context *ctx, const options *o, const vrg_camera
         sets[set_count++] = o->scene[i];
     /* the key's files: those of the graph loaded as the check phase did */
     vrg_graph *g = sets ? load(NULL, o->reference, o->ref_sets, o->ref_set_count, o) : NULL;
-    int rc = g ? vrg_ref_cache_open(&cache, vrg_ref_cache_dir(o->cache, dir, sizeof dir), o->reference, g, sets, set_count, r->device,
+    int rc = g ? vrg_ref_cache_open(&cache, vrg_ref_cache_dir(o->cache, dir, sizeof dir), o->reference, g, sets, set_count, vrg_context_device(ctx),
                                     r->width, r->height)
                : -1, cache_bad = rc != 0;
     free(sets);

@@ -23,16 +23,19 @@
  * and checks the header, the key and the pixels' checksum anyway: a file
  * copied over an entry, cut short by a full disk or damaged is named in a
  * warning and rendered again, never used. */
-#define _POSIX_C_SOURCE 200809L
+#define _GNU_SOURCE /* dladdr */
 #include "ref_cache.h"
+#include <dlfcn.h>
 #include <errno.h>
 #include <openssl/evp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include "voxrg/edits.h"
 #include "voxrg/output.h"
 #include "voxrg/plugin.h"
+#include "voxrg/png.h"
 
 #define FORMAT_LINE "voxrg reference frame 1"
 #define HEADER_MAX (1 << 20) /* the header's lines: a few hundred shaders at most */
@@ -131,8 +134,34 @@ static void add_source(void *user, const char *path)
     add_text(k->md, "file", h->absent ? "absent" : text, h->absent ? 6 : 2 * VRG_REF_HASH);
 }
 
+/* The device and its driver's version: lavapipe and a GPU, or two drivers
+ * of one GPU, render slightly different references. */
+static void add_device(EVP_MD_CTX *md, const vrg_device *d)
+{
+    VkPhysicalDeviceProperties p;
+    vkGetPhysicalDeviceProperties(d->physical_device, &p);
+    char text[512];
+    int n = snprintf(text, sizeof text, "%s vendor %x device %x driver %u api %u", d->name, p.vendorID, p.deviceID, p.driverVersion, p.apiVersion);
+    add_text(md, "device", text, (size_t)n);
+}
+
+/* The runtime's, the voxel layer's and the tools' libraries, as loaded:
+ * they render (and the tools turn the output into 8-bit RGB) as much as
+ * the plugins do. */
+static void add_libraries(collect *k)
+{
+    const void *symbols[] = {(const void *)vrg_version, (const void *)vrg_edits_open, (const void *)vrg_image_rgb8};
+    for (int i = 0; i < 3; i++) {
+        Dl_info info;
+        if (dladdr(symbols[i], &info) && info.dli_fname)
+            add_source(k, info.dli_fname);
+        else
+            k->failed = k->failed ? k->failed : "the voxrg libraries (dladdr)";
+    }
+}
+
 int vrg_ref_cache_open(vrg_ref_cache *c, const char *dir, const char *graph_path, const vrg_graph *g, const char *const *sets, int set_count,
-                       const char *device, uint32_t width, uint32_t height)
+                       const vrg_device *device, uint32_t width, uint32_t height)
 {
     memset(c, 0, sizeof *c);
     snprintf(c->dir, sizeof c->dir, "%s", dir);
@@ -150,7 +179,7 @@ int vrg_ref_cache_open(vrg_ref_cache *c, const char *dir, const char *graph_path
     }
     add_text(md, "cache", FORMAT_LINE, strlen(FORMAT_LINE));
     add_text(md, "version", vrg_version(), strlen(vrg_version()));
-    add_text(md, "device", device, strlen(device));
+    add_device(md, device);
     add_text(md, "graph", text, strlen(text));
     free(text);
     for (int i = 0; i < set_count; i++)
@@ -158,6 +187,7 @@ int vrg_ref_cache_open(vrg_ref_cache *c, const char *dir, const char *graph_path
     char size[64];
     add_text(md, "size", size, (size_t)snprintf(size, sizeof size, "%ux%u", width, height));
     collect k = {.c = c, .md = md};
+    add_libraries(&k);
     vrg_graph_sources(g, add_source, &k);
     c->key_files = c->file_count;
     int ok = EVP_DigestFinal_ex(md, c->base, NULL);

@@ -9,6 +9,7 @@
 #include <stdint.h>
 #include "util.h"
 #include "voxrg/camera.h"
+#include "voxrg/plugin.h"
 #include "voxrg/voxrg.h"
 
 #define VRG_REF_HASH 32                  /* SHA-256 */
@@ -27,13 +28,14 @@ typedef struct vrg_ref_cache {
  * else ~/.cache/voxrg/reference. */
 const char *vrg_ref_cache_dir(const char *given, char *buf, size_t cap);
 
-/* The key's part shared by every frame: voxrg's version, the device, the
- * reference graph's text and its overrides, the size, and the content of
- * every file the graph (loaded, without a device: graph file, plugins,
- * the scene's data files) is built from. g is that graph. 0, or -1 after
- * the message. */
+/* The key's part shared by every frame: voxrg's version, the device and
+ * its driver, the reference graph's text and its overrides, the size, and
+ * the content of the runtime's and voxel layer's libraries and of every
+ * file the graph (loaded, without a device: graph file, plugins, the
+ * scene's data files) is built from. g is that graph. 0, or -1 after the
+ * message. */
 int vrg_ref_cache_open(vrg_ref_cache *c, const char *dir, const char *graph_path, const vrg_graph *g, const char *const *sets, int set_count,
-                       const char *device, uint32_t width, uint32_t height);
+                       const vrg_device *device, uint32_t width, uint32_t height);
 void vrg_ref_cache_close(vrg_ref_cache *c);
 
 /* A frame's key: the shared part, the path's frame number and time, and
