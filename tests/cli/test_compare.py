@@ -497,7 +497,7 @@ def vox_world(out, name, voxels):
 
 TOWER = [(1, 1, z, 10) for z in range(4)]
 SLAB = [(x, y, 0, 80) for x in range(4) for y in range(4)]
-SMALL = ["--size", "32x18", "--frames", "2", "--warmup", "0"]
+TINY = ["--size", "32x18", "--frames", "2", "--warmup", "0"]
 
 
 def summary_psnr(out):
@@ -511,7 +511,7 @@ def cache_vox():
     out = os.path.join(OUT, "cache-vox")
     graph = vox_world(out, "knight.ini", TOWER)
     cache = os.path.join(out, "cache")
-    run = lambda: subprocess.run([VOXRG, "compare", graph, "--reference", graph, *SMALL, "--out", os.path.join(out, "out"), "--cache", cache,
+    run = lambda: subprocess.run([VOXRG, "compare", graph, "--reference", graph, *TINY, "--out", os.path.join(out, "out"), "--cache", cache,
                                   "--validate"], capture_output=True, text=True)
     for want in (0, 2):
         p = run()
@@ -551,13 +551,13 @@ def world_files():
          r"(, other content)?\).*candidates must render the same frames"),
     ]
     for what, args, pattern in cases:
-        rc, _, stderr = compare(*args, *SMALL, out=os.path.join(out, "out"))
+        rc, _, stderr = compare(*args, *TINY, out=os.path.join(out, "out"))
         check(rc == 1, "%s: exit %d, want 1" % (what, rc))
         check(re.search(pattern, stderr) is not None, "%s: no /%s/ in:\n%s" % (what, pattern, stderr[-2000:]))
         check(not os.path.exists(os.path.join(out, "out", "frames")), "%s: frames written" % what)
     # the same journal beside both: the same world
     shutil.copy(ref + ".edits", cand + ".edits")
-    rc, _, stderr = compare(cand, "--reference", ref, "--ref-set", "converge.samples_per_frame=1", *SMALL, out=os.path.join(out, "out"))
+    rc, _, stderr = compare(cand, "--reference", ref, "--ref-set", "converge.samples_per_frame=1", *TINY, out=os.path.join(out, "out"))
     check("scenes differ" not in stderr, "the same journal beside both: %s" % stderr[-2000:])
 
 
