@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "voxrg/metrics.h"
+#include "metrics_kernels.h"
 
 #define PI 3.14159265358979323846
 
@@ -60,11 +61,9 @@ static void filter_valid(const double *src, uint32_t w, uint32_t h, const double
         }
 }
 
-double vrg_metric_ssim(const float *test, const float *ref, uint32_t w, uint32_t h)
+void _vrg_ssim_kernel(double k[VRG_SSIM_WINDOW])
 {
-    if (w < SSIM_WINDOW || h < SSIM_WINDOW)
-        return -1;
-    double k[SSIM_WINDOW], ksum = 0;
+    double ksum = 0;
     for (int i = 0; i < SSIM_WINDOW; i++) {
         double x = i - SSIM_WINDOW / 2;
         k[i] = exp(-x * x / (2 * 1.5 * 1.5));
@@ -72,6 +71,14 @@ double vrg_metric_ssim(const float *test, const float *ref, uint32_t w, uint32_t
     }
     for (int i = 0; i < SSIM_WINDOW; i++)
         k[i] /= ksum;
+}
+
+double vrg_metric_ssim(const float *test, const float *ref, uint32_t w, uint32_t h)
+{
+    if (w < SSIM_WINDOW || h < SSIM_WINDOW)
+        return -1;
+    double k[SSIM_WINDOW];
+    _vrg_ssim_kernel(k);
     size_t n = (size_t)w * h, on = (size_t)(w - SSIM_WINDOW + 1) * (h - SSIM_WINDOW + 1);
     /* a, b, a², b², ab, then the five filtered, then scratch */
     double *buf = malloc(sizeof(double) * (5 * n + 5 * on + (size_t)(w - SSIM_WINDOW + 1) * h));
@@ -214,33 +221,47 @@ static const double csf[3][4] = {
     {34.1, 0.04, 13.5, 0.025},  /* BY */
 };
 
-static void csf_filter(const double *src, int w, int h, int channel, double ppd, double *tmp, double *acc, double *out)
+int _vrg_flip_csf_radius(double ppd)
 {
     double bmax = 0;
     for (int c = 0; c < 3; c++)
         bmax = fmax(bmax, fmax(csf[c][1], csf[c][3]));
-    int r = (int)ceil(3 * sqrt(bmax / (2 * PI * PI)) * ppd);
-    double *k = malloc(sizeof(double) * (size_t)(2 * r + 1) * 2);
-    double weight[2], total = 0;
-    memset(out, 0, sizeof(double) * (size_t)w * h);
+    return (int)ceil(3 * sqrt(bmax / (2 * PI * PI)) * ppd);
+}
+
+double _vrg_flip_csf_kernel(int channel, int term, double ppd, int r, double *k)
+{
+    double weight = 0, total = 0;
     for (int t = 0; t < 2; t++) { /* the 2D term is a·sqrt(pi/b)·k(x)·k(y), k(x) = exp(-pi² (x/ppd)² / b) */
         double a = csf[channel][2 * t], b = csf[channel][2 * t + 1], s = 0;
         for (int i = -r; i <= r; i++)
             s += exp(-PI * PI * (i / ppd) * (i / ppd) / b);
-        weight[t] = a * sqrt(PI / b) * s * s;
-        total += weight[t];
+        total += a * sqrt(PI / b) * s * s;
+        if (t == term)
+            weight = a * sqrt(PI / b) * s * s;
     }
+    if (weight == 0)
+        return 0;
+    double b = csf[channel][2 * term + 1], s = 0;
+    for (int i = -r; i <= r; i++)
+        s += k[i + r] = exp(-PI * PI * (i / ppd) * (i / ppd) / b);
+    for (int i = 0; i <= 2 * r; i++)
+        k[i] /= s;
+    return weight / total;
+}
+
+static void csf_filter(const double *src, int w, int h, int channel, double ppd, double *tmp, double *acc, double *out)
+{
+    int r = _vrg_flip_csf_radius(ppd);
+    double *k = malloc(sizeof(double) * (size_t)(2 * r + 1));
+    memset(out, 0, sizeof(double) * (size_t)w * h);
     for (int t = 0; t < 2; t++) {
-        double b = csf[channel][2 * t + 1], s = 0;
-        if (weight[t] == 0)
+        double share = _vrg_flip_csf_kernel(channel, t, ppd, r, k);
+        if (share == 0)
             continue;
-        for (int i = -r; i <= r; i++)
-            s += k[i + r] = exp(-PI * PI * (i / ppd) * (i / ppd) / b);
-        for (int i = 0; i <= 2 * r; i++)
-            k[i] /= s;
         convolve_sep(src, w, h, k, k, r, tmp, acc);
         for (size_t i = 0; i < (size_t)w * h; i++)
-            out[i] += weight[t] / total * acc[i];
+            out[i] += share * acc[i];
     }
     free(k);
 }
@@ -249,11 +270,15 @@ static void csf_filter(const double *src, int w, int h, int channel, double ppd,
  * normalised achromatic channel: Gaussian derivative kernels with
  * sigma = 0.5 · 0.082° · ppd, their positive and negative weights each
  * normalised to sum ±1. Writes the magnitude of the (x, y) responses. */
-static void features(const double *src, int w, int h, int second, double ppd, double *tmp, double *gx, double *gy, double *mag)
+int _vrg_flip_feature_radius(double ppd)
 {
     double sd = 0.5 * 0.082 * ppd;
-    int r = (int)ceil(3 * sd);
-    double *d = malloc(sizeof(double) * (size_t)(2 * r + 1) * 2), *g = d + 2 * r + 1;
+    return (int)ceil(3 * sd);
+}
+
+void _vrg_flip_feature_kernels(double ppd, int second, int r, double *d, double *g)
+{
+    double sd = 0.5 * 0.082 * ppd;
     double pos = 0, neg = 0, gsum = 0;
     for (int i = -r; i <= r; i++) {
         double e = exp(-(double)i * i / (2 * sd * sd));
@@ -270,6 +295,13 @@ static void features(const double *src, int w, int h, int second, double ppd, do
         d[i] /= d[i] > 0 ? pos : neg;
         g[i] /= gsum;
     }
+}
+
+static void features(const double *src, int w, int h, int second, double ppd, double *tmp, double *gx, double *gy, double *mag)
+{
+    int r = _vrg_flip_feature_radius(ppd);
+    double *d = malloc(sizeof(double) * (size_t)(2 * r + 1) * 2), *g = d + 2 * r + 1;
+    _vrg_flip_feature_kernels(ppd, second, r, d, g);
     convolve_sep(src, w, h, d, g, r, tmp, gx);
     convolve_sep(src, w, h, g, d, r, tmp, gy);
     for (size_t i = 0; i < (size_t)w * h; i++)
