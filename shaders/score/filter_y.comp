@@ -83,8 +83,8 @@ float ssim(uint i)
         for (uint c = 0u; c < 5u; c++)
             m[c] += kern[K_SSIM + k] * tmp[plane(T_SSIM + c, i + uint(k) * pc.width)];
     const float c1 = 0.01 * 0.01, c2 = 0.03 * 0.03;
-    float ma = m[0], mb = m[1];
-    float va = m[2] - ma * ma, vb = m[3] - mb * mb, cov = m[4] - ma * mb;
+    float va = m[2] - m[0] * m[0], vb = m[3] - m[1] * m[1], cov = m[4] - m[0] * m[1];
+    float ma = m[0] + SSIM_SHIFT, mb = m[1] + SSIM_SHIFT;
     return ((2.0 * ma * mb + c1) * (2.0 * cov + c2)) / ((ma * ma + mb * mb + c1) * (va + vb + c2));
 }
 

@@ -36,8 +36,8 @@ void main()
     planes[plane(P_OPP + 3u, i)] = o.x;
     planes[plane(P_OPP + 4u, i)] = o.y;
     planes[plane(P_OPP + 5u, i)] = o.z;
-    planes[plane(P_LUMA_TEST, i)] = luma(tf);
-    planes[plane(P_LUMA_REF, i)] = luma(rf);
+    planes[plane(P_LUMA_TEST, i)] = luma(tf) - SSIM_SHIFT;
+    planes[plane(P_LUMA_REF, i)] = luma(rf) - SSIM_SHIFT;
     ivec3 d = ivec3(t) - ivec3(r);
     ints[2u * i] = uint(d.r * d.r + d.g * d.g + d.b * d.b);
     ivec3 dt = (ivec3(t) - ivec3(bytes(cand_prev[i]))) - (ivec3(r) - ivec3(bytes(ref_prev[i])));

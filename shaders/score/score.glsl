@@ -40,6 +40,9 @@ layout(push_constant) uniform P { uint width, height; } pc;
 #define K_FEAT (K_SHARE + 4)           // d, d2, g
 #define K_SSIM (K_FEAT + 3 * FEAT_TAPS)
 #define SSIM_W 11
+// SSIM's lumas are stored less this: the moments' variances E[a²] - E[a]²
+// (shift-invariant) then cancel less of the float precision
+#define SSIM_SHIFT 0.5
 
 uint plane(uint p, uint i) { return p * pc.width * pc.height + i; }
 
