@@ -25,6 +25,7 @@
 #include "voxrg/output.h"
 #include "voxrg/png.h"
 #include "voxrg/camera_path.h"
+#include "voxrg/device_score.h"
 #include "voxrg/metrics.h"
 #include "voxrg/voxrg.h"
 
@@ -35,7 +36,7 @@ const char *const vrg_cli_compare_usage =
     "usage: voxrg compare A.ini [B.ini ...] --reference REF.ini [--variant NAME[@GRAPH]:PASS.PARAM=VALUE,...]...\n"
     "                     [--grid [@GRAPH:]PASS.PARAM=A,B,...]... [--baseline NAME]\n"
     "                     [--cases FILE | [--camera PATH] [--start N] [--frames N] [--size WxH] [--warmup N]] [--out DIR]\n"
-    "                     [--ref-set PASS.PARAM=VALUE]... [--cache DIR] [--validate] [--device NAME|INDEX]\n"
+    "                     [--ref-set PASS.PARAM=VALUE]... [--cache DIR] [--score cpu|device] [--validate] [--device NAME|INDEX]\n"
     "Renders every candidate (each graph, and each --variant: the graph GRAPH names, a\n"
     "listed graph's candidate name, path or file name, else the first graph, with those\n"
     "parameters) and the reference on the same frames: same world, camera path, seeds\n"
@@ -44,7 +45,8 @@ const char *const vrg_cli_compare_usage =
     "processes and machines), keyed by the content of all it is built from.\n"
     "Measures each candidate frame against the reference frame: PSNR, SSIM (luma,\n"
     "11x11 Gaussian), LDR-FLIP and temporal error |(D_t - D_t-1) - (R_t - R_t-1)|,\n"
-    "and per-pass GPU ms (mean, p95). Frames before --warmup (default 5) are shown but\n"
+    "and per-pass GPU ms (mean, p95); --score device computes them on the rendering\n"
+    "device and reads back only the frames the report shows (default cpu). Frames before --warmup (default 5) are shown but\n"
     "left out of the summary. Writes DIR/report.html, metrics.csv, metrics.json and\n"
     "frames/*.png (default DIR: compare). --frames defaults to 30, --camera to the\n"
     "first graph's [camera]; --start N begins at the path's frame N (at the graph's\n"
@@ -64,6 +66,7 @@ typedef struct options {
     const char **grids;
     int grid_count;
     const char *reference, *camera, *out, *cache, *device, *cases, *baseline;
+    int score_device; /* --score device */
     const char *ref_sets[MAX_SETS];
     int ref_set_count;
     uint32_t width, height, frames, warmup, start;
@@ -150,6 +153,11 @@ static int parse_options(int argc, char **argv, options *o)
             o->cache = next;
         else if (!strcmp(a, "--device"))
             o->device = next;
+        else if (!strcmp(a, "--score")) {
+            if (strcmp(next, "cpu") && strcmp(next, "device"))
+                return usage_error("--score '%s': expected cpu or device", next);
+            o->score_device = !strcmp(next, "device");
+        }
         else if (!strcmp(a, "--variant")) {
             /* a name has neither '@' nor ':', so whichever comes first ends it */
             size_t name_len = strcspn(next, "@:");
@@ -676,8 +684,59 @@ static int shown_slot(const vrg_cmp_result *r, uint32_t k)
     return -1;
 }
 
+/* frame k's GPU ms per pass and their sum (ms[k * (np + 1) + np]) */
+static void record_ms(vrg_graph *g, uint32_t np, uint32_t k, double *ms)
+{
+    double total = 0;
+    for (uint32_t i = 0; i < np; i++) {
+        double v = vrg_graph_pass_ms(g, i);
+        ms[k * (np + 1) + i] = v > 0 ? v : 0;
+        total += v > 0 ? v : 0;
+    }
+    ms[k * (np + 1) + np] = total;
+}
+
+/* Frame k's scores from the device (and its FLIP map where the report shows it). */
+static int collect_scores(vrg_device_scorer *s, vrg_cmp_candidate *c, vrg_cmp_result *r, uint32_t k)
+{
+    int slot = shown_slot(r, k);
+    float *map = slot >= 0 ? (c->flip_map[slot] = malloc(sizeof(float) * r->width * r->height)) : NULL;
+    vrg_device_scores d;
+    if (vrg_device_score_collect(s, map, &d) != 0)
+        return -1;
+    c->per_frame[VRG_CMP_PSNR][k] = d.psnr;
+    c->per_frame[VRG_CMP_SSIM][k] = d.ssim;
+    c->per_frame[VRG_CMP_FLIP][k] = d.flip;
+    c->per_frame[VRG_CMP_TEMPORAL][k] = d.temporal;
+    return 0;
+}
+
+/* --score device, frame k just submitted: collects the sums of the frame
+ * before (its scoring ran before this frame on the queue), queues frame k's
+ * scoring (voxrg/device_score.h), and reads frame k back only where the
+ * report shows it (and writes only those to frames/). */
+static int score_on_device(vrg_device_scorer *s, vrg_graph *g, vrg_cmp_candidate *c, vrg_cmp_result *r, const uint8_t *ref, uint32_t k,
+                           const char *frames_dir, int64_t *pending)
+{
+    if (*pending >= 0 && collect_scores(s, c, r, (uint32_t)*pending) != 0)
+        return *pending = -1, -1;
+    int slot = shown_slot(r, k);
+    *pending = -1;
+    if (vrg_device_score_submit(s, g, NULL, ref, slot >= 0) != 0)
+        return -1;
+    *pending = k;
+    if (slot < 0)
+        return 0;
+    char file[VRG_CLI_PATH + VRG_CLI_PATH];
+    snprintf(file, sizeof file, "%s/%s-%05u.png", frames_dir, c->name, k);
+    if (!(c->shown[slot] = read_output(g)))
+        return -1;
+    return vrg_png_write_rgb8(file, c->shown[slot], r->width, r->height); /* says why it failed, naming the file */
+}
+
 static int render_candidate(vrg_context *ctx, const options *o, const job *j, vrg_cmp_candidate *c, const vrg_camera_path *path,
-                            const vrg_camera *fixed, double frame_s, uint8_t *const *ref, vrg_cmp_result *r, const char *frames_dir, int tty)
+                            const vrg_camera *fixed, double frame_s, uint8_t *const *ref, vrg_cmp_result *r, const char *frames_dir, int tty,
+                            vrg_device_scorer *scorer)
 {
     vrg_graph *g = load(ctx, j->graph, j->sets, j->set_count, o);
     if (!g)
@@ -699,6 +758,9 @@ static int render_candidate(vrg_context *ctx, const options *o, const job *j, vr
      * more than two frames of a candidate whatever the frame count; on a
      * CPU device (lavapipe) the scoring between frames evicts caches the
      * next frame runs in (docs/compare.md, "GPU time"). */
+    int64_t pending = -1; /* --score device: the frame whose sums are still to collect */
+    if (scorer)
+        vrg_device_scorer_restart(scorer);
     for (uint32_t k = 0; k < o->frames && rc == 0; k++) {
         vrg_camera cam;
         camera_at(path, fixed, (o->start + k) * frame_s, &cam);
@@ -707,18 +769,18 @@ static int render_candidate(vrg_context *ctx, const options *o, const job *j, vr
             break;
         for (uint32_t s = 0; s < sub && rc == 0; s++)
             rc = vrg_graph_frame(g);
+        if (scorer) {
+            rc = rc ? rc : score_on_device(scorer, g, c, r, ref[k], k, frames_dir, &pending);
+            if (rc == 0)
+                record_ms(g, np, k, ms), progress(c->name, k + 1, o->frames, tty);
+            continue;
+        }
         uint8_t *rgb = NULL;
         if (rc == 0 && !(rgb = read_output(g)))
             rc = -1;
         if (rc != 0)
             break;
-        double total = 0;
-        for (uint32_t i = 0; i < np; i++) {
-            double v = vrg_graph_pass_ms(g, i);
-            ms[k * (np + 1) + i] = v > 0 ? v : 0;
-            total += v > 0 ? v : 0;
-        }
-        ms[k * (np + 1) + np] = total;
+        record_ms(g, np, k, ms);
         char file[VRG_CLI_PATH + VRG_CLI_PATH];
         snprintf(file, sizeof file, "%s/%s-%05u.png", frames_dir, c->name, k);
         rc = vrg_png_write_rgb8(file, rgb, r->width, r->height); /* says why it failed, naming the file */
@@ -741,6 +803,8 @@ static int render_candidate(vrg_context *ctx, const options *o, const job *j, vr
         refp = refc, refc = t;
         progress(c->name, k + 1, o->frames, tty);
     }
+    if (pending >= 0 && collect_scores(scorer, c, r, (uint32_t)pending) != 0)
+        rc = -1;
     if (rc == 0) { /* timings from warmup on */
         uint32_t from = o->warmup, count = o->frames - from;
         double *v = malloc(sizeof(double) * count);
@@ -1073,6 +1137,8 @@ static int run_tasks(vrg_context *ctx, const options *o, const vrg_cmp_case_spec
 {
     case_frames cf = {.case_index = -1};
     int rc = 0;
+    vrg_device_scorer *scorer = NULL; /* --score device: for this size */
+    uint32_t scorer_size[2] = {0, 0};
     for (int t = 0; t < n && rc == 0; t++) {
         int c = tasks[t].case_index, i = tasks[t].candidate;
         vrg_cmp_result *r = &run->cases[c];
@@ -1083,10 +1149,17 @@ static int run_tasks(vrg_context *ctx, const options *o, const vrg_cmp_case_spec
             if (rc == 0)
                 rc = case_begin(ctx, &co, r, &setups[c], &cf, c, tty);
         }
+        if (rc == 0 && o->score_device && (scorer_size[0] != r->width || scorer_size[1] != r->height)) {
+            vrg_device_scorer_destroy(scorer);
+            scorer = NULL;
+            rc = vrg_device_scorer_create(ctx, r->width, r->height, &scorer);
+            scorer_size[0] = r->width, scorer_size[1] = r->height;
+        }
         if (rc == 0)
             rc = render_candidate(ctx, &co, &jobs[i], &r->cand[i], &setups[c].path, &setups[c].fixed, setups[c].frame_s, cf.ref, r,
-                                  setups[c].frames_dir, tty);
+                                  setups[c].frames_dir, tty, scorer);
     }
+    vrg_device_scorer_destroy(scorer);
     return cf.case_index >= 0 ? case_end(&cf, &run->cases[cf.case_index], sections, rc) : rc;
 }
 

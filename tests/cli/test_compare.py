@@ -13,6 +13,10 @@
   message, no report left behind.
 - names: variant names outside the safe set refused; graph names that
   would overwrite the reference's frames or break metrics.csv handled.
+- --score device: the metrics computed on the rendering device agree with
+  the CPU's (the tolerances of docs/compare.md) frame by frame, with
+  validation on; only the frames the report shows are written; --score
+  with another value is a usage error.
 - variants of a named graph (NAME@GRAPH:...): a variant of the second graph
   renders that graph, not the first; the report says which; a GRAPH not
   listed, or listed twice, is a usage error (exit 2) naming the candidates.
@@ -473,7 +477,29 @@ def moving_sun():
     check(frame("moving", "reference") == frame("still", "reference"), "the reference's sun at frame 6 is not the candidates'")
 
 
-# one line: tests/cli/CMakeLists.txt reads the names from it
+def score_device():
+    args = [os.path.join(GRAPHS, "raw.ini"), os.path.join(GRAPHS, "thesis.ini"), "--reference", os.path.join(GRAPHS, "reference.ini"),
+            "--ref-set", "converge.samples_per_frame=4", "--camera", os.path.join(GRAPHS, "paths", "walk.path"),
+            "--size", "96x54", "--frames", "6", "--warmup", "2"]
+    runs = {}
+    for mode in ("cpu", "device"):
+        out = os.path.join(OUT, "score-" + mode)
+        rc, _, stderr = compare(*args, "--score", mode, out=out)
+        if not check(rc == 0, "--score %s: exit %d\n%s" % (mode, rc, stderr[-3000:])):
+            return
+        runs[mode] = {x["name"]: x for x in json.load(open(os.path.join(out, "metrics.json")))["candidates"]}
+    tolerance = {"psnr": 1e-5, "ssim": 2e-5, "flip": 1e-5, "temporal": 1e-7}
+    for name, cand in runs["cpu"].items():
+        for k, (a, b) in enumerate(zip(cand["frames"], runs["device"][name]["frames"])):
+            for m, tol in tolerance.items():
+                check((a[m] is None and b[m] is None) or abs(a[m] - b[m]) <= tol, "%s frame %d %s: cpu %s, device %s" % (name, k, m, a[m], b[m]))
+    # shown: the first frame after warm-up, the middle, the last
+    frames = set(os.listdir(os.path.join(OUT, "score-device", "frames")))
+    want = {"%s-%05d.png" % (n, k) for n in ("raw", "thesis") for k in (2, 3, 5)} | {"reference-%05d.png" % k for k in range(6)}
+    check(frames == want, "--score device wrote frames %s, want %s" % (sorted(frames), sorted(want)))
+    rc, _, stderr = compare(*args, "--score", "gpu", out=os.path.join(OUT, "score-gpu"))
+    check(rc == 2 and "--score 'gpu': expected cpu or device" in stderr, "--score gpu: exit %d\n%s" % (rc, stderr[-1000:]))
+
 
 
 def vox_bytes(size, voxels):
@@ -641,7 +667,7 @@ def cache_shared():
 
 
 # one line: tests/cli/CMakeLists.txt reads the names from it
-CASES = (errors, names, variant_graph, identical, e2e, cases, case_errors, shipped_cases, grid, moving_sun, cache_vox, world_files, cache_damage, cache_shared)
+CASES = (errors, names, variant_graph, identical, e2e, cases, case_errors, shipped_cases, grid, moving_sun, cache_vox, world_files, cache_damage, cache_shared, score_device)
 
 
 def main():
