@@ -2,18 +2,25 @@
 // The device scorer's vertical filters and per-pixel errors: FLIP's
 // filtered colours in Hunt-adjusted Lab, their HyAB distance and the
 // feature difference give FLIP's error; SSIM's moments give the SSIM of the
-// window whose corner is this pixel (0 where no window fits).
+// window whose corner is the pixel (0 where no window fits). An invocation
+// does SEG pixels of a column from one window of each input, read once.
 #include "score.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
+#define WIN (SEG + 2 * CSF_R)
 
+// the window: plane t of column x from y0 - CSF_R on, edge pixels repeated
+void window(uint t, uint x, int y0, out float v[WIN])
+{
+    for (int i = 0; i < WIN; i++)
+        v[i] = tmp[plane(t, uint(clamp_y(y0 - CSF_R + i)) * pc.width + x)];
+}
 
-// sum over i of k[i + r] · src[y - i], down the column
-float conv_y(int k, int r, uint t, uint x)
+// the CPU's convolution at y0 + j: sum over i of k[i + r] · src[y0 + j - i]
+float conv(float v[WIN], int k, int r, int j)
 {
     float s = 0.0;
-    int y = int(gl_GlobalInvocationID.y);
     for (int i = -r; i <= r; i++)
-        s += kern[k + i + r] * tmp[plane(t, uint(clamp_y(y - i)) * pc.width + x)];
+        s += kern[k + i + r] * v[j - i + CSF_R];
     return s;
 }
 
@@ -42,46 +49,21 @@ vec3 ycxcz_to_hunt_lab(vec3 c)
 
 float hyab(vec3 a, vec3 b) { return abs(a.x - b.x) + length(a.yz - b.yz); }
 
-// image im's filtered opponent colour at this pixel
-vec3 filtered(uint im, uint x)
-{
-    uint t = T_CSF + 4u * im;
-    float a = kern[K_SHARE + 0] * conv_y(K_CSF + 0 * CSF_TAPS, CSF_R, t, x);
-    float rg = kern[K_SHARE + 1] * conv_y(K_CSF + 1 * CSF_TAPS, CSF_R, t + 1u, x);
-    float by = kern[K_SHARE + 2] * conv_y(K_CSF + 2 * CSF_TAPS, CSF_R, t + 2u, x);
-    by += kern[K_SHARE + 3] * conv_y(K_CSF + 3 * CSF_TAPS, CSF_R, t + 3u, x);
-    return vec3(a, rg, by);
-}
-
-// |edge| and |point| of image im: d along x then g along y, and g along x
-// then d along y, for each derivative
-vec2 features(uint im, uint x)
-{
-    uint t = T_FEAT + 3u * im;
-    const int d = K_FEAT, d2 = K_FEAT + FEAT_TAPS, g = K_FEAT + 2 * FEAT_TAPS;
-    float ex = conv_y(g, FEAT_R, t, x), ey = conv_y(d, FEAT_R, t + 2u, x);
-    float px = conv_y(g, FEAT_R, t + 1u, x), py = conv_y(d2, FEAT_R, t + 2u, x);
-    return vec2(sqrt(ex * ex + ey * ey), sqrt(px * px + py * py));
-}
-
-float flip_error(uint x)
+float flip_error(vec3 ref, vec3 test, vec2 ref_features, vec2 test_features)
 {
     const float qc = 0.7, pc_ = 0.4, pt = 0.95, qf = 0.5;
     float cmax = pow(hyab(hunt_lab(vec3(0.0, 1.0, 0.0)), hunt_lab(vec3(0.0, 0.0, 1.0))), qc);
-    float e = pow(hyab(ycxcz_to_hunt_lab(filtered(0u, x)), ycxcz_to_hunt_lab(filtered(1u, x))), qc);
+    float e = pow(hyab(ycxcz_to_hunt_lab(ref), ycxcz_to_hunt_lab(test)), qc);
     float color = e < pc_ * cmax ? e * pt / (pc_ * cmax) : pt + (e - pc_ * cmax) / (cmax - pc_ * cmax) * (1.0 - pt);
-    vec2 f0 = features(0u, x), f1 = features(1u, x);
-    float f = max(abs(f0.x - f1.x), abs(f0.y - f1.y));
+    float f = max(abs(ref_features.x - test_features.x), abs(ref_features.y - test_features.y));
     f = pow(f / sqrt(2.0), qf);
     return pow(color, 1.0 - f);
 }
 
-float ssim(uint i)
+// SSIM of the window whose corner is pixel (x, y0 + j), from its column
+// of horizontal moments
+float ssim(float m[5])
 {
-    float m[5] = float[5](0.0, 0.0, 0.0, 0.0, 0.0);
-    for (int k = 0; k < SSIM_W; k++)
-        for (uint c = 0u; c < 5u; c++)
-            m[c] += kern[K_SSIM + k] * tmp[plane(T_SSIM + c, i + uint(k) * pc.width)];
     const float c1 = 0.01 * 0.01, c2 = 0.03 * 0.03;
     float va = m[2] - m[0] * m[0], vb = m[3] - m[1] * m[1], cov = m[4] - m[0] * m[1];
     float ma = m[0] + SSIM_SHIFT, mb = m[1] + SSIM_SHIFT;
@@ -90,11 +72,58 @@ float ssim(uint i)
 
 void main()
 {
-    uvec2 p = gl_GlobalInvocationID.xy;
-    if (p.x >= pc.width || p.y >= pc.height)
+    uvec2 g = gl_GlobalInvocationID.xy;
+    int y0 = int(g.y) * SEG;
+    if (g.x >= pc.width || y0 >= int(pc.height))
         return;
-    uint i = p.y * pc.width + p.x;
-    planes[plane(P_FLIP, i)] = flip_error(p.x);
-    bool window = p.x + uint(SSIM_W) <= pc.width && p.y + uint(SSIM_W) <= pc.height;
-    planes[plane(P_SSIM, i)] = window ? ssim(i) : 0.0;
+    uint x = g.x;
+    int n = min(SEG, int(pc.height) - y0);
+    float v[WIN];
+    vec3 colour[2][SEG];
+    vec2 features[2][SEG];
+    for (uint im = 0u; im < 2u; im++) {
+        uint t = T_CSF + 4u * im, f = T_FEAT + 3u * im;
+        const int d = K_FEAT, d2 = K_FEAT + FEAT_TAPS, gk = K_FEAT + 2 * FEAT_TAPS;
+        window(t, x, y0, v);
+        for (int j = 0; j < SEG; j++)
+            colour[im][j].x = kern[K_SHARE + 0] * conv(v, K_CSF, CSF_R, j);
+        window(t + 1u, x, y0, v);
+        for (int j = 0; j < SEG; j++)
+            colour[im][j].y = kern[K_SHARE + 1] * conv(v, K_CSF + CSF_TAPS, CSF_R, j);
+        window(t + 2u, x, y0, v);
+        for (int j = 0; j < SEG; j++)
+            colour[im][j].z = kern[K_SHARE + 2] * conv(v, K_CSF + 2 * CSF_TAPS, CSF_R, j);
+        window(t + 3u, x, y0, v);
+        for (int j = 0; j < SEG; j++)
+            colour[im][j].z += kern[K_SHARE + 3] * conv(v, K_CSF + 3 * CSF_TAPS, CSF_R, j);
+        // edges: d along x then g along y, and g along x then d along y;
+        // points alike with the second derivative
+        window(f, x, y0, v);
+        for (int j = 0; j < SEG; j++)
+            features[im][j].x = conv(v, gk, FEAT_R, j);
+        window(f + 1u, x, y0, v);
+        for (int j = 0; j < SEG; j++)
+            features[im][j].y = conv(v, gk, FEAT_R, j);
+        window(f + 2u, x, y0, v);
+        for (int j = 0; j < SEG; j++) {
+            float ey = conv(v, d, FEAT_R, j), py = conv(v, d2, FEAT_R, j);
+            vec2 xs = features[im][j];
+            features[im][j] = vec2(sqrt(xs.x * xs.x + ey * ey), sqrt(xs.y * xs.y + py * py));
+        }
+    }
+    for (int j = 0; j < n; j++)
+        planes[plane(P_FLIP, uint(y0 + j) * pc.width + x)] = flip_error(colour[0][j], colour[1][j], features[0][j], features[1][j]);
+    float col[5][SEG + SSIM_W - 1];
+    for (uint c = 0u; c < 5u; c++)
+        for (int i = 0; i < SEG + SSIM_W - 1; i++)
+            col[c][i] = tmp[plane(T_SSIM + c, uint(min(y0 + i, int(pc.height) - 1)) * pc.width + x)];
+    bool fits = x + uint(SSIM_W) <= pc.width;
+    for (int j = 0; j < n; j++) {
+        float m[5] = float[5](0.0, 0.0, 0.0, 0.0, 0.0);
+        for (int k = 0; k < SSIM_W; k++)
+            for (uint c = 0u; c < 5u; c++)
+                m[c] += kern[K_SSIM + k] * col[c][j + k];
+        bool window = fits && y0 + j + SSIM_W <= int(pc.height);
+        planes[plane(P_SSIM, uint(y0 + j) * pc.width + x)] = window ? ssim(m) : 0.0;
+    }
 }

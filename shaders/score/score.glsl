@@ -32,7 +32,8 @@ layout(push_constant) uniform P { uint width, height; } pc;
 #define T_FEAT 8u
 #define T_SSIM 14u
 #define TMP_PLANES 19u
-// CSF_R and FEAT_R come as defines (the radii of the CPU's kernels)
+// CSF_R and FEAT_R come as defines (the radii of the CPU's kernels), and
+// SEG: the pixels an invocation of a filter stage filters along its axis
 #define CSF_TAPS (2 * CSF_R + 1)
 #define FEAT_TAPS (2 * FEAT_R + 1)
 #define K_CSF 0                        // four kernels: A, RG, BY0, BY1
