@@ -205,6 +205,8 @@ static void test_refused(void)
         goto out;
     uint8_t *ref = calloc(40 * 24, 3);
     CHECK(vrg_device_score_submit(s, g, NULL, ref, 0) == -1, "an rgba16f output was scored");
+    CHECK(vrg_device_score_submit(s, NULL, NULL, ref, 0) == -1, "no candidate was scored");
+    CHECK(vrg_device_score_submit(s, g, NULL, NULL, 0) == -1, "no reference was scored");
     vrg_device_scores d;
     CHECK(vrg_device_score_collect(s, NULL, &d) == -1, "a collect without a submit");
     free(ref);

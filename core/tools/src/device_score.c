@@ -347,6 +347,10 @@ int vrg_device_score_submit(vrg_device_scorer *s, vrg_graph *g, const uint8_t *t
         fprintf(stderr, "error: device scorer: a frame was submitted before the last one was collected\n");
         return -1;
     }
+    if ((!g && !test) || !ref) {
+        fprintf(stderr, "error: device scorer: no %s to score\n", ref ? "candidate" : "reference");
+        return -1;
+    }
     size_t n = (size_t)s->width * s->height;
     if (!g)
         pack_rgba(test, n, s->upload.mapped);
