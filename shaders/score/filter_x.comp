@@ -5,6 +5,10 @@
 // SEG pixels of a row from one window of its inputs, read once (the reads,
 // not the sums, are what costs on a CPU device). The sums run over the taps
 // in the CPU's order.
+// The loops over the SEG pixels and the taps are unrolled, so that the
+// window is indexed by constants and stays in registers (on lavapipe the
+// first compile takes longer; Mesa's shader cache keeps the result).
+#extension GL_EXT_control_flow_attributes : require
 #include "score.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 #define WIN (SEG + 2 * CSF_R)
@@ -20,7 +24,7 @@ void window(uint p, uint row, int x0, out float v[WIN])
 float conv(float v[WIN], int k, int r, int j)
 {
     float s = 0.0;
-    for (int i = -r; i <= r; i++)
+    [[unroll]] for (int i = -r; i <= r; i++)
         s += kern[k + i + r] * v[j - i + CSF_R];
     return s;
 }
@@ -37,22 +41,25 @@ void main()
     for (uint im = 0u; im < 2u; im++) {
         uint opp = P_OPP + 3u * im, t = T_CSF + 4u * im, f = T_FEAT + 3u * im;
         window(opp, row, x0, v);
-        for (int j = 0; j < n; j++)
-            tmp[plane(t, row + uint(x0 + j))] = conv(v, K_CSF, CSF_R, j);
+        [[unroll]] for (int j = 0; j < SEG; j++)
+            if (j < n)
+                tmp[plane(t, row + uint(x0 + j))] = conv(v, K_CSF, CSF_R, j);
         // FLIP's features see the achromatic channel as (Y + 16) / 116
         for (int e = 0; e < WIN; e++)
             v[e] = (v[e] + 16.0) / 116.0;
-        for (int j = 0; j < n; j++)
-            for (int k = 0; k < 3; k++)
+        [[unroll]] for (int j = 0; j < SEG; j++)
+            for (int k = 0; k < 3 && j < n; k++)
                 tmp[plane(f + uint(k), row + uint(x0 + j))] = conv(v, K_FEAT + k * FEAT_TAPS, FEAT_R, j);
         window(opp + 1u, row, x0, v);
-        for (int j = 0; j < n; j++)
-            tmp[plane(t + 1u, row + uint(x0 + j))] = conv(v, K_CSF + CSF_TAPS, CSF_R, j);
+        [[unroll]] for (int j = 0; j < SEG; j++)
+            if (j < n)
+                tmp[plane(t + 1u, row + uint(x0 + j))] = conv(v, K_CSF + CSF_TAPS, CSF_R, j);
         window(opp + 2u, row, x0, v);
-        for (int j = 0; j < n; j++) {
-            tmp[plane(t + 2u, row + uint(x0 + j))] = conv(v, K_CSF + 2 * CSF_TAPS, CSF_R, j);
-            tmp[plane(t + 3u, row + uint(x0 + j))] = conv(v, K_CSF + 3 * CSF_TAPS, CSF_R, j);
-        }
+        [[unroll]] for (int j = 0; j < SEG; j++)
+            if (j < n) {
+                tmp[plane(t + 2u, row + uint(x0 + j))] = conv(v, K_CSF + 2 * CSF_TAPS, CSF_R, j);
+                tmp[plane(t + 3u, row + uint(x0 + j))] = conv(v, K_CSF + 3 * CSF_TAPS, CSF_R, j);
+            }
     }
     // SSIM: windows from x on, those that fit
     float a[SEG + SSIM_W], b[SEG + SSIM_W];

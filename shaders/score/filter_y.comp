@@ -4,6 +4,10 @@
 // feature difference give FLIP's error; SSIM's moments give the SSIM of the
 // window whose corner is the pixel (0 where no window fits). An invocation
 // does SEG pixels of a column from one window of each input, read once.
+// The loops over the SEG pixels and the taps are unrolled, so that the
+// window is indexed by constants and stays in registers (on lavapipe the
+// first compile takes longer; Mesa's shader cache keeps the result).
+#extension GL_EXT_control_flow_attributes : require
 #include "score.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 #define WIN (SEG + 2 * CSF_R)
@@ -19,7 +23,7 @@ void window(uint t, uint x, int y0, out float v[WIN])
 float conv(float v[WIN], int k, int r, int j)
 {
     float s = 0.0;
-    for (int i = -r; i <= r; i++)
+    [[unroll]] for (int i = -r; i <= r; i++)
         s += kern[k + i + r] * v[j - i + CSF_R];
     return s;
 }
@@ -85,40 +89,41 @@ void main()
         uint t = T_CSF + 4u * im, f = T_FEAT + 3u * im;
         const int d = K_FEAT, d2 = K_FEAT + FEAT_TAPS, gk = K_FEAT + 2 * FEAT_TAPS;
         window(t, x, y0, v);
-        for (int j = 0; j < SEG; j++)
+        [[unroll]] for (int j = 0; j < SEG; j++)
             colour[im][j].x = kern[K_SHARE + 0] * conv(v, K_CSF, CSF_R, j);
         window(t + 1u, x, y0, v);
-        for (int j = 0; j < SEG; j++)
+        [[unroll]] for (int j = 0; j < SEG; j++)
             colour[im][j].y = kern[K_SHARE + 1] * conv(v, K_CSF + CSF_TAPS, CSF_R, j);
         window(t + 2u, x, y0, v);
-        for (int j = 0; j < SEG; j++)
+        [[unroll]] for (int j = 0; j < SEG; j++)
             colour[im][j].z = kern[K_SHARE + 2] * conv(v, K_CSF + 2 * CSF_TAPS, CSF_R, j);
         window(t + 3u, x, y0, v);
-        for (int j = 0; j < SEG; j++)
+        [[unroll]] for (int j = 0; j < SEG; j++)
             colour[im][j].z += kern[K_SHARE + 3] * conv(v, K_CSF + 3 * CSF_TAPS, CSF_R, j);
         // edges: d along x then g along y, and g along x then d along y;
         // points alike with the second derivative
         window(f, x, y0, v);
-        for (int j = 0; j < SEG; j++)
+        [[unroll]] for (int j = 0; j < SEG; j++)
             features[im][j].x = conv(v, gk, FEAT_R, j);
         window(f + 1u, x, y0, v);
-        for (int j = 0; j < SEG; j++)
+        [[unroll]] for (int j = 0; j < SEG; j++)
             features[im][j].y = conv(v, gk, FEAT_R, j);
         window(f + 2u, x, y0, v);
-        for (int j = 0; j < SEG; j++) {
+        [[unroll]] for (int j = 0; j < SEG; j++) {
             float ey = conv(v, d, FEAT_R, j), py = conv(v, d2, FEAT_R, j);
             vec2 xs = features[im][j];
             features[im][j] = vec2(sqrt(xs.x * xs.x + ey * ey), sqrt(xs.y * xs.y + py * py));
         }
     }
-    for (int j = 0; j < n; j++)
-        planes[plane(P_FLIP, uint(y0 + j) * pc.width + x)] = flip_error(colour[0][j], colour[1][j], features[0][j], features[1][j]);
+    [[unroll]] for (int j = 0; j < SEG; j++)
+        if (j < n)
+            planes[plane(P_FLIP, uint(y0 + j) * pc.width + x)] = flip_error(colour[0][j], colour[1][j], features[0][j], features[1][j]);
     float col[5][SEG + SSIM_W - 1];
     for (uint c = 0u; c < 5u; c++)
         for (int i = 0; i < SEG + SSIM_W - 1; i++)
             col[c][i] = tmp[plane(T_SSIM + c, uint(min(y0 + i, int(pc.height) - 1)) * pc.width + x)];
     bool fits = x + uint(SSIM_W) <= pc.width;
-    for (int j = 0; j < n; j++) {
+    [[unroll]] for (int j = 0; j < SEG && j < n; j++) {
         float m[5] = float[5](0.0, 0.0, 0.0, 0.0, 0.0);
         for (int k = 0; k < SSIM_W; k++)
             for (uint c = 0u; c < 5u; c++)
