@@ -1,8 +1,9 @@
 /* The device scorer (voxrg/device_score.h) against the CPU metrics
  * (voxrg/metrics.h), the reference, on the same bytes: synthetic images at
  * two sizes and frames rendered by a shipped graph, scored from the graph's
- * output image without reading it back. The tolerances are docs/compare.md's
- * ("Scoring on the device"). */
+ * output image without reading it back; the same frame scored again gives
+ * the same bits. The tolerances are docs/compare.md's ("Scoring on the
+ * device"). */
 #include <stdint.h>
 #include "harness.h"
 #include "voxrg/device_score.h"
@@ -114,6 +115,7 @@ static void synthetic_size(uint32_t w, uint32_t h)
     char what[32];
     snprintf(what, sizeof what, "synthetic %ux%u", w, h);
     double worst = 0;
+    vrg_device_scores first = {0};
     for (uint32_t k = 0; k < 3; k++) {
         synthetic(w, h, k, ref, test);
         if (k == 2) /* identical frames: PSNR capped, FLIP 0, SSIM 1 */
@@ -125,8 +127,18 @@ static void synthetic_size(uint32_t w, uint32_t h)
         to_float(ref, n, c.refc);
         agree(what, k, w, h, &c, &d, map, &worst);
         cpu_frame_next(&c);
+        if (k == 0)
+            first = d;
     }
     CHECK(worst <= TOL_FLIP_PIXEL, "%s: FLIP's maps differ by %g in a pixel", what, worst);
+    /* the sums run in a fixed order: frame 0 again gives the same bits */
+    vrg_device_scores again;
+    synthetic(w, h, 0, ref, test);
+    vrg_device_scorer_restart(s);
+    CHECK(vrg_device_score_submit(s, NULL, test, ref, 0) == 0 && vrg_device_score_collect(s, NULL, &again) == 0, "scoring again");
+    CHECK(again.psnr == first.psnr && again.ssim == first.ssim && again.flip == first.flip && isnan(again.temporal),
+          "%s: frame 0 scored again gives PSNR %.17g SSIM %.17g FLIP %.17g, first %.17g %.17g %.17g", what, again.psnr, again.ssim, again.flip,
+          first.psnr, first.ssim, first.flip);
     printf("%s: FLIP map, largest difference in a pixel %.2e\n", what, worst);
     vrg_device_scorer_destroy(s);
     cpu_frame_free(&c);
