@@ -15,8 +15,8 @@
   would overwrite the reference's frames or break metrics.csv handled.
 - --score device: the metrics computed on the rendering device agree with
   the CPU's (the tolerances of docs/compare.md) frame by frame, with
-  validation on; only the frames the report shows are written; --score
-  with another value is a usage error.
+  validation on, also over cases of two sizes; only the frames the report
+  shows are written; --score with another value is a usage error.
 - variants of a named graph (NAME@GRAPH:...): a variant of the second graph
   renders that graph, not the first; the report says which; a GRAPH not
   listed, or listed twice, is a usage error (exit 2) naming the candidates.
@@ -499,7 +499,23 @@ def score_device():
     check(frames == want, "--score device wrote frames %s, want %s" % (sorted(frames), sorted(want)))
     rc, _, stderr = compare(*args, "--score", "gpu", out=os.path.join(OUT, "score-gpu"))
     check(rc == 2 and "--score 'gpu': expected cpu or device" in stderr, "--score gpu: exit %d\n%s" % (rc, stderr[-1000:]))
-
+    # cases of two sizes: a scorer for each
+    out = os.path.join(OUT, "score-cases")
+    raw, thesis, ref = small_graphs(out)
+    case_file = os.path.join(out, "two.cases")
+    open(case_file, "w").write("[case a]\nframes = 3\nwarmup = 1\nsize = 32x18\n\n[case b]\nframes = 2\nwarmup = 0\nsize = 33x19\n")
+    cases = {}
+    for mode in ("cpu", "device"):
+        rc, _, stderr = compare(raw, thesis, "--reference", ref, *SMALL, "--cases", case_file, "--score", mode, out=os.path.join(out, mode))
+        if not check(rc == 0, "--cases --score %s: exit %d\n%s" % (mode, rc, stderr[-3000:])):
+            return
+        cases[mode] = json.load(open(os.path.join(out, mode, "metrics.json")))["cases"]
+    for a_case, b_case in zip(cases["cpu"], cases["device"]):
+        for a_cand, b_cand in zip(a_case["candidates"], b_case["candidates"]):
+            for k, (a, b) in enumerate(zip(a_cand["frames"], b_cand["frames"])):
+                for m, tol in tolerance.items():
+                    check((a[m] is None and b[m] is None) or abs(a[m] - b[m]) <= tol,
+                          "case %s, %s frame %d %s: cpu %s, device %s" % (a_case["name"], a_cand["name"], k, m, a[m], b[m]))
 
 
 def vox_bytes(size, voxels):
