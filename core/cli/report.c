@@ -79,7 +79,8 @@ static int image(FILE *f, const uint8_t *rgb, uint32_t w, uint32_t h, int scale,
     size_t size;
     if (vrg_png_encode_rgb8(rgb, w, h, &png, &size) != 0)
         return -1;
-    fprintf(f, "<img width=\"%u\" height=\"%u\" alt=\"", w * (uint32_t)scale, h * (uint32_t)scale);
+    /* tabindex: a click focuses the image, which the style zooms (no script) */
+    fprintf(f, "<img tabindex=\"0\" width=\"%u\" height=\"%u\" alt=\"", w * (uint32_t)scale, h * (uint32_t)scale);
     esc(f, alt);
     fputs("\" src=\"data:image/png;base64,", f);
     base64(f, png, size);
@@ -342,7 +343,9 @@ static const char *style =
     ".warmup{fill:#f0f0f0}.label{font-size:12px;text-anchor:end}.total{font-size:12px}"
     ".legend span{margin-right:14px;white-space:nowrap}.legend i{display:inline-block;width:12px;height:12px;margin-right:4px;vertical-align:-1px}"
     "table.matrix td small{color:#555}ul.verdict li{margin:4px 0}"
-    ".frames{display:flex;flex-wrap:wrap;gap:8px;align-items:flex-start}.frames img{display:block;max-width:100%;image-rendering:pixelated}";
+    ".frames{display:flex;flex-wrap:wrap;gap:8px;align-items:flex-start}.frames img{display:block;max-width:100%;image-rendering:pixelated}"
+    ".frames img{cursor:zoom-in}.frames img:focus{transform:scale(3);transform-origin:0 0;position:relative;z-index:2;cursor:zoom-out;"
+    "outline:2px solid #444;max-width:none}";
 
 static void settings(FILE *f, const vrg_cmp_result *r)
 {
@@ -453,7 +456,7 @@ static int frames(FILE *f, const vrg_cmp_result *r)
         for (int i = 0; i < r->count && rc == 0; i++)
             rc |= figure(f, signed_map(r->cand[i].shown[s], r->reference_shown[s], (size_t)w * h, srange), w, h, fscale, "signed difference",
                          "difference: ", r->cand[i].name);
-        fprintf(f, "</div>\n<p>Zoomed: the %ux%u window at (%u, %u) with the largest FLIP error summed over the candidates.</p>\n"
+        fprintf(f, "</div>\n<p>Zoomed: the %ux%u window at (%u, %u) with the largest FLIP error summed over the candidates; click any image to zoom it 3x, click elsewhere to zoom out.</p>\n"
                    "<div class=\"frames crop\">",
                 side, side, x0, y0);
         for (int i = -1; i < r->count && rc == 0; i++)

@@ -145,6 +145,9 @@ def e2e():
     check(len(ranges) == 3 and all(0.001 <= x < 1 for x in ranges), "FLIP map ranges: %s" % ranges)
     check(len(signed) == 3 and all(a == b and 0.001 <= float(a) <= 1 for a, b in signed), "signed difference ranges: %s" % signed)
     check(all(base64.b64decode(s.split(",", 1)[1])[:8] == b"\x89PNG\r\n\x1a\n" for s in pngs), "an inline image is not a PNG")
+    # every image zooms where clicked: focusable, and the style scales a focused one
+    check(text.count('<img tabindex="0" ') == len(page.images) and ".frames img:focus{transform:scale(3)" in text,
+          "report images are not zoomable (tabindex and :focus style)")
     check(page.svgs == 5 and page.polylines == 4 * 2, "plots: %d svg, %d polylines" % (page.svgs, page.polylines))
     # csv = json
     rows = [l.split(",") for l in open(os.path.join(out, "metrics.csv")).read().split("\n")[1:] if l]
