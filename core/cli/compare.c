@@ -18,6 +18,7 @@
 #include <unistd.h>
 #include "compare_cases.h"
 #include "compare_result.h"
+#include "compare_shard.h"
 #include "ref_cache.h"
 #include "report.h"
 #include "util.h"
@@ -37,6 +38,8 @@ const char *const vrg_cli_compare_usage =
     "                     [--grid [@GRAPH:]PASS.PARAM=A,B,...]... [--baseline NAME]\n"
     "                     [--cases FILE | [--camera PATH] [--start N] [--frames N] [--size WxH] [--warmup N]] [--out DIR]\n"
     "                     [--ref-set PASS.PARAM=VALUE]... [--cache DIR] [--score cpu|device] [--validate] [--device NAME|INDEX]\n"
+    "                     [--shard I/N]\n"
+    "       voxrg compare --merge OUT SHARD_DIR...\n"
     "Renders every candidate (each graph, and each --variant: the graph GRAPH names, a\n"
     "listed graph's candidate name, path or file name, else the first graph, with those\n"
     "parameters) and the reference on the same frames: same world, camera path, seeds\n"
@@ -56,7 +59,11 @@ const char *const vrg_cli_compare_usage =
     "several --grid of one graph), named GRAPH-PARAMVALUE..., of the first graph or GRAPH.\n"
     "--cases FILE runs every [case NAME] of the case file (camera, start, frames,\n"
     "warmup, size and scene.PARAM overrides) and judges each candidate against the\n"
-    "--baseline candidate (default the first) over the cases.\n";
+    "--baseline candidate (default the first) over the cases.\n"
+    "--shard I/N (I from 0 to N-1, or auto: $SLURM_ARRAY_TASK_ID or\n"
+    "$JOB_COMPLETION_INDEX) runs the I-th of N contiguous slices of the (case,\n"
+    "candidate) tasks and writes DIR/shard.txt and frames/ instead of a report;\n"
+    "--merge OUT reads the N shards' folders and writes the run's report to OUT.\n";
 
 typedef struct options {
     const char **graphs; /* [argc] each, as the arguments are at most */
@@ -71,6 +78,7 @@ typedef struct options {
     int ref_set_count;
     uint32_t width, height, frames, warmup, start;
     int validate, help;
+    int shard, shards; /* --shard I/N; shards 0: the whole run */
     /* the case being run: its scene.PARAM=VALUE overrides, for every graph */
     char *const *scene;
     int scene_count;
@@ -100,6 +108,27 @@ static int parse_count(const char *s, uint32_t lo, uint32_t hi, uint32_t *out)
     if (*end || *s == '\0' || n < (long)lo || n > (long)hi)
         return -1;
     *out = (uint32_t)n;
+    return 0;
+}
+
+/* --shard I/N, I a number or "auto": the array task's index from Slurm's
+ * or a Kubernetes Indexed Job's environment */
+static int parse_shard(const char *arg, options *o)
+{
+    char index[32];
+    const char *slash = strchr(arg, '/');
+    uint32_t i, n;
+    if (!slash || (size_t)(slash - arg) >= sizeof index || parse_count(slash + 1, 1, 100000, &n) != 0)
+        return usage_error("--shard '%s': expected I/N, I from 0 to N-1 (or auto), N from 1 to 100000", arg);
+    snprintf(index, sizeof index, "%.*s", (int)(slash - arg), arg);
+    const char *from = index;
+    if (!strcmp(index, "auto") && !(from = getenv("SLURM_ARRAY_TASK_ID")) && !(from = getenv("JOB_COMPLETION_INDEX")))
+        return usage_error("--shard %s: neither SLURM_ARRAY_TASK_ID nor JOB_COMPLETION_INDEX is set", arg);
+    if (parse_count(from, 0, n - 1, &i) != 0) {
+        fprintf(stderr, "error: --shard %s: the index '%s' is not a whole number from 0 to %u\n%s", arg, from, n - 1, vrg_cli_compare_usage);
+        return 2;
+    }
+    o->shard = (int)i, o->shards = (int)n;
     return 0;
 }
 
@@ -157,6 +186,9 @@ static int parse_options(int argc, char **argv, options *o)
             if (strcmp(next, "cpu") && strcmp(next, "device"))
                 return usage_error("--score '%s': expected cpu or device", next);
             o->score_device = !strcmp(next, "device");
+        } else if (!strcmp(a, "--shard")) {
+            if (parse_shard(next, o) != 0)
+                return 2;
         }
         else if (!strcmp(a, "--variant")) {
             /* a name has neither '@' nor ':', so whichever comes first ends it */
@@ -1009,6 +1041,8 @@ static int write_json(const char *dir, const vrg_cmp_run *run)
     return vrg_output_commit(out);
 }
 
+int vrg_cmp_write_metrics(const char *dir, const vrg_cmp_run *run) { return write_csv(dir, run) || write_json(dir, run) ? -1 : 0; }
+
 static void print_summary(const vrg_cmp_result *r)
 {
     printf("\n%s%s%u frames at %ux%u, summary from frame %u on; reference %s%s%s\n", r->case_name[0] ? r->case_name : "",
@@ -1028,6 +1062,15 @@ static void print_summary(const vrg_cmp_result *r)
     printf("* best in the column\n");
 }
 
+void vrg_cmp_print(const vrg_cmp_run *run)
+{
+    for (int c = 0; c < run->case_count; c++)
+        print_summary(&run->cases[c]);
+    printf("\n");
+    for (int i = 0; i < run->cases[0].count; i++)
+        printf("%s\n", run->verdict[i].sentence);
+}
+
 static void free_shown(vrg_cmp_result *r)
 {
     for (int i = 0; r->cand && i < r->count; i++)
@@ -1039,7 +1082,7 @@ static void free_shown(vrg_cmp_result *r)
         free(r->reference_shown[s]), r->reference_shown[s] = NULL;
 }
 
-static void free_run(vrg_cmp_run *run)
+void vrg_cmp_run_free(vrg_cmp_run *run)
 {
     for (int c = 0; c < run->case_count; c++) {
         vrg_cmp_result *r = &run->cases[c];
@@ -1076,9 +1119,7 @@ typedef struct case_setup {
  * tasks of a case share its reference frames (rendered, or taken from the
  * cache, when its first task comes), so a slice of the tasks can run on
  * its own. */
-typedef struct task {
-    int case_index, candidate;
-} task;
+typedef vrg_cmp_task task;
 
 /* the current case's reference frames, kept for scoring its candidates */
 typedef struct case_frames {
@@ -1087,17 +1128,21 @@ typedef struct case_frames {
     uint32_t frames;
 } case_frames;
 
-/* The reference frames of case c (written to its frames folder), and the
- * frames its report shows. */
-static int case_begin(vrg_context *ctx, const options *co, vrg_cmp_result *r, case_setup *cs, case_frames *cf, int c, int tty)
+/* The frames case r's report shows: the first frame after warmup, the
+ * middle, the last; of a case file's case only the last, where history
+ * has had the longest to go wrong, so that a report of many cases stays
+ * readable. Every shard of a run picks the same. */
+static void pick_shown(vrg_cmp_result *r)
 {
-    /* shown: the first frame after warmup, the middle, the last; of a
-     * case file's case only the last, where history has had the longest
-     * to go wrong, so that a report of many cases stays readable */
-    uint32_t picks[3] = {co->warmup, co->warmup + (co->frames - 1 - co->warmup) / 2, co->frames - 1};
+    uint32_t picks[3] = {r->warmup, r->warmup + (r->frames - 1 - r->warmup) / 2, r->frames - 1};
     for (int i = r->case_name[0] ? 2 : 0; i < 3; i++)
         if (!r->shown_count || r->shown[r->shown_count - 1] != (int)picks[i])
             r->shown[r->shown_count++] = (int)picks[i];
+}
+
+/* The reference frames of case c, written to its frames folder. */
+static int case_begin(vrg_context *ctx, const options *co, vrg_cmp_result *r, case_setup *cs, case_frames *cf, int c, int tty)
+{
     r->device = vrg_context_device(ctx)->name;
     if (r->case_name[0])
         fprintf(stderr, "case %s\n", r->case_name);
@@ -1114,8 +1159,9 @@ static int case_begin(vrg_context *ctx, const options *co, vrg_cmp_result *r, ca
 }
 
 /* The end of a case: after its tasks succeeded (rc 0) its part of the
- * report goes to `sections`; then its frames are freed. */
-static int case_end(case_frames *cf, vrg_cmp_result *r, FILE *sections, int rc)
+ * report goes to `sections` (a shard's: its FLIP maps to frames_dir, for
+ * the merge's report); then its frames are freed. */
+static int case_end(case_frames *cf, vrg_cmp_result *r, FILE *sections, const char *frames_dir, int rc)
 {
     for (int s = 0; rc == 0 && s < r->shown_count; s++)
         r->reference_shown[s] = cf->ref[r->shown[s]], cf->ref[r->shown[s]] = NULL;
@@ -1124,14 +1170,14 @@ static int case_end(case_frames *cf, vrg_cmp_result *r, FILE *sections, int rc)
     free(cf->ref);
     cf->ref = NULL;
     cf->case_index = -1;
-    if (rc == 0 && vrg_cmp_report_case(sections, r) != 0)
+    if (rc == 0 && (sections ? vrg_cmp_report_case(sections, r) : vrg_cmp_shard_write_maps(frames_dir, r)) != 0)
         rc = -1;
     free_shown(r);
     return rc;
 }
 
 /* Runs tasks[0..n): each case's reference frames when its first task
- * comes, each candidate scored as it renders. */
+ * comes, each candidate scored as it renders. `sections` NULL: a shard's. */
 static int run_tasks(vrg_context *ctx, const options *o, const vrg_cmp_case_spec *specs, job *jobs, vrg_cmp_run *run, case_setup *setups,
                      const task *tasks, int n, FILE *sections, int tty)
 {
@@ -1145,7 +1191,7 @@ static int run_tasks(vrg_context *ctx, const options *o, const vrg_cmp_case_spec
         options co = case_options(o, &specs[c]);
         if (cf.case_index != c) {
             if (cf.case_index >= 0)
-                rc = case_end(&cf, &run->cases[cf.case_index], sections, rc);
+                rc = case_end(&cf, &run->cases[cf.case_index], sections, setups[cf.case_index].frames_dir, rc);
             if (rc == 0)
                 rc = case_begin(ctx, &co, r, &setups[c], &cf, c, tty);
         }
@@ -1160,7 +1206,7 @@ static int run_tasks(vrg_context *ctx, const options *o, const vrg_cmp_case_spec
                                   setups[c].frames_dir, tty, scorer);
     }
     vrg_device_scorer_destroy(scorer);
-    return cf.case_index >= 0 ? case_end(&cf, &run->cases[cf.case_index], sections, rc) : rc;
+    return cf.case_index >= 0 ? case_end(&cf, &run->cases[cf.case_index], sections, setups[cf.case_index].frames_dir, rc) : rc;
 }
 
 /* --baseline: a candidate's name; its index, or -1 after a usage error */
@@ -1213,6 +1259,7 @@ static int set_up(options *o, vrg_cmp_case_spec *specs, int spec_count, job **jo
         r->reference = o->reference;
         r->camera = co.camera;
         r->frames = co.frames, r->warmup = co.warmup, r->start = co.start;
+        pick_shown(r);
         for (int i = 0, n = 0; i < o->ref_set_count && n < (int)sizeof r->reference_overrides; i++)
             n += snprintf(r->reference_overrides + n, sizeof r->reference_overrides - (size_t)n, "%s%s", i ? "," : "", o->ref_sets[i]);
         case_setup *cs = &(*setups)[c];
@@ -1232,6 +1279,9 @@ static int set_up(options *o, vrg_cmp_case_spec *specs, int spec_count, job **jo
 
 int vrg_cli_compare(int argc, char **argv)
 {
+    for (int i = 0; i < argc; i++)
+        if (!strcmp(argv[i], "--merge"))
+            return vrg_cmp_merge(argc, argv);
     options o;
     int rc = parse_options(argc, argv, &o);
     if (rc || o.help) {
@@ -1248,7 +1298,7 @@ int vrg_cli_compare(int argc, char **argv)
     vrg_context *ctx = NULL;
     FILE *sections = NULL;
     char file[VRG_CLI_PATH], cache[VRG_CLI_PATH];
-    static const char *outputs[] = {"report.html", "metrics.json", "metrics.csv"};
+    static const char *outputs[] = {"report.html", "metrics.json", "metrics.csv", VRG_CMP_SHARD_FILE};
     if (access(o.reference, R_OK) != 0) {
         fprintf(stderr, "error: reference graph %s: %s\n", o.reference, strerror(errno));
         rc = 1;
@@ -1258,7 +1308,7 @@ int vrg_cli_compare(int argc, char **argv)
         rc = 1;
     if (rc)
         goto done;
-    for (int i = 0; i < 3; i++) { /* nothing of an earlier report may pass for this run's, failed or not */
+    for (int i = 0; i < 4; i++) { /* nothing of an earlier report may pass for this run's, failed or not */
         snprintf(file, sizeof file, "%s/%s", o.out, outputs[i]);
         remove(file);
     }
@@ -1272,36 +1322,39 @@ int vrg_cli_compare(int argc, char **argv)
     for (int c = 0; c < spec_count && !rc; c++)
         rc = vrg_cli_out_dir(setups[c].frames_dir) != 0;
     vrg_context_desc cd = {.validate = o.validate, .device = o.device};
-    if (rc || !(sections = tmpfile()) || vrg_context_create(&cd, &ctx) != 0) {
+    if (rc || (!o.shards && !(sections = tmpfile())) || vrg_context_create(&cd, &ctx) != 0) {
         rc = 1;
         goto done;
     }
-    int count = run.cases[0].count, task_count = spec_count * count;
-    task *tasks = malloc(sizeof *tasks * (size_t)task_count);
-    for (int t = 0; tasks && t < task_count; t++)
-        tasks[t] = (task){.case_index = t / count, .candidate = t % count};
-    rc = tasks ? run_tasks(ctx, &o, specs ? specs : &one, jobs, &run, setups, tasks, task_count, sections, isatty(2)) : -1;
-    free(tasks);
+    /* the whole run's tasks, or a shard's slice of them */
+    int count = run.cases[0].count, task_count = spec_count * count, first = 0, n = task_count;
+    if (o.shards)
+        vrg_cmp_shard_tasks(task_count, o.shard, o.shards, &first, &n);
+    task *tasks = malloc(sizeof *tasks * (size_t)(n ? n : 1));
+    for (int t = 0; tasks && t < n; t++)
+        tasks[t] = (task){.case_index = (first + t) / count, .candidate = (first + t) % count};
+    rc = tasks ? run_tasks(ctx, &o, specs ? specs : &one, jobs, &run, setups, tasks, n, sections, isatty(2)) : -1;
     uint32_t errors = vrg_context_validation_errors(ctx);
     if (errors) {
         fprintf(stderr, "error: %u validation message%s (see above)\n", errors, errors == 1 ? "" : "s");
         rc = 1;
     }
-    if (rc == 0)
-        rc = vrg_cmp_judge(&run);
-    if (rc == 0) {
+    if (rc == 0 && o.shards) {
+        rc = vrg_cmp_shard_write(o.out, &run, o.shard, o.shards, vrg_context_device(ctx)->name, tasks, n) ? 1 : 0;
+        if (rc == 0)
+            printf("shard %d of %d: tasks %d to %d of %d; wrote %s/" VRG_CMP_SHARD_FILE " and frames/\n", o.shard, o.shards, first, first + n - 1,
+                   task_count, o.out);
+    } else if (rc == 0) {
         snprintf(file, sizeof file, "%s/report.html", o.out);
-        rc = write_csv(o.out, &run) || write_json(o.out, &run) || vrg_cmp_write_report(file, &run, sections) ? 1 : 0;
+        rc = vrg_cmp_judge(&run) || vrg_cmp_write_metrics(o.out, &run) || vrg_cmp_write_report(file, &run, sections) ? 1 : 0;
+        if (rc == 0) {
+            vrg_cmp_print(&run);
+            printf("wrote %s/report.html, metrics.json, metrics.csv and frames/\n", o.out);
+        }
     }
-    if (rc == 0) {
-        for (int c = 0; c < run.case_count; c++)
-            print_summary(&run.cases[c]);
-        printf("\n");
-        for (int i = 0; i < run.cases[0].count; i++)
-            printf("%s\n", run.verdict[i].sentence);
-        printf("wrote %s/report.html, metrics.json, metrics.csv and frames/\n", o.out);
-    } else {
-        for (int i = 0; i < 3; i++) { /* a failed run leaves no report */
+    free(tasks);
+    if (rc != 0) {
+        for (int i = 0; i < 4; i++) { /* a failed run leaves no report */
             snprintf(file, sizeof file, "%s/%s", o.out, outputs[i]);
             remove(file);
         }
@@ -1313,7 +1366,7 @@ done:
     for (int c = 0; setups && c < spec_count; c++)
         vrg_camera_path_free(&setups[c].path);
     free(setups);
-    free_run(&run);
+    vrg_cmp_run_free(&run);
     free(jobs);
     vrg_cmp_cases_free(specs, specs ? spec_count : 0);
     for (int v = o.variant_count_given; v < o.variant_count; v++)
