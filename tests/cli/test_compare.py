@@ -25,6 +25,10 @@
   again; processes filling one cache at once leave whole entries.
 - scenes that read different data files (an edit journal beside the
   reference only, another model under one name): an error.
+- shards: --shard 0/3, 1/3 (as auto/3 from SLURM_ARRAY_TASK_ID), 2/3 as
+  separate processes, then --merge: metrics.csv and metrics.json (but its
+  timings) equal one process's exactly; a missing, duplicated, cut-short or
+  foreign shard, --shard 3/3 and --shard with --merge are errors.
 Usage: test_compare.py VOXRG SOURCE_DIR OUT_DIR [CASE]
 The cases (CASES below) are independent: ctest runs each as its own test
 (compare_CASE, each with its own OUT_DIR) so that they spread over the cores;
@@ -685,8 +689,83 @@ def cache_shared():
     check(not [n for n in os.listdir(cache) if n.startswith(".")], "temporary files left: %s" % os.listdir(cache))
 
 
+def without_timing(metrics):
+    """metrics.json less what differs between runs of the same work: GPU
+    times, and how many reference frames came from the cache."""
+    for case in metrics.get("cases", [metrics]):
+        case["reference"].pop("frames_from_cache")
+        for c in case["candidates"]:
+            c["summary"].pop("gpu_ms_mean"), c["summary"].pop("gpu_ms_p95")
+            c["passes"] = [p["name"] for p in c["passes"]]
+    return metrics
+
+
+def merge(out, *dirs):
+    p = subprocess.run([VOXRG, "compare", "--merge", out, *dirs], capture_output=True, text=True)
+    return p.returncode, p.stdout, p.stderr
+
+
+def shards():
+    """Three shards of a 2 cases x 2 candidates run, each its own process,
+    merged: the merge's metrics equal one process's, but for timings."""
+    out = os.path.join(OUT, "shards")
+    raw, thesis, ref = small_graphs(out)
+    case_file = os.path.join(out, "two.cases")
+    open(case_file, "w").write("[case walk]\ncamera = %s\nstart = 10\nframes = 3\nwarmup = 1\nsize = 32x18\n\n"
+                               "[case dusk]\nframes = 2\nwarmup = 0\nsize = 33x19\nscene.time_of_day = 17.5\n" %
+                               os.path.join(GRAPHS, "paths", "walk.path"))
+    run = [raw, thesis, "--reference", ref, *SMALL, "--cases", case_file]
+    single = os.path.join(out, "single")
+    rc, _, stderr = compare(*run, out=single)
+    if not check(rc == 0, "one process: exit %d\n%s" % (rc, stderr[-2000:])):
+        return
+    dirs = [os.path.join(out, "shard%d" % i) for i in range(3)]
+    env = dict(os.environ, SLURM_ARRAY_TASK_ID="1")
+    procs = [subprocess.Popen([VOXRG, "compare", *run, "--shard", "auto/3" if i == 1 else "%d/3" % i, "--out", d, "--cache", CACHE, "--validate"],
+                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env) for i, d in enumerate(dirs)]
+    ok = True
+    for i, p in enumerate(procs):
+        _, stderr = p.communicate()
+        ok &= check(p.returncode == 0, "shard %d: exit %d\n%s" % (i, p.returncode, stderr[-2000:]))
+    if not ok:
+        return
+    check(open(os.path.join(dirs[1], "shard.txt")).read().split("\n")[1] == "shard 1 3", "auto/3 with SLURM_ARRAY_TASK_ID=1 is not shard 1")
+    check(not os.path.exists(os.path.join(dirs[0], "metrics.json")), "a shard wrote metrics.json")
+    merged = os.path.join(out, "merged")
+    rc, stdout, stderr = merge(merged, *dirs)
+    if not check(rc == 0, "--merge: exit %d\n%s" % (rc, stderr[-2000:])):
+        return
+    files = lambda d, name: open(os.path.join(d, name)).read()
+    check(files(merged, "metrics.csv") == files(single, "metrics.csv"), "merged metrics.csv differs from one process's")
+    mine, alone = (without_timing(json.loads(files(d, "metrics.json"))) for d in (merged, single))
+    check(mine == alone, "merged metrics.json differs from one process's:\n%s\n%s" % (json.dumps(mine)[:1500], json.dumps(alone)[:1500]))
+    check(all(v["sentence"].replace("&", "&amp;") in files(merged, "report.html") for v in mine["verdict"]), "merged report.html lacks a verdict")
+    check(sorted(os.listdir(os.path.join(merged, "frames", "walk"))) == sorted(n for n in os.listdir(os.path.join(single, "frames", "walk"))),
+          "merged frames/walk/: %s" % os.listdir(os.path.join(merged, "frames", "walk")))
+    # errors: each exit 1 (2 for usage) with the cause named, no report left
+    foreign = os.path.join(out, "foreign")
+    rc, _, stderr = compare(*run, "--baseline", "thesis", "--shard", "1/3", out=foreign)
+    check(rc == 0, "the foreign shard: exit %d\n%s" % (rc, stderr[-2000:]))
+    cut = os.path.join(out, "cut")
+    shutil.copytree(dirs[2], cut, dirs_exist_ok=True)
+    text = files(cut, "shard.txt")
+    open(os.path.join(cut, "shard.txt"), "w").write(text[:text.rindex("end")])
+    for what, args, want_rc, pattern in (
+            ("a missing shard", [dirs[0], dirs[2]], 1, r"shard 1 of 3 is missing"),
+            ("a shard twice", [*dirs, dirs[1]], 1, r"shard1/shard\.txt and .*shard1/shard\.txt are both shard 1 of 3"),
+            ("a shard of another run", [dirs[0], foreign, dirs[2]], 1, r"foreign/shard\.txt:\d+: a shard of another run"),
+            ("a shard cut short", [dirs[0], dirs[1], cut], 1, r"cut/shard\.txt:\d+: error: the file ends before its 'end' line"),
+            ("not a shard", [dirs[0], dirs[1], single], 1, r"single/shard\.txt: No such file"),
+            ("--shard with --merge", [*dirs, "--shard", "0/3"], 2, r"--shard with --merge")):
+        rc, _, stderr = merge(merged, *args)
+        check(rc == want_rc and re.search(pattern, stderr), "%s: exit %d (want %d), no /%s/ in:\n%s" % (what, rc, want_rc, pattern, stderr[-1500:]))
+        check(not os.path.exists(os.path.join(merged, "metrics.json")), "%s: a report left behind" % what)
+    rc, _, stderr = compare(*run, "--shard", "3/3", out=os.path.join(out, "bad"))
+    check(rc == 2 and "--shard 3/3: the index '3' is not a whole number from 0 to 2" in stderr, "--shard 3/3: exit %d\n%s" % (rc, stderr[-1000:]))
+
+
 # one line: tests/cli/CMakeLists.txt reads the names from it
-CASES = (errors, names, variant_graph, identical, e2e, cases, case_errors, shipped_cases, grid, moving_sun, cache_vox, world_files, cache_damage, cache_shared, score_device)
+CASES = (errors, names, variant_graph, identical, e2e, cases, case_errors, shipped_cases, grid, moving_sun, cache_vox, world_files, cache_damage, cache_shared, score_device, shards)
 
 
 def main():
