@@ -3,12 +3,13 @@
 # slurmctld and slurmd on localhost from a configuration written into a
 # temporary folder (Debian's slurm-wlm and munge, which scripts/setup.sh
 # installs), submits scripts/compare-array.sbatch as a 4-task array (each
-# task compares one candidate graph against the reference, all four
-# filling one shared reference cache at once) and its --check job with
-# --dependency=afterok, waits for them, and checks the results: every
-# task's metrics.json, the check job's list, and a cache whose entries a
-# run afterwards takes, all of them, without a warning. The daemons are
-# stopped however the test ends.
+# task a shard of a tiny case file's 2 cases x 2 candidates, all four
+# filling one shared reference cache at once) and its --merge job with
+# --dependency=afterok, waits for them, and checks the results: the merged
+# metrics.csv and metrics.json (but timings) equal those of one process
+# the test runs itself, which takes every reference frame from the cache
+# the shards left, without a warning. The daemons are stopped however the
+# test ends.
 # Exits 77 (skipped) only where Slurm cannot start: not root (slurmd
 # starts jobs as their user), or the packages are missing.
 # Usage: slurm_cluster.sh VOXRG SOURCE_DIR OUT_DIR
@@ -24,9 +25,9 @@ rm -rf "$out"
 mkdir -p "$out"
 out=$(realpath "$out")
 tmp=$(mktemp -d /tmp/voxrg-slurm.XXXXXX)
-pids=() array="" check=""
+pids=() array="" merge=""
 stop() {
-    [ -n "$array$check" ] && scancel $array $check 2>/dev/null && sleep 1 # the jobs first, while slurmd runs
+    [ -n "$array$merge" ] && scancel $array $merge 2>/dev/null && sleep 1 # the jobs first, while slurmd runs
     for pid in "${pids[@]}"; do
         kill "$pid" 2>/dev/null
     done
@@ -106,35 +107,53 @@ pids+=($!)
 idle() { sinfo -h -N -o %t | grep -qx idle; }
 wait_for 30 idle || fail "the node did not come up idle: $(sinfo -N 2>&1)"
 
-# four candidates: the test wall at four exposures of its sky (time of
-# day is the scene's, so it stays); one reference, the wall itself
+# a tiny run: 2 cases x 2 candidates (raw.ini and thesis.ini on a world
+# of radius 2) against reference.ini at 2 samples a frame, as 4 shards
 shared=$out/shared
 mkdir -p "$shared" "$out/graphs"
-cp "$src/tests/graphs/blocks_wall.ini" "$out/graphs/reference.ini"
-: >"$out/candidates.txt"
-for i in 0 1 2 3; do
-    cp "$src/tests/graphs/blocks_wall.ini" "$out/graphs/c$i.ini"
-    echo "$out/graphs/c$i.ini" >>"$out/candidates.txt"
+for g in raw thesis reference; do
+    sed 's/^radius      = 13$/radius      = 2/' "$src/graphs/$g.ini" >"$out/graphs/$g.ini"
 done
+grep -q '^radius      = 2$' "$out/graphs/raw.ini" || fail "graphs/raw.ini's world radius is no longer 13: change the sed"
+printf '[case walk]\ncamera = %s\nstart = 10\nframes = 3\nwarmup = 1\nsize = 32x18\n\n[case evening]\nframes = 2\nwarmup = 0\nsize = 24x16\nscene.time_of_day = 17.5\n' \
+    "$src/graphs/paths/walk.path" >"$out/tiny.cases"
+run=("$out/graphs/raw.ini" "$out/graphs/thesis.ini" --reference "$out/graphs/reference.ini" --ref-set converge.samples_per_frame=2
+    --cases "$out/tiny.cases")
 script=$src/scripts/compare-array.sbatch
-options=(--camera "$src/graphs/paths/walk.path" --size 32x18 --frames 4 --warmup 0)
-array=$(VOXRG=$voxrg sbatch --parsable --chdir="$out" --output="$out/task-%a.out" --array=0-3 "$script" \
-    "$out/candidates.txt" "$out/graphs/reference.ini" "$shared" "${options[@]}") || fail "sbatch of the array job"
-check=$(sbatch --parsable --chdir="$out" --output="$out/check.out" --dependency="afterok:$array" "$script" --check \
-    "$out/candidates.txt" "$out/graphs/reference.ini" "$shared") || fail "sbatch of the check job"
-state() { scontrol show job "$check" 2>/dev/null | grep -o 'JobState=[A-Z_]*' | head -1; }
+array=$(VOXRG=$voxrg sbatch --parsable --chdir="$out" --output="$out/task-%a.out" --array=0-3 "$script" 4 "$shared" "${run[@]}") ||
+    fail "sbatch of the array job"
+merge=$(VOXRG=$voxrg sbatch --parsable --chdir="$out" --output="$out/merge.out" --dependency="afterok:$array" "$script" --merge 4 "$shared") ||
+    fail "sbatch of the merge job"
+state() { scontrol show job "$merge" 2>/dev/null | grep -o 'JobState=[A-Z_]*' | head -1; }
 finished() { case $(state) in JobState=COMPLETED | JobState=FAILED | JobState=CANCELLED | JobState=TIMEOUT) return 0 ;; esac; return 1; }
 wait_for 60 finished || fail "the jobs did not finish in 60 s: $(squeue 2>&1)"
-[ "$(state)" = JobState=COMPLETED ] || fail "the check job ended $(state); $(cat "$out"/task-*.out "$out/check.out" 2>/dev/null | tail -30)"
+[ "$(state)" = JobState=COMPLETED ] || fail "the merge job ended $(state); $(cat "$out"/task-*.out "$out/merge.out" 2>/dev/null | tail -30)"
 for i in 0 1 2 3; do
-    [ -f "$shared/out/$i/metrics.json" ] || fail "task $i wrote no metrics.json: $(tail -5 "$out/task-$i.out")"
-    grep -q warning "$out/task-$i.out" && fail "task $i warned: $(grep warning "$out/task-$i.out")"
+    [ -f "$shared/shard-$i/shard.txt" ] || fail "task $i wrote no shard.txt: $(tail -5 "$out/task-$i.out")"
+    grep -q "warning: the reference cache" "$out/task-$i.out" && fail "task $i warned: $(grep warning "$out/task-$i.out")"
 done
-[ "$(grep -c '^candidate [0-3] ' "$out/check.out")" -eq 4 ] || fail "the check job's list: $(cat "$out/check.out")"
-# the four writers left whole entries: a run now takes every frame from them
-"$voxrg" compare "$out/graphs/c0.ini" --reference "$out/graphs/reference.ini" --cache "$shared/cache" --out "$out/after" "${options[@]}" \
-    >"$out/after.out" 2>&1 || fail "compare after the jobs: $(tail -5 "$out/after.out")"
-grep -q '"frames_from_cache": 4' "$out/after/metrics.json" || fail "after the jobs: $(grep frames_from_cache "$out/after/metrics.json")"
-grep -q warning "$out/after.out" && fail "after the jobs: $(grep warning "$out/after.out")"
+grep -q '^merged 4 shards' "$out/merge.out" || fail "the merge job's output: $(tail -5 "$out/merge.out")"
+# one process, the same run: its metrics equal the merged ones, but for
+# timings; and the four writers left whole cache entries, so it takes
+# every reference frame (3 + 2) from them, without a warning
+"$voxrg" compare "${run[@]}" --cache "$shared/cache" --out "$out/single" >"$out/single.out" 2>&1 ||
+    fail "compare in one process: $(tail -5 "$out/single.out")"
+cmp "$out/single/metrics.csv" "$shared/out/metrics.csv" || fail "the merged metrics.csv differs from one process's"
+python3 -c '
+import json, sys
+def without_timing(metrics):  # what runs of the same work differ in
+    for case in metrics["cases"]:
+        case["reference"].pop("frames_from_cache")
+        for c in case["candidates"]:
+            c["summary"].pop("gpu_ms_mean"), c["summary"].pop("gpu_ms_p95")
+            c["passes"] = [p["name"] for p in c["passes"]]
+    return metrics
+single, merged = (without_timing(json.load(open(f))) for f in sys.argv[1:])
+if single != merged:
+    sys.exit("one process:\n%s\nmerged:\n%s" % (json.dumps(single)[:1500], json.dumps(merged)[:1500]))
+' "$out/single/metrics.json" "$shared/out/metrics.json" || fail "the merged metrics.json differs from one process's"
+[ "$(grep -o '"frames_from_cache": [0-9]*' "$out/single/metrics.json" | tr '\n' ' ')" = '"frames_from_cache": 3 "frames_from_cache": 2 ' ] ||
+    fail "after the jobs: $(grep frames_from_cache "$out/single/metrics.json")"
+grep -q "warning: the reference cache" "$out/single.out" && fail "after the jobs: $(grep warning "$out/single.out")"
 ls -A "$shared/cache" | grep -q '^\.' && fail "temporary files left in the cache: $(ls -A "$shared/cache")"
-echo "slurm: ok (array job $array, check job $check)"
+echo "slurm: ok (array job $array, merge job $merge)"
