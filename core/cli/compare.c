@@ -1341,8 +1341,11 @@ int vrg_cli_compare(int argc, char **argv)
     }
     if (rc == 0 && o.shards) {
         rc = vrg_cmp_shard_write(o.out, &run, o.shard, o.shards, vrg_context_device(ctx)->name, tasks, n) ? 1 : 0;
-        if (rc == 0)
+        if (rc == 0 && n)
             printf("shard %d of %d: tasks %d to %d of %d; wrote %s/" VRG_CMP_SHARD_FILE " and frames/\n", o.shard, o.shards, first, first + n - 1,
+                   task_count, o.out);
+        else if (rc == 0)
+            printf("shard %d of %d: none of the %d tasks (more shards than tasks); wrote %s/" VRG_CMP_SHARD_FILE "\n", o.shard, o.shards,
                    task_count, o.out);
     } else if (rc == 0) {
         snprintf(file, sizeof file, "%s/report.html", o.out);
