@@ -1292,7 +1292,7 @@ int vrg_cli_compare(int argc, char **argv)
     int spec_count = 1;
     if (o.camera)
         snprintf(one.camera, sizeof one.camera, "%s", o.camera);
-    vrg_cmp_run run = {.cases_file = o.cases};
+    vrg_cmp_run run = {.cases_file = o.cases, .score_device = o.score_device};
     job *jobs = NULL;
     case_setup *setups = NULL;
     vrg_context *ctx = NULL;

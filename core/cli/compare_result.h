@@ -67,6 +67,7 @@ typedef struct vrg_cmp_verdict {
 /* The whole run: the cases, then the verdict of each candidate. */
 typedef struct vrg_cmp_run {
     const char *cases_file;         /* NULL without --cases */
+    int score_device;               /* --score device: of the candidates' frames only the shown are written */
     vrg_cmp_result *cases;          /* [case_count] */
     int case_count;
     int baseline;                   /* the candidate the others are measured against */

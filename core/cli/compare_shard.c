@@ -79,7 +79,7 @@ static void put_run(FILE *f, const vrg_cmp_run *run)
     const vrg_cmp_result *r0 = &run->cases[0];
     fputs("run cases_file", f);
     put_str(f, run->cases_file);
-    fprintf(f, "\nrun candidates %d baseline %d\n", r0->count, run->baseline);
+    fprintf(f, "\nrun score %s\nrun candidates %d baseline %d\n", run->score_device ? "device" : "cpu", r0->count, run->baseline);
     for (int i = 0; i < r0->count; i++) {
         fputs("run candidate", f);
         put_str(f, r0->cand[i].name);
@@ -336,6 +336,9 @@ static int read_run(merge *m, shard_file *s)
         return -1;
     run->cases_file = keep(m, buf, null);
     char *word;
+    if (expect_run(s, "score") != 0 || !(word = strtok_r(NULL, " ", &s->save)) || (strcmp(word, "cpu") && strcmp(word, "device")))
+        return bad(s, "expected 'run score cpu' or 'run score device'");
+    run->score_device = !strcmp(word, "device");
     if (expect_run(s, "candidates") != 0 || get_int(s, 1, 10000000, &m->count) != 0 || !(word = strtok_r(NULL, " ", &s->save)) ||
         strcmp(word, "baseline") || get_int(s, 0, m->count - 1, &run->baseline) != 0)
         return bad(s, "expected 'run candidates N baseline B'");
@@ -532,7 +535,8 @@ static int copy_file(const char *from, const char *to)
 }
 
 /* a case's frames into OUT/frames: the reference's from the shard of its
- * first task, each candidate's from the shard that ran it */
+ * first task, each candidate's from the shard that ran it (scored on the
+ * device, only those the report shows: the others were not read back) */
 static int copy_frames(const merge *m, int c, const char *out)
 {
     const vrg_cmp_result *r = &m->run.cases[c];
@@ -543,6 +547,11 @@ static int copy_frames(const merge *m, int c, const char *out)
     for (int i = -1; i < r->count; i++) {
         frames_dir(m->shards[m->owner[c * m->count + (i < 0 ? 0 : i)]].dir, r, from_dir, sizeof from_dir);
         for (uint32_t k = 0; k < r->frames; k++) {
+            int shown = 0;
+            for (int s = 0; s < r->shown_count; s++)
+                shown |= r->shown[s] == (int)k;
+            if (i >= 0 && m->run.score_device && !shown)
+                continue;
             const char *name = i < 0 ? "reference" : r->cand[i].name;
             snprintf(from, sizeof from, "%s/%s-%05u.png", from_dir, name, k);
             snprintf(to, sizeof to, "%s/%s-%05u.png", to_dir, name, k);

@@ -27,8 +27,9 @@
   reference only, another model under one name): an error.
 - shards: --shard 0/3, 1/3 (as auto/3 from SLURM_ARRAY_TASK_ID), 2/3 as
   separate processes, then --merge: metrics.csv and metrics.json (but its
-  timings) equal one process's exactly; a missing, duplicated, cut-short or
-  foreign shard, --shard 3/3 and --shard with --merge are errors.
+  timings) equal one process's exactly, scored on the CPU or on the device;
+  a missing, duplicated, cut-short or foreign shard (other settings, other
+  scoring), --shard 3/3 and --shard with --merge are errors.
 Usage: test_compare.py VOXRG SOURCE_DIR OUT_DIR [CASE]
 The cases (CASES below) are independent: ctest runs each as its own test
 (compare_CASE, each with its own OUT_DIR) so that they spread over the cores;
@@ -762,6 +763,21 @@ def shards():
         check(not os.path.exists(os.path.join(merged, "metrics.json")), "%s: a report left behind" % what)
     rc, _, stderr = compare(*run, "--shard", "3/3", out=os.path.join(out, "bad"))
     check(rc == 2 and "--shard 3/3: the index '3' is not a whole number from 0 to 2" in stderr, "--shard 3/3: exit %d\n%s" % (rc, stderr[-1000:]))
+    # scored on the device: the same equality, of the candidates only the shown frames; a shard scored on the CPU is of another run
+    device = [*run, "--score", "device"]
+    rc, _, stderr = compare(*device, out=os.path.join(out, "device"))
+    check(rc == 0, "--score device in one process: exit %d\n%s" % (rc, stderr[-2000:]))
+    for i in range(3):
+        rc, _, stderr = compare(*device, "--shard", "%d/3" % i, out=os.path.join(out, "device%d" % i))
+        check(rc == 0, "--score device, shard %d/3: exit %d\n%s" % (i, rc, stderr[-2000:]))
+    rc, _, stderr = merge(os.path.join(out, "device-merged"), *(os.path.join(out, "device%d" % i) for i in range(3)))
+    if check(rc == 0, "--score device, --merge: exit %d\n%s" % (rc, stderr[-2000:])):
+        check(files(os.path.join(out, "device-merged"), "metrics.csv") == files(os.path.join(out, "device"), "metrics.csv"),
+              "--score device: merged metrics.csv differs from one process's")
+        check(sorted(os.listdir(os.path.join(out, "device-merged", "frames", "walk"))) == sorted(os.listdir(os.path.join(out, "device", "frames", "walk"))),
+              "--score device: merged frames/walk/: %s" % os.listdir(os.path.join(out, "device-merged", "frames", "walk")))
+    rc, _, stderr = merge(os.path.join(out, "device-merged"), *dirs[:2], os.path.join(out, "device2"))
+    check(rc == 1 and "a shard of another run" in stderr, "a shard scored on the device with shards scored on the CPU: exit %d\n%s" % (rc, stderr[-1000:]))
 
 
 # one line: tests/cli/CMakeLists.txt reads the names from it
