@@ -257,8 +257,14 @@ def part_synopses(root, voxrg):
     for path in doc_pages(root):
         for first, lines in code_blocks(read(path)):
             numbered = list(zip(range(first, first + len(lines)), lines))
+            # a command of several forms (compare, compare --merge) has a
+            # synopsis per form in one block: together they give its flags
+            forms = {}
             for number, command, text in synopses_in(numbered):
                 seen.add(command)
+                first_line, joined = forms.get(command, (number, ""))
+                forms[command] = (first_line, joined + " " + text)
+            for command, (number, text) in forms.items():
                 problems += synopsis_problems(f"{path}:{number}", command, text, usage[command], usage_text[command])
             problems += example_problems(path, numbered, known)
     for command in COMMANDS:
