@@ -10,7 +10,7 @@
  * `plugins=BUILD/plugins`. No build or source path is compiled in: an
  * installed copy has no such file beside it and never reads the checkout. */
 #include <dlfcn.h>
-#include <fcntl.h>
+#include <errno.h>
 #include <limits.h>
 #include <pthread.h>
 #include <stdio.h>
@@ -52,14 +52,10 @@ static void build_tree_read(const char *dir)
 {
     char path[VRG_PATH_MAX + sizeof BUILD_TREE_FILE + 1];
     snprintf(path, sizeof path, "%s/" BUILD_TREE_FILE, dir);
-    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-    if (fd < 0)
-        return;
-    struct stat st;
-    FILE *f = fstat(fd, &st) == 0 && S_ISREG(st.st_mode) ? fdopen(fd, "r") : NULL;
-    if (!f) {
-        close(fd);
-        fprintf(stderr, "voxrg: %s is not a regular file: ignored\n", path);
+    FILE *f = vrg_fopen_regular(path, "r");
+    if (!f) { /* none (an installed voxrg has none) goes unsaid; something else in its place is said */
+        if (errno == EINVAL || errno == EISDIR)
+            fprintf(stderr, "voxrg: %s is not a regular file: ignored\n", path);
         return;
     }
     char line[VRG_PATH_MAX + 16], data[VRG_PATH_MAX] = "", plugins[VRG_PATH_MAX] = "";

@@ -264,17 +264,21 @@ static void search_path_hint(const search_path *s, char *hint, size_t cap)
 
 static int read_whole(const char *path, unsigned char **data, size_t *size, char *why, size_t cap)
 {
-    /* O_NONBLOCK: a FIFO named like a plugin must not block the open */
-    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    /* a FIFO named like a plugin must not block the open (vrg_open_regular) */
+    int fd = vrg_open_regular(path, O_RDONLY);
     struct stat st;
     if (fd < 0 || fstat(fd, &st) != 0) {
-        snprintf(why, cap, "cannot read it: %s", strerror(errno));
+        int err = errno;
+        if (err == EINVAL || err == EISDIR)
+            snprintf(why, cap, "it is not a regular file");
+        else
+            snprintf(why, cap, "cannot read it: %s", strerror(err));
         if (fd >= 0)
             close(fd);
         return -1;
     }
-    if (!S_ISREG(st.st_mode) || st.st_size > PLUGIN_MAX_BYTES) {
-        snprintf(why, cap, S_ISREG(st.st_mode) ? "it is larger than 1 GiB" : "it is not a regular file");
+    if (st.st_size > PLUGIN_MAX_BYTES) {
+        snprintf(why, cap, "it is larger than 1 GiB");
         close(fd);
         return -1;
     }
