@@ -32,7 +32,18 @@
  * `color` alpha holds the effective sample count of that average:
  * min(length + 1, (2 - alpha) / alpha), what an exponential average with
  * weight alpha converges to (its variance is alpha / (2 - alpha) of one
- * sample's). mean_variance divides the moments' variance by it. */
+ * sample's). mean_variance divides the moments' variance by it.
+ * Debug outputs (optional, computed only when something reads them):
+ *   disocclusion  1 on a surface pixel whose history restarted, else 0;
+ *   reprojection  where the history was read, as svgf_reproject's (w: 1
+ *                 bilinear, 2 the 3x3 fallback, 3 Catmull-Rom, 4 nearest);
+ *   clamp         r: how far the neighbourhood clamp moved the slow history
+ *                 (YCoCg distance, the illumination's units; 0 with
+ *                 clamp_k = 0), g: the share of the way anti-lag then moved
+ *                 it to the fast history (1 - 1 / cut).
+ * The main dispatch already binds 16 slots, a dispatch's most, so a second
+ * one (DEBUG) computes the same history again and writes only these; it
+ * runs only when one of them is read. */
 #include "voxrg/plugin.h"
 
 static const vrg_param_desc params[] = {
@@ -75,6 +86,17 @@ static const vrg_slot_desc slots[] = {
      .help = "first and second moments of luminance, averaged like the colour"},
     {.name = "length", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16_SFLOAT,
      .help = "history length in frames after anti-lag (0: restarted this frame)"},
+    /* debug outputs: after the ones above, which set the dispatch size */
+    {.name = "disocclusion", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16_SFLOAT,
+     .flags = VRG_SLOT_OPTIONAL, .help = "1 on a surface pixel whose history restarted this frame, else 0 (written only when read)"},
+    {.name = "reprojection", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R32G32B32A32_SFLOAT,
+     .flags = VRG_SLOT_OPTIONAL,
+     .help = "xy: the previous frame's point the history was read at (pixels); z: weight of the taps that passed; w: 1 bilinear, 2 3x3 "
+             "fallback, 3 Catmull-Rom, 4 nearest, 0 none (written only when read)"},
+    {.name = "clamp", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16_SFLOAT,
+     .flags = VRG_SLOT_OPTIONAL,
+     .help = "r: how far the neighbourhood clamp moved the slow history (YCoCg); g: anti-lag's share of the way to the fast history "
+             "(written only when read)"},
 };
 
 typedef struct clamped_reproject_push {
@@ -82,10 +104,25 @@ typedef struct clamped_reproject_push {
     int32_t max_length, cubic, nearest, fallback, history_valid;
 } clamped_reproject_push;
 
-/* the one dispatch execute() records (every slot, in order): checked by
- * `voxrg check`; the parameters are all push constants */
+/* the DEBUG dispatch's: which debug outputs are read (DEBUG_* bits) */
+typedef struct clamped_reproject_debug_push {
+    clamped_reproject_push base;
+    int32_t outputs;
+} clamped_reproject_debug_push;
+enum { DEBUG_DISOCCLUSION = 1, DEBUG_REPROJECTION = 2, DEBUG_CLAMP = 4 };
+
+/* the dispatches execute() records: checked by `voxrg check`; the
+ * parameters are all push constants. The main one binds the 16 slots
+ * before the debug outputs, in order; the DEBUG one, recorded only when a
+ * debug output is read, the inputs and the debug outputs. */
+#define CLAMPED_INPUTS                                                                                                                           \
+    {"illumination"}, {"motion"}, {"position"}, {"normal"}, {"ids"}, {"history"}, {"prev_fast"}, {"prev_moments"}, {"prev_position"},          \
+        {"prev_normal"}, {"prev_ids"}, {"frame"}
 static const vrg_dispatch_desc dispatches[] = {
-    {.shader = "clamped_reproject.comp", .push_size = sizeof(clamped_reproject_push), .pixel_loop = 1},
+    {.shader = "clamped_reproject.comp", .push_size = sizeof(clamped_reproject_push), .pixel_loop = 1,
+     .bindings = {CLAMPED_INPUTS, {"color"}, {"fast"}, {"moments"}, {"length"}}},
+    {.shader = "clamped_reproject.comp", .defines = "DEBUG", .push_size = sizeof(clamped_reproject_debug_push), .pixel_loop = 1,
+     .domain = "color", .bindings = {CLAMPED_INPUTS, {"disocclusion"}, {"reprojection"}, {"clamp"}}},
 };
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
@@ -100,7 +137,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     int valid = 1;
     for (unsigned i = 0; i < sizeof past / sizeof past[0]; i++)
         valid &= vrg_res_history_valid(pass, vrg_pass_res(pass, past[i]));
-    clamped_reproject_push pc = {
+    clamped_reproject_debug_push pc = {{
         (float)vrg_param(pass, "alpha"),
         (float)vrg_param(pass, "fast_alpha"),
         (float)vrg_param(pass, "clamp_k"),
@@ -114,10 +151,20 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         vrg_param_int(pass, "nearest"),
         vrg_param_int(pass, "fallback"),
         valid,
-    };
+    }};
     vrg_dispatch_desc d = dispatches[0];
     d.push = &pc;
-    (void)vrg_dispatch(pass, cmd, &d);
+    if (vrg_dispatch(pass, cmd, &d) != 0)
+        return;
+    /* unread debug outputs are 1x1 stand-ins: the shader leaves them alone */
+    pc.outputs = (vrg_res_connected(vrg_pass_res(pass, "disocclusion")) ? DEBUG_DISOCCLUSION : 0) |
+                 (vrg_res_connected(vrg_pass_res(pass, "reprojection")) ? DEBUG_REPROJECTION : 0) |
+                 (vrg_res_connected(vrg_pass_res(pass, "clamp")) ? DEBUG_CLAMP : 0);
+    if (pc.outputs) {
+        d = dispatches[1];
+        d.push = &pc;
+        (void)vrg_dispatch(pass, cmd, &d);
+    }
 }
 
 static const vrg_plugin_desc desc = {

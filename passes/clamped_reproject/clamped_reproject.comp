@@ -19,14 +19,35 @@ layout(binding = 9) uniform sampler2D in_prev_normal;
 layout(binding = 10, rg32ui) uniform readonly uimage2D in_prev_ids;
 #define FRAME_BINDING 11
 #include "frame.glsl"
+#ifndef DEBUG
 layout(binding = 12, rgba16f) uniform writeonly image2D out_color;
 layout(binding = 13, rgba16f) uniform writeonly image2D out_fast;
 layout(binding = 14, rg32f) uniform writeonly image2D out_moments;
 layout(binding = 15, r16f) uniform writeonly image2D out_length;
+#else
+// The debug dispatch: the same history computed again, only the debug
+// outputs written (1x1 stand-ins unless read: debug_outputs says which are)
+layout(binding = 12, r16f) uniform writeonly image2D out_disocclusion;
+layout(binding = 13, rgba32f) uniform writeonly image2D out_reprojection;
+layout(binding = 14, rg16f) uniform writeonly image2D out_clamp;
+#endif
 layout(push_constant) uniform Params {
     float alpha, fast_alpha, clamp_k, antilag, antilag_threshold, normal_threshold, plane_distance, footprints;
     int max_length, cubic, nearest, fallback, history_valid;
+#ifdef DEBUG
+    int debug_outputs; // 1: disocclusion, 2: reprojection, 4: clamp
+#endif
 } params;
+
+#ifdef DEBUG
+// where the history was read (xy, pixel centres at +0.5), the weight of
+// the taps that passed, and how: 1 bilinear, 2 the 3x3 fallback,
+// 3 Catmull-Rom, 4 nearest, 0 none
+vec4 debug_target;
+#define DEBUG_TARGET(v) debug_target = (v)
+#else
+#define DEBUG_TARGET(v)
+#endif
 
 // YCoCg: the clamp box is tighter around real colours than one in RGB
 vec3 to_ycocg(vec3 c) { return vec3(0.25 * c.r + 0.5 * c.g + 0.25 * c.b, 0.5 * c.r - 0.5 * c.b, -0.25 * c.r + 0.5 * c.g - 0.25 * c.b); }
@@ -126,11 +147,13 @@ float reproject(ivec2 p, ivec2 size, vec3 x, out History h)
             best_w = max(best_w, w);
         }
     }
+    DEBUG_TARGET(vec4(q + 0.5, wsum, 1.0));
     // nearest: the passing tap that bilinear weighs most, alone
     if (params.nearest != 0 && wsum >= 1e-4) {
         h = History(vec3(0.0), vec3(0.0), vec2(0.0), 0.0);
         add_tap(h, q0 + best, 1.0);
         wsum = 1.0;
+        DEBUG_TARGET(vec4(q + 0.5, debug_target.z, 4.0));
     }
     bool all_taps = wsum > 0.999;
     if (wsum < 1e-4 && params.fallback != 0) { // no bilinear tap: the 3x3 around the nearest pixel
@@ -144,13 +167,16 @@ float reproject(ivec2 p, ivec2 size, vec3 x, out History h)
                 wsum += 1.0;
             }
         }
+        DEBUG_TARGET(vec4(q + 0.5, wsum / 9.0, 2.0));
     }
     if (wsum >= 1e-4) {
         h.color /= wsum;
         // every bilinear tap on this surface: the sharper cubic, kept
         // within the taps' range (no ringing, no other surface's colour)
-        if (params.cubic != 0 && params.nearest == 0 && all_taps)
+        if (params.cubic != 0 && params.nearest == 0 && all_taps) {
             h.color = clamp(catmull_rom(q, size), lo, hi);
+            DEBUG_TARGET(vec4(q + 0.5, 1.0, 3.0));
+        }
         h.fast /= wsum;
         h.moments /= wsum;
         h.frames /= wsum;
@@ -178,25 +204,47 @@ void neighbourhood(ivec2 p, ivec2 size, out vec3 mean, out vec4 sigma)
     sigma = sqrt(max(vec4(s2 / n - mean * mean, l.y / n - (l.x / n) * (l.x / n)), vec4(0.0)));
 }
 
-void restart(ivec2 p, vec3 c, float l)
+#ifdef DEBUG
+// what the debug dispatch writes where the main one writes its outputs
+void debug_store(ivec2 p, bool restarted, vec2 moved)
 {
+    if ((params.debug_outputs & 1) != 0)
+        imageStore(out_disocclusion, p, vec4(restarted ? 1.0 : 0.0));
+    if ((params.debug_outputs & 2) != 0)
+        imageStore(out_reprojection, p, restarted ? vec4(debug_target.xy, 0.0, 0.0) : debug_target);
+    if ((params.debug_outputs & 4) != 0)
+        imageStore(out_clamp, p, vec4(moved, 0.0, 0.0));
+}
+#endif
+
+void restart(ivec2 p, vec3 c, float l, bool surface)
+{
+#ifdef DEBUG
+    debug_store(p, surface, vec2(0.0));
+#else
     imageStore(out_color, p, vec4(c, 1.0));
     imageStore(out_fast, p, vec4(c, 0.0));
     imageStore(out_moments, p, vec4(l, l * l, 0.0, 0.0));
     imageStore(out_length, p, vec4(0.0));
+#endif
 }
 
 void shade(ivec2 p)
 {
+#ifdef DEBUG
+    ivec2 size = textureSize(in_position, 0); // every input is at the outputs' size
+#else
     ivec2 size = imageSize(out_color);
+#endif
     if (any(greaterThanEqual(p, size)))
         return;
     vec3 c = texelFetch(in_illumination, p, 0).rgb;
     float l = luminance(c);
     vec4 pos = texelFetch(in_position, p, 0);
     History h;
+    DEBUG_TARGET(vec4(0.0));
     if (pos.w == 0.0 || params.history_valid == 0 || reproject(p, size, pos.xyz, h) < 1e-4) {
-        restart(p, c, l);
+        restart(p, c, l, pos.w != 0.0);
         return;
     }
     vec3 mean;
@@ -207,6 +255,9 @@ void shade(ivec2 p)
         vec3 box = params.clamp_k * sigma.xyz;
         slow = from_ycocg(clamp(to_ycocg(slow), mean - box, mean + box));
     }
+#ifdef DEBUG
+    float clamped = distance(to_ycocg(slow), to_ycocg(h.color)), antilag_share = 0.0;
+#endif
     float len = min(floor(h.frames + 0.5) + 1.0, float(params.max_length));
     vec3 fast = mix(h.fast, c, max(params.fast_alpha, 1.0 / (len + 1.0)));
     if (params.antilag > 0.0) {
@@ -215,13 +266,20 @@ void shade(ivec2 p)
         float cut = 1.0 + params.antilag * excess;
         slow = mix(slow, fast, 1.0 - 1.0 / cut);
         len = floor(len / cut);
+#ifdef DEBUG
+        antilag_share = 1.0 - 1.0 / cut;
+#endif
     }
+#ifdef DEBUG
+    debug_store(p, false, vec2(clamped, antilag_share));
+#else
     float a = max(params.alpha, 1.0 / (len + 1.0));
     float samples = min(len + 1.0, (2.0 - params.alpha) / params.alpha);
     imageStore(out_color, p, vec4(mix(slow, c, a), samples));
     imageStore(out_fast, p, vec4(fast, len));
     imageStore(out_moments, p, vec4(mix(h.moments, vec2(l, l * l), a), 0.0, 0.0));
     imageStore(out_length, p, vec4(len));
+#endif
 }
 
 void main()

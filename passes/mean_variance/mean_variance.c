@@ -10,7 +10,11 @@
  * history is young (length + 1 < min_history) the moments are averaged
  * over the size x size window's pixels of the same surface (normal dot >=
  * 0.9, within 0.1 blocks per pixel of offset from this pixel's plane): a
- * spatial estimate, still divided by N. Sky pixels get variance 0. */
+ * spatial estimate, still divided by N. Sky pixels get variance 0.
+ * Debug output (optional, computed only when something reads it: the
+ * VARIANCE variant): `variance`, r the variance (as in color's alpha), g 1
+ * where it came from the pixel's own moments, 0 where from the window
+ * (and on sky). */
 #include "voxrg/plugin.h"
 
 static const vrg_param_desc params[] = {
@@ -27,6 +31,9 @@ static const vrg_slot_desc slots[] = {
     {.name = "normal", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "G-buffer normal"},
     {.name = "color", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
      .help = "illumination with the variance of its mean luminance in alpha"},
+    {.name = "variance", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16_SFLOAT,
+     .flags = VRG_SLOT_OPTIONAL,
+     .help = "r: the variance (color's alpha); g: 1 where from the pixel's own moments, 0 from the window (written only when read)"},
 };
 
 static int check(vrg_pass *pass)
@@ -40,10 +47,13 @@ typedef struct mean_variance_push {
     int32_t radius, min_history;
 } mean_variance_push;
 
-/* the one dispatch execute() records (every slot, in order): checked by
- * `voxrg check`; size and min_history are push constants */
+/* the dispatches execute() records: checked by `voxrg check`; size and
+ * min_history are push constants. The second, with the variance output,
+ * instead of the first when that is read. */
 static const vrg_dispatch_desc dispatches[] = {
-    {.shader = "mean_variance.comp", .push_size = sizeof(mean_variance_push), .pixel_loop = 1},
+    {.shader = "mean_variance.comp", .push_size = sizeof(mean_variance_push), .pixel_loop = 1,
+     .bindings = {{"illumination"}, {"moments"}, {"length"}, {"position"}, {"normal"}, {"color"}}},
+    {.shader = "mean_variance.comp", .defines = "VARIANCE", .push_size = sizeof(mean_variance_push), .pixel_loop = 1},
 };
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
@@ -52,7 +62,8 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     if (vrg_pass_require_same_size(pass, "color", same, sizeof same / sizeof same[0]) != 0)
         return;
     mean_variance_push pc = {vrg_param_int(pass, "size") / 2, vrg_param_int(pass, "min_history")};
-    vrg_dispatch_desc d = dispatches[0];
+    /* the unread debug output is a 1x1 stand-in: left out */
+    vrg_dispatch_desc d = dispatches[vrg_res_connected(vrg_pass_res(pass, "variance")) ? 1 : 0];
     d.push = &pc;
     (void)vrg_dispatch(pass, cmd, &d);
 }

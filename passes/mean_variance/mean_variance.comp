@@ -10,6 +10,9 @@ layout(binding = 2) uniform sampler2D in_length;
 layout(binding = 3) uniform sampler2D in_position;
 layout(binding = 4) uniform sampler2D in_normal;
 layout(binding = 5, rgba16f) uniform writeonly image2D out_color;
+#ifdef VARIANCE
+layout(binding = 6, rg16f) uniform writeonly image2D out_variance;
+#endif
 layout(push_constant) uniform Params {
     int radius, min_history;
 } params;
@@ -41,12 +44,21 @@ void shade(ivec2 p)
     vec4 c = texelFetch(in_illumination, p, 0);
     vec4 x = texelFetch(in_position, p, 0);
     float var = 0.0;
+#ifdef VARIANCE
+    float own = 0.0; // 1: from the pixel's own moments
+#endif
     if (x.w != 0.0) {
         bool young = texelFetch(in_length, p, 0).r + 1.0 < float(params.min_history);
         vec2 m = young ? spatial_moments(p, size, x.xyz) : texelFetch(in_moments, p, 0).xy;
         var = max(0.0, m.y - m.x * m.x) / max(c.a, 1.0);
+#ifdef VARIANCE
+        own = young ? 0.0 : 1.0;
+#endif
     }
     imageStore(out_color, p, vec4(c.rgb, var));
+#ifdef VARIANCE
+    imageStore(out_variance, p, vec4(var, own, 0.0, 0.0));
+#endif
 }
 
 void main()

@@ -50,7 +50,15 @@
  * samples those are then depends on thread order; their count is read back
  * a few frames later and reported as the stat `uncached` and a warning
  * naming `cells`.
- * A reload with new parameters or a reset empties the table. */
+ * A reload with new parameters or a reset empties the table.
+ * Debug output (optional, computed only when something reads it: the
+ * gather's OCCUPANCY variant): `occupancy`, per pixel, of the point's fine
+ * cells (those the gather blends): r the samples they hold (n, blended),
+ * g the share of the bilinear weight whose cells hold samples (0: none
+ * found), b the share of the pixel's colour that comes from them (the rest
+ * from coarse levels or the fallback; 0 where the pixel shows its own
+ * sample), a the most frames since one of them was last given samples;
+ * all 0 on sky pixels. */
 #include <stdlib.h>
 #include <string.h>
 #include "voxrg/plugin.h"
@@ -85,6 +93,10 @@ static const vrg_slot_desc slots[] = {
     {.name = "table", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_STORAGE_READ_WRITE, .flags = VRG_SLOT_PERSISTENT,
      .format = VK_FORMAT_R32G32B32A32_UINT,
      .help = "the hash table of cells (kept across frames)"},
+    {.name = "occupancy", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R32G32B32A32_SFLOAT,
+     .flags = VRG_SLOT_OPTIONAL,
+     .help = "r: samples the point's cells hold; g: share of the 2x2 cells found; b: share of the colour from them; a: frames since they "
+             "last had samples (written only when read)"},
 };
 
 static uint64_t table_bytes(const vrg_pass *pass)
@@ -152,7 +164,7 @@ typedef struct surface_cache_push {
     int32_t bilinear;
 } surface_cache_push;
 
-enum { EVICT, INSERT, RESOLVE, GATHER, EVICT_PER_SLOT }; /* the last: EVICT on a GPU */
+enum { EVICT, INSERT, RESOLVE, GATHER, EVICT_PER_SLOT, GATHER_OCCUPANCY }; /* EVICT on a GPU; GATHER when occupancy is read */
 /* How evict and resolve split their slots among invocations. A CPU device
  * (lavapipe) runs every invocation with its own set-up, so few long ones
  * win: 16 slots each for evict, 256 groups striding through the listed
@@ -178,6 +190,10 @@ static const vrg_dispatch_desc dispatches[] = {
                 .domain = "color", .bindings = {{"signal"}, {"position"}, {"normal"}, {"frame"}, {"table", VRG_ACCESS_TEXEL_READ}, {"color"}, {"fallback"}}},
     [EVICT_PER_SLOT] = {.shader = "surface_cache.comp", .defines = "EVICT SLOTS_PER_INVOCATION=1u", .push_size = sizeof(surface_cache_push),
                         .groups_x = 1, .groups_y = 1, .groups_z = 1, .bindings = {TABLE_BINDINGS}},
+    [GATHER_OCCUPANCY] = {.shader = "surface_cache.comp", .defines = "GATHER OCCUPANCY", .push_size = sizeof(surface_cache_push), .pixel_loop = 1,
+                          .domain = "color",
+                          .bindings = {{"signal"}, {"position"}, {"normal"}, {"frame"}, {"table", VRG_ACCESS_TEXEL_READ}, {"color"}, {"fallback"},
+                                       {"occupancy"}}},
 };
 
 /* the count the GPU wrote into this ring slice when it last ran this frame
@@ -250,8 +266,10 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     /* which split ran (test cache_slot_invocations reads them) */
     vrg_pass_stat(pass, "evict_slots_per_invocation", evict_run);
     vrg_pass_stat(pass, "resolve_groups", resolve_groups);
+    /* the unread debug output is a 1x1 stand-in: the gather leaves it out */
+    int occupancy = vrg_res_connected(vrg_pass_res(pass, "occupancy"));
     for (int i = EVICT; i <= GATHER; i++) {
-        vrg_dispatch_desc d = dispatches[i == EVICT && evict_per_slot ? EVICT_PER_SLOT : i];
+        vrg_dispatch_desc d = dispatches[i == EVICT && evict_per_slot ? EVICT_PER_SLOT : i == GATHER && occupancy ? GATHER_OCCUPANCY : i];
         d.push = &pc;
         if (i == EVICT)
             d.groups_x = (share + GROUP * evict_run - 1) / (GROUP * evict_run);

@@ -26,6 +26,9 @@ layout(std430, binding = 4) buffer Table { uint words[]; } table;
 #ifdef GATHER
 layout(binding = 5, rgba16f) uniform writeonly image2D out_color;
 layout(binding = 6) uniform sampler2D in_fallback;
+#ifdef OCCUPANCY
+layout(binding = 7, rgba32f) uniform writeonly image2D out_occupancy;
+#endif
 #endif
 layout(push_constant) uniform Params {
     float cell_pixels;
@@ -277,8 +280,14 @@ uvec4 find_entry(uvec2 h, out uint e)
 // The bilinear blend of the 2x2 cells whose centres surround the point (its
 // own is one of them), over those that have samples, or (bilinear = 0) the
 // point's own cell; n_blend: their blended n (samples). weight 0: none has.
+#ifdef OCCUPANCY
+float gather_age; // the last gather's: most frames since a found cell had samples
+#endif
 vec4 gather(Cell c, out float n_blend, out float weight)
 {
+#ifdef OCCUPANCY
+    gather_age = 0.0;
+#endif
     vec2 t = params.bilinear != 0 ? c.plane - 0.5 : c.plane;
     ivec2 i0 = ifloor(t);
     vec2 f = params.bilinear != 0 ? t - vec2(i0) : vec2(0.0);
@@ -300,6 +309,9 @@ vec4 gather(Cell c, out float n_blend, out float weight)
             sum[i] += w * m[i];
         n_blend += w * n;
         weight += w;
+#ifdef OCCUPANCY
+        gather_age = max(gather_age, float(params.frame_index - first.y));
+#endif
     }
     if (weight > 0.0) {
         sum /= weight;
@@ -317,12 +329,19 @@ void shade(ivec2 p)
     vec4 own = texelFetch(in_signal, p, 0);
     if (x.w == 0.0) {
         imageStore(out_color, p, own);
+#ifdef OCCUPANCY
+        imageStore(out_occupancy, p, vec4(0.0));
+#endif
         return;
     }
     vec3 n = texelFetch(in_normal, p, 0).xyz;
     int level = level_of(x.xyz);
     float n_fine, w_fine;
     vec4 mean = gather(cell_of(x.xyz, n, level), n_fine, w_fine);
+#ifdef OCCUPANCY
+    // the fine cells' samples, found share, share of the colour, age
+    vec4 occupancy = vec4(n_fine, w_fine, w_fine > 0.0 ? 1.0 : 0.0, gather_age);
+#endif
     // A young cell (fewer than young_samples samples) leans on the cells
     // twice as wide, which gather 4 times the samples; young ones of those
     // on the next level up, and so on for coarse_levels levels; the last
@@ -353,6 +372,9 @@ void shade(ivec2 p)
                 sum += rest * (params.use_fallback != 0 ? texelFetch(in_fallback, p, 0) : top);
             mean = sum;
             w_fine = 1.0;
+#ifdef OCCUPANCY
+            occupancy.b = keep;
+#endif
         }
     }
     // channels past `channels` are the signal's own
@@ -360,6 +382,9 @@ void shade(ivec2 p)
     for (uint i = 0u; i < params.channels; i++)
         cached[i] = mean[i];
     imageStore(out_color, p, w_fine > 0.0 ? cached : own);
+#ifdef OCCUPANCY
+    imageStore(out_occupancy, p, occupancy);
+#endif
 }
 #endif
 

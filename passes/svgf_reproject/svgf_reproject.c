@@ -17,7 +17,16 @@
  *   moments = mix(previous moments, (l, l^2), max(moments_alpha, 1 / (length + 1)) or moments_alpha)
  * with l the luminance of this frame. The thesis's k = 0.8 is alpha = 0.2.
  * Sky pixels pass through with length 0. On the first frame, after a resize
- * or reload (frame history_valid = 0) every pixel restarts. */
+ * or reload (frame history_valid = 0) every pixel restarts.
+ * Debug outputs (optional, computed only when something reads them: the
+ * DEBUG variant, which also writes them, runs only then):
+ *   disocclusion  1 on a surface pixel whose history restarted, else 0;
+ *   reprojection  where the history was read: xy the previous frame's
+ *                 point (pixel centres at +0.5, p + 0.5 - motion), z the
+ *                 weight of the taps that passed (bilinear: their weights'
+ *                 sum; fallback: the passing share of the 3x3), w the way it
+ *                 was read (1 bilinear, 2 the 3x3 fallback, 0 none); all 0
+ *                 where the history was not looked up (sky, history_valid 0). */
 #include "voxrg/plugin.h"
 
 static const vrg_param_desc params[] = {
@@ -50,6 +59,13 @@ static const vrg_slot_desc slots[] = {
      .help = "accumulated first and second moments of luminance"},
     {.name = "length", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16_SFLOAT,
      .help = "history length: earlier frames in the accumulation (0: restarted this frame)"},
+    /* debug outputs: after the ones above, which set the dispatch size */
+    {.name = "disocclusion", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16_SFLOAT,
+     .flags = VRG_SLOT_OPTIONAL, .help = "1 on a surface pixel whose history restarted this frame, else 0 (written only when read)"},
+    {.name = "reprojection", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R32G32B32A32_SFLOAT,
+     .flags = VRG_SLOT_OPTIONAL,
+     .help = "xy: the previous frame's point the history was read at (pixels); z: weight of the taps that passed; w: 1 bilinear, 2 3x3 "
+             "fallback, 0 none (written only when read)"},
 };
 
 typedef struct svgf_reproject_push {
@@ -57,9 +73,21 @@ typedef struct svgf_reproject_push {
     int32_t length_alpha, max_length, history_valid;
 } svgf_reproject_push;
 
-/* every dispatch execute() records: checked by `voxrg check` */
+/* the DEBUG variant's: which debug outputs are read (DEBUG_* bits) */
+typedef struct svgf_reproject_debug_push {
+    svgf_reproject_push base;
+    int32_t outputs;
+} svgf_reproject_debug_push;
+enum { DEBUG_DISOCCLUSION = 1, DEBUG_REPROJECTION = 2 };
+
+/* every dispatch execute() records: checked by `voxrg check`. The first
+ * binds the slots before the debug outputs; the second, recorded instead
+ * when a debug output is read, every slot */
 static const vrg_dispatch_desc dispatches[] = {
-    {.shader = "svgf_reproject.comp", .push_size = sizeof(svgf_reproject_push), .pixel_loop = 1},
+    {.shader = "svgf_reproject.comp", .push_size = sizeof(svgf_reproject_push), .pixel_loop = 1,
+     .bindings = {{"illumination"}, {"motion"}, {"position"}, {"normal"}, {"ids"}, {"history"}, {"prev_moments"}, {"prev_length"},
+                  {"prev_position"}, {"prev_normal"}, {"prev_ids"}, {"color"}, {"moments"}, {"length"}}},
+    {.shader = "svgf_reproject.comp", .defines = "DEBUG", .push_size = sizeof(svgf_reproject_debug_push), .pixel_loop = 1},
 };
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
@@ -74,7 +102,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     int valid = 1;
     for (unsigned i = 0; i < sizeof past / sizeof past[0]; i++)
         valid &= vrg_res_history_valid(pass, vrg_pass_res(pass, past[i]));
-    svgf_reproject_push pc = {
+    svgf_reproject_debug_push pc = {{
         (float)vrg_param(pass, "alpha"),
         (float)vrg_param(pass, "moments_alpha"),
         (float)vrg_param(pass, "normal_threshold"),
@@ -82,8 +110,11 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         vrg_param_int(pass, "length_alpha"),
         vrg_param_int(pass, "max_length"),
         valid,
-    };
-    vrg_dispatch_desc d = dispatches[0];
+    }};
+    /* unread debug outputs are 1x1 stand-ins: the shader leaves them alone */
+    pc.outputs = (vrg_res_connected(vrg_pass_res(pass, "disocclusion")) ? DEBUG_DISOCCLUSION : 0) |
+                 (vrg_res_connected(vrg_pass_res(pass, "reprojection")) ? DEBUG_REPROJECTION : 0);
+    vrg_dispatch_desc d = dispatches[pc.outputs ? 1 : 0];
     d.push = &pc;
     (void)vrg_dispatch(pass, cmd, &d);
 }

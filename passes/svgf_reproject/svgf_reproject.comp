@@ -19,10 +19,36 @@ layout(binding = 10, rg32ui) uniform readonly uimage2D in_prev_ids;
 layout(binding = 11, rgba16f) uniform writeonly image2D out_color;
 layout(binding = 12, rg32f) uniform writeonly image2D out_moments;
 layout(binding = 13, r16f) uniform writeonly image2D out_length;
+#ifdef DEBUG
+// debug outputs, bound in the DEBUG variant only (1x1 stand-ins unless read)
+layout(binding = 14, r16f) uniform writeonly image2D out_disocclusion;
+layout(binding = 15, rgba32f) uniform writeonly image2D out_reprojection;
+#endif
 layout(push_constant) uniform Params {
     float alpha, moments_alpha, normal_threshold, plane_distance;
     int length_alpha, max_length, history_valid;
+#ifdef DEBUG
+    int debug_outputs; // 1: disocclusion is read, 2: reprojection is read
+#endif
 } params;
+
+#ifdef DEBUG
+// where the history was read (xy, pixel centres at +0.5), the weight of
+// the taps that passed, and how: 1 bilinear, 2 the 3x3 fallback, 0 none
+vec4 debug_target;
+void debug_store(ivec2 p, bool restarted)
+{
+    if ((params.debug_outputs & 1) != 0)
+        imageStore(out_disocclusion, p, vec4(restarted ? 1.0 : 0.0));
+    if ((params.debug_outputs & 2) != 0)
+        imageStore(out_reprojection, p, restarted ? vec4(debug_target.xy, 0.0, 0.0) : debug_target);
+}
+#define DEBUG_STORE(p, restarted) debug_store(p, restarted)
+#define DEBUG_TARGET(v) debug_target = (v)
+#else
+#define DEBUG_STORE(p, restarted)
+#define DEBUG_TARGET(v)
+#endif
 
 // Does the previous frame's pixel t show this pixel's surface (x, n, chunk)?
 bool same_surface(ivec2 t, ivec2 size, vec3 x, vec3 n, uint chunk)
@@ -60,6 +86,7 @@ void shade(ivec2 p)
     vec4 pos = texelFetch(in_position, p, 0);
     History h = History(vec3(0.0), vec2(0.0), 0.0);
     float wsum = 0.0;
+    DEBUG_TARGET(vec4(0.0));
     if (pos.w != 0.0 && params.history_valid != 0) {
         vec3 n = texelFetch(in_normal, p, 0).xyz;
         uint chunk = imageLoad(in_ids, p).y;
@@ -75,6 +102,7 @@ void shade(ivec2 p)
                 wsum += w;
             }
         }
+        DEBUG_TARGET(vec4(q + 0.5, wsum, 1.0));
         if (wsum < 1e-4) { // no bilinear tap: the 3x3 around the nearest pixel
             h = History(vec3(0.0), vec2(0.0), 0.0);
             wsum = 0.0;
@@ -86,8 +114,10 @@ void shade(ivec2 p)
                     wsum += 1.0;
                 }
             }
+            DEBUG_TARGET(vec4(q + 0.5, wsum / 9.0, 2.0));
         }
     }
+    DEBUG_STORE(p, pos.w != 0.0 && wsum < 1e-4);
     if (wsum < 1e-4) { // history restarts here
         imageStore(out_color, p, vec4(c, 1.0));
         imageStore(out_moments, p, vec4(l, l * l, 0.0, 0.0));

@@ -11,7 +11,11 @@
  *     the size x size window's pixels of the same surface (normal dot >=
  *     0.9 and within 0.1 blocks per pixel of offset from this pixel's
  *     plane), an edge-aware spatial estimate.
- * Sky pixels get variance 0. */
+ * Sky pixels get variance 0.
+ * Debug output (optional, computed only when something reads it: the
+ * VARIANCE variants): `variance`, r the variance (as in color's alpha), g 1
+ * where it came from the pixel's own accumulated moments (temporal mode,
+ * history old enough), 0 where from a spatial window (and on sky). */
 #include "voxrg/plugin.h"
 
 static const vrg_param_desc params[] = {
@@ -30,6 +34,9 @@ static const vrg_slot_desc slots[] = {
     {.name = "normal", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "G-buffer normal"},
     {.name = "color", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
      .help = "illumination with its luminance variance in alpha"},
+    {.name = "variance", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16_SFLOAT,
+     .flags = VRG_SLOT_OPTIONAL,
+     .help = "r: the variance (color's alpha); g: 1 where from the pixel's own moments, 0 from a spatial window (written only when read)"},
 };
 
 static const char *const modes[] = {"spatial", "temporal"};
@@ -57,8 +64,9 @@ typedef struct variance_push {
 } variance_push;
 
 /* every dispatch execute() records, which `voxrg check` compiles: temporal
- * mode's one, spatial mode's rows and columns */
-enum { TEMPORAL, ROWS, COLUMNS };
+ * mode's one, spatial mode's rows and columns, and the two that write
+ * color, again with the variance output (when it is read) */
+enum { TEMPORAL, ROWS, COLUMNS, TEMPORAL_VARIANCE, COLUMNS_VARIANCE };
 static const vrg_dispatch_desc dispatches[] = {
     [TEMPORAL] = {.shader = "svgf_variance.comp", .defines = "TEMPORAL", .push_size = sizeof(variance_push), .pixel_loop = 1,
                   .bindings = {{"illumination"}, {"moments"}, {"length"}, {"position"}, {"normal"}, {"color"}}},
@@ -66,6 +74,10 @@ static const vrg_dispatch_desc dispatches[] = {
               .bindings = {{"illumination"}, {"position"}, {"rows", VRG_ACCESS_STORAGE_WRITE}}},
     [COLUMNS] = {.shader = "svgf_variance.comp", .defines = "COLUMNS", .push_size = sizeof(variance_push), .pixel_loop = 1,
                  .bindings = {{"illumination"}, {"position"}, {"rows", VRG_ACCESS_STORAGE_READ}, {"color"}}},
+    [TEMPORAL_VARIANCE] = {.shader = "svgf_variance.comp", .defines = "TEMPORAL VARIANCE", .push_size = sizeof(variance_push), .pixel_loop = 1,
+                           .bindings = {{"illumination"}, {"moments"}, {"length"}, {"position"}, {"normal"}, {"color"}, {"variance"}}},
+    [COLUMNS_VARIANCE] = {.shader = "svgf_variance.comp", .defines = "COLUMNS VARIANCE", .push_size = sizeof(variance_push), .pixel_loop = 1,
+                          .bindings = {{"illumination"}, {"position"}, {"rows", VRG_ACCESS_STORAGE_READ}, {"color"}, {"variance"}}},
 };
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
@@ -75,7 +87,9 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         return;
     int mode = vrg_param_choice(pass, "mode", modes, 2);
     variance_push pc = {vrg_param_int(pass, "size") / 2, vrg_param_int(pass, "min_history")};
-    vrg_dispatch_desc d[3] = {dispatches[TEMPORAL], dispatches[ROWS], dispatches[COLUMNS]};
+    /* the unread debug output is a 1x1 stand-in: left out */
+    int debug = vrg_res_connected(vrg_pass_res(pass, "variance"));
+    vrg_dispatch_desc d[3] = {dispatches[debug ? TEMPORAL_VARIANCE : TEMPORAL], dispatches[ROWS], dispatches[debug ? COLUMNS_VARIANCE : COLUMNS]};
     for (int i = 0; i < 3; i++)
         d[i].push = &pc;
     if (mode == 1)

@@ -35,6 +35,9 @@ layout(binding = 0) uniform sampler2D in_illumination;
 layout(binding = 1) uniform sampler2D in_position;
 layout(binding = 2, rgba32f) uniform readonly image2D in_rows;
 layout(binding = 3, rgba16f) uniform writeonly image2D out_color;
+#ifdef VARIANCE
+layout(binding = 4, rg16f) uniform writeonly image2D out_variance;
+#endif
 
 void shade(ivec2 p)
 {
@@ -44,6 +47,9 @@ void shade(ivec2 p)
     vec3 c = texelFetch(in_illumination, p, 0).rgb;
     if (texelFetch(in_position, p, 0).w == 0.0) { // sky
         imageStore(out_color, p, vec4(c, 0.0));
+#ifdef VARIANCE
+        imageStore(out_variance, p, vec4(0.0));
+#endif
         return;
     }
     vec3 s = vec3(0.0);
@@ -55,6 +61,9 @@ void shade(ivec2 p)
     // Bessel's correction: sum (l - mean)^2 / (n - 1) = (S2 - S1^2 / n) / (n - 1)
     float var = s.z > 1.5 ? max(0.0, (s.y - s.x * s.x / s.z) / (s.z - 1.0)) : 0.0;
     imageStore(out_color, p, vec4(c, var));
+#ifdef VARIANCE
+    imageStore(out_variance, p, vec4(var, 0.0, 0.0, 0.0));
+#endif
 }
 #else // TEMPORAL
 layout(binding = 0) uniform sampler2D in_illumination;
@@ -63,6 +72,9 @@ layout(binding = 2) uniform sampler2D in_length;
 layout(binding = 3) uniform sampler2D in_position;
 layout(binding = 4) uniform sampler2D in_normal;
 layout(binding = 5, rgba16f) uniform writeonly image2D out_color;
+#ifdef VARIANCE
+layout(binding = 6, rg16f) uniform writeonly image2D out_variance;
+#endif
 
 void shade(ivec2 p)
 {
@@ -72,10 +84,16 @@ void shade(ivec2 p)
     vec3 c = texelFetch(in_illumination, p, 0).rgb;
     vec4 x = texelFetch(in_position, p, 0);
     float var = 0.0;
+#ifdef VARIANCE
+    float own = 0.0; // 1: from the pixel's own moments
+#endif
     if (x.w != 0.0) {
         vec2 m;
         if (texelFetch(in_length, p, 0).r + 1.0 >= float(params.min_history)) {
             m = texelFetch(in_moments, p, 0).xy;
+#ifdef VARIANCE
+            own = 1.0;
+#endif
         } else { // young history: moments of the window's pixels on this surface
             vec3 n = texelFetch(in_normal, p, 0).xyz;
             vec3 s = vec3(0.0);
@@ -95,6 +113,9 @@ void shade(ivec2 p)
         var = max(0.0, m.y - m.x * m.x);
     }
     imageStore(out_color, p, vec4(c, var));
+#ifdef VARIANCE
+    imageStore(out_variance, p, vec4(var, own, 0.0, 0.0));
+#endif
 }
 #endif
 
