@@ -251,13 +251,17 @@ void shade(ivec2 p)
     vec4 sigma;
     neighbourhood(p, size, mean, sigma);
     vec3 slow = h.color;
+#ifdef DEBUG
+    float clamped = 0.0, antilag_share = 0.0;
+#endif
     if (params.clamp_k > 0.0) {
         vec3 box = params.clamp_k * sigma.xyz;
+#ifdef DEBUG
+        // measured in YCoCg, where the box is: 0 inside it, exactly
+        clamped = distance(clamp(to_ycocg(slow), mean - box, mean + box), to_ycocg(slow));
+#endif
         slow = from_ycocg(clamp(to_ycocg(slow), mean - box, mean + box));
     }
-#ifdef DEBUG
-    float clamped = distance(to_ycocg(slow), to_ycocg(h.color)), antilag_share = 0.0;
-#endif
     float len = min(floor(h.frames + 0.5) + 1.0, float(params.max_length));
     vec3 fast = mix(h.fast, c, max(params.fast_alpha, 1.0 / (len + 1.0)));
     if (params.antilag > 0.0) {
