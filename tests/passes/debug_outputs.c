@@ -3,7 +3,8 @@
  * history length and disocclusion under a still camera and a fast turn,
  * the reprojection target against the motion vectors, the clamp amount,
  * the surface cache's occupancy, the variance; each a 1x1 stand-in unless
- * read, and reading them changes none of the pass's other outputs.
+ * read, and reading them changes none of the pass's other outputs; and
+ * the tiles pass that shows them side by side (graphs/debug-*.ini).
  * Usage: PROGRAM CASE (ctest registers one test per case). */
 #include "harness.h"
 #include "voxrg/camera.h"
@@ -335,6 +336,67 @@ static void test_debug_unchanged(void)
     same_case("surface_cache.ini", cache_debug, 2, cache_out, 2);
 }
 
+/* tiles: four inputs in a 2x2 grid of 30x20 tiles, each a 60x40 gradient
+ * (pattern: (x/59, y/39, value)) read at its nearest texel: tile 0 as
+ * it is, tile 1 its green remapped from [0.5, 1] as grey, tile 2
+ * unconnected (black), tile 3 its red through the false-colour ramp; and
+ * an integer input (the G-buffer's ids) refused with an error. */
+static void heat_ramp(float v, float out[3])
+{
+    static const float stops[7][3] = {{0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}, {1, 1, 1}};
+    float s = v * 6;
+    int k = s >= 5 ? 5 : (int)s;
+    for (int c = 0; c < 3; c++)
+        out[c] = stops[k][c] + (stops[k + 1][c] - stops[k][c]) * (s - (float)k);
+}
+
+static void test_tiles_layout(void)
+{
+    static const char *text = "[graph]\nname = tiles_layout\noutput = view\nwidth = 60\nheight = 40\n"
+                              "[pass a]\nplugin = pattern\nout.color = a\nvalue = 0.25\n"
+                              "[pass tiles]\nplugin = tiles\nin.t0 = a\nin.t1 = a\nin.t3 = a\nout.view = view\n"
+                              "t1_channel = g\nt1_min = 0.5\nt3_channel = r\nt3_heat = 1\n";
+    vrg_graph *g = load_text(text, NULL, 0);
+    if (!g)
+        return;
+    vrg_image_data view;
+    CHECK(vrg_graph_frame(g) == 0 && vrg_graph_read(g, "view", &view) == 0, "frame or readback failed");
+    if (!view.pixels)
+        return;
+    int wrong = 0;
+    for (uint32_t y = 0; y < 40; y++)
+        for (uint32_t x = 0; x < 60; x++) {
+            uint32_t tile = (y / 20) * 2 + x / 30, qx = x % 30, qy = y % 20;
+            float src[3] = {(float)(2 * qx + 1) / 59.0f, (float)(2 * qy + 1) / 39.0f, 0.25f}, want[3] = {0, 0, 0};
+            if (tile == 0)
+                memcpy(want, src, sizeof want);
+            else if (tile == 1)
+                want[0] = want[1] = want[2] = fmaxf(0.0f, (src[1] - 0.5f) / 0.5f);
+            else if (tile == 3)
+                heat_ramp(src[0], want);
+            for (int c = 0; c < 3; c++)
+                if (fabsf(px(&view, x, y, c) - want[c]) > 2.0f / 255.0f) {
+                    if (wrong < 4)
+                        fprintf(stderr, "  (%u, %u) tile %u channel %d: %g, want %g\n", x, y, tile, c, px(&view, x, y, c), want[c]);
+                    wrong++;
+                }
+        }
+    CHECK(wrong == 0, "%d channels of the tiles differ from the remapped inputs", wrong);
+    free(view.pixels);
+    vrg_graph_destroy(g);
+
+    static const char *ids = "[graph]\nname = tiles_ids\noutput = view\nwidth = 32\nheight = 24\n"
+                             "[scene]\nplugin = blocks\nbox = 0 0 0 15 0 15 white\n"
+                             "[pass gbuffer]\nplugin = gbuffer\nin.world = world\nin.frame = frame\nin.atlas = atlas\n"
+                             "[pass tiles]\nplugin = tiles\nin.t0 = gbuffer.ids\nout.view = view\n";
+    g = load_text(ids, NULL, 0);
+    if (!g)
+        return;
+    fprintf(stderr, "(an error about in.t0 follows: wanted)\n");
+    CHECK(vrg_graph_frame(g) != 0, "an integer image in a tile was not refused");
+    vrg_graph_destroy(g);
+}
+
 int main(int argc, char **argv)
 {
     static const test_case cases[] = {
@@ -343,6 +405,7 @@ int main(int argc, char **argv)
         {"debug_cache", test_debug_cache, 1},
         {"debug_variance", test_debug_variance, 1},
         {"debug_unchanged", test_debug_unchanged, 1},
+        {"tiles_layout", test_tiles_layout, 1},
     };
     return run_case(argc, argv, cases, sizeof cases / sizeof cases[0]);
 }
