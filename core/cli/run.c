@@ -613,7 +613,20 @@ static void display_record(window_state *w, VkImage src, VkExtent2D ext, VkImage
 static void display_mode(window_state *w, const char *name)
 {
     w->disp.mode = 0, w->disp.channel = 0, w->disp.scale = 1;
-    if (strstr(name, "normal"))
+    size_t n = strlen(name);
+#define ENDS_WITH(s) (n >= sizeof(s) - 1 && strcmp(name + n - (sizeof(s) - 1), s) == 0)
+    /* the temporal passes' debug outputs (default names PASS.SLOT), as grey */
+    if (ENDS_WITH(".disocclusion"))
+        w->disp.mode = 4; /* 1 where the history restarted */
+    else if (ENDS_WITH(".reprojection"))
+        w->disp.mode = 4, w->disp.channel = 3, w->disp.scale = 0.25f; /* how the history was read: 0 none .. 4 */
+    else if (ENDS_WITH(".clamp"))
+        w->disp.mode = 4, w->disp.scale = 4; /* how far the clamp moved the history */
+    else if (ENDS_WITH(".occupancy"))
+        w->disp.mode = 4, w->disp.scale = 1.0f / 64; /* the samples a surface cache's cells hold */
+    else if (ENDS_WITH(".variance"))
+        w->disp.mode = 4, w->disp.scale = 20; /* svgf_variance's and mean_variance's variance, in red */
+    else if (strstr(name, "normal"))
         w->disp.mode = 1;
     else if (strstr(name, "depth"))
         w->disp.mode = 2, w->disp.scale = 300;
@@ -625,6 +638,7 @@ static void display_mode(window_state *w, const char *name)
         w->disp.mode = 4, w->disp.channel = 3, w->disp.scale = 20;
     else if (strstr(name, "position"))
         w->disp.mode = 5;
+#undef ENDS_WITH
 }
 
 /* A screenshot of what the window showed, from the staging buffer. */
@@ -959,8 +973,11 @@ int vrg_cli_run(const vrg_run_options *o)
     int fb_w, fb_h;
     glfwGetFramebufferSize(w.window, &fb_w, &fb_h);
     VkExtent2D render = render_size(&w, fb_w > 0 ? (uint32_t)fb_w : (uint32_t)win_w, fb_h > 0 ? (uint32_t)fb_h : (uint32_t)win_h);
+    /* --show reads its image back: an optional output that nothing else
+     * reads (a pass's debug output) is then computed, and listed */
+    const char *const *shown_read = o->show ? (const char *const *)&o->show : NULL;
     vrg_graph_desc d = {.path = o->graph, .overrides = o->sets, .override_count = o->set_count, .width = render.width, .height = render.height,
-                        .keep_images = 1};
+                        .keep_images = 1, .readback = shown_read, .readback_count = o->show ? 1u : 0u};
     if (vrg_graph_load(w.ctx, &d, &g) != 0)
         goto out;
     vrg_graph_watch(g, 1); /* hot reload is what the window is for */

@@ -474,6 +474,21 @@ assert all(abs(a - b) <= 3 for a, b in zip(floor, (128, 255, 128))), floor
 PY
     then ok; else bad "--show gbuffer.normal shows the floor's normal"; fi
     expect_rc 1 "run --show of an unknown image" "$voxrg" run "$tests/graphs/gbuffer_blocks.ini" --show nonesuch --frames 1
+    # a debug output nothing reads: --show reads it back, so it is computed (svgf_reproject's
+    # reprojection, w: 1 where the history was read with bilinear taps, as on a still camera's floor, 0 on sky)
+    expect_rc 0 "run --show reproject.reprojection" "$voxrg" run "$tests/graphs/svgf_ghost.ini" \
+        --show reproject.reprojection --validate --size 96x64 --frames 3 --screenshot "$out/reprojection.png"
+    if python3 - "$out/reprojection.png" "$tests/cli" <<'PY'
+import sys
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
+sys.path.insert(0, sys.argv[2])
+from png_pixels import load
+w, h, px = load(sys.argv[1])
+floor, sky = px(w // 2, h - 4), px(5, 30)  # below the overlay's line
+assert all(abs(c - 64) <= 3 for c in floor[:3]), floor  # w = 1, shown as w / 4
+assert sky[:3] == (0, 0, 0), sky
+PY
+    then ok; else bad "--show reproject.reprojection shows how the floor's history was read"; fi
     expect_rc 0 "run --ab and --record under Xvfb" "$voxrg" run "$tests/graphs/blocks_wall.ini" --ab "$tests/graphs/blocks_wall.ini" \
         --validate --size 96x64 --frames 3 --record "$out/flight.path"
     sed 's/^box = 8 1 8 23 6 8 red/box = 8 1 8 23 3 8 red/' "$tests/graphs/blocks_wall.ini" >"$out/lower_wall.ini"
