@@ -217,10 +217,14 @@ void debug_store(ivec2 p, bool restarted, vec2 moved)
 }
 #endif
 
-void restart(ivec2 p, vec3 c, float l, bool surface)
+#ifdef DEBUG
+bool debug_surface; // restart(): p is a surface pixel, whose history restarted
+#endif
+
+void restart(ivec2 p, vec3 c, float l)
 {
 #ifdef DEBUG
-    debug_store(p, surface, vec2(0.0));
+    debug_store(p, debug_surface, vec2(0.0));
 #else
     imageStore(out_color, p, vec4(c, 1.0));
     imageStore(out_fast, p, vec4(c, 0.0));
@@ -244,7 +248,10 @@ void shade(ivec2 p)
     History h;
     DEBUG_TARGET(vec4(0.0));
     if (pos.w == 0.0 || params.history_valid == 0 || reproject(p, size, pos.xyz, h) < 1e-4) {
-        restart(p, c, l, pos.w != 0.0);
+#ifdef DEBUG
+        debug_surface = pos.w != 0.0;
+#endif
+        restart(p, c, l);
         return;
     }
     vec3 mean;
