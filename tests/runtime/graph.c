@@ -100,6 +100,57 @@ static void test_chain(void)
 }
 
 /* counter: out = prev + 1 while history is valid. */
+/* vrg_graph_read_pixels: every written image in schedule order, each
+ * @prev copy after its resource, the stored values (halves exactly as the
+ * readback decodes them), and a pixel outside the graph refused. */
+static void test_read_pixels(void)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/graphs/chain.ini", TEST_DIR);
+    vrg_graph_desc d = {.path = path, .keep_images = 1};
+    vrg_graph *g = NULL;
+    if (!CHECK(vrg_graph_load(ctx, &d, &g) == 0, "chain.ini does not load"))
+        return;
+    vrg_pixel_value v[8];
+    CHECK(vrg_graph_read_pixels(g, 0, 0, v, 8) == -1, "a read before any frame is not refused");
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    int n = vrg_graph_read_pixels(g, 7, 5, v, 8);
+    const char *want[] = {"gradient", "blurred", "final"}, *pass[] = {"gen", "smooth", "sum"};
+    if (CHECK(n == 3, "%d entries, not 3", n))
+        for (int i = 0; i < 3; i++)
+            CHECK(!strcmp(v[i].resource, want[i]) && !strcmp(v[i].pass, pass[i]) && !v[i].prev && v[i].kept && v[i].channels == 4 &&
+                      v[i].x == 7 && v[i].y == 5,
+                  "entry %d is %s of %s (prev %d, kept %d, %u channels, at %u,%u)", i, v[i].resource, v[i].pass, v[i].prev, v[i].kept,
+                  v[i].channels, v[i].x, v[i].y);
+    vrg_image_data img;
+    if (n == 3 && CHECK(vrg_graph_read(g, "final", &img) == 0, "readback failed")) {
+        for (int c = 0; c < 4; c++)
+            CHECK(v[2].value[c] == px(&img, 7, 5, c), "final channel %d: %.9g, the readback %.9g", c, v[2].value[c], px(&img, 7, 5, c));
+        free(img.pixels);
+        /* the gradient's closed form, within a half's precision */
+        CHECK(fabs(v[0].value[0] - 7.0 / 39) < 1e-3 && fabs(v[0].value[1] - 5.0 / 23) < 1e-3 && v[0].value[2] == 0.5 && v[0].value[3] == 1.0 &&
+                  v[0].bits[3] == 0x3c00,
+              "gradient (%g, %g, %g, %g), alpha bits %#x", v[0].value[0], v[0].value[1], v[0].value[2], v[0].value[3], v[0].bits[3]);
+    }
+    CHECK(vrg_graph_read_pixels(g, 40, 0, v, 8) == -1, "x = 40 of a 40-wide graph is not refused");
+    CHECK(vrg_graph_read_pixels(g, 0, 24, v, 8) == -1, "y = 24 of a 24-high graph is not refused");
+    CHECK(vrg_graph_frame(g) == 0, "a frame after the reads failed");
+    vrg_graph_destroy(g);
+
+    d.path = path;
+    snprintf(path, sizeof path, "%s/graphs/history.ini", TEST_DIR);
+    if (!CHECK(vrg_graph_load(ctx, &d, &g) == 0, "history.ini does not load"))
+        return;
+    for (int f = 0; f < 3; f++)
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    n = vrg_graph_read_pixels(g, 15, 15, v, 1); /* max 1: the count is still the whole */
+    CHECK(n == 2 && !strcmp(v[0].resource, "count") && !v[0].prev && v[0].value[0] == 3.0, "%d entries; count %g", n, v[0].value[0]);
+    n = vrg_graph_read_pixels(g, 15, 15, v, 8);
+    CHECK(n == 2 && v[1].prev && v[1].kept && v[1].value[0] == 2.0, "@prev: %d entries, prev %d, value %g", n, n > 1 ? v[1].prev : -1,
+          n > 1 ? v[1].value[0] : -1);
+    vrg_graph_destroy(g);
+}
+
 static void test_history(void)
 {
     vrg_graph *g = load("history.ini");
@@ -485,6 +536,7 @@ int main(int argc, char **argv)
         {"resize_refused", test_resize_refused, 1},
         {"chain", test_chain, 1},
         {"history", test_history, 1},
+        {"read_pixels", test_read_pixels, 1},
         {"accumulate", test_accumulate, 1},
         {"pingpong", test_pingpong, 1},
         {"alias", test_alias, 1},

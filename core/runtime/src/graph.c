@@ -87,7 +87,8 @@ static VkDeviceSize align256(VkDeviceSize v) { return (v + 255) / 256 * 256; }
 
 /* A part per frame slot: the read-back resources, then a word per scheduled
  * pass the GPU sets when the pass is done (the host reads which one runs
- * while a frame is late, record.c), then the frame's timestamps. */
+ * while a frame is late, record.c), then the frame's timestamps. After the
+ * slots, the texels vrg_graph_read_pixels copies. */
 static int readback_buffer(vrg_graph *g)
 {
     VkDevice dev = g->ctx->dev.device;
@@ -108,6 +109,9 @@ static int readback_buffer(vrg_graph *g)
     for (uint32_t i = 0; i < g->frames_in_flight; i++)
         g->slots[i].readback_base = i * g->readback_slot_bytes;
     size = g->frames_in_flight * g->readback_slot_bytes;
+    /* one texel of each image's two copies for vrg_graph_read_pixels */
+    g->pixel_offset = size;
+    size += 2 * VRG_MAX_RESOURCES * VRG_PIXEL_BYTES;
     VkBufferCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = size, .usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT};
     VkMemoryRequirements req = {0};
     int type = -1;

@@ -22,6 +22,7 @@
 #define VRG_MAX_KEYS 2048
 #define VRG_MAX_PLUGINS 128
 #define VRG_FRAMES_IN_FLIGHT_DEFAULT 2
+#define VRG_PIXEL_BYTES 16 /* a texel of the widest format (rgba32f) */
 
 /* ---- diagnostics (diag.c) ---- */
 typedef struct _vrg_diag_entry {
@@ -362,6 +363,7 @@ struct vrg_graph {
     VkDeviceSize progress_offset; /* within a slot's part: a word per scheduled pass, 1 once it ended */
     VkDeviceSize timestamp_offset; /* within a slot's part: the frame's timestamps, copied by the GPU */
     VkDeviceSize readback_slot_bytes;
+    VkDeviceSize pixel_offset;    /* after the slots' parts: vrg_graph_read_pixels's texels, VRG_PIXEL_BYTES each */
     vrg_camera camera;        /* for the next frame */
     vrg_camera last_camera;   /* the last frame's */
 };

@@ -174,6 +174,40 @@ int vrg_graph_stat(const vrg_graph *g, const char *pass, const char *name, doubl
 /* Its i-th figure (for listing): name, or NULL past the end. */
 const char *vrg_graph_stat_at(const vrg_graph *g, uint32_t pass, uint32_t i, double *value);
 
+/* One pixel of one image resource as stored after the last frame
+ * (vrg_graph_read_pixels). */
+typedef struct vrg_pixel_value {
+    const char *resource;   /* its name (valid while the graph lives) */
+    const char *pass;       /* the pass that writes it */
+    VkFormat format;
+    uint32_t channels;      /* the channels the format has */
+    uint32_t x, y;          /* the texel read: the graph's pixel scaled to the resource's size */
+    uint32_t width, height; /* the resource's size */
+    int prev;               /* 1: the @prev copy, as the last frame read it */
+    int is_uint;            /* an integer format: value holds integers */
+    /* 0: not read (bits and value are 0): its memory held another resource
+     * later in the frame (load the graph with keep_images to keep it) */
+    int kept;
+    /* Each channel as stored: the bits of a half (low 16), a float or a
+     * uint; a unorm's byte; r11g11b10f's 11-, 11- and 10-bit floats. */
+    uint32_t bits[4];
+    /* Each channel's exact value: a half or float as that float (NaN and
+     * Inf kept), a uint as that integer, a unorm (sRGB too, undecoded) as
+     * byte / 255. */
+    double value[4];
+} vrg_pixel_value;
+/* The pixel (x, y) of the graph's size of every image resource the last
+ * frame wrote (as vrg_graph_image_count lists them, internal ones left
+ * out), in schedule order of the passes that write them, a pass's in slot
+ * order, each followed by its @prev copy where the graph reads one. A
+ * resource of another size is read at (x * width / graph width, ...).
+ * Fills up to max entries and returns how many there are (at most
+ * 2 * the graph's resources), or -1 after an error (no frame rendered yet,
+ * (x, y) outside the graph's size). Waits for the frames in flight; the
+ * next frame may follow at once (the images are left as its barriers
+ * expect). */
+int vrg_graph_read_pixels(vrg_graph *g, uint32_t x, uint32_t y, vrg_pixel_value *out, uint32_t max);
+
 /* VRG_IMAGE or VRG_BUFFER, or -1 if the graph has no such resource. */
 int vrg_graph_resource_kind(const vrg_graph *g, const char *resource);
 /* Bytes of a buffer resource written in the last frame. Caller frees *data. */
