@@ -125,6 +125,24 @@ void vrg_overlay_line(vrg_overlay *o, const char *text)
         snprintf(o->text[o->lines++], sizeof o->text[0], "%s", text);
 }
 
+void vrg_overlay_wrap(vrg_overlay *o, const char *text, int width)
+{
+    int fit = (width - 2 * VRG_OVERLAY_PAD) / VRG_OVERLAY_CELL_W;
+    fit = fit < 8 ? 8 : fit > (int)sizeof o->text[0] - 1 ? (int)sizeof o->text[0] - 1 : fit;
+    for (int first = 1; *text && o->lines < VRG_OVERLAY_LINES; first = 0) {
+        int indent = first ? 0 : 2, room = fit - indent, len = (int)strlen(text), cut = len;
+        if (len > room) { /* at the last space that fits, else mid-word */
+            for (cut = room; cut > 0 && text[cut] != ' '; cut--)
+                ;
+            cut = cut > 0 ? cut : room;
+        }
+        snprintf(o->text[o->lines++], sizeof o->text[0], "%*s%.*s", indent, "", cut, text);
+        text += cut;
+        while (*text == ' ')
+            text++;
+    }
+}
+
 void vrg_overlay_layer_clear(vrg_overlay_layer *l) { memset(l->pixels, 0, (size_t)l->width * l->height * 4); }
 
 void vrg_overlay_box(vrg_overlay_layer *l, int x, int y, int w, int h, const uint8_t rgba[4])

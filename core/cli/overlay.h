@@ -22,6 +22,9 @@ typedef struct vrg_overlay_layer {
 void vrg_overlay_clear(vrg_overlay *o);
 /* Lines past VRG_OVERLAY_LINES are not kept: callers leave room. */
 void vrg_overlay_line(vrg_overlay *o, const char *text);
+/* text as lines of a box at most width pixels wide: broken at spaces (a
+ * word longer than a line mid-word), the lines after the first indented. */
+void vrg_overlay_wrap(vrg_overlay *o, const char *text, int width);
 void vrg_overlay_layer_clear(vrg_overlay_layer *l);
 void vrg_overlay_box(vrg_overlay_layer *l, int x, int y, int w, int h, const uint8_t rgba[4]);
 /* The glyph of c: VRG_OVERLAY_GLYPH_H rows, bit VRG_OVERLAY_GLYPH_W - 1 the leftmost pixel. */

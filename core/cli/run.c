@@ -18,6 +18,7 @@
 #include "panel.h"
 #include "run.h"
 #include "util.h"
+#include "viewer.h"
 #include "voxrg/camera.h"
 #include "voxrg/edits.h"
 #include "voxrg/world.h"
@@ -43,10 +44,36 @@ typedef struct display_image {
 
 /* display.comp's push constants */
 typedef struct display_push {
-    int32_t mode, channel;
-    float scale;
-    int32_t linear_out, bilinear, split, overlay_on;
+    float lo[4], hi[4];
+    int32_t bar[4];
+    int32_t probe_a[2], probe_b[2];
+    int32_t size_a[2], size_b[2];
+    int32_t pass, view, channel, uint_a, uint_b;
+    float ev;
+    int32_t split, flags;
 } display_push;
+enum { DISPLAY_UNORM_A = 1, DISPLAY_UNORM_B = 2, DISPLAY_LINEAR_OUT = 4, DISPLAY_BILINEAR = 8, DISPLAY_OVERLAY_ON = 16, DISPLAY_B_VIEWED = 32 };
+/* display.comp's Stats buffer: greatest keys, ~least keys, NaN, Inf, A's and B's texel under the cursor */
+enum { STATS_MAX = 0, STATS_MIN = 6, STATS_NAN = 12, STATS_INF = 13, STATS_PROBE_A = 14, STATS_PROBE_B = 18, STATS_WORDS = 22 };
+
+/* What one side shows this frame: an image of its graph, and how it is read. */
+typedef struct display_source {
+    VkImage image;
+    VkExtent2D ext;
+    VkFormat format;
+    uint32_t uint_channels; /* an unsigned integer image: copied as it is, shown from its values */
+    int unorm;              /* 8-bit UNORM: display values */
+    int viewed;             /* through the viewer (else as it is: the output) */
+    const char *name;
+} display_source;
+
+/* A buffer of the display stage's own (host-visible: read after the frame). */
+typedef struct display_buffer {
+    VkBuffer buffer;
+    VkDeviceMemory memory;
+    VkDeviceSize size;
+    void *map;
+} display_buffer;
 
 typedef struct window_state {
     vrg_context *ctx;
@@ -91,7 +118,8 @@ typedef struct window_state {
     /* showing a resource other than the output: Tab / Shift+Tab / 0-9 */
     int shown;                /* index into vrg_graph_image_name, -1: the output */
     int shown_step;           /* pending key */
-    char shown_name[160];
+    char shown_name[256];
+    char showing[160];        /* the image the last frame left readable ("": the output) */
     /* block editing (edit.h): a right press that moves less than
      * CLICK_SLOP pixels before its release places; more is a look */
     vrg_cli_edit edit;
@@ -108,9 +136,29 @@ typedef struct window_state {
         VkPipeline pipeline;
         VkDescriptorPool pool;
         VkDescriptorSet set;
-        int mode, channel;
-        float scale;
+        display_buffer stats, ints_a, ints_b; /* the frame's figures; A's and B's integer images */
     } disp;
+    /* the viewer (viewer.h): how the shown image reads, the figures of the
+     * last frame's, the texel under the cursor */
+    vrg_viewer viewer;
+    vrg_view_stats stats;
+    char viewer_for[160]; /* the image the viewer's settings belong to ("" none yet) */
+    int viewer_reset;     /* 0: back to the output as it is */
+    int probe_side;       /* the side under the cursor: 0 A, 1 B, -1 none */
+    int probe[2][2];      /* its texel in A's and B's shown image */
+    display_source shown_src[2];
+    /* the inspector (I): every image's value at a pixel of the graph */
+    int inspect;        /* on */
+    int pinned;         /* a click fixed the pixel (else it follows the cursor) */
+    int pin_x, pin_y, pin_side;
+    int step;           /* G: one frame while paused */
+    uint64_t frames_rendered; /* A's */
+    vrg_pixel_value *table; /* the inspector's rows (vrg_graph_read_pixels) */
+    uint32_t table_rows, table_cap;
+    int table_side, table_x, table_y; /* where they were read: -1 side, none */
+    char table_error[160];
+    int probed_side;      /* the texel the last frame's figures copied: side (-1 none) */
+    int probed[2][2];
 } window_state;
 
 static VkDeviceSize overlay_bytes(const window_state *w) { return (VkDeviceSize)w->sc.extent.width * w->sc.extent.height * 4; }
@@ -311,7 +359,10 @@ static void edit_action(window_state *w, vrg_cli_edit_action action, const vrg_w
     vrg_cli_edit_apply(&w->edit, w->g, action, hit);
 }
 
-/* Left press: remove; right press and release without a drag: place.
+static int inspect_pixel(window_state *w, vrg_graph *g, int *side, uint32_t *px, uint32_t *py);
+
+/* Left press: remove (with the inspector on: pin the pixel); right press
+ * and release without a drag: place.
  * Buttons come as events so that a click within one poll is not missed. */
 static void on_mouse_button(GLFWwindow *win, int button, int action, int mods)
 {
@@ -321,7 +372,14 @@ static void on_mouse_button(GLFWwindow *win, int button, int action, int mods)
     double x, y;
     int fw, fh;
     cursor_fb(w, &x, &y, &fw, &fh);
-    if (button == GLFW_MOUSE_BUTTON_LEFT && action == GLFW_PRESS && !vrg_panel_contains(&w->panel, x, y) && !w->gb) {
+    if (w->inspect && button == GLFW_MOUSE_BUTTON_LEFT && action == GLFW_PRESS && !vrg_panel_contains(&w->panel, x, y)) {
+        /* the inspector's click: pin that pixel, or follow the cursor again */
+        int side;
+        uint32_t px, py;
+        w->pinned = !w->pinned && w->g && inspect_pixel(w, w->g, &side, &px, &py);
+        if (w->pinned)
+            w->pin_side = side, w->pin_x = (int)px, w->pin_y = (int)py;
+    } else if (button == GLFW_MOUSE_BUTTON_LEFT && action == GLFW_PRESS && !vrg_panel_contains(&w->panel, x, y) && !w->gb) {
         int got = hovered(w, &hit);
         edit_action(w, VRG_CLI_EDIT_REMOVE, got ? &hit : NULL);
     } else if (button == GLFW_MOUSE_BUTTON_RIGHT && action == GLFW_PRESS) {
@@ -411,8 +469,21 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
         w->paused = !w->paused;
     else if (key == GLFW_KEY_TAB)
         w->shown_step = mods & GLFW_MOD_SHIFT ? -1 : 1;
-    else if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9)
+    else if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9) {
         w->shown = key - GLFW_KEY_0 - 1, w->shown_step = 0; /* 0: the output, 1..9: the list */
+        w->viewer_reset = 1; /* the image's own view, the output as it is */
+    } else if (key == GLFW_KEY_V)
+        vrg_viewer_next_view(&w->viewer, mods & GLFW_MOD_SHIFT ? -1 : 1);
+    else if (key == GLFW_KEY_C)
+        vrg_viewer_next_channel(&w->viewer, mods & GLFW_MOD_SHIFT ? -1 : 1);
+    else if (key == GLFW_KEY_R)
+        vrg_viewer_hold_range(&w->viewer, &w->stats);
+    else if (key == GLFW_KEY_COMMA || key == GLFW_KEY_PERIOD)
+        vrg_viewer_expose(&w->viewer, key == GLFW_KEY_PERIOD ? 0.5f : -0.5f);
+    else if (key == GLFW_KEY_I)
+        w->inspect = !w->inspect, w->pinned = 0;
+    else if (key == GLFW_KEY_G)
+        w->step = 1;
     else if (key == GLFW_KEY_LEFT_BRACKET)
         w->time_step -= 0.5f;
     else if (key == GLFW_KEY_RIGHT_BRACKET)
@@ -470,9 +541,58 @@ static int make_image(window_state *w, display_image *im, VkExtent2D ext, VkForm
     return 0;
 }
 
+/* A host-visible buffer of at least size bytes (kept when big enough). */
+static int ensure_buffer(window_state *w, display_buffer *b, VkDeviceSize size, VkBufferUsageFlags usage)
+{
+    if (b->size >= size)
+        return 0;
+    VkDevice dev = w->dev->device;
+    if (b->buffer) {
+        vkUnmapMemory(dev, b->memory);
+        vkDestroyBuffer(dev, b->buffer, NULL);
+        vkFreeMemory(dev, b->memory, NULL);
+        *b = (display_buffer){0};
+    }
+    VkBufferCreateInfo bi = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = size, .usage = usage};
+    if (vkCreateBuffer(dev, &bi, NULL, &b->buffer) != VK_SUCCESS)
+        return -1;
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(dev, b->buffer, &req);
+    VkPhysicalDeviceMemoryProperties mp;
+    vkGetPhysicalDeviceMemoryProperties(w->dev->physical_device, &mp);
+    VkMemoryPropertyFlags want = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    for (uint32_t i = 0; i < mp.memoryTypeCount; i++)
+        if ((req.memoryTypeBits & (1u << i)) && (mp.memoryTypes[i].propertyFlags & want) == want) {
+            VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size, .memoryTypeIndex = i};
+            if (vkAllocateMemory(dev, &ai, NULL, &b->memory) != VK_SUCCESS)
+                break;
+            vkBindBufferMemory(dev, b->buffer, b->memory, 0);
+            vkMapMemory(dev, b->memory, 0, VK_WHOLE_SIZE, 0, &b->map);
+            b->size = size;
+            return 0;
+        }
+    fprintf(stderr, "error: no host-visible memory for the window's display buffers\n");
+    vkDestroyBuffer(dev, b->buffer, NULL);
+    b->buffer = VK_NULL_HANDLE;
+    return -1;
+}
+
+static void free_buffer(window_state *w, display_buffer *b)
+{
+    if (!b->buffer)
+        return;
+    vkUnmapMemory(w->dev->device, b->memory);
+    vkDestroyBuffer(w->dev->device, b->buffer, NULL);
+    vkFreeMemory(w->dev->device, b->memory, NULL);
+    *b = (display_buffer){0};
+}
+
 static void display_free(window_state *w)
 {
     VkDevice dev = w->dev->device;
+    free_buffer(w, &w->disp.stats);
+    free_buffer(w, &w->disp.ints_a);
+    free_buffer(w, &w->disp.ints_b);
     free_image(w, &w->disp.a);
     free_image(w, &w->disp.b);
     free_image(w, &w->disp.out);
@@ -491,13 +611,13 @@ static int display_pipeline(window_state *w, const char *data_dir)
     VkShaderModule sm = vrg_compile_compute_shader(w->ctx, path, NULL);
     if (!sm)
         return -1;
-    VkDescriptorSetLayoutBinding b[4] = {
-        {.binding = 0, .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, .descriptorCount = 1, .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT},
-        {.binding = 1, .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, .descriptorCount = 1, .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT},
-        {.binding = 2, .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, .descriptorCount = 1, .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT},
-        {.binding = 3, .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .descriptorCount = 1, .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT},
-    };
-    VkDescriptorSetLayoutCreateInfo sli = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO, .bindingCount = 4, .pBindings = b};
+    VkDescriptorSetLayoutBinding b[7];
+    for (uint32_t i = 0; i < 7; i++) /* the sources, the result, then the overlay, the figures, A's and B's integers */
+        b[i] = (VkDescriptorSetLayoutBinding){.binding = i, .descriptorCount = 1, .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT,
+                                              .descriptorType = i < 2    ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
+                                                                : i == 2 ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
+                                                                         : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+    VkDescriptorSetLayoutCreateInfo sli = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO, .bindingCount = 7, .pBindings = b};
     vkCreateDescriptorSetLayout(dev, &sli, NULL, &w->disp.set_layout);
     VkPushConstantRange range = {VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(display_push)};
     VkPipelineLayoutCreateInfo pli = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, .setLayoutCount = 1,
@@ -513,7 +633,7 @@ static int display_pipeline(window_state *w, const char *data_dir)
     if (res != VK_SUCCESS)
         return -1;
     VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1},
-                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4}};
     VkDescriptorPoolCreateInfo dpi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, .maxSets = 1, .poolSizeCount = 3, .pPoolSizes = sizes};
     vkCreateDescriptorPool(dev, &dpi, NULL, &w->disp.pool);
     VkDescriptorSetAllocateInfo dai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO, .descriptorPool = w->disp.pool,
@@ -526,41 +646,47 @@ static int display_pipeline(window_state *w, const char *data_dir)
     return vkCreateSampler(dev, &si, NULL, &w->disp.sampler) == VK_SUCCESS ? 0 : -1;
 }
 
-/* The display stage for these sizes: A's and B's sources as rgba32f at
- * their render sizes, the window-sized result, and the descriptors (written
- * each frame: the previous frame has ended, and the staging buffer may have
- * grown). */
-static int display_prepare(window_state *w, VkExtent2D ext_a, VkExtent2D ext_b)
+/* The display stage for these sources: A's and B's float copies (rgba32f
+ * at their render sizes; an integer image goes to its buffer instead), the
+ * window-sized result, the figures' buffer, and the descriptors (written
+ * each frame: the previous frame has ended, and buffers may have grown). */
+static int display_prepare(window_state *w, const display_source *a, const display_source *b)
 {
     const VkImageUsageFlags src_usage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    const VkBufferUsageFlags ints_usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     if (!w->disp.pipeline && display_pipeline(w, vrg_data_dir()) != 0)
         return -1;
-    if ((w->disp.a.extent.width != ext_a.width || w->disp.a.extent.height != ext_a.height) &&
-        make_image(w, &w->disp.a, ext_a, VK_FORMAT_R32G32B32A32_SFLOAT, src_usage) != 0)
+    if ((w->disp.a.extent.width != a->ext.width || w->disp.a.extent.height != a->ext.height) &&
+        make_image(w, &w->disp.a, a->ext, VK_FORMAT_R32G32B32A32_SFLOAT, src_usage) != 0)
         return -1;
-    if (ext_b.width && (w->disp.b.extent.width != ext_b.width || w->disp.b.extent.height != ext_b.height) &&
-        make_image(w, &w->disp.b, ext_b, VK_FORMAT_R32G32B32A32_SFLOAT, src_usage) != 0)
+    if (b->image && (w->disp.b.extent.width != b->ext.width || w->disp.b.extent.height != b->ext.height) &&
+        make_image(w, &w->disp.b, b->ext, VK_FORMAT_R32G32B32A32_SFLOAT, src_usage) != 0)
         return -1;
     if ((w->disp.out.extent.width != w->sc.extent.width || w->disp.out.extent.height != w->sc.extent.height) &&
         make_image(w, &w->disp.out, w->sc.extent, VK_FORMAT_R16G16B16A16_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT) != 0)
         return -1;
-    VkDescriptorImageInfo a = {.sampler = w->disp.sampler, .imageView = w->disp.a.view, .imageLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkDescriptorImageInfo b = a;
-    if (ext_b.width)
-        b.imageView = w->disp.b.view;
+    if (ensure_buffer(w, &w->disp.stats, STATS_WORDS * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT) != 0 ||
+        ensure_buffer(w, &w->disp.ints_a, a->uint_channels ? 4ull * a->uint_channels * a->ext.width * a->ext.height : 16, ints_usage) != 0 ||
+        ensure_buffer(w, &w->disp.ints_b, b->uint_channels ? 4ull * b->uint_channels * b->ext.width * b->ext.height : 16, ints_usage) != 0)
+        return -1;
+    VkDescriptorImageInfo ia = {.sampler = w->disp.sampler, .imageView = w->disp.a.view, .imageLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkDescriptorImageInfo ib = ia;
+    if (b->image)
+        ib.imageView = w->disp.b.view;
     VkDescriptorImageInfo out = {.imageView = w->disp.out.view, .imageLayout = VK_IMAGE_LAYOUT_GENERAL};
-    VkDescriptorBufferInfo layer = {.buffer = w->staging, .offset = 0, .range = overlay_bytes(w)};
-    VkWriteDescriptorSet wr[4] = {
-        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = w->disp.set, .dstBinding = 0, .descriptorCount = 1,
-         .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, .pImageInfo = &a},
-        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = w->disp.set, .dstBinding = 1, .descriptorCount = 1,
-         .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, .pImageInfo = &b},
-        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = w->disp.set, .dstBinding = 2, .descriptorCount = 1,
-         .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, .pImageInfo = &out},
-        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = w->disp.set, .dstBinding = 3, .descriptorCount = 1,
-         .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .pBufferInfo = &layer},
-    };
-    vkUpdateDescriptorSets(w->dev->device, 4, wr, 0, NULL);
+    VkDescriptorBufferInfo bufs[4] = {{w->staging, 0, overlay_bytes(w)},
+                                      {w->disp.stats.buffer, 0, VK_WHOLE_SIZE},
+                                      {w->disp.ints_a.buffer, 0, VK_WHOLE_SIZE},
+                                      {w->disp.ints_b.buffer, 0, VK_WHOLE_SIZE}};
+    VkWriteDescriptorSet wr[7];
+    for (uint32_t i = 0; i < 7; i++)
+        wr[i] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = w->disp.set, .dstBinding = i, .descriptorCount = 1,
+                                       .descriptorType = i < 2    ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
+                                                         : i == 2 ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
+                                                                  : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                       .pImageInfo = i == 0 ? &ia : i == 1 ? &ib : i == 2 ? &out : NULL,
+                                       .pBufferInfo = i >= 3 ? &bufs[i - 3] : NULL};
+    vkUpdateDescriptorSets(w->dev->device, 7, wr, 0, NULL);
     return 0;
 }
 
@@ -574,71 +700,106 @@ static void image_barrier(VkCommandBuffer cmd, VkImage image, VkPipelineStageFla
     vkCmdPipelineBarrier2(cmd, &dep);
 }
 
-/* src (in TRANSFER_SRC, left so) to an rgba32f image the shader reads. */
-static void to_float(VkCommandBuffer cmd, VkImage src, VkExtent2D ext, VkImage dst)
+static void buffer_barrier(VkCommandBuffer cmd, VkBuffer buffer, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                           VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access)
+{
+    VkBufferMemoryBarrier2 b = {.sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2, .srcStageMask = src_stage, .srcAccessMask = src_access,
+                                .dstStageMask = dst_stage, .dstAccessMask = dst_access, .buffer = buffer, .size = VK_WHOLE_SIZE};
+    VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .bufferMemoryBarrierCount = 1, .pBufferMemoryBarriers = &b};
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+/* src (in TRANSFER_SRC, left so) to what the shader reads: an rgba32f
+ * image, or an integer image's texels as they are into its buffer. */
+static void to_float(VkCommandBuffer cmd, const display_source *src, VkImage dst, VkBuffer ints)
 {
     const VkPipelineStageFlags2 xfer = VK_PIPELINE_STAGE_2_TRANSFER_BIT, cs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    VkExtent2D ext = src->ext;
+    if (src->uint_channels) { /* the last frame's display read it */
+        buffer_barrier(cmd, ints, cs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        VkBufferImageCopy region = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {ext.width, ext.height, 1}};
+        vkCmdCopyImageToBuffer(cmd, src->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, ints, 1, &region);
+        buffer_barrier(cmd, ints, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, cs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+        return;
+    }
     image_barrier(cmd, dst, cs, 0, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     VkImageBlit blit = {.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                         .srcOffsets = {{0, 0, 0}, {(int32_t)ext.width, (int32_t)ext.height, 1}},
                         .dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                         .dstOffsets = {{0, 0, 0}, {(int32_t)ext.width, (int32_t)ext.height, 1}}};
-    vkCmdBlitImage(cmd, src, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
+    vkCmdBlitImage(cmd, src->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
     image_barrier(cmd, dst, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, cs, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 }
 
+/* The scale bar's place: along the bottom of the window, under its caption
+ * (fill_overlay draws the words around it, the shader the colours). */
+static void scale_bar_rect(const window_state *w, int32_t rect[4])
+{
+    int width = (int)w->sc.extent.width, height = (int)w->sc.extent.height;
+    int bar_w = width - 2 * VRG_OVERLAY_PAD - 16 < 320 ? width - 2 * VRG_OVERLAY_PAD - 16 : 320;
+    rect[0] = 8 + VRG_OVERLAY_PAD, rect[2] = bar_w > 16 ? bar_w : 0, rect[3] = 10;
+    rect[1] = height - VRG_OVERLAY_PAD - VRG_OVERLAY_LINE_H - 4 - rect[3];
+}
+
 /* Records the display stage: A (and B) upscaled to the window with the
- * overlay over them, into disp.out, left in TRANSFER_SRC for the swapchain. */
-static void display_record(window_state *w, VkImage src, VkExtent2D ext, VkImage src_b, VkExtent2D ext_b, int as_is)
+ * overlay over them, into disp.out, left in TRANSFER_SRC for the swapchain.
+ * With the viewer on, first the figures of the shown images and the texels
+ * under the cursor (read after the frame: the next frame's auto range). */
+static void display_record(window_state *w, const display_source *a, const display_source *b)
 {
     VkCommandBuffer cmd = w->cmd;
     const VkPipelineStageFlags2 xfer = VK_PIPELINE_STAGE_2_TRANSFER_BIT, cs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    to_float(cmd, src, ext, w->disp.a.image);
-    if (src_b)
-        to_float(cmd, src_b, ext_b, w->disp.b.image);
+    to_float(cmd, a, w->disp.a.image, w->disp.ints_a.buffer);
+    if (b->image)
+        to_float(cmd, b, w->disp.b.image, w->disp.ints_b.buffer);
     image_barrier(cmd, w->disp.out.image, xfer, 0, cs, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, w->disp.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, w->disp.layout, 0, 1, &w->disp.set, 0, NULL);
     uint32_t width = w->sc.extent.width, height = w->sc.extent.height;
-    display_push pc = {as_is ? 6 : w->disp.mode, w->disp.channel, w->disp.scale, w->srgb, w->bilinear,
-                       src_b ? (int32_t)(w->divider * (float)width) : (int32_t)width, !w->hide_overlay};
+    int viewed = a->viewed;
+    display_push pc = {.view = viewed ? (int32_t)w->viewer.view : VRG_VIEW_AS_IS, .channel = (int32_t)w->viewer.channel,
+                       .uint_a = (int32_t)a->uint_channels, .uint_b = (int32_t)b->uint_channels, .ev = w->viewer.ev,
+                       .split = b->image ? (int32_t)(w->divider * (float)width) : (int32_t)width,
+                       .size_a = {(int32_t)a->ext.width, (int32_t)a->ext.height}, .size_b = {(int32_t)b->ext.width, (int32_t)b->ext.height},
+                       .probe_a = {w->probe[0][0], w->probe[0][1]}, .probe_b = {w->probe[1][0], w->probe[1][1]}};
+    pc.flags = (a->unorm ? DISPLAY_UNORM_A : 0) | (b->unorm ? DISPLAY_UNORM_B : 0) | (w->srgb ? DISPLAY_LINEAR_OUT : 0) |
+               (w->bilinear ? DISPLAY_BILINEAR : 0) | (!w->hide_overlay ? DISPLAY_OVERLAY_ON : 0) | (b->viewed ? DISPLAY_B_VIEWED : 0);
+    w->probed_side = viewed ? w->probe_side : -1;
+    memcpy(w->probed, w->probe, sizeof w->probed);
+    if (viewed) {
+        vrg_viewer_range(&w->viewer, &w->stats, pc.lo, pc.hi);
+        scale_bar_rect(w, pc.bar);
+        /* the figures start from none: the last frame's reads of them ended */
+        buffer_barrier(cmd, w->disp.stats.buffer, cs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, xfer,
+                       VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        vkCmdFillBuffer(cmd, w->disp.stats.buffer, 0, STATS_WORDS * 4, 0);
+        buffer_barrier(cmd, w->disp.stats.buffer, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, cs,
+                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        uint32_t mw = a->ext.width > b->ext.width ? a->ext.width : b->ext.width, mh = a->ext.height > b->ext.height ? a->ext.height : b->ext.height;
+        vkCmdPushConstants(cmd, w->disp.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pc, &pc);
+        vkCmdDispatch(cmd, (mw + 7) / 8, (mh + 7) / 8, 1);
+        buffer_barrier(cmd, w->disp.stats.buffer, cs, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    }
+    pc.pass = 1;
     vkCmdPushConstants(cmd, w->disp.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pc, &pc);
     vkCmdDispatch(cmd, (width + 7) / 8, (height + 7) / 8, 1);
     image_barrier(cmd, w->disp.out.image, cs, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, xfer, VK_ACCESS_2_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
 }
 
-/* How a resource is best seen, from its name (docs: voxrg run --help). */
-static void display_mode(window_state *w, const char *name)
+/* After the frame: the figures the display stage measured, for the next
+ * frame's range and the overlay. */
+static void read_stats(window_state *w)
 {
-    w->disp.mode = 0, w->disp.channel = 0, w->disp.scale = 1;
-    size_t n = strlen(name);
-#define ENDS_WITH(s) (n >= sizeof(s) - 1 && strcmp(name + n - (sizeof(s) - 1), s) == 0)
-    /* the temporal passes' debug outputs (default names PASS.SLOT), as grey */
-    if (ENDS_WITH(".disocclusion"))
-        w->disp.mode = 4; /* 1 where the history restarted */
-    else if (ENDS_WITH(".reprojection"))
-        w->disp.mode = 4, w->disp.channel = 3, w->disp.scale = 0.25f; /* how the history was read: 0 none .. 4 */
-    else if (ENDS_WITH(".clamp"))
-        w->disp.mode = 4, w->disp.scale = 4; /* how far the clamp moved the history */
-    else if (ENDS_WITH(".occupancy"))
-        w->disp.mode = 4, w->disp.scale = 1.0f / 64; /* the samples a surface cache's cells hold */
-    else if (ENDS_WITH(".variance"))
-        w->disp.mode = 4, w->disp.scale = 20; /* svgf_variance's and mean_variance's variance, in red */
-    else if (strstr(name, "normal"))
-        w->disp.mode = 1;
-    else if (strstr(name, "depth"))
-        w->disp.mode = 2, w->disp.scale = 300;
-    else if (strstr(name, "motion"))
-        w->disp.mode = 3, w->disp.scale = 0.1f;
-    else if (strstr(name, "length"))
-        w->disp.mode = 4, w->disp.scale = 1.0f / 32;
-    else if (strstr(name, "variance"))
-        w->disp.mode = 4, w->disp.channel = 3, w->disp.scale = 20;
-    else if (strstr(name, "position"))
-        w->disp.mode = 5;
-#undef ENDS_WITH
+    const uint32_t *u = w->disp.stats.map;
+    vrg_view_stats *s = &w->stats;
+    for (int i = 0; i < VRG_VIEW_STAT_SLOTS; i++) {
+        s->max[i] = u[STATS_MAX + i] ? vrg_view_unkey(u[STATS_MAX + i]) : 0.0f;
+        s->min[i] = u[STATS_MIN + i] ? vrg_view_unkey(~u[STATS_MIN + i]) : 1.0f; /* none finite: min > max */
+    }
+    s->nan = u[STATS_NAN], s->inf = u[STATS_INF];
+    s->valid = 1;
 }
 
 /* A screenshot of what the window showed, from the staging buffer. */
@@ -682,7 +843,7 @@ static int next_screenshot(const char *out, int *shot, char *file, size_t cap)
 
 /* One presentation: the display stage's result copied onto the next
  * swapchain image (a blit: it converts to the swapchain's format). */
-static int present(window_state *w, VkImage src, VkExtent2D src_ext, VkImage src_b, VkExtent2D ext_b, const char *screenshot, int as_is)
+static int present(window_state *w, const display_source *a, const display_source *b, const char *screenshot)
 {
     VkDevice dev = w->dev->device;
     uint32_t index;
@@ -691,13 +852,13 @@ static int present(window_state *w, VkImage src, VkExtent2D src_ext, VkImage src
         return 1;
     if (res != VK_SUCCESS && res != VK_SUBOPTIMAL_KHR)
         return -1;
-    if (display_prepare(w, src_ext, src_b ? ext_b : (VkExtent2D){0, 0}) != 0)
+    if (display_prepare(w, a, b) != 0)
         return -1;
     VkImage dst = w->sc.images[index];
     vkResetCommandBuffer(w->cmd, 0);
     VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
     vkBeginCommandBuffer(w->cmd, &bi);
-    display_record(w, src, src_ext, src_b, ext_b, as_is);
+    display_record(w, a, b);
     const VkPipelineStageFlags2 xfer = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
     image_barrier(w->cmd, dst, xfer, 0, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     int32_t dw = (int32_t)w->sc.extent.width, dh = (int32_t)w->sc.extent.height;
@@ -734,6 +895,8 @@ static int present(window_state *w, VkImage src, VkExtent2D src_ext, VkImage src
     res = vkQueuePresentKHR(w->dev->queue, &pi);
     /* the display reads the graph's output: done before the graph writes it again */
     vkWaitForFences(dev, 1, &w->done, VK_TRUE, UINT64_MAX);
+    if (a->viewed)
+        read_stats(w);
     if (screenshot)
         write_screenshot(w, screenshot);
     return res == VK_ERROR_OUT_OF_DATE_KHR || res == VK_SUBOPTIMAL_KHR ? 1 : res == VK_SUCCESS ? 0 : -1;
@@ -774,6 +937,182 @@ static void fill_details(vrg_overlay *ov, const vrg_run_options *o, vrg_graph *g
         vrg_overlay_line(ov, keys[i]);
 }
 
+/* A graph's label: its file's name (the folder is in the title). */
+static const char *file_name(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    return slash && slash[1] ? slash + 1 : path;
+}
+
+/* --ab: each side's label over its own half, the graph's file and the image
+ * shown, kept inside the window however far the divider went (one side's
+ * under the other's where both do not fit). */
+static void ab_labels(window_state *w, const vrg_run_options *o, vrg_overlay_layer *l)
+{
+    static const uint8_t white[4] = {255, 255, 255, 255}, back[4] = {0, 0, 0, 140};
+    int split = (int)(w->divider * (float)l->width), width = (int)l->width;
+    char label[2][256];
+    for (int k = 0; k < 2; k++) {
+        const display_source *s = &w->shown_src[k];
+        int other = k && s->name && w->shown_src[0].name && strcmp(s->name, w->shown_src[0].name) != 0;
+        snprintf(label[k], sizeof label[k], "%c: %s%s%s", k ? 'B' : 'A', file_name(k ? o->ab : o->graph), other ? ", " : "",
+                 other ? s->name : "");
+    }
+    int lw[2] = {vrg_overlay_text_width(label[0]) + 8, vrg_overlay_text_width(label[1]) + 8};
+    int x[2] = {split - lw[0] - 4, split + 4}, y[2] = {4, 4};
+    for (int k = 0; k < 2; k++)
+        x[k] = x[k] + lw[k] > width ? width - lw[k] : x[k], x[k] = x[k] < 0 ? 0 : x[k];
+    if (x[0] + lw[0] > x[1]) /* they would overlap: B's under A's */
+        y[1] += VRG_OVERLAY_LINE_H + 4;
+    for (int k = 0; k < 2; k++) {
+        vrg_overlay_box(l, x[k], y[k], lw[k], VRG_OVERLAY_LINE_H + 4, back);
+        vrg_overlay_text(l, x[k] + 4, y[k] + 2, label[k], white);
+    }
+}
+
+/* The viewer's line: the value under the cursor in the image shown on that
+ * side, as stored (the last frame's). */
+static void viewer_lines(window_state *w, vrg_overlay *ov)
+{
+    int k = w->probed_side;
+    if (k < 0 || !w->stats.valid)
+        return;
+    const display_source *s = &w->shown_src[k];
+    if (!s->viewed || !s->name)
+        return;
+    const uint32_t *u = (const uint32_t *)w->disp.stats.map + (k ? STATS_PROBE_B : STATS_PROBE_A);
+    char value[160], line[512];
+    uint32_t ch = s->uint_channels ? s->uint_channels : vrg_view_format_channels(s->format);
+    vrg_view_texel(value, sizeof value, u, ch, s->uint_channels != 0);
+    snprintf(line, sizeof line, "%s%s %d,%d: %s", w->gb ? (k ? "B " : "A ") : "", s->name, w->probed[k][0], w->probed[k][1], value);
+    vrg_overlay_wrap(ov, line, (int)w->layer.width);
+}
+
+/* The scale bar's words: what is mapped above it, the values at its ends
+ * and middle under it (the shader draws its colours between). */
+static void scale_bar_words(window_state *w, vrg_overlay_layer *l)
+{
+    static const uint8_t white[4] = {255, 255, 255, 255}, back[4] = {0, 0, 0, 160};
+    int32_t bar[4];
+    scale_bar_rect(w, bar);
+    if (!bar[2])
+        return;
+    char caption[320], lo[32], mid[32], hi[32];
+    vrg_viewer_caption(&w->viewer, &w->stats, w->shown_src[0].unorm, caption, sizeof caption);
+    vrg_viewer_bar_labels(&w->viewer, &w->stats, lo, mid, hi);
+    vrg_overlay cap;
+    vrg_overlay_clear(&cap);
+    vrg_overlay_wrap(&cap, caption, bar[2] + 16 > (int)l->width ? (int)l->width : bar[2] + 16 + 2 * VRG_OVERLAY_PAD);
+    int top = bar[1] - 4 - cap.lines * VRG_OVERLAY_LINE_H - VRG_OVERLAY_PAD;
+    int box_w = bar[2] + 16;
+    for (int i = 0; i < cap.lines; i++)
+        box_w = vrg_overlay_text_width(cap.text[i]) + 2 * VRG_OVERLAY_PAD > box_w ? vrg_overlay_text_width(cap.text[i]) + 2 * VRG_OVERLAY_PAD : box_w;
+    vrg_overlay_box(l, bar[0] - 8, top, box_w, (int)l->height - top, back);
+    for (int i = 0; i < cap.lines; i++)
+        vrg_overlay_text(l, bar[0] - 8 + VRG_OVERLAY_PAD, top + VRG_OVERLAY_PAD + i * VRG_OVERLAY_LINE_H, cap.text[i], white);
+    int ly = bar[1] + bar[3] + 3;
+    vrg_overlay_text(l, bar[0], ly, lo, white);
+    int mw = vrg_overlay_text_width(mid), hw = vrg_overlay_text_width(hi);
+    if (bar[0] + vrg_overlay_text_width(lo) + 12 < bar[0] + bar[2] / 2 - mw / 2 && bar[0] + bar[2] / 2 + mw / 2 + 12 < bar[0] + bar[2] - hw)
+        vrg_overlay_text(l, bar[0] + bar[2] / 2 - mw / 2, ly, mid, white);
+    vrg_overlay_text(l, bar[0] + bar[2] - hw, ly, hi, white);
+}
+
+/* The inspector's pixel: the pinned one, or the one under the cursor, in
+ * the graph's pixels, and the side it is on; 0 when there is none. */
+static int inspect_pixel(window_state *w, vrg_graph *g, int *side, uint32_t *px, uint32_t *py)
+{
+    uint32_t rw, rh;
+    vrg_graph_size(g, &rw, &rh);
+    if (w->pinned) {
+        *side = w->pin_side, *px = (uint32_t)w->pin_x, *py = (uint32_t)w->pin_y;
+        return *px < rw && *py < rh; /* a resize may have left it outside */
+    }
+    double x, y;
+    int fw, fh;
+    cursor_fb(w, &x, &y, &fw, &fh);
+    if (w->looking || x < 0 || y < 0 || x >= w->sc.extent.width || y >= w->sc.extent.height)
+        return 0;
+    *side = w->gb && x >= (int)(w->divider * (float)w->sc.extent.width);
+    *px = (uint32_t)floor((floor(x) + 0.5) * rw / w->sc.extent.width);
+    *py = (uint32_t)floor((floor(y) + 0.5) * rh / w->sc.extent.height);
+    return 1;
+}
+
+/* I: every image's value at the pixel, read after this frame (the last one
+ * rendered when frozen). */
+static void inspect_read(window_state *w, vrg_graph *g, vrg_graph *gb)
+{
+    int side;
+    uint32_t x, y;
+    w->table_rows = 0, w->table_side = -1, w->table_error[0] = '\0';
+    if (!inspect_pixel(w, g, &side, &x, &y))
+        return;
+    vrg_graph *x_graph = side && gb ? gb : g;
+    int n = vrg_graph_read_pixels(x_graph, x, y, w->table, w->table_cap);
+    if (n > (int)w->table_cap) { /* room for all of them, and again */
+        vrg_pixel_value *more = realloc(w->table, sizeof *more * (size_t)n);
+        if (!more) {
+            snprintf(w->table_error, sizeof w->table_error, "out of memory for %d rows", n);
+            return;
+        }
+        w->table = more, w->table_cap = (uint32_t)n;
+        n = vrg_graph_read_pixels(x_graph, x, y, w->table, w->table_cap);
+    }
+    if (n < 0) {
+        snprintf(w->table_error, sizeof w->table_error, "pixel %u,%u not read (see the terminal)", x, y);
+        return;
+    }
+    w->table_rows = (uint32_t)n, w->table_side = side, w->table_x = (int)x, w->table_y = (int)y;
+}
+
+/* The inspector's table: a title (the pixel, how it is chosen, the frame),
+ * then a row per image in schedule order: pass, resource, value. */
+static void inspector_lines(window_state *w, vrg_overlay *ov)
+{
+    char line[512];
+    if (w->table_side < 0) {
+        snprintf(line, sizeof line, "inspect: %s", w->table_error[0] ? w->table_error : "move the cursor over the picture, or click a pixel");
+        vrg_overlay_wrap(ov, line, (int)w->layer.width);
+        return;
+    }
+    snprintf(line, sizeof line, "inspect %s%d,%d (%s), frame %llu%s", w->gb ? (w->table_side ? "B " : "A ") : "", w->table_x, w->table_y,
+             w->pinned ? "pinned: click to follow the cursor" : "under the cursor: click to pin", (unsigned long long)w->frames_rendered,
+             w->paused ? " frozen (f: go on, g: one more)" : "");
+    vrg_overlay_wrap(ov, line, (int)w->layer.width);
+    int pass_w = 4, res_w = 8;
+    for (uint32_t i = 0; i < w->table_rows; i++) {
+        const vrg_pixel_value *r = &w->table[i];
+        int pl = (int)strlen(r->pass), rl = (int)strlen(r->resource) + (r->prev ? 5 : 0);
+        pass_w = pl > pass_w ? pl : pass_w, res_w = rl > res_w ? rl : res_w;
+    }
+    pass_w = pass_w > 24 ? 24 : pass_w, res_w = res_w > 32 ? 32 : res_w;
+    uint32_t drawn = 0;
+    int room = ((int)w->layer.height - 2 * VRG_OVERLAY_PAD) / VRG_OVERLAY_LINE_H - 2; /* lines the window holds, less the rates' and this one's */
+    room = room > VRG_OVERLAY_LINES - 2 ? VRG_OVERLAY_LINES - 2 : room;
+    for (uint32_t i = 0; i < w->table_rows && ov->lines < room; i++, drawn++) {
+        const vrg_pixel_value *r = &w->table[i];
+        char res[160], value[160] = "";
+        snprintf(res, sizeof res, "%s%s", r->resource, r->prev ? "@prev" : "");
+        size_t n = 0;
+        for (uint32_t c = 0; r->kept && c < r->channels && c < 4 && n < sizeof value; c++) {
+            char one[40];
+            if (r->is_uint)
+                snprintf(one, sizeof one, "%.0f", r->value[c]);
+            else
+                vrg_view_value(one, sizeof one, r->value[c]);
+            int k = snprintf(value + n, sizeof value - n, "%s%s", c ? " " : "", one);
+            n += k > 0 ? (size_t)k : 0;
+        }
+        snprintf(line, sizeof line, "%-*.*s %-*.*s %s", pass_w, pass_w, r->pass, res_w, res_w, res, r->kept ? value : "(not kept)");
+        vrg_overlay_wrap(ov, line, (int)w->layer.width);
+    }
+    if (drawn < w->table_rows) { /* said, not dropped silently */
+        snprintf(line, sizeof line, "(%u more rows: a taller window shows them)", w->table_rows - drawn);
+        vrg_overlay_line(ov, line);
+    }
+}
+
 /* The overlay layer: one compact line (rates, what is shown, the last
  * reload), the reload error if any, --ab's labels over their halves, the
  * details on F1 and the panel on M. */
@@ -781,7 +1120,6 @@ static void fill_overlay(window_state *w, const vrg_run_options *o, vrg_graph *g
 {
     static double smooth_ms = 0;
     smooth_ms = smooth_ms > 0 ? 0.9 * smooth_ms + 0.1 * dt * 1e3 : dt * 1e3;
-    static const uint8_t white[4] = {255, 255, 255, 255}, back[4] = {0, 0, 0, 140};
     vrg_overlay_layer *l = &w->layer;
     vrg_overlay_layer_clear(l);
     vrg_overlay ov;
@@ -796,9 +1134,10 @@ static void fill_overlay(window_state *w, const vrg_run_options *o, vrg_graph *g
     char scale[48] = "";
     if (!w->fixed_w)
         snprintf(scale, sizeof scale, "  scale %g%s", w->scale, w->scale_auto ? " (auto, CPU)" : "");
-    snprintf(line, sizeof line, "%.1f fps %.1f ms  %ux%u%s  %.60s%s%s", smooth_ms > 0 ? 1e3 / smooth_ms : 0.0, smooth_ms, rw, rh, scale,
+    char first[512];
+    snprintf(first, sizeof first, "%.1f fps %.1f ms  %ux%u%s  %s%s%s", smooth_ms > 0 ? 1e3 / smooth_ms : 0.0, smooth_ms, rw, rh, scale,
              w->shown_name, reload, w->paused ? "  paused" : "");
-    vrg_overlay_line(&ov, line);
+    vrg_overlay_wrap(&ov, first, (int)l->width); /* a long name goes on, not off the window */
     const char *err = vrg_graph_reload_error(g) ? vrg_graph_reload_error(g) : gb ? vrg_graph_reload_error(gb) : NULL;
     for (int n = 0; err && *err && n < 3; n++) { /* its first lines: FILE:LINE: error: ... */
         const char *end = strchr(err, '\n');
@@ -819,21 +1158,102 @@ static void fill_overlay(window_state *w, const vrg_run_options *o, vrg_graph *g
     }
     if (hover_on)
         vrg_cli_edit_outline(g, &hover, l);
+    if (w->shown_src[0].viewed)
+        viewer_lines(w, &ov);
+    if (w->inspect)
+        inspector_lines(w, &ov);
     if (w->details)
         fill_details(&ov, o, g, gb);
     int bw, bh;
-    if (gb) { /* each side's label at the top of its own half */
-        int split = (int)(w->divider * (float)l->width), y = 4;
-        snprintf(line, sizeof line, "A: %.70s", o->graph);
-        vrg_overlay_box(l, split - vrg_overlay_text_width(line) - 12, y, vrg_overlay_text_width(line) + 8, VRG_OVERLAY_LINE_H + 4, back);
-        vrg_overlay_text(l, split - vrg_overlay_text_width(line) - 8, y + 2, line, white);
-        snprintf(line, sizeof line, "B: %.70s", o->ab);
-        vrg_overlay_box(l, split + 4, y, vrg_overlay_text_width(line) + 8, VRG_OVERLAY_LINE_H + 4, back);
-        vrg_overlay_text(l, split + 8, y + 2, line, white);
-    }
+    if (gb) /* each side's label at the top of its own half */
+        ab_labels(w, o, l);
     vrg_overlay_draw(&ov, l, 0, gb ? VRG_OVERLAY_LINE_H + 8 : 0, -1, &bw, &bh);
+    if (w->shown_src[0].viewed)
+        scale_bar_words(w, l);
     if (w->panel.open)
         vrg_panel_draw(&w->panel, w->panel.side && gb ? gb : g, w->panel.side && gb ? o->ab : o->graph, l);
+}
+
+static int has_image(const vrg_graph *g, const char *name)
+{
+    for (uint32_t i = 0; i < vrg_graph_image_count(g); i++)
+        if (strcmp(vrg_graph_image_name(g, i), name) == 0)
+            return 1;
+    return 0;
+}
+
+/* Integer formats the display stage reads from their 32-bit words; others
+ * (16- and 8-bit, signed) it cannot show. */
+static uint32_t uint_channels(VkFormat f)
+{
+    return f == VK_FORMAT_R32_UINT ? 1 : f == VK_FORMAT_R32G32_UINT ? 2 : f == VK_FORMAT_R32G32B32A32_UINT ? 4 : 0;
+}
+
+static int shown_integer(VkFormat f)
+{
+    return f == VK_FORMAT_R16_UINT || f == VK_FORMAT_R8_UINT || f == VK_FORMAT_R32_SINT || f == VK_FORMAT_R16_SINT || f == VK_FORMAT_R8_SINT ||
+           f == VK_FORMAT_R32G32_SINT || f == VK_FORMAT_R32G32B32A32_SINT || f == VK_FORMAT_R16G16B16A16_UINT || f == VK_FORMAT_R8G8B8A8_UINT;
+}
+
+static int source_of(vrg_graph *g, const char *name, display_source *s)
+{
+    *s = (display_source){.name = name};
+    if (vrg_graph_image(g, name, &s->image, &s->ext, &s->format) != 0)
+        return -1;
+    s->uint_channels = uint_channels(s->format);
+    s->unorm = vrg_view_format_unorm(s->format);
+    return 0;
+}
+
+/* This frame's sources: A's shown image (or its output), B's image of the
+ * same name (or its output), whether the viewer maps them, the viewer's
+ * settings for a newly shown image, and the texel under the cursor. */
+static int choose_sources(window_state *w, vrg_graph *g, vrg_graph *gb, const char *show, display_source src[2])
+{
+    const char *name = show ? show : vrg_graph_output(g);
+    if (source_of(g, name, &src[0]) != 0)
+        return -1;
+    if (shown_integer(src[0].format)) { /* as before the viewer: said, and the output shown */
+        snprintf(w->shown_name, sizeof w->shown_name, "%s (a %s image the viewer cannot show: showing %s)", show, vrg_format_label(src[0].format),
+                 vrg_graph_output(g));
+        show = NULL;
+        if (source_of(g, name = vrg_graph_output(g), &src[0]) != 0)
+            return -1;
+    }
+    if (w->viewer_reset || strcmp(w->viewer_for, name) != 0) { /* another image: the view it reads best in */
+        vrg_viewer_defaults(&w->viewer, name, src[0].format);
+        if (!show) /* the output as it is, unless a key asks otherwise */
+            w->viewer.view = VRG_VIEW_AS_IS;
+        snprintf(w->viewer_for, sizeof w->viewer_for, "%s", name);
+        w->stats.valid = 0;
+        w->viewer_reset = 0;
+    }
+    src[0].viewed = w->viewer.view != VRG_VIEW_AS_IS;
+    if (gb) {
+        const char *name_b = show && has_image(gb, show) ? show : vrg_graph_output(gb);
+        if (source_of(gb, name_b, &src[1]) != 0)
+            return -1;
+        /* B through A's view where it shows the same image (its output when A shows A's) */
+        src[1].viewed = src[0].viewed && (!show || name_b == show);
+        if (!src[1].viewed)
+            src[1].uint_channels = 0;
+    }
+    /* the texel under the cursor on each side (the shader copies it) */
+    double x, y;
+    int fw, fh;
+    cursor_fb(w, &x, &y, &fw, &fh);
+    int split = gb ? (int)(w->divider * (float)w->sc.extent.width) : (int)w->sc.extent.width;
+    int inside = !w->looking && x >= 0 && y >= 0 && x < w->sc.extent.width && y < w->sc.extent.height;
+    w->probe_side = inside ? (x >= split) : -1;
+    for (int k = 0; k < 2; k++) {
+        w->probe[k][0] = w->probe[k][1] = -1;
+        if (inside && src[k].image && w->probe_side == k) {
+            w->probe[k][0] = (int)floor((floor(x) + 0.5) * src[k].ext.width / w->sc.extent.width);
+            w->probe[k][1] = (int)floor((floor(y) + 0.5) * src[k].ext.height / w->sc.extent.height);
+        }
+    }
+    w->shown_src[0] = src[0], w->shown_src[1] = src[1];
+    return 0;
 }
 
 /* The graph's size for a window: fixed (--size), or the window's times the
@@ -991,7 +1411,7 @@ int vrg_cli_run(const vrg_run_options *o)
     if (o->ab) { /* B: its own graph file at A's size, the same world, camera and seed */
         uint32_t aw, ah;
         vrg_graph_size(g, &aw, &ah);
-        vrg_graph_desc db = {.path = o->ab, .width = aw, .height = ah};
+        vrg_graph_desc db = {.path = o->ab, .width = aw, .height = ah, .keep_images = 1}; /* Tab shows B's image of the same name */
         if (vrg_graph_load(w.ctx, &db, &gb) != 0)
             goto out;
         char why[1024];
@@ -1057,7 +1477,7 @@ int vrg_cli_run(const vrg_run_options *o)
             fprintf(record, "%.4f  %.3f %.3f %.3f  %.2f %.2f\n", frames * vrg_graph_frame_seconds(g), cam.position[0], cam.position[1],
                     cam.position[2], remainderf(cam.yaw, 360.0f), cam.pitch);
         drive_panel(&w, o, g, gb);
-        if (gb && !w.mouse_on_panel && glfwGetMouseButton(w.window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) { /* drag the divider */
+        if (gb && !w.mouse_on_panel && !w.inspect && glfwGetMouseButton(w.window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) { /* drag the divider */
             int ww, wh;
             double mx, my;
             glfwGetWindowSize(w.window, &ww, &wh);
@@ -1065,18 +1485,30 @@ int vrg_cli_run(const vrg_run_options *o)
             w.divider = ww > 0 ? (float)(mx / ww) : 0.5f;
             w.divider = w.divider < 0 ? 0 : w.divider > 1 ? 1 : w.divider;
         }
-        /* which resource A shows: the output, or one of its images */
+        /* which image A shows: the output, or another of its images; B the
+         * same where its graph has one of that name. A frozen frame keeps
+         * the image its last frame left readable: another is shown from the
+         * next frame on (G steps one). */
         int count = (int)vrg_graph_image_count(g);
         if (w.shown_step)
             w.shown = (w.shown + 1 + w.shown_step + count + 1) % (count + 1) - 1;
         w.shown_step = 0;
         if (w.shown >= count)
             w.shown = -1;
-        const char *show = w.shown >= 0 ? vrg_graph_image_name(g, (uint32_t)w.shown) : NULL;
-        if (show && strcmp(show, vrg_graph_output(g)) == 0)
-            show = NULL;
-        vrg_graph_show(g, show);
-        snprintf(w.shown_name, sizeof w.shown_name, "%s", show ? show : vrg_graph_output(g));
+        const char *want = w.shown >= 0 ? vrg_graph_image_name(g, (uint32_t)w.shown) : NULL;
+        if (want && strcmp(want, vrg_graph_output(g)) == 0)
+            want = NULL;
+        int render = !w.paused || w.step;
+        w.step = 0;
+        if (render) {
+            snprintf(w.showing, sizeof w.showing, "%s", want ? want : "");
+            vrg_graph_show(g, want);
+            if (gb)
+                vrg_graph_show(gb, want && has_image(gb, want) ? want : NULL);
+        }
+        const char *show = w.showing[0] ? w.showing : NULL;
+        snprintf(w.shown_name, sizeof w.shown_name, "%s%s", show ? show : vrg_graph_output(g),
+                 strcmp(want ? want : "", w.showing) ? " (another from the next frame: g steps)" : "");
         vrg_graph *both[2] = {g, gb};
         for (int k = 0; k < 2 && both[k]; k++) {
             double v;
@@ -1085,9 +1517,10 @@ int vrg_cli_run(const vrg_run_options *o)
             if (w.time_step != 0 && vrg_graph_get_param(both[k], "scene.time_of_day", &v) == 0)
                 vrg_graph_set_param(both[k], "scene.time_of_day", fmod(v + w.time_step + 24.0, 24.0));
             vrg_graph_set_camera(both[k], &cam);
-            if (!w.paused && vrg_graph_frame(both[k]) != 0)
+            if (render && vrg_graph_frame(both[k]) != 0)
                 rc = 1;
         }
+        w.frames_rendered += (uint64_t)render;
         w.day_toggle = 0;
         w.time_step = 0;
         if (rc)
@@ -1109,28 +1542,15 @@ int vrg_cli_run(const vrg_run_options *o)
             break;
         }
         w.layer = (vrg_overlay_layer){w.staging_map, w.sc.extent.width, w.sc.extent.height};
-        VkImage src, src_b = VK_NULL_HANDLE;
-        VkExtent2D ext, ext_b = {0, 0};
-        VkFormat fmt;
-        int as_is = 1; /* the output goes to the swapchain as it is */
-        if (show && vrg_graph_image(g, show, &src, &ext, &fmt) == 0) {
-            /* integer images (ids) cannot be blitted: say so, show the output */
-            int integer = fmt == VK_FORMAT_R32_UINT || fmt == VK_FORMAT_R32G32_UINT || fmt == VK_FORMAT_R32G32B32A32_UINT ||
-                          fmt == VK_FORMAT_R16_UINT || fmt == VK_FORMAT_R8_UINT || fmt == VK_FORMAT_R32_SINT;
-            if (integer)
-                snprintf(w.shown_name, sizeof w.shown_name, "%s (an integer image: showing %s)", show, vrg_graph_output(g));
-            else {
-                display_mode(&w, show);
-                as_is = 0;
-            }
-        }
-        fill_overlay(&w, o, g, gb, dt);
-        if ((as_is && vrg_graph_image(g, vrg_graph_output(g), &src, &ext, &fmt) != 0) ||
-            (gb && vrg_graph_image(gb, vrg_graph_output(gb), &src_b, &ext_b, &fmt) != 0)) {
+        if (w.inspect) /* before the display copies the shown image: the table's reads leave the images as they were */
+            inspect_read(&w, g, gb);
+        display_source src[2] = {{0}, {0}};
+        if (choose_sources(&w, g, gb, show, src) != 0) {
             rc = 1;
             break;
         }
-        int pr = present(&w, src, ext, src_b, ext_b, file[0] ? file : NULL, as_is);
+        fill_overlay(&w, o, g, gb, dt);
+        int pr = present(&w, &src[0], &src[1], file[0] ? file : NULL);
         if (pr < 0) {
             fprintf(stderr, "error: presenting to the window failed\n");
             rc = 1;
@@ -1195,6 +1615,7 @@ out:
         if (w.sc.handle)
             vkDestroySwapchainKHR(w.dev->device, w.sc.handle, NULL);
         display_free(&w);
+        free(w.table);
         if (w.staging) {
             vkUnmapMemory(w.dev->device, w.staging_memory);
             vkDestroyBuffer(w.dev->device, w.staging, NULL);
