@@ -215,6 +215,11 @@ void main()
     // the views give display values; the output as it is is what the swapchain takes
     if (viewed && flag(LINEAR_OUT))
         c = linear(c);
+    // --ab: the divider, a white line edged in black, seen on any picture
+    // (under the overlay's words)
+    int d = p.x - pc.split;
+    if (b_shown && d >= -2 && d <= 1)
+        c = d == -2 || d == 1 ? vec3(0.0) : vec3(1.0);
     if (flag(OVERLAY_ON)) {
         vec4 o = unpackUnorm4x8(overlay[p.y * size.x + p.x]);
         c = mix(c, flag(LINEAR_OUT) ? linear(o.rgb) : o.rgb, o.a);
@@ -224,9 +229,5 @@ void main()
             c = flag(LINEAR_OUT) ? linear(b) : b;
         }
     }
-    // --ab: the divider, a white line edged in black, seen on any picture
-    int d = p.x - pc.split;
-    if (b_shown && d >= -2 && d <= 1)
-        c = d == -2 || d == 1 ? vec3(0.0) : vec3(1.0);
     imageStore(dst, p, vec4(c, 1.0));
 }

@@ -120,6 +120,7 @@ typedef struct window_state {
     int shown_step;           /* pending key */
     char shown_name[256];
     char showing[160];        /* the image the last frame left readable ("": the output) */
+    int shown_pending;        /* another is asked for: shown after the next frame */
     /* block editing (edit.h): a right press that moves less than
      * CLICK_SLOP pixels before its release places; more is a look */
     vrg_cli_edit edit;
@@ -1137,7 +1138,9 @@ static void fill_overlay(window_state *w, const vrg_run_options *o, vrg_graph *g
     char first[512];
     snprintf(first, sizeof first, "%.1f fps %.1f ms  %ux%u%s  %s%s%s", smooth_ms > 0 ? 1e3 / smooth_ms : 0.0, smooth_ms, rw, rh, scale,
              w->shown_name, reload, w->paused ? "  paused" : "");
-    vrg_overlay_wrap(&ov, first, (int)l->width); /* a long name goes on, not off the window */
+    vrg_overlay_line(&ov, first);
+    if (w->shown_pending)
+        vrg_overlay_line(&ov, "another image from the next frame (g steps one)");
     const char *err = vrg_graph_reload_error(g) ? vrg_graph_reload_error(g) : gb ? vrg_graph_reload_error(gb) : NULL;
     for (int n = 0; err && *err && n < 3; n++) { /* its first lines: FILE:LINE: error: ... */
         const char *end = strchr(err, '\n');
@@ -1507,8 +1510,8 @@ int vrg_cli_run(const vrg_run_options *o)
                 vrg_graph_show(gb, want && has_image(gb, want) ? want : NULL);
         }
         const char *show = w.showing[0] ? w.showing : NULL;
-        snprintf(w.shown_name, sizeof w.shown_name, "%s%s", show ? show : vrg_graph_output(g),
-                 strcmp(want ? want : "", w.showing) ? " (another from the next frame: g steps)" : "");
+        snprintf(w.shown_name, sizeof w.shown_name, "%s", show ? show : vrg_graph_output(g));
+        w.shown_pending = strcmp(want ? want : "", w.showing) != 0;
         vrg_graph *both[2] = {g, gb};
         for (int k = 0; k < 2 && both[k]; k++) {
             double v;

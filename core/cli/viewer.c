@@ -150,6 +150,9 @@ void vrg_view_value(char *out, size_t cap, double v)
         snprintf(out, cap, "%.6g", v);
 }
 
+/* The range view of rgb with one range for all three channels: said as one. */
+static int one_range(const float lo[4], const float hi[4]) { return lo[0] == lo[1] && lo[1] == lo[2] && hi[0] == hi[1] && hi[1] == hi[2]; }
+
 void vrg_viewer_caption(const vrg_viewer *v, const vrg_view_stats *s, int unorm, char *caption, size_t cap)
 {
     float lo[4], hi[4];
@@ -157,18 +160,19 @@ void vrg_viewer_caption(const vrg_viewer *v, const vrg_view_stats *s, int unorm,
     int n = 0;
     const char *ch = channel_names[v->channel];
     if (v->view == VRG_VIEW_COLOUR)
-        n = snprintf(caption, cap, "colour%s%s, %s", v->channel == VRG_CH_RGB ? "" : " of ", v->channel == VRG_CH_RGB ? "" : ch,
-                     unorm ? "as stored" : "linear shown as sRGB");
+        n = snprintf(caption, cap, "colour%s%s%s", v->channel == VRG_CH_RGB ? "" : " of ", v->channel == VRG_CH_RGB ? "" : ch,
+                     unorm ? " as stored" : ", linear as sRGB");
     else if (v->view == VRG_VIEW_DIRECTION)
         n = snprintf(caption, cap, "direction of (r, g) as hue, length as brightness");
-    else if (vrg_viewer_slot(v) < 0) {
+    else if (vrg_viewer_slot(v) < 0 && !one_range(lo, hi)) {
         char l[3][32], h[3][32];
         for (int c = 0; c < 3; c++)
             vrg_view_value(l[c], sizeof l[c], lo[c]), vrg_view_value(h[c], sizeof h[c], hi[c]);
-        n = snprintf(caption, cap, "range of each: r %s..%s g %s..%s b %s..%s", l[0], h[0], l[1], h[1], l[2], h[2]);
-    } else
-        n = snprintf(caption, cap, "%s of %s", v->view == VRG_VIEW_FALSE ? "false colour" : "grey",
-                     v->channel == VRG_CH_RGB ? "luma" : ch);
+        n = snprintf(caption, cap, "each channel: r %s..%s g %s..%s b %s..%s", l[0], h[0], l[1], h[1], l[2], h[2]);
+    } else if (vrg_viewer_slot(v) < 0)
+        n = snprintf(caption, cap, "rgb");
+    else
+        n = snprintf(caption, cap, "%s of %s", v->view == VRG_VIEW_FALSE ? "false colour" : "grey", v->channel == VRG_CH_RGB ? "luma" : ch);
     if (n < 0 || (size_t)n >= cap)
         return;
     if (v->view != VRG_VIEW_COLOUR)
@@ -187,7 +191,7 @@ void vrg_viewer_bar_labels(const vrg_viewer *v, const vrg_view_stats *s, char le
         snprintf(left, 32, "-x");
         snprintf(mid, 32, "+x (full at %.4g)", hi[0]);
         snprintf(right, 32, "-x");
-    } else if (vrg_viewer_slot(v) < 0 && v->view != VRG_VIEW_COLOUR) {
+    } else if (vrg_viewer_slot(v) < 0 && v->view != VRG_VIEW_COLOUR && !one_range(lo, hi)) {
         snprintf(left, 32, "low");
         snprintf(mid, 32, "mid");
         snprintf(right, 32, "high");
