@@ -2,8 +2,12 @@
  * printable character its own glyph, lower case apart from upper case,
  * descenders below the line), the panel's step sizes (a share of the
  * parameter's range, whatever its value) and save-as name, and the rules of
- * the automatic render scale on a CPU device. No device.
- * Usage: test_window_parts font|step|auto_scale */
+ * the automatic render scale on a CPU device, the image viewer's views
+ * (each shipped image's first view, the range the shader maps, the scale
+ * bar's words, the order-keeping keys of its figures) and the overlay's
+ * wrapped lines. No device.
+ * Usage: test_window_parts font|step|auto_scale|viewer */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,6 +15,7 @@
 #include "check.h"
 #include "overlay.h"
 #include "panel.h"
+#include "viewer.h"
 
 static int failures;
 
@@ -132,18 +137,110 @@ static int test_auto_scale(void)
     return 0;
 }
 
+/* display.comp's key(), as the shader computes it */
+static uint32_t shader_key(float f)
+{
+    uint32_t u;
+    memcpy(&u, &f, 4);
+    return u & 0x80000000u ? ~u : u | 0x80000000u;
+}
+
+static int test_viewer(void)
+{
+    static const struct {
+        const char *name;
+        VkFormat format;
+        vrg_view view;
+        vrg_view_channel channel;
+        int range_auto;
+    } first[] = {
+        {"ldr", VK_FORMAT_R8G8B8A8_UNORM, VRG_VIEW_COLOUR, VRG_CH_RGB, 1},
+        {"hazed", VK_FORMAT_R16G16B16A16_SFLOAT, VRG_VIEW_COLOUR, VRG_CH_RGB, 1},
+        {"sun", VK_FORMAT_R16_SFLOAT, VRG_VIEW_RANGE, VRG_CH_R, 1}, /* grey, not red */
+        {"ao", VK_FORMAT_R16_SFLOAT, VRG_VIEW_RANGE, VRG_CH_R, 1},
+        {"gbuffer.position", VK_FORMAT_R32G32B32A32_SFLOAT, VRG_VIEW_RANGE, VRG_CH_RGB, 1}, /* each channel's range, not fract */
+        {"gbuffer.normal", VK_FORMAT_R16G16B16A16_SFLOAT, VRG_VIEW_RANGE, VRG_CH_RGB, 0},
+        {"gbuffer.depth", VK_FORMAT_R32_SFLOAT, VRG_VIEW_FALSE, VRG_CH_R, 1},
+        {"gbuffer.motion", VK_FORMAT_R16G16_SFLOAT, VRG_VIEW_DIRECTION, VRG_CH_RGB, 1},
+        {"gbuffer.ids", VK_FORMAT_R32G32_UINT, VRG_VIEW_RANGE, VRG_CH_RGB, 1},
+        {"reproject.moments", VK_FORMAT_R32G32_SFLOAT, VRG_VIEW_FALSE, VRG_CH_R, 1},
+        {"reproject.length", VK_FORMAT_R16_SFLOAT, VRG_VIEW_FALSE, VRG_CH_R, 1},
+        {"variance.color", VK_FORMAT_R16G16B16A16_SFLOAT, VRG_VIEW_FALSE, VRG_CH_A, 1}, /* the variance in alpha */
+    };
+    for (size_t i = 0; i < sizeof first / sizeof first[0]; i++) {
+        vrg_viewer v;
+        vrg_viewer_defaults(&v, first[i].name, first[i].format);
+        CHECK(v.view == first[i].view && v.channel == first[i].channel && v.range_auto == first[i].range_auto,
+              "%s starts as %s of %s (%s), not %s of %s", first[i].name, vrg_view_name(v.view), vrg_view_channel_name(v.channel),
+              v.range_auto ? "auto" : "held", vrg_view_name(first[i].view), vrg_view_channel_name(first[i].channel));
+    }
+    /* the range: the frame's, per channel for rgb; exposure moves the top; one value sits mid-range */
+    vrg_view_stats s = {.valid = 1, .min = {-4, 0, 2, 1, 0.5f, 0}, .max = {4, 10, 2, 1, 6, 3}};
+    vrg_viewer v;
+    vrg_viewer_defaults(&v, "gbuffer.position", VK_FORMAT_R32G32B32A32_SFLOAT);
+    float lo[4], hi[4];
+    vrg_viewer_range(&v, &s, lo, hi);
+    CHECK(lo[0] == -4 && hi[0] == 4 && lo[1] == 0 && hi[1] == 10 && lo[2] == 1.5f && hi[2] == 2.5f, "position's ranges: %g..%g %g..%g %g..%g", lo[0],
+          hi[0], lo[1], hi[1], lo[2], hi[2]);
+    char caption[256], l[32], m[32], h[32];
+    vrg_viewer_caption(&v, &s, 0, caption, sizeof caption);
+    CHECK(!strcmp(caption, "each channel: r -4..4 g 0..10 b 1.5..2.5, auto"), "caption '%s'", caption);
+    vrg_viewer_next_channel(&v, 1); /* r */
+    vrg_viewer_next_view(&v, 1);    /* false colour */
+    vrg_viewer_expose(&v, 1);       /* the top halfway */
+    vrg_viewer_range(&v, &s, lo, hi);
+    CHECK(v.view == VRG_VIEW_FALSE && v.channel == VRG_CH_R && lo[0] == -4 && hi[0] == 0, "r, +1 EV: %g..%g", lo[0], hi[0]);
+    vrg_viewer_caption(&v, &s, 0, caption, sizeof caption);
+    vrg_viewer_bar_labels(&v, &s, l, m, h);
+    CHECK(!strcmp(caption, "false colour of r, auto, +1 EV") && !strcmp(l, "-4") && !strcmp(m, "-2") && !strcmp(h, "0"), "'%s': %s %s %s", caption,
+          l, m, h);
+    vrg_viewer_hold_range(&v, &s); /* held: later frames do not move it */
+    vrg_view_stats later = {.valid = 1, .min = {100, 0, 0, 0, 0, 0}, .max = {200, 1, 1, 1, 1, 1}, .nan = 3, .inf = 1};
+    vrg_viewer_range(&v, &later, lo, hi);
+    vrg_viewer_caption(&v, &later, 0, caption, sizeof caption);
+    CHECK(lo[0] == -4 && hi[0] == 0 && !strcmp(caption, "false colour of r, held, +1 EV; 3 NaN (magenta), 1 Inf (cyan)"), "held: %g..%g '%s'", lo[0],
+          hi[0], caption);
+    /* the figures' keys keep the order of the floats, and come back as they were */
+    const float values[] = {-INFINITY, -1e30f, -2.5f, -1e-40f, -0.0f, 0.0f, 1e-40f, 0.75f, 3e38f, INFINITY};
+    for (size_t i = 0; i < sizeof values / sizeof values[0]; i++) {
+        CHECK(i == 0 || shader_key(values[i - 1]) <= shader_key(values[i]), "key(%g) > key(%g)", values[i - 1], values[i]);
+        float back = vrg_view_unkey(shader_key(values[i]));
+        CHECK(!memcmp(&back, &values[i], 4), "key(%g) comes back as %g", values[i], back);
+    }
+    /* the texel under the cursor as printed */
+    float f[4] = {0.5f, -2.0f, NAN, INFINITY};
+    uint32_t bits[4];
+    memcpy(bits, f, sizeof bits);
+    vrg_view_texel(caption, sizeof caption, bits, 4, 0);
+    CHECK(!strcmp(caption, "r 0.5 g -2 b nan a inf"), "texel '%s'", caption);
+    uint32_t ids[4] = {4000000000u, 7, 0, 0};
+    vrg_view_texel(caption, sizeof caption, ids, 2, 1);
+    CHECK(!strcmp(caption, "r 4000000000 g 7"), "integer texel '%s'", caption);
+    /* wrapped lines: broken at spaces, the rest indented, a long word cut */
+    vrg_overlay o;
+    vrg_overlay_clear(&o);
+    vrg_overlay_wrap(&o, "each channel: r -4..4 g 0..10", 2 * VRG_OVERLAY_PAD + 16 * VRG_OVERLAY_CELL_W);
+    CHECK(o.lines == 2 && !strcmp(o.text[0], "each channel: r") && !strcmp(o.text[1], "  -4..4 g 0..10"), "wrapped: %d '%s' '%s'", o.lines, o.text[0],
+          o.lines > 1 ? o.text[1] : "");
+    vrg_overlay_clear(&o);
+    vrg_overlay_wrap(&o, "abcdefghijklmnopqrstuvwxyz", 2 * VRG_OVERLAY_PAD + 10 * VRG_OVERLAY_CELL_W);
+    CHECK(o.lines == 3 && !strcmp(o.text[0], "abcdefghij") && !strcmp(o.text[1], "  klmnopqr"), "a long word: %d '%s' '%s'", o.lines, o.text[0],
+          o.text[1]);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     static const struct {
         const char *name;
         int (*fn)(void);
-    } cases[] = {{"font", test_font}, {"step", test_step}, {"auto_scale", test_auto_scale}};
+    } cases[] = {{"font", test_font}, {"step", test_step}, {"auto_scale", test_auto_scale}, {"viewer", test_viewer}};
     for (size_t i = 0; argc == 2 && i < sizeof cases / sizeof cases[0]; i++)
         if (!strcmp(argv[1], cases[i].name)) {
             cases[i].fn();
             printf("%s: %s\n", cases[i].name, failures ? "FAILED" : "ok");
             return failures != 0;
         }
-    fprintf(stderr, "usage: test_window_parts font|step|auto_scale\n");
+    fprintf(stderr, "usage: test_window_parts font|step|auto_scale|viewer\n");
     return 2;
 }
