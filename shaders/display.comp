@@ -166,20 +166,24 @@ uint key(float f) // order-keeping: a greater float has a greater key
     return (u & 0x80000000u) != 0u ? ~u : u | 0x80000000u;
 }
 
+// A workgroup's figures, gathered in shared memory first: one global
+// atomic per figure and workgroup, not per texel.
+shared uint group[14];
+
 void measure(vec4 v)
 {
     if (any(isnan(v))) {
-        atomicAdd(stats[12], 1u);
+        atomicAdd(group[12], 1u);
         return;
     }
     if (any(isinf(v))) {
-        atomicAdd(stats[13], 1u);
+        atomicAdd(group[13], 1u);
         return;
     }
     float s[6] = float[6](v.x, v.y, v.z, v.w, luma(v), length(v.xy));
     for (int i = 0; i < 6; i++) {
-        atomicMax(stats[i], key(s[i]));
-        atomicMax(stats[6 + i], ~key(s[i]));
+        atomicMax(group[i], key(s[i]));
+        atomicMax(group[6 + i], ~key(s[i]));
     }
 }
 
@@ -188,7 +192,11 @@ void main()
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = imageSize(dst);
     bool b_shown = pc.split < size.x;
-    if (pc.pass == 0) { // over the larger source's texels
+    if (pc.pass == 0) { // over the larger source's texels (uniform: every invocation reaches the barriers)
+        uint i = gl_LocalInvocationIndex;
+        if (i < 14u)
+            group[i] = 0u;
+        barrier();
         if (all(lessThan(p, source_size(0)))) {
             measure(texel(0, p));
             if (p == pc.probe_a) {
@@ -205,6 +213,11 @@ void main()
                     stats[18 + c] = u[c];
             }
         }
+        barrier();
+        if (i < 12u && group[i] != 0u)
+            atomicMax(stats[i], group[i]);
+        else if (i >= 12u && i < 14u && group[i] != 0u)
+            atomicAdd(stats[i], group[i]);
         return;
     }
     if (any(greaterThanEqual(p, size)))

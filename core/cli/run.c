@@ -999,12 +999,13 @@ static void scale_bar_words(window_state *w, vrg_overlay_layer *l)
     scale_bar_rect(w, bar);
     if (!bar[2])
         return;
-    char caption[320], lo[32], mid[32], hi[32];
-    vrg_viewer_caption(&w->viewer, &w->stats, w->shown_src[0].unorm, caption, sizeof caption);
+    char what[320], caption[512], lo[32], mid[32], hi[32];
+    vrg_viewer_caption(&w->viewer, &w->stats, w->shown_src[0].unorm, what, sizeof what);
+    snprintf(caption, sizeof caption, "%s: %s", w->shown_src[0].name, what); /* the name whole here, wrapped, whatever the window */
     vrg_viewer_bar_labels(&w->viewer, &w->stats, lo, mid, hi);
     vrg_overlay cap;
     vrg_overlay_clear(&cap);
-    vrg_overlay_wrap(&cap, caption, bar[2] + 16 > (int)l->width ? (int)l->width : bar[2] + 16 + 2 * VRG_OVERLAY_PAD);
+    vrg_overlay_wrap(&cap, caption, (int)l->width - bar[0] + 8);
     int top = bar[1] - 4 - cap.lines * VRG_OVERLAY_LINE_H - VRG_OVERLAY_PAD;
     int box_w = bar[2] + 16;
     for (int i = 0; i < cap.lines; i++)

@@ -163,7 +163,7 @@ void vrg_viewer_caption(const vrg_viewer *v, const vrg_view_stats *s, int unorm,
         n = snprintf(caption, cap, "colour%s%s%s", v->channel == VRG_CH_RGB ? "" : " of ", v->channel == VRG_CH_RGB ? "" : ch,
                      unorm ? " as stored" : ", linear as sRGB");
     else if (v->view == VRG_VIEW_DIRECTION)
-        n = snprintf(caption, cap, "direction of (r, g) as hue, length as brightness");
+        n = snprintf(caption, cap, "direction of (r, g) as hue, length as brightness (full at %.4g)", hi[0]);
     else if (vrg_viewer_slot(v) < 0 && !one_range(lo, hi)) {
         char l[3][32], h[3][32];
         for (int c = 0; c < 3; c++)
@@ -189,7 +189,7 @@ void vrg_viewer_bar_labels(const vrg_viewer *v, const vrg_view_stats *s, char le
     vrg_viewer_range(v, s, lo, hi);
     if (v->view == VRG_VIEW_DIRECTION) { /* the hue of each direction, then the length that shows full */
         snprintf(left, 32, "-x");
-        snprintf(mid, 32, "+x (full at %.4g)", hi[0]);
+        snprintf(mid, 32, "+x");
         snprintf(right, 32, "-x");
     } else if (vrg_viewer_slot(v) < 0 && v->view != VRG_VIEW_COLOUR && !one_range(lo, hi)) {
         snprintf(left, 32, "low");

@@ -163,7 +163,7 @@ def scale_bar(d):
     point(win, 5, 1)
     # run.c's scale_bar_rect for a 480x288 window: 320 wide, 10 high, at (12, 252)
     bar_x, bar_y, bar_w = 12, 252, 320
-    shot = settle(win, lambda s: text_at(s, bar_x - 8 + PAD, bar_y - 4 - LINE_H) == "false colour of r, auto", "the bar's caption")
+    shot = settle(win, lambda s: text_at(s, bar_x - 8 + PAD, bar_y - 4 - LINE_H) == "gradient: false colour of r, auto", "the bar's caption")
     assert text_at(shot, bar_x, bar_y + 10 + 3).split(" ")[0] == "0", text_at(shot, bar_x, bar_y + 10 + 3)
     w, h, px = shot
     row = 12 * CELL + CELL // 2  # below the text, above the bar
