@@ -479,6 +479,8 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
         vrg_viewer_next_channel(&w->viewer, mods & GLFW_MOD_SHIFT ? -1 : 1);
     else if (key == GLFW_KEY_R)
         vrg_viewer_hold_range(&w->viewer, &w->stats);
+    else if ((key == GLFW_KEY_COMMA || key == GLFW_KEY_PERIOD) && (mods & GLFW_MOD_SHIFT))
+        vrg_viewer_move_low(&w->viewer, &w->stats, key == GLFW_KEY_PERIOD ? 1 : -1);
     else if (key == GLFW_KEY_COMMA || key == GLFW_KEY_PERIOD)
         vrg_viewer_expose(&w->viewer, key == GLFW_KEY_PERIOD ? 0.5f : -0.5f);
     else if (key == GLFW_KEY_I)
@@ -919,7 +921,7 @@ static void fill_details(vrg_overlay *ov, const vrg_run_options *o, vrg_graph *g
         vrg_graph *x = both_graphs(g, gb, k);
         snprintf(line, sizeof line, "%s%.100s: gpu %.1f ms", gb ? (k ? "B " : "A ") : "", k ? o->ab : o->graph, gpu_ms(x));
         vrg_overlay_line(ov, line);
-        for (uint32_t i = 0; i < vrg_graph_pass_count(x) && ov->lines < VRG_OVERLAY_LINES - 12; i++)
+        for (uint32_t i = 0; i < vrg_graph_pass_count(x) && ov->lines < VRG_OVERLAY_LINES - 14; i++) /* room for the keys */
             if (vrg_graph_pass_ms(x, i) >= 0) {
                 snprintf(line, sizeof line, "  %-18s %7.2f ms", vrg_graph_pass_name(x, i), vrg_graph_pass_ms(x, i));
                 vrg_overlay_line(ov, line);
@@ -929,8 +931,9 @@ static void fill_details(vrg_overlay *ov, const vrg_run_options *o, vrg_graph *g
         "wasd space shift: fly, right drag: look, scroll + -: speed",
         "left click: remove block, right click: place, e q: block type",
         "ctrl+z: undo, ctrl+y ctrl+shift+z: redo",
-        "tab 0-9: show an image, t [ ]: day, f: freeze, g: step, p: shot",
-        "v c: view, channel, r: hold range, , .: exposure, i: inspect",
+        "tab 0-9: show an image, t [ ]: day, p: screenshot",
+        "v c: view, channel, r: hold range, , .: exposure (shift: low end)",
+        "i: inspect (click: pin), f: freeze, g: one more frame",
         "n: nearest/bilinear, h: hide, f1: these details, esc: quit",
         "m f2: parameters (/: filter, pgup pgdn: pass, b: edit a or b)",
         "ctrl+s: save into the graph, ctrl+shift+s: save as a new file",
@@ -1107,11 +1110,15 @@ static void inspector_lines(window_state *w, vrg_overlay *ov)
             int k = snprintf(value + n, sizeof value - n, "%s%s", c ? " " : "", one);
             n += k > 0 ? (size_t)k : 0;
         }
+        size_t rn = strlen(r->resource);
+        int motion = r->channels == 2 && !r->prev && r->kept && (!strcmp(r->resource, "motion") || (rn > 7 && !strcmp(r->resource + rn - 7, ".motion")));
+        if (motion && isfinite(r->value[0]) && isfinite(r->value[1]) && n < sizeof value) /* passes/gbuffer: p saw last frame's point at p + 0.5 - motion */
+            snprintf(value + n, sizeof value - n, " (last frame at %.0f,%.0f)", floor(r->x + 0.5 - r->value[0]), floor(r->y + 0.5 - r->value[1]));
         snprintf(line, sizeof line, "%-*.*s %-*.*s %s", pass_w, pass_w, r->pass, res_w, res_w, res, r->kept ? value : "(not kept)");
         vrg_overlay_wrap(ov, line, (int)w->layer.width);
     }
     if (drawn < w->table_rows) { /* said, not dropped silently */
-        snprintf(line, sizeof line, "(%u more rows: a taller window shows them)", w->table_rows - drawn);
+        snprintf(line, sizeof line, "(%u more row%s: a taller window shows them)", w->table_rows - drawn, w->table_rows - drawn == 1 ? "" : "s");
         vrg_overlay_line(ov, line);
     }
 }

@@ -140,6 +140,19 @@ void vrg_viewer_hold_range(vrg_viewer *v, const vrg_view_stats *s)
     v->changed = 1;
 }
 
+void vrg_viewer_move_low(vrg_viewer *v, const vrg_view_stats *s, int dir)
+{
+    if (v->range_auto) /* held where it is, then moved */
+        vrg_viewer_hold_range(v, s);
+    for (int c = 0; c < 4; c++) {
+        float lo = v->lo[c] + 0.1f * (float)dir * (v->hi[c] - v->lo[c]);
+        v->lo[c] = lo < v->hi[c] ? lo : v->lo[c]; /* never past the top */
+    }
+    if (v->view == VRG_VIEW_AS_IS)
+        v->view = VRG_VIEW_COLOUR;
+    v->changed = 1;
+}
+
 void vrg_view_value(char *out, size_t cap, double v)
 {
     if (isnan(v))

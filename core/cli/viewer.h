@@ -55,6 +55,9 @@ void vrg_viewer_next_view(vrg_viewer *v, int dir);
 void vrg_viewer_next_channel(vrg_viewer *v, int dir);
 void vrg_viewer_hold_range(vrg_viewer *v, const vrg_view_stats *s);
 void vrg_viewer_expose(vrg_viewer *v, float stops);
+/* The range's low end a tenth of its width down (-1) or up (+1), the top
+ * kept: the range is held from then on. */
+void vrg_viewer_move_low(vrg_viewer *v, const vrg_view_stats *s, int dir);
 /* The range the shader maps, per channel (lo, hi: 4 each), exposure
  * applied; never empty (a constant image's range is its value +- 0.5). */
 void vrg_viewer_range(const vrg_viewer *v, const vrg_view_stats *s, float lo[4], float hi[4]);

@@ -200,6 +200,9 @@ static int test_viewer(void)
     vrg_viewer_caption(&v, &later, 0, caption, sizeof caption);
     CHECK(lo[0] == -4 && hi[0] == 0 && !strcmp(caption, "false colour of r, held, +1 EV; 3 NaN (magenta), 1 Inf (cyan)"), "held: %g..%g '%s'", lo[0],
           hi[0], caption);
+    vrg_viewer_move_low(&v, &later, 1); /* the held -4..4 a tenth up: -3.2..4, +1 EV: the top at -3.2 + 7.2 / 2 */
+    vrg_viewer_range(&v, &later, lo, hi);
+    CHECK(fabsf(lo[0] + 3.2f) < 1e-5f && fabsf(hi[0] - 0.4f) < 1e-5f, "low end moved: %g..%g", lo[0], hi[0]);
     /* the figures' keys keep the order of the floats, and come back as they were */
     const float values[] = {-INFINITY, -1e30f, -2.5f, -1e-40f, -0.0f, 0.0f, 1e-40f, 0.75f, 3e38f, INFINITY};
     for (size_t i = 0; i < sizeof values / sizeof values[0]; i++) {
