@@ -723,6 +723,8 @@ static void to_float(VkCommandBuffer cmd, const display_source *src, VkImage dst
         VkBufferImageCopy region = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {ext.width, ext.height, 1}};
         vkCmdCopyImageToBuffer(cmd, src->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, ints, 1, &region);
         buffer_barrier(cmd, ints, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, cs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+        /* the float copy is bound all the same: in the layout it is bound in, unread */
+        image_barrier(cmd, dst, cs, 0, cs, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         return;
     }
     image_barrier(cmd, dst, cs, 0, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);

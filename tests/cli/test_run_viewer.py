@@ -15,6 +15,9 @@ gradient has a closed form (pattern: (x/39, y/23, 0.5, 1) as halves):
   gradient, smooth's blurred, sum's final), the gradient's values exact; a
   click pins the pixel (the cursor moves, the table stays); F freezes: the
   frame number stays; G steps it by one;
+- read_twice: on tests/graphs/gbuffer_blocks.ini, an integer image (ids)
+  and a float32 one (position): the value under the cursor is the
+  inspector's row of that image;
 - ab: --ab (B's gradient with blue 0.25): Tab shows both sides' gradient,
   the value under the cursor on B is B's; the divider is drawn.
 Usage: test_run_viewer.py VOXRG TESTS_DIR OUT_DIR"""
@@ -52,7 +55,8 @@ GLYPHS = font()
 
 def text_at(shot, x0, y0):
     """The line of overlay text whose first cell's top-left is (x0, y0):
-    white pixels are the text (the boxes under it are translucent black)."""
+    white pixels are the text (the boxes under it are translucent black), up
+    to the first cell that is no glyph."""
     w, h, px = shot
     chars = []
     for c in range((w - x0) // CELL_W):
@@ -63,7 +67,9 @@ def text_at(shot, x0, y0):
                 x, y = x0 + c * CELL_W + gx * SCALE, y0 + gy * SCALE
                 bits = bits << 1 | (y < h and px(x, y) == (255, 255, 255))
             rows.append(bits)
-        chars.append(GLYPHS.get(tuple(rows), "\0"))
+        if tuple(rows) not in GLYPHS:  # not text: the picture beside or below a box
+            break
+        chars.append(GLYPHS[tuple(rows)])
     return "".join(chars).rstrip(" ")
 
 
@@ -185,18 +191,22 @@ def table(shot):
         line = text_at(shot, PAD, PAD + i * LINE_H)
         if not line.strip():
             break
-        lines.append(line)
+        if line.startswith("  ") and lines:  # a wrapped line's rest
+            lines[-1] += " " + line.strip()
+        else:
+            lines.append(line)
     at = [i for i, l in enumerate(lines) if l.startswith("inspect")]
     assert at, f"no inspector in the overlay: {lines}"
-    title = lines[at[0]]
     rows = []
     for l in lines[at[0] + 1:]:
-        if l.startswith("  "):  # the title's wrapped rest
-            title += " " + l.strip()
-            continue
         p = l.split()
-        rows.append((p[0], p[1], [float(v) for v in p[2:]]))
-    return title, rows
+        values = []
+        for v in p[2:]:  # up to a note: the motion row's "(last frame at X,Y)"
+            if v.startswith("("):
+                break
+            values.append(float(v))
+        rows.append((p[0], p[1], values))
+    return lines[at[0]], rows
 
 
 def inspector(d):
@@ -229,6 +239,27 @@ def inspector(d):
     win.close()
 
 
+def read_twice(d):
+    """An integer image and a float32 one: the value under the cursor (the
+    display stage's copy of the texel) is the inspector's for that image
+    (vrg_graph_read_pixels), read apart."""
+    graph = os.path.join(tests, "graphs", "gbuffer_blocks.ini")
+    for name, channels in (("gbuffer.ids", 2), ("gbuffer.position", 4)):
+        win = Window(voxrg, graph, d, args=("--window", "640x470", "--size", "320x235", "--filter", "nearest", "--show", name))
+        xdo("key", "i")
+        xdo("mousemove", "--window", win.wid, "301", "301")  # texel 150,150
+
+        def same(s):
+            m = re.search(re.escape(name) + r" 150,150: ((?:[rgba] \S+ ?)+)", overlay_text(s))
+            assert m, overlay_text(s)
+            viewer = [float(v) for v in m.group(1).split()[1::2]]
+            rows = {(p, r): v for p, r, v in table(s)[1]}
+            return viewer == rows[("gbuffer", name)] and len(viewer) == channels and any(viewer)
+
+        settle(win, same, f"{name}: the value under the cursor and the inspector's")
+        win.close()
+
+
 def ab(d):
     top = LINE_H + 8  # run.c: the box under the labels
     b = os.path.join(d, "b.ini")
@@ -253,7 +284,7 @@ def ab(d):
 
 
 def main():
-    return run_cases(out, (value, scale_bar, inspector, ab))
+    return run_cases(out, (value, scale_bar, inspector, read_twice, ab))
 
 
 if __name__ == "__main__":
