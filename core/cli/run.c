@@ -738,10 +738,18 @@ static void to_float(VkCommandBuffer cmd, const display_source *src, VkImage dst
 }
 
 /* The scale bar's place: along the bottom of the window, under its caption
- * (fill_overlay draws the words around it, the shader the colours). */
+ * (fill_overlay draws the words around it, the shader the colours); none
+ * in a window under VRG_BAR_MIN_W x VRG_BAR_MIN_H, where it would hide
+ * most of the picture (width 0). */
+#define VRG_BAR_MIN_W 240
+#define VRG_BAR_MIN_H 200
 static void scale_bar_rect(const window_state *w, int32_t rect[4])
 {
     int width = (int)w->sc.extent.width, height = (int)w->sc.extent.height;
+    if (width < VRG_BAR_MIN_W || height < VRG_BAR_MIN_H) {
+        rect[0] = rect[1] = rect[2] = rect[3] = 0;
+        return;
+    }
     int bar_w = width - 2 * VRG_OVERLAY_PAD - 16 < 320 ? width - 2 * VRG_OVERLAY_PAD - 16 : 320;
     rect[0] = 8 + VRG_OVERLAY_PAD, rect[2] = bar_w > 16 ? bar_w : 0, rect[3] = 10;
     rect[1] = height - VRG_OVERLAY_PAD - VRG_OVERLAY_LINE_H - 4 - rect[3];

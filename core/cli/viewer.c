@@ -45,6 +45,28 @@ void vrg_viewer_defaults(vrg_viewer *v, const char *name, VkFormat format)
 {
     *v = (vrg_viewer){.view = VRG_VIEW_COLOUR, .channel = VRG_CH_RGB, .range_auto = 1};
     uint32_t ch = vrg_view_format_channels(format);
+    size_t n = strlen(name);
+    /* the temporal passes' debug outputs (default names PASS.SLOT), as grey
+     * over the range their values take */
+    static const struct {
+        const char *suffix;
+        vrg_view_channel channel;
+        float lo, hi;
+    } debug[] = {
+        {".disocclusion", VRG_CH_R, 0, 1},    /* 1 where the history restarted */
+        {".reprojection", VRG_CH_A, 0, 4},    /* how the history was read: 0 none .. 4 */
+        {".clamp", VRG_CH_R, 0, 0.25f},       /* how far the clamp moved the history */
+        {".occupancy", VRG_CH_R, 0, 64},      /* the samples a surface cache's cells hold */
+        {".variance", VRG_CH_R, 0, 0.05f},    /* svgf_variance's and mean_variance's variance output */
+    };
+    for (size_t i = 0; i < sizeof debug / sizeof debug[0]; i++) {
+        size_t k = strlen(debug[i].suffix);
+        if (n >= k && strcmp(name + n - k, debug[i].suffix) == 0) {
+            v->view = VRG_VIEW_RANGE, v->channel = debug[i].channel, v->range_auto = 0;
+            v->lo[0] = debug[i].lo, v->hi[0] = debug[i].hi;
+            return;
+        }
+    }
     if (strstr(name, "normal")) { /* unit vectors: the fixed range shows their direction as colour */
         v->view = VRG_VIEW_RANGE, v->range_auto = 0;
         for (int c = 0; c < 4; c++)

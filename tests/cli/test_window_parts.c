@@ -166,6 +166,9 @@ static int test_viewer(void)
         {"reproject.moments", VK_FORMAT_R32G32_SFLOAT, VRG_VIEW_FALSE, VRG_CH_R, 1},
         {"reproject.length", VK_FORMAT_R16_SFLOAT, VRG_VIEW_FALSE, VRG_CH_R, 1},
         {"variance.color", VK_FORMAT_R16G16B16A16_SFLOAT, VRG_VIEW_FALSE, VRG_CH_A, 1}, /* the variance in alpha */
+        {"variance.variance", VK_FORMAT_R16_SFLOAT, VRG_VIEW_RANGE, VRG_CH_R, 0},      /* the debug outputs: grey, their range */
+        {"reproject.reprojection", VK_FORMAT_R16G16B16A16_SFLOAT, VRG_VIEW_RANGE, VRG_CH_A, 0},
+        {"cache.occupancy", VK_FORMAT_R16G16B16A16_SFLOAT, VRG_VIEW_RANGE, VRG_CH_R, 0},
     };
     for (size_t i = 0; i < sizeof first / sizeof first[0]; i++) {
         vrg_viewer v;
