@@ -97,6 +97,10 @@ static void apply_reloads(vrg_graph *g)
         g->diag.out = mem;
     int failed = 0, swapped = 0;
     for (int i = 0; i < g->pass_count; i++) {
+        /* a shader-only pass's own file is its interface too: the host's
+         * reload (a new version of the plugin) re-reads and re-checks it */
+        if (g->passes[i].plugin_rebuilt && g->passes[i].plugin->shader_pass)
+            continue;
         int r = _vrg_pipelines_reload(&g->passes[i], changed, n);
         failed |= r < 0;
         swapped += r > 0 ? r : 0;

@@ -112,6 +112,7 @@ typedef struct _vrg_plugin {
     int lib_count;
     unsigned generation; /* load order: the highest of a name is its current version */
     int users;           /* passes of live graphs running it (_vrg_plugin_acquire) */
+    struct _vrg_shader_pass *shader_pass; /* a shader-only pass (NAME.comp): its interface, else NULL */
 } _vrg_plugin;
 /* ---- crash reports (crash.c) ---- */
 /* What plugin code this thread runs now: a fatal signal names it. */

@@ -1,4 +1,7 @@
-/* Plugins are found by name on one search path; the first NAME.so wins:
+/* Plugins are found by name on one search path; the first folder holding
+ * NAME.so or NAME.comp (a shader-only pass, shader_pass.c) wins, and a
+ * folder holding both is an error naming both (which one the user meant is
+ * not for the runtime to guess):
  *   1. built-in: <exe>/plugins (the build tree; tests also the build's
  *      plugin folder), 2. installed: voxrg/plugins beside libvoxrg's own
  *      file (PREFIX/lib/voxrg/plugins, wherever the prefix was moved),
@@ -85,6 +88,7 @@ void _vrg_plugin_acquire(const _vrg_plugin *p) { ((_vrg_plugin *)p)->users++; }
 /* The plugin first (it uses them), then its libraries, last opened first. */
 static void unload(_vrg_plugin *p)
 {
+    _vrg_shader_pass_free(p);
     if (p->handle)
         dlclose(p->handle);
     while (p->lib_count > 0)
@@ -240,15 +244,44 @@ static int is_regular(const char *path)
     return stat(path, &st) == 0 && S_ISREG(st.st_mode);
 }
 
-/* Index of the first folder holding NAME.so, -1 if none; its path in `file`. */
+/* Index of the first folder holding NAME.so or NAME.comp, -1 if none; its
+ * path in `file` (NAME.so where both are: the caller refuses it then,
+ * load_ambiguous). */
 static int search_path_find(const search_path *s, const char *name, int from, char *file, size_t cap)
 {
     for (int i = from; i < s->count; i++) {
-        int n = snprintf(file, cap, "%s/%s.so", s->dirs[i].path, name);
-        if (n > 0 && n < (int)cap && access(file, F_OK) == 0)
-            return i;
+        for (int k = 1; k >= 0; k--) {
+            int n = snprintf(file, cap, "%s/%s.%s", s->dirs[i].path, name, k ? "comp" : "so");
+            if (n > 0 && n < (int)cap && access(file, F_OK) == 0) {
+                if (k) { /* NAME.so beside it wins the listing's order; load refuses both */
+                    char so[VRG_PATH_MAX + VRG_NAME_MAX + 8];
+                    n = snprintf(so, sizeof so, "%s/%s.so", s->dirs[i].path, name);
+                    if (n > 0 && n < (int)sizeof so && access(so, F_OK) == 0)
+                        snprintf(file, cap, "%s", so);
+                }
+                return i;
+            }
+        }
     }
     return -1;
+}
+
+/* Whether folder i holds both NAME.so and NAME.comp. */
+static int ambiguous(const search_path *s, int i, const char *name)
+{
+    char f[VRG_PATH_MAX + VRG_NAME_MAX + 8];
+    int both = 1;
+    for (int k = 0; k < 2 && both; k++) {
+        int n = snprintf(f, sizeof f, "%s/%s.%s", s->dirs[i].path, name, k ? "comp" : "so");
+        both = n > 0 && n < (int)sizeof f && access(f, F_OK) == 0;
+    }
+    return both;
+}
+
+static int is_shader_file(const char *path)
+{
+    size_t n = strlen(path);
+    return n > 5 && strcmp(path + n - 5, ".comp") == 0;
 }
 
 static void search_path_hint(const search_path *s, char *hint, size_t cap)
@@ -661,6 +694,10 @@ static void warn_if_writable(const _vrg_plugin *p, _vrg_diag *d, int line)
 
 static int load_file(_vrg_plugin *p, _vrg_diag *d, int line)
 {
+    if (is_shader_file(p->source)) { /* no code of its own: the same trust warning, then its interface */
+        warn_if_writable(p, d, line);
+        return _vrg_shader_pass_load(p, d, line);
+    }
     char why[1024];
     unsigned char *data = NULL;
     size_t size = 0;
@@ -714,6 +751,8 @@ static const _vrg_plugin *keep(const _vrg_plugin *p)
     _vrg_plugin *slot = free_slot(1);
     *slot = *p;
     slot->desc = &slot->desc_copy;
+    if (slot->shader_pass)
+        slot->desc_copy.name = slot->name; /* made from the shader: its name is the plugin's */
     slot->generation = ++last_generation;
     slot->users = 0;
     return slot;
@@ -721,7 +760,7 @@ static const _vrg_plugin *keep(const _vrg_plugin *p)
 
 /* ---- descriptors ---- */
 
-static const char *param_problem(const vrg_param_desc *pd, char *why, size_t cap)
+const char *_vrg_param_problem(const vrg_param_desc *pd, char *why, size_t cap)
 {
     if (pd->type < VRG_PARAM_FLOAT || pd->type > VRG_PARAM_STRING)
         return snprintf(why, cap, "type %d is none of VRG_PARAM_FLOAT, _INT, _BOOL, _STRING", (int)pd->type), why;
@@ -803,7 +842,7 @@ int _vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const 
                 fail(d, line, VRG_E_PLUGIN_BAD_DESC, NULL, "plugin '%s' (%s): two parameters named '%s' (%u and %u)", name, path, pd->name, j, i);
                 return -1;
             }
-        if ((why = param_problem(pd, buf, sizeof buf))) {
+        if ((why = _vrg_param_problem(pd, buf, sizeof buf))) {
             fail(d, line, VRG_E_PLUGIN_BAD_DESC, NULL, "plugin '%s' (%s): parameter '%s' %s", name, path, pd->name, why);
             return -1;
         }
@@ -848,7 +887,7 @@ int _vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const 
 const _vrg_plugin *_vrg_plugin_load(const char *name, const char *graph_path, const char *plugin_path, _vrg_diag *d, int line)
 {
     if (!name[0] || strchr(name, '/') || strlen(name) >= VRG_NAME_MAX) {
-        fail(d, line, VRG_E_UNKNOWN_PLUGIN, "a plugin is named by its file name without .so (at most 63 characters)", "unknown plugin '%s'", name);
+        fail(d, line, VRG_E_UNKNOWN_PLUGIN, "a plugin is named by its file name without .so or .comp (at most 63 characters)", "unknown plugin '%s'", name);
         return NULL;
     }
     search_path s;
@@ -867,14 +906,19 @@ const _vrg_plugin *_vrg_plugin_load(const char *name, const char *graph_path, co
         if (graph_path) {
             char base[VRG_PATH_MAX], beside[VRG_PATH_MAX + 2 * VRG_NAME_MAX];
             folder_of(graph_path, base, sizeof base);
-            for (int k = 0; k < 2 && !plugin_path; k++) {
-                snprintf(beside, sizeof beside, "%s/%s%s.so", base, k ? "plugins/" : "", name);
+            for (int k = 0; k < 4 && !plugin_path; k++) {
+                snprintf(beside, sizeof beside, "%s/%s%s.%s", base, k & 1 ? "plugins/" : "", name, k & 2 ? "comp" : "so");
                 if (access(beside, F_OK) == 0)
                     snprintf(hint, sizeof hint, "%s is beside the graph, but a graph's folder is searched only when the graph names it: add "
-                             "'plugin_path = %s' to [graph]", beside, k ? "plugins" : ".");
+                             "'plugin_path = %s' to [graph]", beside, k & 1 ? "plugins" : ".");
             }
         }
         fail(d, line, VRG_E_UNKNOWN_PLUGIN, hint, "unknown plugin '%s'", name);
+        goto done;
+    }
+    if (ambiguous(&s, at, name)) {
+        fail(d, line, VRG_E_PLUGIN_AMBIGUOUS, "remove or rename one of them: a name is one pass",
+             "plugin '%s' is both %s/%s.so and %s/%s.comp (%s)", name, s.dirs[at].path, name, s.dirs[at].path, name, origin_names[s.dirs[at].origin]);
         goto done;
     }
     if (!realpath(file, real))
@@ -958,17 +1002,19 @@ int _vrg_plugin_list(const _vrg_plugin **out, int max, FILE *problems, int *fail
         struct dirent *e;
         while (dir && (e = readdir(dir))) {
             size_t len = strlen(e->d_name);
-            if (len < 4 || strcmp(e->d_name + len - 3, ".so") != 0)
+            size_t ext = len >= 4 && strcmp(e->d_name + len - 3, ".so") == 0 ? 3 : len >= 6 && strcmp(e->d_name + len - 5, ".comp") == 0 ? 5 : 0;
+            if (!ext)
                 continue;
             char name[VRG_NAME_MAX];
-            if (len - 3 >= VRG_NAME_MAX) {
+            if (len - ext >= VRG_NAME_MAX) {
                 _vrg_error(&diag, VRG_E_PLUGIN_NAME_TOO_LONG, "%s/%s: the name is longer than %d characters, so no graph can name it", s.dirs[i].path, e->d_name, VRG_NAME_MAX - 1);
                 continue;
             }
-            snprintf(name, sizeof name, "%.*s", (int)(len - 3), e->d_name);
+            snprintf(name, sizeof name, "%.*s", (int)(len - ext), e->d_name);
             char file[VRG_PATH_MAX + VRG_NAME_MAX + 8];
-            /* only the file the search order picks for this name */
-            if (search_path_find(&s, name, 0, file, sizeof file) == i)
+            /* only the file the search order picks for this name, once
+             * (a folder holding both files is reported with the .so) */
+            if (search_path_find(&s, name, 0, file, sizeof file) == i && (ext == 3 || !ambiguous(&s, i, name)))
                 _vrg_plugin_load(name, NULL, NULL, &diag, 0);
         }
         if (dir)

@@ -217,6 +217,45 @@ static void access_qualifiers(spvc_compiler comp, const spvc_reflected_resource 
     b->writeonly = all_nr;
 }
 
+static _vrg_push_scalar scalar_of(spvc_basetype t)
+{
+    switch (t) {
+    case SPVC_BASETYPE_FP32: return VRG_PUSH_FLOAT;
+    case SPVC_BASETYPE_INT32: return VRG_PUSH_INT;
+    case SPVC_BASETYPE_UINT32: return VRG_PUSH_UINT;
+    case SPVC_BASETYPE_BOOLEAN: return VRG_PUSH_BOOL;
+    default: return VRG_PUSH_OTHER;
+    }
+}
+
+/* Each member of the push-constant block: name, offset, size and type. */
+static int push_members(spvc_compiler comp, spvc_type_id base_id, spvc_type type, _vrg_reflection *out)
+{
+    unsigned n = spvc_type_get_num_member_types(type);
+    out->push_members = calloc(n ? n : 1, sizeof *out->push_members);
+    if (!out->push_members)
+        return -1;
+    for (unsigned m = 0; m < n; m++) {
+        _vrg_push_member *pm = &out->push_members[m];
+        spvc_type mt = spvc_compiler_get_type_handle(comp, spvc_type_get_member_type(type, m));
+        const char *name = spvc_compiler_get_member_name(comp, base_id, m);
+        unsigned offset = 0;
+        size_t size = 0;
+        if (spvc_compiler_type_struct_member_offset(comp, type, m, &offset) != SPVC_SUCCESS ||
+            spvc_compiler_get_declared_struct_member_size(comp, type, m, &size) != SPVC_SUCCESS)
+            return -1;
+        snprintf(pm->name, sizeof pm->name, "%s", name ? name : "");
+        pm->offset = offset;
+        pm->size = (uint32_t)size;
+        pm->scalar = scalar_of(spvc_type_get_basetype(mt));
+        pm->vecsize = spvc_type_get_vector_size(mt);
+        pm->columns = spvc_type_get_columns(mt);
+        pm->array_dims = spvc_type_get_num_array_dimensions(mt);
+    }
+    out->push_member_count = (int)n;
+    return 0;
+}
+
 static int reflect_resources(spvc_compiler comp, spvc_resources res, const char *src, const char *path, _vrg_reflection *out)
 {
     static const spvc_resource_type kinds[] = {
@@ -235,6 +274,21 @@ static int reflect_resources(spvc_compiler comp, spvc_resources res, const char 
                 .binding = spvc_compiler_get_decoration(comp, list[i].id, SpvDecorationBinding),
                 .type = descriptor_type_of(kinds[k], type),
             };
+            b.image_dim = -1;
+            if (kinds[k] == SPVC_RESOURCE_TYPE_STORAGE_IMAGE || kinds[k] == SPVC_RESOURCE_TYPE_SAMPLED_IMAGE || kinds[k] == SPVC_RESOURCE_TYPE_SEPARATE_IMAGE)
+                b.image_dim = (int)spvc_type_get_image_dimension(type);
+            if (kinds[k] == SPVC_RESOURCE_TYPE_STORAGE_BUFFER || kinds[k] == SPVC_RESOURCE_TYPE_UNIFORM_BUFFER) {
+                spvc_type base = spvc_compiler_get_type_handle(comp, list[i].base_type_id);
+                size_t bytes = 0;
+                if (spvc_compiler_get_declared_struct_size(comp, base, &bytes) == SPVC_SUCCESS)
+                    b.block_bytes = bytes;
+                unsigned members = spvc_type_get_num_member_types(base);
+                if (members) {
+                    spvc_type last = spvc_compiler_get_type_handle(comp, spvc_type_get_member_type(base, members - 1));
+                    unsigned dims = spvc_type_get_num_array_dimensions(last);
+                    b.runtime_array = dims > 0 && spvc_type_get_array_dimension(last, 0) == 0;
+                }
+            }
             if (kinds[k] == SPVC_RESOURCE_TYPE_STORAGE_IMAGE)
                 b.format = vk_format_of(spvc_type_get_image_storage_format(type));
             if (kinds[k] == SPVC_RESOURCE_TYPE_STORAGE_IMAGE || kinds[k] == SPVC_RESOURCE_TYPE_STORAGE_BUFFER)
@@ -257,6 +311,8 @@ static int reflect_resources(spvc_compiler comp, spvc_resources res, const char 
         if (spvc_compiler_get_declared_struct_size(comp, type, &size) != SPVC_SUCCESS)
             return -1;
         out->push_bytes = (uint32_t)size;
+        if (push_members(comp, push[i].base_type_id, type, out) != 0)
+            return -1;
         const char *block = spvc_compiler_get_name(comp, push[i].base_type_id);
         snprintf(out->push_name, sizeof out->push_name, "%s", block && *block ? block : push[i].name);
         find_line(src, path, "push_constant", out->push_name, NULL, ANY_LINE, out->push_where, sizeof out->push_where);
@@ -289,5 +345,6 @@ int _vrg_reflect(const uint32_t *spv, size_t words, const char *src, const char 
 void _vrg_reflection_free(_vrg_reflection *r)
 {
     free(r->bindings);
+    free(r->push_members);
     memset(r, 0, sizeof *r);
 }

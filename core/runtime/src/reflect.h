@@ -10,12 +10,26 @@ typedef struct _vrg_reflected_binding {
     VkDescriptorType type;
     VkFormat format; /* storage images: the format qualifier (UNDEFINED: none) */
     int readonly, writeonly; /* storage images and buffers: declared so (every member of a buffer) */
+    int image_dim;           /* images: SpvDim (1: 2D), else -1 */
+    uint64_t block_bytes;    /* buffers: the block's declared size (a runtime array counts 0) */
+    int runtime_array;       /* buffers: the block ends in an unsized array */
     char name[64];
     char where[VRG_PATH_MAX + 16]; /* FILE:LINE of its declaration */
 } _vrg_reflected_binding;
+/* A member of the push-constant block, by name: what a runtime that packs
+ * push constants from named values needs (shader_pass.c). */
+typedef enum { VRG_PUSH_OTHER, VRG_PUSH_FLOAT, VRG_PUSH_INT, VRG_PUSH_UINT, VRG_PUSH_BOOL } _vrg_push_scalar;
+typedef struct _vrg_push_member {
+    char name[64];
+    uint32_t offset, size;
+    _vrg_push_scalar scalar; /* the element's scalar type (OTHER: a struct, double, 16-bit, ...) */
+    uint32_t vecsize, columns, array_dims;
+} _vrg_push_member;
 typedef struct _vrg_reflection {
     _vrg_reflected_binding *bindings;
     int count, cap;
+    _vrg_push_member *push_members; /* declaration order */
+    int push_member_count;
     uint32_t push_bytes; /* the push-constant block's size, 0: none */
     char push_name[64];
     char push_where[VRG_PATH_MAX + 16];

@@ -384,6 +384,13 @@ void _vrg_shader_group_size(const vrg_context *ctx, uint32_t out[2])
 
 int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, _vrg_shader_module *out, FILE *diag)
 {
+    return _vrg_shader_compile_source(ctx, path, defines, out, diag, NULL);
+}
+
+int _vrg_shader_compile_source(vrg_context *ctx, const char *path, const char *defines, _vrg_shader_module *out, FILE *diag, char **expanded)
+{
+    if (expanded)
+        *expanded = NULL;
     pthread_once(&glslang_once, glslang_init);
     memset(&out->refl, 0, sizeof out->refl);
     size_t len;
@@ -475,7 +482,10 @@ done:
     if (program)
         glslang_program_delete(program);
     glslang_shader_delete(shader);
-    free(src);
+    if (rc == 0 && expanded)
+        *expanded = src;
+    else
+        free(src);
     if (rc != 0) {
         free(out->deps);
         out->deps = NULL;

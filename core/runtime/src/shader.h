@@ -16,6 +16,9 @@ typedef struct _vrg_shader_module {
 void _vrg_shader_group_size(const vrg_context *ctx, uint32_t out[2]);
 /* ctx NULL: compiled and reflected for a GPU's workgroup shape, no module made. */
 int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, _vrg_shader_module *out, FILE *diag);
+/* The same, and on success the expanded source (includes inlined, with
+ * #line directives) in *expanded (free()). */
+int _vrg_shader_compile_source(vrg_context *ctx, const char *path, const char *defines, _vrg_shader_module *out, FILE *diag, char **expanded);
 /* The file of a shader a pass names (docs/plugin-abi.md, "Shader path"): 0
  * with it in out, or -1 with the places searched in `searched` (searched_cap
  * 0: not said). */

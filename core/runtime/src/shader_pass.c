@@ -1,0 +1,578 @@
+/* Shader-only passes: a graph's `plugin = NAME` that finds NAME.comp. The
+ * pass's interface is read from the shader itself (docs/plugin-abi.md,
+ * "A pass in one file"):
+ *   - each image or buffer binding whose instance name is in_X or out_X is
+ *     the input or output slot X, its kind, access and format taken from
+ *     the declaration; the uniform block `frame` (frame.glsl) is the input
+ *     slot `frame`;
+ *   - each member of the push-constant block is a parameter, its default,
+ *     range and help from the `// @param ...` annotation on its line; the
+ *     runtime packs the values at the members' reflected offsets;
+ *   - the first image output (lowest binding) sets the dispatch size; a
+ *     shader that includes pixel.glsl runs its pixel loop.
+ * Reflection is by name, so nothing is stated twice: the same member and
+ * binding names are what a C pass would bind by (reflect.h). */
+#define _GNU_SOURCE
+#include <ctype.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include "internal.h"
+#include "plugin_loader.h"
+#include "reflect.h"
+#include "shader.h"
+
+#define HELP_MAX 256
+
+struct _vrg_shader_pass {
+    vrg_param_desc params[VRG_MAX_PARAMS];
+    char param_names[VRG_MAX_PARAMS][VRG_NAME_MAX];
+    char param_help[VRG_MAX_PARAMS][HELP_MAX];
+    uint32_t param_offset[VRG_MAX_PARAMS];
+    _vrg_push_scalar param_scalar[VRG_MAX_PARAMS];
+    vrg_slot_desc slots[VRG_MAX_SLOTS];
+    char slot_names[VRG_MAX_SLOTS][VRG_NAME_MAX];
+    char slot_help[VRG_MAX_SLOTS][HELP_MAX];
+    char binding_res[VRG_MAX_BINDINGS][VRG_NAME_MAX + 8];
+    vrg_dispatch_desc dispatch;
+    char shader[256];
+    char help[HELP_MAX];
+};
+
+/* An error at a line of the shader (or a file it includes), counted in d. */
+static void shader_error(_vrg_diag *d, const char *file, int line, const char *hint, const char *fmt, ...) __attribute__((format(printf, 5, 6)));
+static void shader_error(_vrg_diag *d, const char *file, int line, const char *hint, const char *fmt, ...)
+{
+    char msg[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    _vrg_diag sd = {.out = d->out ? d->out : stderr, .file = file};
+    _vrg_error_at(&sd, line > 0 ? line : 1, VRG_E_SHADER_INTERFACE, hint, "%s", msg);
+    d->errors += sd.errors;
+}
+
+/* "FILE:LINE" (reflect.c's `where`) split; line 0 when none is known. */
+static int split_where(const char *where, char *file, size_t cap)
+{
+    const char *colon = strrchr(where, ':');
+    char *end = NULL;
+    long line = colon ? strtol(colon + 1, &end, 10) : 0;
+    if (!colon || !end || *end || line <= 0) {
+        snprintf(file, cap, "%s", where);
+        return 0;
+    }
+    snprintf(file, cap, "%.*s", (int)(colon - where), where);
+    return (int)line;
+}
+
+/* ---- the expanded source, line by line, with its #line bookkeeping ---- */
+
+typedef struct src_line {
+    const char *text;
+    size_t len;
+    char file[VRG_PATH_MAX];
+    int line;
+} src_line;
+
+typedef struct src_reader {
+    const char *p;
+    char file[VRG_PATH_MAX];
+    int line;
+} src_reader;
+
+static int next_line(src_reader *r, src_line *out)
+{
+    while (r->p && *r->p) {
+        const char *end = strchr(r->p, '\n');
+        size_t n = end ? (size_t)(end - r->p) : strlen(r->p);
+        const char *s = r->p;
+        while (s < r->p + n && (*s == ' ' || *s == '\t'))
+            s++;
+        const char *start = r->p;
+        r->p = end ? end + 1 : r->p + n;
+        r->line++;
+        if ((size_t)(start + n - s) >= 5 && strncmp(s, "#line", 5) == 0) {
+            char *q;
+            long l = strtol(s + 5, &q, 10);
+            const char *quote = memchr(q, '"', (size_t)(start + n - q));
+            const char *close = quote ? memchr(quote + 1, '"', (size_t)(start + n - quote - 1)) : NULL;
+            if (close)
+                snprintf(r->file, sizeof r->file, "%.*s", (int)(close - quote - 1), quote + 1);
+            r->line = (int)l - 1;
+            continue;
+        }
+        out->text = start;
+        out->len = n;
+        snprintf(out->file, sizeof out->file, "%s", r->file);
+        out->line = r->line;
+        return 1;
+    }
+    return 0;
+}
+
+static int word_char(char c) { return isalnum((unsigned char)c) || c == '_'; }
+
+/* Whether `word` occurs as a whole word in s[0..n). */
+static int has_word(const char *s, size_t n, const char *word)
+{
+    size_t w = strlen(word);
+    for (size_t i = 0; w && i + w <= n; i++)
+        if (strncmp(s + i, word, w) == 0 && (i == 0 || !word_char(s[i - 1])) && (i + w == n || !word_char(s[i + w])))
+            return 1;
+    return 0;
+}
+
+/* The code part of a line (before any // comment) and the comment's text. */
+static size_t code_len(const char *s, size_t n, const char **comment)
+{
+    *comment = NULL;
+    for (size_t i = 0; i + 1 < n; i++)
+        if (s[i] == '/' && s[i + 1] == '/') {
+            *comment = s + i + 2;
+            return i;
+        }
+    return n;
+}
+
+/* ---- @param annotations ---- */
+
+typedef struct annotation {
+    int has_default, has_min, has_max, has_help;
+    double def, min, max;
+    char help[HELP_MAX];
+} annotation;
+
+/* Parses "@param key=value ..." (text of len n after "//"); NULL, or why not. */
+static const char *parse_annotation(const char *s, size_t n, int is_bool, annotation *a, char *why, size_t cap)
+{
+    memset(a, 0, sizeof *a);
+    const char *end = s + n;
+    while (s < end && isspace((unsigned char)*s))
+        s++;
+    if ((size_t)(end - s) < 6 || strncmp(s, "@param", 6) != 0 || (end - s > 6 && !isspace((unsigned char)s[6])))
+        return "its comment is not a @param annotation";
+    s += 6;
+    for (;;) {
+        while (s < end && isspace((unsigned char)*s))
+            s++;
+        if (s >= end || *s == '\r')
+            break;
+        const char *key = s;
+        while (s < end && (isalnum((unsigned char)*s) || *s == '_'))
+            s++;
+        size_t klen = (size_t)(s - key);
+        if (!klen || s >= end || *s != '=')
+            return snprintf(why, cap, "expected key=value at '%.*s'", (int)(end - key > 24 ? 24 : end - key), key), why;
+        s++;
+        if (klen == 4 && strncmp(key, "help", 4) == 0) {
+            if (a->has_help)
+                return "help is given twice";
+            if (s >= end || *s != '"')
+                return "help's value is a \"quoted text\"";
+            s++;
+            size_t o = 0;
+            while (s < end && *s != '"') {
+                if (*s == '\\' && s + 1 < end)
+                    s++;
+                if (o + 1 < sizeof a->help)
+                    a->help[o++] = *s;
+                s++;
+            }
+            if (s >= end)
+                return "help's quoted text has no closing '\"'";
+            s++;
+            a->help[o] = '\0';
+            if (o + 1 >= sizeof a->help)
+                return snprintf(why, cap, "help is longer than %d characters", HELP_MAX - 2), why;
+            a->has_help = 1;
+            continue;
+        }
+        const char *v = s;
+        while (s < end && !isspace((unsigned char)*s))
+            s++;
+        char value[64];
+        if ((size_t)(s - v) >= sizeof value || s == v)
+            return snprintf(why, cap, "%.*s has no value", (int)klen, key), why;
+        snprintf(value, sizeof value, "%.*s", (int)(s - v), v);
+        double x;
+        char *stop;
+        if (is_bool && strcmp(value, "true") == 0)
+            x = 1;
+        else if (is_bool && strcmp(value, "false") == 0)
+            x = 0;
+        else {
+            x = strtod(value, &stop);
+            if (*stop || !isfinite(x))
+                return snprintf(why, cap, "%.*s=%s is not a number", (int)klen, key, value), why;
+        }
+        int *has;
+        double *to;
+        if (klen == 7 && strncmp(key, "default", 7) == 0)
+            has = &a->has_default, to = &a->def;
+        else if (klen == 3 && strncmp(key, "min", 3) == 0)
+            has = &a->has_min, to = &a->min;
+        else if (klen == 3 && strncmp(key, "max", 3) == 0)
+            has = &a->has_max, to = &a->max;
+        else
+            return snprintf(why, cap, "unknown key '%.*s' (default, min, max, help)", (int)klen, key), why;
+        if (*has)
+            return snprintf(why, cap, "%.*s is given twice", (int)klen, key), why;
+        *has = 1;
+        *to = x;
+    }
+    if (!a->has_default)
+        return "it has no default=";
+    if (!a->has_help)
+        return "it has no help=\"...\"";
+    if (a->has_min != a->has_max)
+        return "give both min= and max=, or neither";
+    return NULL;
+}
+
+/* The push-constant block's lines: from the line with `push_constant` to
+ * the closing brace. Each member is found on its line by name. */
+typedef struct member_line {
+    char file[VRG_PATH_MAX];
+    int line;
+    int members_on_line;
+    int is_bool;
+    const char *comment;
+    size_t comment_len;
+} member_line;
+
+static int find_member(const char *src, const char *member, const _vrg_reflection *r, member_line *out)
+{
+    src_reader rd = {.p = src};
+    src_line l;
+    int in_block = 0, depth = 0;
+    while (next_line(&rd, &l)) {
+        const char *comment;
+        size_t n = code_len(l.text, l.len, &comment);
+        if (!in_block) {
+            if (!has_word(l.text, n, "push_constant"))
+                continue;
+            in_block = 1;
+        }
+        for (size_t i = 0; i < n; i++)
+            depth += l.text[i] == '{' ? 1 : l.text[i] == '}' ? -1 : 0;
+        if (has_word(l.text, n, member) && depth > 0) {
+            snprintf(out->file, sizeof out->file, "%s", l.file);
+            out->line = l.line;
+            out->members_on_line = 0;
+            for (int m = 0; m < r->push_member_count; m++)
+                out->members_on_line += has_word(l.text, n, r->push_members[m].name);
+            out->is_bool = has_word(l.text, n, "bool");
+            out->comment = comment;
+            out->comment_len = comment ? l.len - (size_t)(comment - l.text) : 0;
+            return 0;
+        }
+        if (in_block && depth <= 0 && memchr(l.text, '}', n))
+            break;
+    }
+    return -1;
+}
+
+static int parse_params(struct _vrg_shader_pass *sp, vrg_plugin_desc *desc, const char *src, const _vrg_reflection *r, _vrg_diag *d)
+{
+    char pfile[VRG_PATH_MAX];
+    int pline = split_where(r->push_where, pfile, sizeof pfile);
+    int errors = d->errors;
+    if (r->push_member_count > VRG_MAX_PARAMS) {
+        shader_error(d, pfile, pline, NULL, "push-constant block '%s' has %d members, more than the %d parameters a pass may have", r->push_name,
+                     r->push_member_count, VRG_MAX_PARAMS);
+        return -1;
+    }
+    static const char *form = "one member per line: `float density; // @param default=0.02 min=0 max=1 help=\"what it does\"` (docs/plugin-abi.md)";
+    for (int m = 0; m < r->push_member_count; m++) {
+        const _vrg_push_member *pm = &r->push_members[m];
+        member_line ml;
+        if (find_member(src, pm->name, r, &ml) != 0) {
+            shader_error(d, pfile, pline, form, "push-constant member '%s' of block '%s': its declaring line is not found (a member named by a macro?)", pm->name,
+                         r->push_name);
+            continue;
+        }
+        if (pm->scalar == VRG_PUSH_OTHER || pm->vecsize != 1 || pm->columns != 1 || pm->array_dims) {
+            shader_error(d, ml.file, ml.line, "a pass computes vectors from scalar parameters in the shader",
+                         "push-constant member '%s' is not a scalar float, int, uint or bool: each member is a parameter", pm->name);
+            continue;
+        }
+        if (ml.members_on_line != 1) {
+            shader_error(d, ml.file, ml.line, form, "push-constant members share line %d: declare each parameter on its own line with its @param annotation", ml.line);
+            continue;
+        }
+        int is_bool = pm->scalar == VRG_PUSH_BOOL || ml.is_bool;
+        if (!ml.comment) {
+            shader_error(d, ml.file, ml.line, form, "push-constant member '%s' has no @param annotation", pm->name);
+            continue;
+        }
+        annotation a;
+        char why[256];
+        const char *problem = parse_annotation(ml.comment, ml.comment_len, is_bool, &a, why, sizeof why);
+        if (problem) {
+            shader_error(d, ml.file, ml.line, form, "push-constant member '%s': malformed @param annotation: %s", pm->name, problem);
+            continue;
+        }
+        vrg_param_desc *pd = &sp->params[m];
+        snprintf(sp->param_names[m], sizeof sp->param_names[m], "%s", pm->name);
+        snprintf(sp->param_help[m], sizeof sp->param_help[m], "%s", a.help);
+        *pd = (vrg_param_desc){.name = sp->param_names[m], .default_value = a.def, .min = a.min, .max = a.max, .help = sp->param_help[m]};
+        pd->type = is_bool ? VRG_PARAM_BOOL : pm->scalar == VRG_PUSH_FLOAT ? VRG_PARAM_FLOAT : VRG_PARAM_INT;
+        if (pm->scalar == VRG_PUSH_UINT && !is_bool) {
+            if (!a.has_min)
+                pd->min = 0, pd->max = 4294967295.0;
+            else if (a.min < 0) {
+                shader_error(d, ml.file, ml.line, NULL, "push-constant member '%s' is a uint: its min= is %g, below 0", pm->name, a.min);
+                continue;
+            }
+        }
+        if (is_bool && !a.has_min)
+            pd->min = 0, pd->max = 1;
+        sp->param_offset[m] = pm->offset;
+        sp->param_scalar[m] = is_bool ? VRG_PUSH_BOOL : pm->scalar;
+        /* the descriptor's checks (range, whole numbers), here at the line */
+        if ((problem = _vrg_param_problem(pd, why, sizeof why)))
+            shader_error(d, ml.file, ml.line, form, "push-constant member '%s': @param %s", pm->name, problem);
+    }
+    desc->params = sp->params;
+    desc->param_count = (uint32_t)r->push_member_count;
+    return d->errors > errors ? -1 : 0;
+}
+
+/* ---- slots from bindings ---- */
+
+static int by_binding(const void *a, const void *b)
+{
+    const _vrg_reflected_binding *x = *(const _vrg_reflected_binding *const *)a, *y = *(const _vrg_reflected_binding *const *)b;
+    return x->binding < y->binding ? -1 : x->binding > y->binding;
+}
+
+static int parse_slots(struct _vrg_shader_pass *sp, vrg_plugin_desc *desc, const _vrg_reflection *r, _vrg_diag *d)
+{
+    static const char *naming = "a shader-only pass's bindings are its slots by name: in_X (input X), out_X (output X), or frame.glsl's `frame` block";
+    int errors = d->errors;
+    const _vrg_reflected_binding *sorted[VRG_MAX_BINDINGS];
+    char file[VRG_PATH_MAX];
+    if (r->count > VRG_MAX_BINDINGS) {
+        int line = split_where(r->bindings[VRG_MAX_BINDINGS].where, file, sizeof file);
+        shader_error(d, file, line, NULL, "the shader declares %d bindings, more than the %d a dispatch binds", r->count, VRG_MAX_BINDINGS);
+        return -1;
+    }
+    for (int i = 0; i < r->count; i++)
+        sorted[i] = &r->bindings[i];
+    qsort(sorted, (size_t)r->count, sizeof *sorted, by_binding);
+    for (int i = 0; i < r->count; i++) {
+        const _vrg_reflected_binding *b = sorted[i];
+        int line = split_where(b->where, file, sizeof file);
+        vrg_slot_desc *s = &sp->slots[i];
+        const char *name = b->name;
+        int is_in = strncmp(name, "in_", 3) == 0 && name[3], is_out = strncmp(name, "out_", 4) == 0 && name[4];
+        int is_frame = strcmp(name, "frame") == 0 && b->type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+        if (b->set != 0) {
+            shader_error(d, file, line, NULL, "binding '%s' is in set %u: a pass binds set 0 only", name, b->set);
+            continue;
+        }
+        if ((int)b->binding != i) {
+            shader_error(d, file, line, "number the bindings 0, 1, 2, ... in any order of slots", "binding '%s' is binding %u, but the shader's bindings are not numbered 0 to %d without gaps",
+                         name, b->binding, r->count - 1);
+            continue;
+        }
+        if (!is_in && !is_out && !is_frame) {
+            shader_error(d, file, line, naming, "binding '%s' is neither in_NAME nor out_NAME, so it is no slot", name);
+            continue;
+        }
+        const char *slot = is_frame ? name : name + (is_in ? 3 : 4);
+        snprintf(sp->slot_names[i], sizeof sp->slot_names[i], "%s", slot);
+        *s = (vrg_slot_desc){.name = sp->slot_names[i], .dir = is_out ? VRG_OUT : VRG_IN, .help = sp->slot_help[i]};
+        const char *what = NULL;
+        switch (b->type) {
+        case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER:
+            s->kind = VRG_IMAGE, s->access = VRG_ACCESS_SAMPLED, what = "sampled image";
+            if (is_out)
+                shader_error(d, file, line, "an output is a storage image or buffer the shader writes", "binding '%s' is a sampler, which cannot be written: an output is a writeonly storage image", name);
+            break;
+        case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE:
+            s->kind = VRG_IMAGE, what = "storage image";
+            s->access = b->readonly ? VRG_ACCESS_STORAGE_READ : b->writeonly ? VRG_ACCESS_STORAGE_WRITE : VRG_ACCESS_STORAGE_READ_WRITE;
+            s->format = b->format;
+            if (is_in && s->access != VRG_ACCESS_STORAGE_READ)
+                shader_error(d, file, line, "declare it `readonly`, or name it out_X", "binding '%s' is an input, but its storage image is not declared readonly", name);
+            if (is_out && s->access == VRG_ACCESS_STORAGE_READ)
+                shader_error(d, file, line, "an output is writeonly (or read and written)", "binding '%s' is an output, but it is declared readonly", name);
+            if (is_out && !b->format)
+                shader_error(d, file, line, "layout(binding = N, rgba16f) uniform writeonly image2D out_X;", "binding '%s' is an output with no format qualifier: its format is the output's", name);
+            break;
+        case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER:
+            s->kind = VRG_BUFFER, what = "storage buffer";
+            s->access = b->readonly ? VRG_ACCESS_STORAGE_READ : b->writeonly ? VRG_ACCESS_STORAGE_WRITE : VRG_ACCESS_STORAGE_READ_WRITE;
+            if (is_in && s->access != VRG_ACCESS_STORAGE_READ)
+                shader_error(d, file, line, "declare it `readonly`, or name it out_X", "binding '%s' is an input, but its buffer is not declared readonly", name);
+            if (is_out && (b->runtime_array || !b->block_bytes))
+                shader_error(d, file, line, "give the array a length: the output's size is the block's", "binding '%s' is an output buffer of no fixed size (it ends in an unsized array)", name);
+            if (is_out)
+                s->size = b->block_bytes;
+            break;
+        case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER:
+            s->kind = VRG_BUFFER, s->access = VRG_ACCESS_UNIFORM, what = "uniform block";
+            if (is_out)
+                shader_error(d, file, line, NULL, "binding '%s' is a uniform block, which cannot be written: an output is a storage buffer", name);
+            break;
+        case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER:
+            s->kind = VRG_BUFFER, s->access = VRG_ACCESS_TEXEL_READ, what = "texel buffer";
+            if (is_out)
+                shader_error(d, file, line, NULL, "binding '%s' is a texel buffer, which cannot be written: an output is a storage buffer", name);
+            break;
+        case VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR:
+            s->kind = VRG_ACCEL, s->access = VRG_ACCESS_RAY_QUERY, what = "acceleration structure";
+            if (is_out)
+                shader_error(d, file, line, NULL, "binding '%s' is an acceleration structure, which a shader cannot write", name);
+            break;
+        default:
+            shader_error(d, file, line, "a slot is a sampler2D, image2D, buffer, uniform block, usamplerBuffer or accelerationStructureEXT",
+                         "binding '%s' is %s, which no slot binds", name, _vrg_descriptor_type_name(b->type));
+            break;
+        }
+        if (s->kind == VRG_IMAGE && b->image_dim != 1 /* SpvDim2D */)
+            shader_error(d, file, line, NULL, "binding '%s' is not a 2D image: slots hold 2D images", name);
+        snprintf(sp->slot_help[i], sizeof sp->slot_help[i], "%s %s (%s)", what ? what : "binding", name, b->where);
+        for (int j = 0; j < i; j++)
+            if (strcmp(sp->slot_names[j], slot) == 0 && sp->slots[j].dir == s->dir)
+                shader_error(d, file, line, NULL, "binding '%s' names slot %s.%s a second time", name, is_out ? "out" : "in", slot);
+        snprintf(sp->binding_res[i], sizeof sp->binding_res[i], "%s.%s", is_out ? "out" : "in", slot);
+        sp->dispatch.bindings[i].res = sp->binding_res[i];
+    }
+    desc->slots = sp->slots;
+    desc->slot_count = (uint32_t)r->count;
+    return d->errors > errors ? -1 : 0;
+}
+
+/* ---- the pass ---- */
+
+static void shader_pass_execute(vrg_pass *pass, VkCommandBuffer cmd)
+{
+    const struct _vrg_shader_pass *sp = pass->plugin->shader_pass;
+    unsigned char push[128] = {0};
+    for (uint32_t i = 0; i < pass->plugin->desc->param_count; i++) {
+        double v = vrg_param(pass, sp->params[i].name);
+        uint32_t word;
+        switch (sp->param_scalar[i]) {
+        case VRG_PUSH_FLOAT: {
+            float f = (float)v;
+            memcpy(&word, &f, sizeof word);
+            break;
+        }
+        case VRG_PUSH_INT: word = (uint32_t)(int32_t)v; break;
+        case VRG_PUSH_BOOL: word = v != 0; break;
+        default: word = (uint32_t)v; break;
+        }
+        memcpy(push + sp->param_offset[i], &word, sizeof word);
+    }
+    vrg_dispatch_desc d = sp->dispatch;
+    d.push = push;
+    (void)vrg_dispatch(pass, cmd, &d);
+}
+
+/* The first // comment of the file (before any code but #version): the help. */
+static void first_comment(const char *src, char *out, size_t cap)
+{
+    snprintf(out, cap, "shader-only pass");
+    src_reader rd = {.p = src};
+    src_line l;
+    while (next_line(&rd, &l)) {
+        const char *s = l.text, *end = l.text + l.len;
+        while (s < end && isspace((unsigned char)*s))
+            s++;
+        if (s == end || strncmp(s, "#version", 8) == 0 || strncmp(s, "#extension", 10) == 0 || strncmp(s, "#define", 7) == 0)
+            continue;
+        if (end - s >= 2 && s[0] == '/' && s[1] == '/') {
+            s += 2;
+            while (s < end && *s == ' ')
+                s++;
+            while (end > s && isspace((unsigned char)end[-1]))
+                end--;
+            snprintf(out, cap, "%.*s", (int)(end - s), s);
+        }
+        return;
+    }
+}
+
+int _vrg_shader_pass_load(_vrg_plugin *p, _vrg_diag *d, int line)
+{
+    char *text = NULL;
+    size_t len = 0;
+    FILE *mem = open_memstream(&text, &len);
+    FILE *out = d->out ? d->out : stderr;
+    _vrg_shader_module sm;
+    char *src = NULL;
+    /* without a device: what the shader declares does not depend on it */
+    int rc = _vrg_shader_compile_source(NULL, p->source, NULL, &sm, mem ? mem : out, &src);
+    if (mem) {
+        fclose(mem);
+        fputs(text ? text : "", out);
+        free(text);
+    }
+    if (rc != 0) {
+        _vrg_diag_code code = VRG_E_SHADER_FAILED;
+        if (line > 0)
+            _vrg_error_at(d, line, code, NULL, "plugin '%s' (%s): the shader does not compile (above)", p->name, p->source);
+        else
+            _vrg_error(d, code, "plugin '%s' (%s): the shader does not compile (above)", p->name, p->source);
+        return -1;
+    }
+    struct _vrg_shader_pass *sp = calloc(1, sizeof *sp);
+    if (!sp) {
+        free(src);
+        free(sm.deps);
+        _vrg_reflection_free(&sm.refl);
+        _vrg_error(d, VRG_E_OUT_OF_MEMORY, "plugin '%s' (%s): out of memory", p->name, p->source);
+        return -1;
+    }
+    vrg_plugin_desc *desc = &p->desc_copy;
+    memset(desc, 0, sizeof *desc);
+    desc->abi_version = VRG_ABI_VERSION;
+    snprintf(sp->shader, sizeof sp->shader, "%s", p->source);
+    first_comment(src, sp->help, sizeof sp->help);
+    *desc = (vrg_plugin_desc){.abi_version = VRG_ABI_VERSION, .name = p->name, .kind = VRG_PLUGIN_PASS, .help = sp->help, .execute = shader_pass_execute};
+    int errors = d->errors;
+    if (strlen(p->source) >= sizeof sp->shader)
+        _vrg_error(d, VRG_E_SHADER_INTERFACE, "plugin '%s': its path %s is longer than %zu characters", p->name, p->source, sizeof sp->shader - 1);
+    parse_slots(sp, desc, &sm.refl, d);
+    parse_params(sp, desc, src, &sm.refl, d);
+    /* pixel.glsl's loop when the shader includes it, else one invocation per pixel */
+    int pixel_loop = 0;
+    for (const char *dep = sm.deps; dep && *dep;) {
+        const char *nl = strchr(dep, '\n');
+        size_t n = nl ? (size_t)(nl - dep) : strlen(dep);
+        pixel_loop |= n >= 11 && strncmp(dep + n - 11, "/pixel.glsl", 11) == 0;
+        dep = nl ? nl + 1 : dep + n;
+    }
+    sp->dispatch.shader = sp->shader;
+    sp->dispatch.push_size = sm.refl.push_bytes;
+    sp->dispatch.pixel_loop = pixel_loop;
+    desc->dispatches = &sp->dispatch;
+    desc->dispatch_count = 1;
+    free(src);
+    free(sm.deps);
+    _vrg_reflection_free(&sm.refl);
+    if (d->errors == errors && _vrg_plugin_check_desc(desc, p->name, p->source, d, line) != 0)
+        errors = -1;
+    if (d->errors > errors || errors < 0) {
+        if (line > 0)
+            _vrg_error_at(d, line, VRG_E_SHADER_INTERFACE, "docs/plugin-abi.md, \"A pass in one file\"", "plugin '%s' (%s): its interface has errors (above)",
+                          p->name, p->source);
+        free(sp);
+        memset(desc, 0, sizeof *desc);
+        return -1;
+    }
+    p->shader_pass = sp;
+    p->desc = desc;
+    return 0;
+}
+
+void _vrg_shader_pass_free(_vrg_plugin *p)
+{
+    free(p->shader_pass);
+    p->shader_pass = NULL;
+}
