@@ -41,13 +41,16 @@ static const char *usage_main =
     "'voxrg COMMAND --help' describes each; 'voxrg --version' prints the version.\n";
 
 static const char *usage_new_pass =
-    "usage: voxrg new-pass NAME [--dir DIR]\n"
+    "usage: voxrg new-pass NAME [--dir DIR] [--shader]\n"
     "Writes a ready out-of-tree pass into DIR (default: NAME; created if missing):\n"
     "NAME.c (a tint of an input image, hazed toward the horizon with the scene's\n"
     "frame uniforms: camera and sky), NAME.comp, a CMakeLists.txt that builds it\n"
     "against an installed voxrg (find_package(voxrg CONFIG), voxrg_add_pass),\n"
     "README.md (what it does, slots, parameters, cost, debug outputs) and NAME.ini,\n"
     "a graph that runs it between shipped passes. NAME is a C identifier.\n"
+    "--shader writes a one-file pass instead: NAME.comp, whose slots and parameters\n"
+    "are declared in the shader (docs/plugin-abi.md, \"A pass in one file\"), README.md\n"
+    "and NAME.ini, which finds NAME.comp beside it: no build step.\n"
     "Existing files are never overwritten. docs/out-of-tree.md.\n";
 
 static const char *usage_check =
@@ -771,10 +774,13 @@ static int cmd_bench(int argc, char **argv)
 static int cmd_new_pass(int argc, char **argv)
 {
     const char *name = NULL, *dir = NULL;
+    int shader = 0;
     for (int i = 0; i < argc; i++) {
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             fputs(usage_new_pass, stdout);
             return 0;
+        } else if (!strcmp(argv[i], "--shader")) {
+            shader = 1;
         } else if (!strcmp(argv[i], "--dir")) {
             if (i + 1 >= argc)
                 return usage_error(usage_new_pass, "%s needs a folder", "--dir");
@@ -788,7 +794,7 @@ static int cmd_new_pass(int argc, char **argv)
     }
     if (!name)
         return usage_error(usage_new_pass, "%s missing", "NAME");
-    return vrg_cli_new_pass(name, dir ? dir : name);
+    return vrg_cli_new_pass(name, dir ? dir : name, shader);
 }
 
 int main(int argc, char **argv)

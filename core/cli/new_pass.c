@@ -217,6 +217,45 @@ static const char *graph_template =
     "in.color = tinted\n"
     "out.ldr  = ldr\n";
 
+/* --shader: a one-file pass, its interface declared in the shader itself
+ * (docs/plugin-abi.md, "A pass in one file"): no build step. */
+static const char *shader_template =
+    "#version 460\n"
+    "// @NAME@: colour x tint, hazed toward the sky where the view ray meets the horizon\n"
+    "#define FRAME_BINDING 0\n"
+    "#include \"frame.glsl\"\n"
+    "#include \"pixel.glsl\"\n"
+    "\n"
+    "layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;\n"
+    "layout(binding = 1) uniform sampler2D in_color;\n"
+    "layout(binding = 2, rgba16f) uniform writeonly image2D out_tinted;\n"
+    "layout(push_constant) uniform Params {\n"
+    "    float red;      // @param default=1 min=0 max=16 help=\"multiplies red\"\n"
+    "    float green;    // @param default=1 min=0 max=16 help=\"multiplies green\"\n"
+    "    float blue;     // @param default=1 min=0 max=16 help=\"multiplies blue\"\n"
+    "    float strength; // @param default=1 min=0 max=1 help=\"0: the input as it is, 1: fully tinted\"\n"
+    "    float haze;     // @param default=0 min=0 max=1 help=\"the sky's colour mixed in where the view ray meets the horizon (0: none)\"\n"
+    "} params;\n"
+    "\n"
+    "void shade(ivec2 p)\n"
+    "{\n"
+    "    ivec2 size = imageSize(out_tinted);\n"
+    "    if (any(greaterThanEqual(p, size)))\n"
+    "        return;\n"
+    "    vec4 c = texelFetch(in_color, vrg_pixel_in(p, size, textureSize(in_color, 0)), 0);\n"
+    "    vec3 dir = frame_ray_dir(vec2(p), vec2(size));\n"
+    "    float level = 1.0 - abs(dir.y);\n"
+    "    c.rgb = mix(c.rgb, frame_sky(dir), params.haze * level * level * level * level);\n"
+    "    vec3 tint = mix(vec3(1.0), vec3(params.red, params.green, params.blue), params.strength);\n"
+    "    imageStore(out_tinted, p, vec4(c.rgb * tint, c.a));\n"
+    "}\n"
+    "\n"
+    "void main()\n"
+    "{\n"
+    "    for (uint k = 0u; k < VRG_PIXEL_ROWS; k++)\n"
+    "        shade(vrg_pixel(k));\n"
+    "}\n";
+
 /* A C identifier that is also a portable file name: [A-Za-z_][A-Za-z0-9_]*,
  * at most NEW_PASS_NAME_MAX characters. */
 #define NEW_PASS_NAME_MAX 48
@@ -296,6 +335,8 @@ typedef struct scaffold_file {
 static const scaffold_file files[] = {
     {".c", 0, NULL}, {".comp", 0, NULL}, {"CMakeLists.txt", 1, NULL}, {".ini", 0, NULL}, {"README.md", 1, NULL},
 };
+/* --shader: NAME.comp, NAME.ini and README.md (entries of files[]) */
+static const int shader_files[] = {1, 3, 4};
 
 static void file_path(char *out, size_t cap, const char *dir, const char *name, int i)
 {
@@ -321,7 +362,34 @@ static int make_dir(const char *dir)
     return 0;
 }
 
-int vrg_cli_new_pass(const char *name, const char *dir)
+/* The graph for a one-file pass: the C scaffold's, with the pass found
+ * beside the graph and no build step named. */
+static char *shader_graph(const char *name)
+{
+    char *g = instantiate(graph_template, name);
+    if (!g)
+        return NULL;
+    const char *from = strstr(g, "[graph]");
+    const char *old_path = "plugin_path = build\n";
+    char *at = strstr(g, old_path);
+    if (!from || !at) {
+        free(g);
+        return NULL;
+    }
+    const char *head = "; @NAME@ between shipped passes: the G-buffer's albedo, tinted and hazed,\n"
+                       "; tonemapped. @NAME@.comp beside this graph is the whole pass (no build):\n"
+                       ";   voxrg render @NAME@.ini --out out\n";
+    char *h = instantiate(head, name);
+    size_t cap = strlen(g) + (h ? strlen(h) : 0) + 64;
+    char *out = h ? malloc(cap) : NULL;
+    if (out)
+        snprintf(out, cap, "%s%.*splugin_path = .\n%s", h, (int)(at - from), from, at + strlen(old_path));
+    free(h);
+    free(g);
+    return out;
+}
+
+int vrg_cli_new_pass(const char *name, const char *dir, int shader)
 {
     if (!valid_name(name)) {
         fprintf(stderr, "error: new-pass: '%s' is not a valid pass name: a C identifier ([A-Za-z_][A-Za-z0-9_]*, "
@@ -342,10 +410,11 @@ int vrg_cli_new_pass(const char *name, const char *dir)
     }
     const char *tmpls[] = {c_template, comp_template, cmake_template, graph_template, readme_template};
     _Static_assert(sizeof tmpls / sizeof tmpls[0] == sizeof files / sizeof files[0], "a template for every scaffold file");
-    const int count = (int)(sizeof files / sizeof files[0]);
+    const int count = shader ? (int)(sizeof shader_files / sizeof shader_files[0]) : (int)(sizeof files / sizeof files[0]);
     char path[4200];
     int existing = 0;
-    for (int i = 0; i < count; i++) {
+    for (int k = 0; k < count; k++) {
+        int i = shader ? shader_files[k] : k;
         file_path(path, sizeof path, dir, name, i);
         if (access(path, F_OK) == 0) {
             fprintf(stderr, "error: new-pass: %s exists; nothing was written (new-pass never overwrites a file: "
@@ -355,9 +424,10 @@ int vrg_cli_new_pass(const char *name, const char *dir)
     }
     if (existing || make_dir(dir) != 0)
         return 1;
-    for (int i = 0; i < count; i++) {
+    for (int k = 0; k < count; k++) {
+        int i = shader ? shader_files[k] : k;
         file_path(path, sizeof path, dir, name, i);
-        char *text = instantiate(tmpls[i], name);
+        char *text = !shader ? instantiate(tmpls[i], name) : i == 1 ? instantiate(shader_template, name) : i == 3 ? shader_graph(name) : instantiate(readme_template, name);
         int rc = text ? vrg_output_write(path, text, strlen(text)) : -1;
         if (!text)
             fprintf(stderr, "error: new-pass: out of memory\n");
@@ -365,6 +435,10 @@ int vrg_cli_new_pass(const char *name, const char *dir)
         if (rc != 0)
             return 1;
         printf("wrote %s\n", path);
+    }
+    if (shader) {
+        printf("next: voxrg render %s/%s.ini --out %s/out --validate   (edit %s/%s.comp while `voxrg run` shows it: it reloads)\n", dir, name, dir, dir, name);
+        return 0;
     }
     printf("next: cmake -S %s -B %s/build -DCMAKE_PREFIX_PATH=<voxrg prefix> && cmake --build %s/build\n"
            "      voxrg render %s/%s.ini --out %s/out --validate\n", dir, dir, dir, dir, name, dir);

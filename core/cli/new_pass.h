@@ -6,5 +6,6 @@
  * an error (a file exists, a write failed), 2 for a NAME that cannot be
  * used (not a C identifier, a target name CMake keeps, a plugin already on
  * the search path). */
-int vrg_cli_new_pass(const char *name, const char *dir);
+/* shader: a one-file pass instead (NAME.comp, NAME.ini, README.md), no build. */
+int vrg_cli_new_pass(const char *name, const char *dir, int shader);
 #endif

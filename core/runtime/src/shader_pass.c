@@ -190,6 +190,10 @@ static const char *parse_annotation(const char *s, size_t n, int is_bool, annota
             a->has_help = 1;
             continue;
         }
+        int is_default = klen == 7 && strncmp(key, "default", 7) == 0, is_min = klen == 3 && strncmp(key, "min", 3) == 0,
+            is_max = klen == 3 && strncmp(key, "max", 3) == 0;
+        if (!is_default && !is_min && !is_max)
+            return snprintf(why, cap, "unknown key '%.*s' (default, min, max, help)", (int)klen, key), why;
         const char *v = s;
         while (s < end && !isspace((unsigned char)*s))
             s++;
@@ -210,14 +214,12 @@ static const char *parse_annotation(const char *s, size_t n, int is_bool, annota
         }
         int *has;
         double *to;
-        if (klen == 7 && strncmp(key, "default", 7) == 0)
+        if (is_default)
             has = &a->has_default, to = &a->def;
-        else if (klen == 3 && strncmp(key, "min", 3) == 0)
+        else if (is_min)
             has = &a->has_min, to = &a->min;
-        else if (klen == 3 && strncmp(key, "max", 3) == 0)
-            has = &a->has_max, to = &a->max;
         else
-            return snprintf(why, cap, "unknown key '%.*s' (default, min, max, help)", (int)klen, key), why;
+            has = &a->has_max, to = &a->max;
         if (*has)
             return snprintf(why, cap, "%.*s is given twice", (int)klen, key), why;
         *has = 1;
