@@ -1,0 +1,222 @@
+#!/usr/bin/env python3
+"""Shader-only passes (docs/plugin-abi.md, "A pass in one file"): the
+height fog cut out of the page is one file of at most 40 lines; its graph
+checks, lists, renders under --validate, and --set changes the picture;
+`voxrg plugins NAME` shows its slots and parameters; each broken
+interface is an error at the shader's FILE:LINE (a push member without or
+with a malformed annotation, a binding neither in_ nor out_), a graph that
+wires a buffer to its image slot or a format its declaration forbids, or
+sets a parameter it does not declare, is an error at the graph's line; a
+folder with NAME.so and NAME.comp is refused naming both; `new-pass
+--shader` writes a pass that renders; and under `render --watch` an edit
+of the file shows within BOUND frames, an interface change re-validates
+the graph, and a broken edit keeps the last good version, said with
+FILE:LINE.
+Usage: test_shader_pass.py VOXRG SOURCE_DIR OUT_DIR"""
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+VOXRG, SRC, OUT = sys.argv[1:4]
+
+BOUND = 10
+WAIT_S = 180
+failures = []
+
+
+def check(cond, what):
+    if not cond:
+        failures.append(what)
+        print("FAIL:", what, flush=True)
+    return cond
+
+
+def block(after):
+    """The fenced block after the line of docs/plugin-abi.md starting with `after`."""
+    lines = open(os.path.join(SRC, "docs", "plugin-abi.md")).read().split("\n")
+    i = next(k for k, l in enumerate(lines) if l.startswith(after))
+    start = next(k for k in range(i + 1, len(lines)) if lines[k].startswith("```"))
+    end = next(k for k in range(start + 1, len(lines)) if lines[k].startswith("```"))
+    return "\n".join(lines[start + 1:end]) + "\n"
+
+
+def save(path, text):
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def run(*args, env=None):
+    p = subprocess.run([VOXRG, *args], capture_output=True, text=True, cwd=OUT, timeout=300,
+                       env=dict(os.environ, **(env or {})))
+    return p.returncode, p.stdout + p.stderr
+
+
+def line_of(text, needle):
+    return next(k + 1 for k, l in enumerate(text.split("\n")) if needle in l)
+
+
+shutil.rmtree(OUT, ignore_errors=True)
+os.makedirs(OUT)
+FOG = block("Height fog, the whole pass")
+GRAPH = block("A graph that uses it, `plugin_path")
+comp = os.path.join(OUT, "heightfog.comp")
+graph = os.path.join(OUT, "heightfog.ini")
+save(comp, FOG)
+save(graph, GRAPH)
+check(len(FOG.rstrip("\n").split("\n")) <= 40, "the page's height fog is %d lines, more than 40" % len(FOG.split("\n")))
+
+# it works: check, plugins, render, --set
+rc, out = run("check", "heightfog.ini", "--no-device")
+check(rc == 0 and "heightfog.comp" in out, "check of the page's graph: exit %d\n%s" % (rc, out))
+rc, out = run("plugins", "heightfog", env={"VOXRG_PLUGIN_PATH": OUT})
+check(rc == 0 and re.search(r"in\.position\s+image", out) and re.search(r"out\.color\s+image\s+rgba16f", out)
+      and re.search(r"density\s+float default 0\.02", out) and "heightfog: fog toward" in out,
+      "voxrg plugins heightfog: exit %d\n%s" % (rc, out))
+rc, out = run("render", "heightfog.ini", "--size", "160x90", "--validate", "--out", "a")
+check(rc == 0, "render: exit %d\n%s" % (rc, out))
+rc, out = run("render", "heightfog.ini", "--size", "160x90", "--validate", "--out", "b", "--set", "fog.density=0.5")
+check(rc == 0, "render --set: exit %d\n%s" % (rc, out))
+rc, out = run("render", "heightfog.ini", "--size", "160x90", "--validate", "--out", "c", "--set", "fog.density=0")
+a, b, c = (open(os.path.join(OUT, d, "ldr.png"), "rb").read() for d in "abc")
+check(a != b and a != c and b != c, "--set fog.density changes nothing in the picture")
+
+
+def broken(what, old, new, where, pattern, text=None):
+    """The page's fog with old replaced by new: check fails at where's line."""
+    src = FOG.replace(old, new)
+    assert src != FOG, what
+    save(comp, src)
+    rc, out = run("check", "heightfog.ini", "--no-device")
+    want = "%s:%d: error[%s]" % (comp, line_of(src, where), "VRG-E080")
+    check(rc != 0 and want in out and re.search(pattern, out), "%s: exit %d, want '%s' and /%s/ in\n%s" % (what, rc, want, pattern, out))
+
+
+density = next(l for l in FOG.split("\n") if "float density;" in l)
+broken("a member without an annotation", density, "    float density;", "float density;", r"'density' has no @param annotation")
+broken("an unknown annotation key", "help=\"fog per", "hlp=\"fog per", "float density;", r"unknown key 'hlp'")
+broken("an annotation without a default", "default=0.02 ", "", "float density;", r"no default=")
+broken("a default outside the range", "default=0.02", "default=2", "float density;", r"default 2 lies outside \[0, 1\]")
+broken("a binding neither in_ nor out_", "in_position", "gpos", "sampler2D gpos", r"'gpos' is neither in_NAME nor out_NAME")
+save(comp, FOG)
+
+
+def graph_error(what, old, new, pattern):
+    g = GRAPH.replace(old, new)
+    assert g != GRAPH, what
+    save(graph, g)
+    rc, out = run("check", "heightfog.ini", "--no-device")
+    check(rc != 0 and re.search(r"heightfog\.ini:%d: error\[VRG-E0\d\d\]" % line_of(g, new.split("\n")[0]), out) and re.search(pattern, out),
+          "%s: exit %d, want heightfog.ini:%d and /%s/ in\n%s" % (what, rc, line_of(g, new.split("\n")[0]), pattern, out))
+
+
+graph_error("a buffer wired to an image slot", "in.position = gbuffer.position", "in.position = world",
+            r"resource 'world' is a buffer, slot 'position' of pass 'fog' takes an image")
+graph_error("a parameter the shader does not declare", "density     = 0.05", "densty      = 0.05", r"unknown key 'densty'.*\n.*parameters: density height falloff")
+save(graph, GRAPH)
+# a format the declaration forbids: position read as a readonly rgba16f image (the G-buffer's is rgba32f)
+save(comp, FOG.replace("layout(binding = 2) uniform sampler2D in_position;", "layout(binding = 2, rgba16f) uniform readonly image2D in_position;")
+     .replace("texelFetch(in_position, vrg_pixel_in(p, size, textureSize(in_position, 0)), 0)", "imageLoad(in_position, vrg_pixel_in(p, size, imageSize(in_position)))"))
+rc, out = run("check", "heightfog.ini", "--no-device")
+check(rc != 0 and re.search(r"heightfog\.ini:%d: error\[VRG-E0\d\d\].*rgba32f.*rgba16f|heightfog\.ini:%d: error\[VRG-E0\d\d\].*rgba16f.*rgba32f"
+                            % (line_of(GRAPH, "in.position"), line_of(GRAPH, "in.position")), out),
+      "a format the declaration forbids: exit %d\n%s" % (rc, out))
+save(comp, FOG)
+
+# NAME.so beside NAME.comp: which one is meant is not guessed
+save(os.path.join(OUT, "heightfog.so"), "not a plugin")
+rc, out = run("check", "heightfog.ini", "--no-device")
+check(rc != 0 and "VRG-E081" in out and "heightfog.so" in out and "heightfog.comp" in out, "NAME.so and NAME.comp: exit %d\n%s" % (rc, out))
+os.remove(os.path.join(OUT, "heightfog.so"))
+
+# the scaffold
+rc, out = run("new-pass", "tinted", "--shader", "--dir", "scaffold")
+files = sorted(os.listdir(os.path.join(OUT, "scaffold"))) if rc == 0 else []
+check(files == ["README.md", "tinted.comp", "tinted.ini"], "new-pass --shader: exit %d, files %s\n%s" % (rc, files, out))
+rc, out = run("render", os.path.join("scaffold", "tinted.ini"), "--size", "160x90", "--validate", "--out", "scaffold/out")
+check(rc == 0, "the scaffold's graph: exit %d\n%s" % (rc, out))
+
+
+# hot reload under render --watch
+class Render:
+    def __init__(self):
+        self.dir = os.path.join(OUT, "watch")
+        os.makedirs(self.dir)
+        self.err_path = os.path.join(self.dir, "stderr.txt")
+        self.err = open(self.err_path, "w")
+        self.proc = subprocess.Popen([VOXRG, "render", graph, "--size", "160x90", "--watch", "--validate", "--frames", "0", "--interval", "30",
+                                      "--sequence", "--out", self.dir], stdout=subprocess.DEVNULL, stderr=self.err)
+
+    def path(self, k):
+        return os.path.join(self.dir, "ldr-%05d.png" % k)
+
+    def latest(self):
+        ks = [int(m.group(1)) for m in map(re.compile(r"ldr-(\d{5})\.png$").match, os.listdir(self.dir)) if m]
+        return max(ks, default=-1)
+
+    def frame(self, k):
+        end = time.time() + WAIT_S
+        while not os.path.exists(self.path(k)):
+            if self.proc.poll() is not None or time.time() > end:
+                raise RuntimeError("frame %d never came (exit %s):\n%s" % (k, self.proc.poll(), open(self.err_path).read()))
+            time.sleep(0.01)
+        time.sleep(0.05)  # each file is complete when it appears; read once it has settled
+        return open(self.path(k), "rb").read()
+
+    def differs(self, after, than):
+        """The first frame within BOUND after `after` whose pixels differ from `than`."""
+        for k in range(after + 1, after + BOUND + 1):
+            if self.frame(k) != than:
+                return k
+        return None
+
+    def stderr_has(self, pattern, seconds=60, count=1):
+        end = time.time() + seconds
+        while time.time() < end:
+            if len(re.findall(pattern, open(self.err_path).read())) >= count:
+                return True
+            time.sleep(0.05)
+        return False
+
+
+r = Render()
+try:
+    r.frame(2)
+    k = r.latest()
+    before = r.frame(k)
+    # a new default for height, which the graph does not set: the picture changes
+    save(comp, FOG.replace("default=40", "default=-20"))
+    k1 = r.differs(k, before)
+    check(k1 is not None, "an edited default did not show within %d frames" % BOUND)
+    check(r.stderr_has(r"reloaded", count=1), "the edited default was not reloaded:\n" + open(r.err_path).read())
+    if k1 is not None:
+        # an interface change: a new parameter (and height's default as it was)
+        grown = FOG.replace(density, density + "\n    float unused; // @param default=1 min=0 max=2 help=\"nothing yet\"")
+        save(comp, grown)
+        check(r.stderr_has(r"reloaded", count=2), "the interface change was not reloaded:\n" + open(r.err_path).read())
+        # broken: reported at the member's line, the last good version keeps running
+        bad = grown.replace("    float unused; // @param default=1", "    float unused; // default=1")
+        save(comp, bad)
+        want = re.escape("%s:%d: error[VRG-E080]" % (comp, line_of(bad, "float unused;")))
+        check(r.stderr_has(want), "a broken reload is not reported with FILE:LINE:\n" + open(r.err_path).read())
+        time.sleep(0.5)
+        k2 = r.latest()
+        r.frame(k2 + 3)
+        check(r.proc.poll() is None, "render --watch died on a broken shader-only pass")
+        save(comp, grown.replace("default=40", "default=-20"))  # fixed, and height's new default: the picture changes
+        k3 = r.latest()
+        last = r.frame(k3)
+        check(r.differs(k3, last) is not None, "the fixed file did not show within %d frames" % BOUND)
+        check(r.stderr_has(r"reloaded", count=3), "the fixed file was not reloaded:\n" + open(r.err_path).read())
+finally:
+    r.proc.send_signal(signal.SIGTERM)
+    rc = r.proc.wait(timeout=120)
+    check(rc == 0, "render --watch under --validate: exit %d\n%s" % (rc, open(r.err_path).read()))
+
+if failures:
+    print("%d failure(s)" % len(failures))
+    sys.exit(1)
+print("ok")
