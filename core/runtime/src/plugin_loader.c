@@ -1,7 +1,7 @@
 /* Plugins are found by name on one search path; the first folder holding
- * NAME.so or NAME.comp (a shader-only pass, shader_pass.c) wins, and a
- * folder holding both is an error naming both (which one the user meant is
- * not for the runtime to guess):
+ * NAME.so or NAME.comp (a shader-only pass, shader_pass.c) wins. In a
+ * folder holding both, NAME.so is the pass: a C plugin's shader is often
+ * NAME.comp beside it (`voxrg check` prints the file each plugin came from):
  *   1. built-in: <exe>/plugins (the build tree; tests also the build's
  *      plugin folder), 2. installed: voxrg/plugins beside libvoxrg's own
  *      file (PREFIX/lib/voxrg/plugins, wherever the prefix was moved),
@@ -245,15 +245,14 @@ static int is_regular(const char *path)
 }
 
 /* Index of the first folder holding NAME.so or NAME.comp, -1 if none; its
- * path in `file` (NAME.so where both are: the caller refuses it then,
- * load_ambiguous). */
+ * path in `file` (NAME.so where both are). */
 static int search_path_find(const search_path *s, const char *name, int from, char *file, size_t cap)
 {
     for (int i = from; i < s->count; i++) {
         for (int k = 1; k >= 0; k--) {
             int n = snprintf(file, cap, "%s/%s.%s", s->dirs[i].path, name, k ? "comp" : "so");
             if (n > 0 && n < (int)cap && access(file, F_OK) == 0) {
-                if (k) { /* NAME.so beside it wins the listing's order; load refuses both */
+                if (k) { /* NAME.so beside it is the pass */
                     char so[VRG_PATH_MAX + VRG_NAME_MAX + 8];
                     n = snprintf(so, sizeof so, "%s/%s.so", s->dirs[i].path, name);
                     if (n > 0 && n < (int)sizeof so && access(so, F_OK) == 0)
@@ -916,11 +915,6 @@ const _vrg_plugin *_vrg_plugin_load(const char *name, const char *graph_path, co
         fail(d, line, VRG_E_UNKNOWN_PLUGIN, hint, "unknown plugin '%s'", name);
         goto done;
     }
-    if (ambiguous(&s, at, name)) {
-        fail(d, line, VRG_E_PLUGIN_AMBIGUOUS, "remove or rename one of them: a name is one pass",
-             "plugin '%s' is both %s/%s.so and %s/%s.comp (%s)", name, s.dirs[at].path, name, s.dirs[at].path, name, origin_names[s.dirs[at].origin]);
-        goto done;
-    }
     if (!realpath(file, real))
         snprintf(real, sizeof real, "%s", file);
     /* never shadowed: say so when a later folder of the user's has the name */
@@ -1013,7 +1007,7 @@ int _vrg_plugin_list(const _vrg_plugin **out, int max, FILE *problems, int *fail
             snprintf(name, sizeof name, "%.*s", (int)(len - ext), e->d_name);
             char file[VRG_PATH_MAX + VRG_NAME_MAX + 8];
             /* only the file the search order picks for this name, once
-             * (a folder holding both files is reported with the .so) */
+             * (a folder holding both: the .so) */
             if (search_path_find(&s, name, 0, file, sizeof file) == i && (ext == 3 || !ambiguous(&s, i, name)))
                 _vrg_plugin_load(name, NULL, NULL, &diag, 0);
         }
