@@ -22,6 +22,9 @@ const char *_vrg_param_problem(const vrg_param_desc *pd, char *why, size_t cap);
  * reporting (the shader's FILE:LINE, then the graph's `line` if > 0). */
 int _vrg_shader_pass_load(_vrg_plugin *p, _vrg_diag *d, int line);
 void _vrg_shader_pass_free(_vrg_plugin *p);
+/* FILE:LINE of the binding a shader-only pass's slot comes from, NULL for
+ * another plugin's slot: graph errors about the slot name both sides. */
+const char *_vrg_shader_pass_slot_where(const _vrg_plugin *p, const vrg_slot_desc *sd);
 /* A pass runs the plugin / no longer does. A superseded version (a hot
  * reload loaded a newer one) is unloaded when its last user goes. */
 void _vrg_plugin_acquire(const _vrg_plugin *p);

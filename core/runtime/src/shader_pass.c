@@ -34,6 +34,7 @@ struct _vrg_shader_pass {
     vrg_slot_desc slots[VRG_MAX_SLOTS];
     char slot_names[VRG_MAX_SLOTS][VRG_NAME_MAX];
     char slot_help[VRG_MAX_SLOTS][HELP_MAX];
+    char slot_where[VRG_MAX_SLOTS][VRG_PATH_MAX + 16]; /* FILE:LINE of the declaration */
     char binding_res[VRG_MAX_BINDINGS][VRG_NAME_MAX + 8];
     vrg_dispatch_desc dispatch;
     char shader[256];
@@ -439,6 +440,7 @@ static int parse_slots(struct _vrg_shader_pass *sp, vrg_plugin_desc *desc, const
         if (s->kind == VRG_IMAGE && b->image_dim != 1 /* SpvDim2D */)
             shader_error(d, file, line, NULL, "binding '%s' is not a 2D image: slots hold 2D images", name);
         snprintf(sp->slot_help[i], sizeof sp->slot_help[i], "%s %s (%s)", what ? what : "binding", name, b->where);
+        snprintf(sp->slot_where[i], sizeof sp->slot_where[i], "%s", b->where);
         for (int j = 0; j < i; j++)
             if (strcmp(sp->slot_names[j], slot) == 0 && sp->slots[j].dir == s->dir)
                 shader_error(d, file, line, NULL, "binding '%s' names slot %s.%s a second time", name, is_out ? "out" : "in", slot);
@@ -571,6 +573,14 @@ int _vrg_shader_pass_load(_vrg_plugin *p, _vrg_diag *d, int line)
     p->shader_pass = sp;
     p->desc = desc;
     return 0;
+}
+
+const char *_vrg_shader_pass_slot_where(const _vrg_plugin *p, const vrg_slot_desc *sd)
+{
+    const struct _vrg_shader_pass *sp = p ? p->shader_pass : NULL;
+    if (!sp || sd < sp->slots || sd >= sp->slots + VRG_MAX_SLOTS)
+        return NULL;
+    return sp->slot_where[sd - sp->slots];
 }
 
 void _vrg_shader_pass_free(_vrg_plugin *p)

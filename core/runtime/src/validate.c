@@ -778,16 +778,18 @@ static void resolve_resources(vrg_graph *g, const _vrg_ast *a)
             }
             if (r->kind != sd->kind) {
                 static const char *kinds[] = {"?", "an image", "a buffer", "an acceleration structure"};
-                _vrg_error_at(&g->diag, b->line, VRG_E_KIND_MISMATCH, NULL, "kind mismatch: resource '%s' is %s, slot '%s' of pass '%s' takes %s", r->name,
-                             kinds[r->kind], sd->name, p->name, kinds[sd->kind]);
+                const char *decl = _vrg_shader_pass_slot_where(p->plugin, sd);
+                _vrg_error_at(&g->diag, b->line, VRG_E_KIND_MISMATCH, NULL, "kind mismatch: resource '%s' is %s, slot '%s' of pass '%s' takes %s%s%s", r->name,
+                             kinds[r->kind], sd->name, p->name, kinds[sd->kind], decl ? ", declared at " : "", decl ? decl : "");
                 continue;
             }
             if (sd->kind == VRG_IMAGE && sd->format && sd->format != r->format) {
                 char h[256];
                 snprintf(h, sizeof h, "'%s' is written by pass '%s' (line %d)%s", r->name, g->passes[r->writer].name, r->writer_line,
                          r->format_line ? "; see its [resource] format" : "");
-                _vrg_error_at(&g->diag, b->line, VRG_E_FORMAT_MISMATCH, h, "format mismatch: resource '%s' is %s, slot '%s' of pass '%s' needs %s", r->name,
-                             _vrg_format_name(r->format), sd->name, p->name, _vrg_format_name(sd->format));
+                const char *decl = _vrg_shader_pass_slot_where(p->plugin, sd);
+                _vrg_error_at(&g->diag, b->line, VRG_E_FORMAT_MISMATCH, h, "format mismatch: resource '%s' is %s, slot '%s' of pass '%s' needs %s%s%s", r->name,
+                             _vrg_format_name(r->format), sd->name, p->name, _vrg_format_name(sd->format), decl ? ", declared at " : "", decl ? decl : "");
             }
             if (sd->kind == VRG_BUFFER && sd->format && sd->format != r->format) {
                 const vrg_slot_desc *wd = vrg_slot(&g->passes[r->writer], r->writer_slot);
