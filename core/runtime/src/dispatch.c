@@ -8,6 +8,7 @@
 #include "internal.h"
 #include "reflect.h"
 #include "shader.h"
+#include "shader_pass.h"
 #include "watch.h"
 #include "capture.h"
 
@@ -604,6 +605,32 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
         vkCmdPushConstants(cmd, pl->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, d->push_size, d->push);
     vkCmdDispatch(cmd, gx, gy, gz);
     return 0;
+}
+
+/* A shader-only pass (shader_pass.c) is one dispatch of its shader, its
+ * push constants the parameters' values at the members' reflected offsets. */
+void _vrg_shader_pass_execute(vrg_pass *pass, VkCommandBuffer cmd)
+{
+    const struct _vrg_shader_pass *sp = pass->plugin->shader_pass;
+    unsigned char push[128] = {0};
+    for (uint32_t i = 0; i < pass->plugin->desc->param_count; i++) {
+        double v = vrg_param(pass, sp->params[i].name);
+        uint32_t word;
+        switch (sp->param_scalar[i]) {
+        case VRG_PUSH_FLOAT: {
+            float f = (float)v;
+            memcpy(&word, &f, sizeof word);
+            break;
+        }
+        case VRG_PUSH_INT: word = (uint32_t)(int32_t)v; break;
+        case VRG_PUSH_BOOL: word = v != 0; break;
+        default: word = (uint32_t)v; break;
+        }
+        memcpy(push + sp->param_offset[i], &word, sizeof word);
+    }
+    vrg_dispatch_desc d = sp->dispatch;
+    d.push = push;
+    (void)vrg_dispatch(pass, cmd, &d);
 }
 
 /* ---- vrg_graph_check_shaders: every declared dispatch, before any frame ---- */

@@ -114,6 +114,8 @@ typedef struct _vrg_plugin {
     int users;           /* passes of live graphs running it (_vrg_plugin_acquire) */
     struct _vrg_shader_pass *shader_pass; /* a shader-only pass (NAME.comp): its interface, else NULL */
 } _vrg_plugin;
+/* Why a parameter's descriptor is malformed (why: room for the reason), or NULL (param_desc.c). */
+const char *_vrg_param_problem(const vrg_param_desc *pd, char *why, size_t cap);
 /* ---- crash reports (crash.c) ---- */
 /* What plugin code this thread runs now: a fatal signal names it. */
 typedef struct _vrg_running {

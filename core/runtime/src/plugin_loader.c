@@ -43,6 +43,7 @@
 #include <unistd.h>
 #include "internal.h"
 #include "plugin_loader.h"
+#include "shader_pass.h"
 
 #if UINTPTR_MAX > 0xffffffffu
 typedef Elf64_Ehdr elf_ehdr;
@@ -691,11 +692,19 @@ static void warn_if_writable(const _vrg_plugin *p, _vrg_diag *d, int line)
                         "the plugin (chmod o-w the folder)", p->name, p->source, dir);
 }
 
+static int check_desc(const vrg_plugin_desc *desc, const char *name, const char *path, _vrg_diag *d, int line, int needs_execute);
+
 static int load_file(_vrg_plugin *p, _vrg_diag *d, int line)
 {
     if (is_shader_file(p->source)) { /* no code of its own: the same trust warning, then its interface */
         warn_if_writable(p, d, line);
-        return _vrg_shader_pass_load(p, d, line);
+        if (_vrg_shader_pass_load(p, d, line) != 0)
+            return -1;
+        if (check_desc(p->desc, p->name, p->source, d, line, 0) == 0)
+            return 0;
+        _vrg_shader_pass_free(p);
+        p->desc = NULL;
+        return -1;
     }
     char why[1024];
     unsigned char *data = NULL;
@@ -759,30 +768,6 @@ static const _vrg_plugin *keep(const _vrg_plugin *p)
 
 /* ---- descriptors ---- */
 
-const char *_vrg_param_problem(const vrg_param_desc *pd, char *why, size_t cap)
-{
-    if (pd->type < VRG_PARAM_FLOAT || pd->type > VRG_PARAM_STRING)
-        return snprintf(why, cap, "type %d is none of VRG_PARAM_FLOAT, _INT, _BOOL, _STRING", (int)pd->type), why;
-    if ((pd->flags & VRG_PARAM_REPEATABLE) && pd->type != VRG_PARAM_STRING)
-        return "is repeatable but not a string";
-    const uint32_t known = VRG_PARAM_REPEATABLE | VRG_PARAM_RELOAD;
-    if (pd->flags & ~known)
-        return snprintf(why, cap, "has unknown flags 0x%x", pd->flags & ~known), why;
-    if (pd->type == VRG_PARAM_STRING)
-        return NULL;
-    if (!isfinite(pd->default_value) || !isfinite(pd->min) || !isfinite(pd->max))
-        return "default, min and max must be finite numbers";
-    if (pd->min > pd->max)
-        return snprintf(why, cap, "min %g is greater than max %g", pd->min, pd->max), why;
-    if ((pd->min != 0 || pd->max != 0) && (pd->default_value < pd->min || pd->default_value > pd->max))
-        return snprintf(why, cap, "default %g lies outside [%g, %g]", pd->default_value, pd->min, pd->max), why;
-    if (pd->type != VRG_PARAM_FLOAT && (pd->default_value != floor(pd->default_value) || pd->min != floor(pd->min) || pd->max != floor(pd->max)))
-        return snprintf(why, cap, "an %s parameter needs whole-number default, min and max", pd->type == VRG_PARAM_INT ? "int" : "bool"), why;
-    if (pd->type == VRG_PARAM_BOOL && pd->default_value != 0 && pd->default_value != 1)
-        return snprintf(why, cap, "a bool's default is 0 or 1, not %g", pd->default_value), why;
-    return NULL;
-}
-
 /* A name a graph can write: the key's text after "PASS." (no '=', ';', '#',
  * '[', ']', white space or control characters), below VRG_NAME_MAX. */
 static int valid_name(const char *s)
@@ -796,7 +781,8 @@ static int valid_name(const char *s)
     return 1;
 }
 
-int _vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const char *path, _vrg_diag *d, int line)
+/* needs_execute: a plugin's own; a shader-only pass has none (dispatch.c records it) */
+static int check_desc(const vrg_plugin_desc *desc, const char *name, const char *path, _vrg_diag *d, int line, int needs_execute)
 {
     const char *why = NULL;
     char buf[512];
@@ -804,7 +790,7 @@ int _vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const 
         why = "its descriptor's name differs from its file name";
     else if (desc->kind != VRG_PLUGIN_PASS && desc->kind != VRG_PLUGIN_SCENE)
         why = "kind is neither VRG_PLUGIN_PASS nor VRG_PLUGIN_SCENE";
-    else if (!desc->execute)
+    else if (needs_execute && !desc->execute)
         why = "execute callback is NULL";
     else if (desc->slot_count > VRG_MAX_SLOTS || (desc->slot_count && !desc->slots))
         why = desc->slot_count > VRG_MAX_SLOTS ? (snprintf(buf, sizeof buf, "%u slots, more than the %d a plugin may have", desc->slot_count, VRG_MAX_SLOTS), buf)
@@ -879,6 +865,11 @@ int _vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const 
             }
     }
     return 0;
+}
+
+int _vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const char *path, _vrg_diag *d, int line)
+{
+    return check_desc(desc, name, path, d, line, 1);
 }
 
 /* ---- the entry points ---- */

@@ -15,16 +15,6 @@ const _vrg_plugin *_vrg_plugin_load(const char *name, const char *graph_path, co
 int _vrg_plugin_path_check(const char *graph_path, const char *plugin_path, _vrg_diag *d, int line);
 /* The checks a plugin's descriptor must pass (also run by the fuzzer). */
 int _vrg_plugin_check_desc(const vrg_plugin_desc *desc, const char *name, const char *path, _vrg_diag *d, int line);
-/* Why a parameter's descriptor is malformed (why: room for the reason), or NULL. */
-const char *_vrg_param_problem(const vrg_param_desc *pd, char *why, size_t cap);
-/* A shader-only pass (shader_pass.c): p->source is NAME.comp; its
- * descriptor is made from what the shader declares. 0, or -1 after
- * reporting (the shader's FILE:LINE, then the graph's `line` if > 0). */
-int _vrg_shader_pass_load(_vrg_plugin *p, _vrg_diag *d, int line);
-void _vrg_shader_pass_free(_vrg_plugin *p);
-/* FILE:LINE of the binding a shader-only pass's slot comes from, NULL for
- * another plugin's slot: graph errors about the slot name both sides. */
-const char *_vrg_shader_pass_slot_where(const _vrg_plugin *p, const vrg_slot_desc *sd);
 /* A pass runs the plugin / no longer does. A superseded version (a hot
  * reload loaded a newer one) is unloaded when its last user goes. */
 void _vrg_plugin_acquire(const _vrg_plugin *p);

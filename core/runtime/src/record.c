@@ -12,6 +12,7 @@
 #include <string.h>
 #include <time.h>
 #include "internal.h"
+#include "shader_pass.h"
 #include "phases.h"
 
 /* @prev copies on every history reset (but those a reload carried over);
@@ -269,7 +270,10 @@ int _vrg_record_frame(vrg_graph *g)
         p->cmd = cmd;
         double t0 = now_ms();
         _vrg_running before = _vrg_running_enter("execute", p->name, p->plugin);
-        p->plugin->desc->execute(p, cmd);
+        if (p->plugin->shader_pass) /* a shader-only pass: its one dispatch */
+            _vrg_shader_pass_execute(p, cmd);
+        else
+            p->plugin->desc->execute(p, cmd);
         _vrg_running_leave(before);
         g->pass_cpu_ms[g->schedule[k]] = now_ms() - t0;
         p->cmd = VK_NULL_HANDLE;

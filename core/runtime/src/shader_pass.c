@@ -19,27 +19,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include "internal.h"
-#include "plugin_loader.h"
 #include "reflect.h"
 #include "shader.h"
-
-#define HELP_MAX 256
-
-struct _vrg_shader_pass {
-    vrg_param_desc params[VRG_MAX_PARAMS];
-    char param_names[VRG_MAX_PARAMS][VRG_NAME_MAX];
-    char param_help[VRG_MAX_PARAMS][HELP_MAX];
-    uint32_t param_offset[VRG_MAX_PARAMS];
-    _vrg_push_scalar param_scalar[VRG_MAX_PARAMS];
-    vrg_slot_desc slots[VRG_MAX_SLOTS];
-    char slot_names[VRG_MAX_SLOTS][VRG_NAME_MAX];
-    char slot_help[VRG_MAX_SLOTS][HELP_MAX];
-    char slot_where[VRG_MAX_SLOTS][VRG_PATH_MAX + 16]; /* FILE:LINE of the declaration */
-    char binding_res[VRG_MAX_BINDINGS][VRG_NAME_MAX + 8];
-    vrg_dispatch_desc dispatch;
-    char shader[256];
-    char help[HELP_MAX];
-};
+#include "shader_pass.h"
 
 /* An error at a line of the shader (or a file it includes), counted in d. */
 static void shader_error(_vrg_diag *d, const char *file, int line, const char *hint, const char *fmt, ...) __attribute__((format(printf, 5, 6)));
@@ -143,7 +125,7 @@ static size_t code_len(const char *s, size_t n, const char **comment)
 typedef struct annotation {
     int has_default, has_min, has_max, has_help;
     double def, min, max;
-    char help[HELP_MAX];
+    char help[VRG_SHADER_PASS_HELP_MAX];
 } annotation;
 
 /* Parses "@param key=value ..." (text of len n after "//"); NULL, or why not. */
@@ -187,7 +169,7 @@ static const char *parse_annotation(const char *s, size_t n, int is_bool, annota
             s++;
             a->help[o] = '\0';
             if (o + 1 >= sizeof a->help)
-                return snprintf(why, cap, "help is longer than %d characters", HELP_MAX - 2), why;
+                return snprintf(why, cap, "help is longer than %d characters", VRG_SHADER_PASS_HELP_MAX - 2), why;
             a->has_help = 1;
             continue;
         }
@@ -454,30 +436,6 @@ static int parse_slots(struct _vrg_shader_pass *sp, vrg_plugin_desc *desc, const
 
 /* ---- the pass ---- */
 
-static void shader_pass_execute(vrg_pass *pass, VkCommandBuffer cmd)
-{
-    const struct _vrg_shader_pass *sp = pass->plugin->shader_pass;
-    unsigned char push[128] = {0};
-    for (uint32_t i = 0; i < pass->plugin->desc->param_count; i++) {
-        double v = vrg_param(pass, sp->params[i].name);
-        uint32_t word;
-        switch (sp->param_scalar[i]) {
-        case VRG_PUSH_FLOAT: {
-            float f = (float)v;
-            memcpy(&word, &f, sizeof word);
-            break;
-        }
-        case VRG_PUSH_INT: word = (uint32_t)(int32_t)v; break;
-        case VRG_PUSH_BOOL: word = v != 0; break;
-        default: word = (uint32_t)v; break;
-        }
-        memcpy(push + sp->param_offset[i], &word, sizeof word);
-    }
-    vrg_dispatch_desc d = sp->dispatch;
-    d.push = push;
-    (void)vrg_dispatch(pass, cmd, &d);
-}
-
 /* The first // comment of the file (before any code but #version): the help. */
 static void first_comment(const char *src, char *out, size_t cap)
 {
@@ -538,7 +496,8 @@ int _vrg_shader_pass_load(_vrg_plugin *p, _vrg_diag *d, int line)
     desc->abi_version = VRG_ABI_VERSION;
     snprintf(sp->shader, sizeof sp->shader, "%s", p->source);
     first_comment(src, sp->help, sizeof sp->help);
-    *desc = (vrg_plugin_desc){.abi_version = VRG_ABI_VERSION, .name = p->name, .kind = VRG_PLUGIN_PASS, .help = sp->help, .execute = shader_pass_execute};
+    *desc = (vrg_plugin_desc){.abi_version = VRG_ABI_VERSION, .name = p->name, .kind = VRG_PLUGIN_PASS, .help = sp->help};
+    /* no execute: the runtime records the one dispatch (record.c, _vrg_shader_pass_execute) */
     int errors = d->errors;
     if (strlen(p->source) >= sizeof sp->shader)
         _vrg_error(d, VRG_E_SHADER_INTERFACE, "plugin '%s': its path %s is longer than %zu characters", p->name, p->source, sizeof sp->shader - 1);
@@ -560,9 +519,7 @@ int _vrg_shader_pass_load(_vrg_plugin *p, _vrg_diag *d, int line)
     free(src);
     free(sm.deps);
     _vrg_reflection_free(&sm.refl);
-    if (d->errors == errors && _vrg_plugin_check_desc(desc, p->name, p->source, d, line) != 0)
-        errors = -1;
-    if (d->errors > errors || errors < 0) {
+    if (d->errors > errors) {
         if (line > 0)
             _vrg_error_at(d, line, VRG_E_SHADER_INTERFACE, "docs/plugin-abi.md, \"A pass in one file\"", "plugin '%s' (%s): its interface has errors (above)",
                           p->name, p->source);

@@ -10,6 +10,7 @@
 #include "phases.h"
 #include "parse.h"
 #include "plugin_loader.h"
+#include "shader_pass.h"
 
 /* ---- numbers ---- */
 

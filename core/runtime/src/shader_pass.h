@@ -1,0 +1,38 @@
+/* shader_pass.c: a shader-only pass (NAME.comp), its interface read from
+ * the shader by name; dispatch.c records it (_vrg_shader_pass_execute). */
+#ifndef VRG_SHADER_PASS_H
+#define VRG_SHADER_PASS_H
+
+#include "internal.h"
+#include "reflect.h"
+
+#define VRG_SHADER_PASS_HELP_MAX 256
+
+struct _vrg_shader_pass {
+    vrg_param_desc params[VRG_MAX_PARAMS];
+    char param_names[VRG_MAX_PARAMS][VRG_NAME_MAX];
+    char param_help[VRG_MAX_PARAMS][VRG_SHADER_PASS_HELP_MAX];
+    uint32_t param_offset[VRG_MAX_PARAMS];
+    _vrg_push_scalar param_scalar[VRG_MAX_PARAMS];
+    vrg_slot_desc slots[VRG_MAX_SLOTS];
+    char slot_names[VRG_MAX_SLOTS][VRG_NAME_MAX];
+    char slot_help[VRG_MAX_SLOTS][VRG_SHADER_PASS_HELP_MAX];
+    char slot_where[VRG_MAX_SLOTS][VRG_PATH_MAX + 16]; /* FILE:LINE of the declaration */
+    char binding_res[VRG_MAX_BINDINGS][VRG_NAME_MAX + 8];
+    vrg_dispatch_desc dispatch;
+    char shader[256];
+    char help[VRG_SHADER_PASS_HELP_MAX];
+};
+
+/* The plugin made from p->source (NAME.comp): its descriptor from what the
+ * shader declares, execute NULL. 0, or -1 after reporting (the shader's
+ * FILE:LINE, then the graph's `line` if > 0). */
+int _vrg_shader_pass_load(_vrg_plugin *p, _vrg_diag *d, int line);
+void _vrg_shader_pass_free(_vrg_plugin *p);
+/* FILE:LINE of the binding a shader-only pass's slot comes from, NULL for
+ * another plugin's slot: graph errors about the slot name both sides. */
+const char *_vrg_shader_pass_slot_where(const _vrg_plugin *p, const vrg_slot_desc *sd);
+/* Records a shader-only pass (dispatch.c): its push constants packed from
+ * the parameters at the members' offsets, its one dispatch. */
+void _vrg_shader_pass_execute(vrg_pass *pass, VkCommandBuffer cmd);
+#endif
