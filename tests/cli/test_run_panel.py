@@ -11,7 +11,9 @@ Xvfb), each step checked in the graph file the save writes:
   GRAPH-edited.ini beside it (an existing one is refused; a typed name is
   taken);
 - a graph with another hard link is replaced under its own name, said,
-  the other name keeps the old text.
+  the other name keeps the old text;
+- a shader-only pass (NAME.comp beside the graph) has its @param rows:
+  Right steps one, the save writes it.
 Usage: test_run_panel.py VOXRG TESTS_DIR OUT_DIR"""
 import os
 import stat
@@ -94,8 +96,45 @@ def hard_link(d):
     assert open(os.path.join(d, "other-name.ini")).read() == ORIGINAL, "the other link changed"
 
 
+SHADER = """#version 460
+// gain: the colour times a gain
+#include "pixel.glsl"
+layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
+layout(binding = 0) uniform sampler2D in_color;
+layout(binding = 1, rgba16f) uniform writeonly image2D out_color;
+layout(push_constant) uniform Params {
+    float gain; // @param default=1 min=0 max=4 help="multiplies the colour"
+} params;
+void shade(ivec2 p)
+{
+    ivec2 size = imageSize(out_color);
+    if (any(greaterThanEqual(p, size)))
+        return;
+    imageStore(out_color, p, params.gain * texelFetch(in_color, vrg_pixel_in(p, size, textureSize(in_color, 0)), 0));
+}
+void main() { for (uint k = 0u; k < VRG_PIXEL_ROWS; k++) shade(vrg_pixel(k)); }
+"""
+
+
+def shader_pass(d):
+    """rows after the view's: the shader-only pass gain's one parameter"""
+    with open(os.path.join(d, "gain.comp"), "w") as f:
+        f.write(SHADER)
+    path = os.path.join(d, "shader.ini")
+    with open(path, "w") as f:
+        f.write(ORIGINAL.replace("[graph]\n", "[graph]\nplugin_path = .\n").replace("output = view", "output = bright")
+                + "\n[pass gain]\nplugin    = gain\nin.color  = view\nout.color = bright\n")
+    before = open(path).read().splitlines()
+    win = Window(voxrg, "shader.ini", d)
+    keys("m", "Next", "Next", "Right", "ctrl+s")  # gain.gain 1 -> 1.2
+    win.stderr_has("saved 1 value to shader.ini")
+    win.close()
+    added = [l for l in open(path).read().splitlines() if l not in before]
+    assert added == ["gain = 1.2"], added
+
+
 def main():
-    return run_cases(out, (jump_step_set_back, filter_read_only_save_as, hard_link))
+    return run_cases(out, (jump_step_set_back, filter_read_only_save_as, hard_link, shader_pass))
 
 
 if __name__ == "__main__":
