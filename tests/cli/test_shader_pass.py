@@ -10,8 +10,8 @@ sets a parameter it does not declare, is an error at the graph's line; a
 folder with NAME.so and NAME.comp loads the .so; `new-pass
 --shader` writes a pass that renders; and under `render --watch` an edit
 of the file shows within BOUND frames, an interface change re-validates
-the graph, and a broken edit keeps the last good version, said with
-FILE:LINE.
+the graph (one it no longer fits is an error at the graph's line), and a
+broken edit keeps the last good version, said with FILE:LINE.
 Usage: test_shader_pass.py VOXRG SOURCE_DIR OUT_DIR"""
 import os
 import re
@@ -211,6 +211,17 @@ try:
         last = r.frame(k3)
         check(r.differs(k3, last) is not None, "the fixed file did not show within %d frames" % BOUND)
         check(r.stderr_has(r"reloaded", count=3), "the fixed file was not reloaded:\n" + open(r.err_path).read())
+        # an interface the graph no longer fits: density renamed, which the graph sets; the
+        # graph is checked again, the error is at its line, the last good version keeps running
+        renamed = FOG.replace("float density;", "float thickness;").replace("params.density", "params.thickness")
+        save(comp, renamed)
+        want = re.escape("%s:%d: error[VRG-E012]: unknown key 'density'" % (graph, line_of(GRAPH, "density")))
+        check(r.stderr_has(want), "a reload the graph does not fit is not reported at the graph's line:\n" + open(r.err_path).read())
+        k4 = r.latest()
+        r.frame(k4 + 3)
+        check(r.proc.poll() is None, "render --watch died on an interface the graph does not fit")
+        save(comp, FOG)
+        check(r.stderr_has(r"reloaded", count=4), "the file the graph fits again was not reloaded:\n" + open(r.err_path).read())
 finally:
     r.proc.send_signal(signal.SIGTERM)
     rc = r.proc.wait(timeout=120)
