@@ -2,7 +2,8 @@
 """Shader-only passes (docs/plugin-abi.md, "A pass in one file"): the
 height fog cut out of the page is one file of at most 40 lines; its graph
 checks, lists, renders under --validate, and --set changes the picture;
-`voxrg plugins NAME` shows its slots and parameters; each broken
+`voxrg plugins NAME` shows its slots and parameters; float, int, uint and
+bool members are packed at their offsets (a pass writes them); each broken
 interface is an error at the shader's FILE:LINE (a push member without or
 with a malformed annotation, a binding neither in_ nor out_), a graph that
 wires a buffer to its image slot or a format its declaration forbids, or
@@ -22,6 +23,8 @@ import sys
 import time
 
 VOXRG, SRC, OUT = sys.argv[1:4]
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import png_pixels  # noqa: E402
 
 BOUND = 10
 WAIT_S = 180
@@ -83,6 +86,37 @@ check(rc == 0, "render --set: exit %d\n%s" % (rc, out))
 rc, out = run("render", "heightfog.ini", "--size", "160x90", "--validate", "--out", "c", "--set", "fog.density=0")
 a, b, c = (open(os.path.join(OUT, d, "ldr.png"), "rb").read() for d in "abc")
 check(a != b and a != c and b != c, "--set fog.density changes nothing in the picture")
+
+# each scalar type packed at its member's offset: a pass that writes its parameters
+PACK = """#version 460
+#include "frame.glsl"
+// pack: each parameter in a channel
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0, rgba8) uniform writeonly image2D out_color;
+layout(push_constant) uniform Params {
+    float a; // @param default=0.5 min=0 max=1 help="red, or 1 - red when d is false"
+    int b;   // @param default=3 min=-10 max=10 help="green, tenths"
+    uint c;  // @param default=7 help="blue, tenths"
+    bool d;  // @param default=true help="whether red is a"
+} params;
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, imageSize(out_color))))
+        return;
+    imageStore(out_color, p, vec4(params.d ? params.a : 1.0 - params.a, float(params.b + 5) / 10.0, float(params.c) / 10.0, 1.0));
+}
+""".replace('#include "frame.glsl"\n', "")
+save(os.path.join(OUT, "pack.comp"), PACK)
+save(os.path.join(OUT, "pack.ini"), "[graph]\noutput = color\nwidth = 16\nheight = 8\nplugin_path = .\n\n[pass pack]\nplugin = pack\nout.color = color\n")
+for sets, want in (((), (128, 204, 178)), (("a=0.25", "b=-4", "c=9", "d=false"), (191, 26, 230))):
+    args = [x for kv in sets for x in ("--set", "pack." + kv)]
+    rc, out = run("render", "pack.ini", "--validate", "--out", "pack", *args)
+    px = png_pixels.load(os.path.join(OUT, "pack", "color.png"))[2](1, 1) if rc == 0 else None
+    check(px is not None and all(abs(x - y) <= 1 for x, y in zip(px, want)), "pack %s: exit %d, pixel %s, want %s\n%s" % (sets, rc, px, want, out))
+rc, out = run("plugins", "pack", env={"VOXRG_PLUGIN_PATH": OUT})
+check(re.search(r"b\s+int\s+default 3\s+\[-10, 10\]", out) and re.search(r"d\s+bool\s+default 1", out) and re.search(r"c\s+int\s+default 7\s+\[0, ", out),
+      "voxrg plugins pack: the parameters' types and ranges\n" + out)
 
 
 def broken(what, old, new, where, pattern, text=None):

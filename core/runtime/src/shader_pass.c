@@ -315,6 +315,8 @@ static int parse_params(struct _vrg_shader_pass *sp, vrg_plugin_desc *desc, cons
         }
         if (is_bool && !a.has_min)
             pd->min = 0, pd->max = 1;
+        if (pm->scalar == VRG_PUSH_INT && !is_bool && !a.has_min) /* what the member holds */
+            pd->min = -2147483648.0, pd->max = 2147483647.0;
         sp->param_offset[m] = pm->offset;
         sp->param_scalar[m] = is_bool ? VRG_PUSH_BOOL : pm->scalar;
         /* the descriptor's checks (range, whole numbers), here at the line */
@@ -436,13 +438,16 @@ static int parse_slots(struct _vrg_shader_pass *sp, vrg_plugin_desc *desc, const
 
 /* ---- the pass ---- */
 
-/* The first // comment of the file (before any code but #version): the help. */
-static void first_comment(const char *src, char *out, size_t cap)
+/* The first // comment of the file itself (before any code but #version
+ * and #define): the help. */
+static void first_comment(const char *src, const char *path, char *out, size_t cap)
 {
     snprintf(out, cap, "shader-only pass");
     src_reader rd = {.p = src};
     src_line l;
     while (next_line(&rd, &l)) {
+        if (l.file[0] && strcmp(l.file, path) != 0)
+            continue; /* an included file's */
         const char *s = l.text, *end = l.text + l.len;
         while (s < end && isspace((unsigned char)*s))
             s++;
@@ -495,7 +500,7 @@ int _vrg_shader_pass_load(_vrg_plugin *p, _vrg_diag *d, int line)
     memset(desc, 0, sizeof *desc);
     desc->abi_version = VRG_ABI_VERSION;
     snprintf(sp->shader, sizeof sp->shader, "%s", p->source);
-    first_comment(src, sp->help, sizeof sp->help);
+    first_comment(src, p->source, sp->help, sizeof sp->help);
     *desc = (vrg_plugin_desc){.abi_version = VRG_ABI_VERSION, .name = p->name, .kind = VRG_PLUGIN_PASS, .help = sp->help};
     /* no execute: the runtime records the one dispatch (record.c, _vrg_shader_pass_execute) */
     int errors = d->errors;
