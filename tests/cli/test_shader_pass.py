@@ -55,7 +55,10 @@ def save(path, text):
 def run(*args, env=None):
     p = subprocess.run([VOXRG, *args], capture_output=True, text=True, cwd=OUT, timeout=300,
                        env=dict(os.environ, **(env or {})))
-    return p.returncode, p.stdout + p.stderr
+    out = p.stdout + p.stderr
+    # a sanitizer build's report fails the case even where an error exit is wanted
+    check(not re.search(r"Sanitizer|runtime error:", out), "voxrg %s: a sanitizer report\n%s" % (" ".join(args), out))
+    return p.returncode, out
 
 
 def line_of(text, needle):
@@ -119,10 +122,10 @@ check(re.search(r"b\s+int\s+default 3\s+\[-10, 10\]", out) and re.search(r"d\s+b
       "voxrg plugins pack: the parameters' types and ranges\n" + out)
 
 
-def broken(what, old, new, where, pattern, text=None):
+def broken(what, old, new, where, pattern, fog=FOG):
     """The page's fog with old replaced by new: check fails at where's line."""
-    src = FOG.replace(old, new)
-    assert src != FOG, what
+    src = fog.replace(old, new)
+    assert src != fog, what
     save(comp, src)
     rc, out = run("check", "heightfog.ini", "--no-device")
     want = "%s:%d: error[%s]" % (comp, line_of(src, where), "VRG-E080")
@@ -133,6 +136,9 @@ density = next(l for l in FOG.split("\n") if "float density;" in l)
 broken("a member without an annotation", density, "    float density;", "float density;", r"'density' has no @param annotation")
 broken("an unknown annotation key", "help=\"fog per", "hlp=\"fog per", "float density;", r"unknown key 'hlp'")
 broken("an annotation without a default", "default=0.02 ", "", "float density;", r"no default=")
+broken("a help without its closing quote", 'base height"', 'base height', "float density;", r"no closing")
+broken("min without max", "min=0 max=1 help=\"fog per", "min=0 help=\"fog per", "float density;", r"both min= and max=")
+broken("a vector member", "    float density;", "    vec2 density;", "vec2 density;", r"'density' is not a scalar", fog=FOG.replace("params.density", "params.density.x"))
 broken("a default outside the range", "default=0.02", "default=2", "float density;", r"default 2 lies outside \[0, 1\]")
 broken("a binding neither in_ nor out_", "in_position", "gpos", "sampler2D gpos", r"'gpos' is neither in_NAME nor out_NAME")
 save(comp, FOG)
