@@ -663,8 +663,10 @@ static int cmd_plugins(int argc, char **argv)
         if (strcmp(d->name, want) != 0)
             continue;
         found = 1;
-        printf("%s (%s plugin, ABI %u)\n  %s\n  file: %s\n", d->name, d->kind == VRG_PLUGIN_SCENE ? "scene" : "pass", d->abi_version,
-               d->help ? d->help : "", paths[i]);
+        size_t plen = strlen(paths[i]);
+        int one_file = plen > 5 && strcmp(paths[i] + plen - 5, ".comp") == 0; /* slots and parameters from the shader */
+        printf("%s (%s, ABI %u)\n  %s\n  file: %s\n", d->name, one_file ? "shader-only pass" : d->kind == VRG_PLUGIN_SCENE ? "scene plugin" : "pass plugin",
+               d->abi_version, d->help ? d->help : "", paths[i]);
         printf("slots:\n");
         for (uint32_t s = 0; s < d->slot_count; s++) {
             const vrg_slot_desc *sd = &d->slots[s];

@@ -80,7 +80,7 @@ rc, out = run("check", "heightfog.ini", "--no-device")
 check(rc == 0 and "heightfog.comp" in out, "check of the page's graph: exit %d\n%s" % (rc, out))
 rc, out = run("plugins", "heightfog", env={"VOXRG_PLUGIN_PATH": OUT})
 check(rc == 0 and re.search(r"in\.position\s+image", out) and re.search(r"out\.color\s+image\s+rgba16f", out)
-      and re.search(r"density\s+float default 0\.02", out) and "heightfog: fog toward" in out,
+      and re.search(r"density\s+float default 0\.02", out) and "heightfog: fog toward" in out and "(shader-only pass, ABI" in out,
       "voxrg plugins heightfog: exit %d\n%s" % (rc, out))
 rc, out = run("render", "heightfog.ini", "--size", "160x90", "--validate", "--out", "a")
 check(rc == 0, "render: exit %d\n%s" % (rc, out))
