@@ -4,6 +4,9 @@
 # Mesa's lavapipe comes from bookworm-backports (Mesa >= 24 has VK_KHR_ray_query);
 # if that fails we keep Debian main's Mesa and voxrg runs with DDA traversal only.
 # libssl-dev: OpenSSL's libcrypto, SHA-256 for compare's reference cache keys.
+# libopenexr-dev: OpenEXR, the file format for float images: `render --dump`
+# writes images as EXR (halves and floats as stored, NaN and Inf kept, uint
+# channels as integers), which PNG cannot hold.
 # slurm-wlm and munge: the compare_slurm test runs compare on a one-node Slurm
 # cluster it starts itself (voxrg builds and runs without them).
 set -u
@@ -13,7 +16,7 @@ export DEBIAN_FRONTEND=noninteractive
 
 PKGS="build-essential cmake pkg-config git ca-certificates
       libvulkan-dev vulkan-validationlayers vulkan-tools spirv-tools
-      glslang-dev glslang-tools libspirv-cross-c-shared-dev libglfw3-dev libinih-dev libspng-dev libjemalloc-dev
+      glslang-dev glslang-tools libspirv-cross-c-shared-dev libglfw3-dev libinih-dev libspng-dev libopenexr-dev libjemalloc-dev
       xvfb xauth xdotool chromium clang llvm libclang-rt-14-dev python3
       libssl-dev slurm-wlm munge"
 

@@ -16,6 +16,8 @@
 #include "run.h"
 #include "util.h"
 #include "png_writer.h"
+#include "dump.h"
+#include "inspect.h"
 #include "new_pass.h"
 #include "voxrg/voxrg.h"
 #include "voxrg/output.h"
@@ -63,11 +65,14 @@ static const char *usage_check =
 
 static const char *usage_render =
     "usage: voxrg render GRAPH [--frames N] [--size WxH] [--out DIR] [--set PASS.PARAM=VALUE]...\n"
-    "                          [--camera PATH] [--dump RES[,RES...]] [--json FILE] [--validate] [--watch]\n"
-    "                          [--sequence] [--interval MS] [--json-frames N] [--gpu-timeout S]\n"
-    "                          [--device NAME|INDEX]\n"
+    "                          [--camera PATH] [--dump RES[,RES...]] [--dump-format exr|png] [--json FILE]\n"
+    "                          [--validate] [--watch] [--sequence] [--interval MS] [--json-frames N]\n"
+    "                          [--gpu-timeout S] [--device NAME|INDEX]\n"
     "Renders N frames (default 1) headless and writes DIR/OUTPUT.png (default DIR: out),\n"
-    "plus DIR/RES.png for each dumped image (DIR/RES.bin for buffers). --json writes\n"
+    "plus DIR/RES.exr for each dumped image: OpenEXR, halves and floats as stored (NaN\n"
+    "and Inf kept), uint formats as uint channels, 8-bit ones as floats (--dump-format png:\n"
+    "DIR/RES.png, 8-bit as the output), and DIR/RES.bin with DIR/RES.json (bytes, texel\n"
+    "format, writer) for buffers. --json writes\n"
     "per-pass GPU timings: means over every frame, per-frame lists of the last N\n"
     "frames (--json-frames, default 4096). Every file is written whole or not at\n"
     "all, and DIR and the folder of --json are checked before the first frame.\n"
@@ -79,8 +84,9 @@ static const char *usage_render =
     "--watch reloads saved shaders (and the files they #include), the graph file and\n"
     "rebuilt plugins between frames; a shader or graph with errors is reported with\n"
     "FILE:LINE, a refused plugin with its path, and the last good one keeps running.\n"
-    "--sequence writes every frame as DIR/NAME-NNNNN.png (output and dumps, each file\n"
-    "complete when it appears), --interval paces frames to at least MS apart, and\n"
+    "--sequence writes every frame as DIR/NAME-NNNNN.png (dumped images .exr; output and\n"
+    "dumps, each file complete when it appears), --interval paces frames to at least MS\n"
+    "apart, and\n"
     "--frames 0 renders until interrupted: with --watch, a script's edit loop.\n"
     "SIGINT or SIGTERM ends the run after the current frame, writing the files; a frame\n"
     "the GPU does not finish within a second of the signal fails instead (exit 1, naming\n"
@@ -108,6 +114,10 @@ typedef struct options {
     uint32_t json_frames;           /* per-frame timings kept for --json: the last N */
     double interval_ms, gpu_timeout_s;
     int validate, no_device, help, watch, sequence;
+    int dump_exr;                   /* --dump-format: 1 exr (default), 0 png */
+    int keep_images;                /* inspect: every image readable after the frame */
+    const char *pixel;              /* inspect: --pixel X,Y as given */
+    uint32_t pixel_x, pixel_y, frame;
 } options;
 
 static int usage_error(const char *usage, const char *fmt, const char *arg)
@@ -123,17 +133,18 @@ static int is_valued_option(const char *a)
 {
     static const char *valued[] = {"--dot", "--out", "--json", "--device", "--set", "--size", "--frames", "--dump", "--camera",
                                    "--screenshot", "--ab", "--record", "--show", "--interval", "--json-frames", "--gpu-timeout",
-                                   "--window", "--scale", "--filter"};
+                                   "--window", "--scale", "--filter", "--dump-format", "--pixel", "--frame"};
     for (size_t i = 0; i < sizeof valued / sizeof valued[0]; i++)
         if (!strcmp(a, valued[i]))
             return 1;
     return 0;
 }
 
-static const char *usage_run;
+static const char *usage_run, *usage_inspect;
 
 /* The window's options: given to another command they would do nothing. */
 static int run_only(const char *a) { return !strcmp(a, "--window") || !strcmp(a, "--scale") || !strcmp(a, "--filter"); }
+static int inspect_only(const char *a) { return !strcmp(a, "--pixel") || !strcmp(a, "--frame"); }
 
 static int parse_options(int argc, char **argv, options *o, const char *usage)
 {
@@ -142,6 +153,7 @@ static int parse_options(int argc, char **argv, options *o, const char *usage)
     o->frames = 1;
     o->json_frames = JSON_FRAMES_DEFAULT;
     o->out = "out";
+    o->dump_exr = 1;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         const char *next = i + 1 < argc ? argv[i + 1] : NULL;
@@ -163,6 +175,25 @@ static int parse_options(int argc, char **argv, options *o, const char *usage)
             return usage_error(usage, "%s needs a value", a);
         else if (run_only(a) && usage != usage_run)
             return usage_error(usage, "%s is an option of `voxrg run` (the window)", a);
+        else if (inspect_only(a) && usage != usage_inspect)
+            return usage_error(usage, "%s is an option of `voxrg inspect`", a);
+        else if (!strcmp(a, "--dump-format") && usage != usage_render)
+            return usage_error(usage, "%s is an option of `voxrg render`", a);
+        else if (!strcmp(a, "--dump-format")) {
+            o->dump_exr = !strcmp(next, "exr") ? 1 : !strcmp(next, "png") ? 0 : -1;
+            if (o->dump_exr < 0)
+                return usage_error(usage, "--dump-format '%s': expected exr or png", next);
+        } else if (!strcmp(a, "--pixel")) {
+            if (vrg_cli_parse_pixel(next, &o->pixel_x, &o->pixel_y) != 0)
+                return usage_error(usage, "--pixel '%s': expected X,Y, two whole numbers with a comma between, e.g. 160,90", next);
+            o->pixel = next;
+        } else if (!strcmp(a, "--frame")) {
+            char *end;
+            long n = strtol(next, &end, 10);
+            if (*end || end == next || n < 0 || n > 1000000)
+                return usage_error(usage, "--frame '%s': expected a frame number from 0 to 1000000", next);
+            o->frame = (uint32_t)n;
+        }
         else if (!strcmp(a, "--dot"))
             o->dot = next;
         else if (!strcmp(a, "--out"))
@@ -257,6 +288,7 @@ static int load(const options *o, vrg_context **ctx, vrg_graph **g)
         .height = o->height,
         .readback = o->dumps,
         .readback_count = (uint32_t)o->dump_count,
+        .keep_images = o->keep_images,
     };
     if (vrg_graph_load(*ctx, &gd, g) != 0) {
         fprintf(stderr, "%s: graph not loaded\n", o->graph);
@@ -306,36 +338,35 @@ static int cmd_check(int argc, char **argv)
 }
 
 
-/* DIR/NAME.png (or .bin for a buffer); with frame >= 0 DIR/NAME-NNNNN.png,
- * not announced, encoded by `writer` when given (while the next frame
- * renders). Every file appears complete (vrg_output), so a script polling
- * for a frame never reads half a file. */
-static int write_resource(vrg_graph *g, const char *dir, const char *name, long frame, vrg_cli_png_writer *writer)
+/* DIR/NAME.exr for an image (exr 0: DIR/NAME.png, as the output always is),
+ * DIR/NAME.bin and its NAME.json for a buffer; with frame >= 0
+ * DIR/NAME-NNNNN.png (.exr), not announced, a PNG encoded by `writer` when
+ * given (while the next frame renders). Every file appears complete
+ * (vrg_output), so a script polling for a frame never reads half a file. */
+static int write_resource(vrg_graph *g, const char *dir, const char *name, long frame, vrg_cli_png_writer *writer, int exr, uint64_t frames)
 {
     char path[VRG_CLI_PATH];
     int rc;
     if (vrg_graph_resource_kind(g, name) == VRG_IMAGE) {
-        vrg_image_data img;
-        if (vrg_graph_read(g, name, &img) != 0)
-            return -1;
+        const char *ext = exr ? "exr" : "png";
         if (frame < 0)
-            snprintf(path, sizeof path, "%s/%s.png", dir, name);
+            snprintf(path, sizeof path, "%s/%s.%s", dir, name, ext);
         else
-            snprintf(path, sizeof path, "%s/%s-%05ld.png", dir, name, frame);
-        if (writer)
-            return vrg_cli_png_writer_push(writer, path, &img);
-        rc = vrg_write_png(path, &img);
-        free(img.pixels);
+            snprintf(path, sizeof path, "%s/%s-%05ld.%s", dir, name, frame, ext);
+        if (exr)
+            rc = vrg_cli_dump_exr(g, name, path);
+        else {
+            vrg_image_data img;
+            if (vrg_graph_read(g, name, &img) != 0)
+                return -1;
+            if (writer)
+                return vrg_cli_png_writer_push(writer, path, &img);
+            rc = vrg_write_png(path, &img);
+            free(img.pixels);
+        }
     } else {
-        if (frame >= 0)
-            return 0; /* buffers: only at the end */
-        void *data;
-        uint64_t size;
-        if (vrg_graph_read_buffer(g, name, &data, &size) != 0)
-            return -1;
-        snprintf(path, sizeof path, "%s/%s.bin", dir, name);
-        rc = vrg_output_write(path, data, size);
-        free(data);
+        /* buffers: only at the end, announced by the writer */
+        return frame >= 0 ? 0 : vrg_cli_dump_buffer(g, name, dir, frames);
     }
     if (rc == 0 && frame < 0)
         fprintf(stderr, "wrote %s\n", path);
@@ -506,9 +537,9 @@ static int cmd_render(int argc, char **argv)
             break;
         done = k + 1;
         if (o.sequence) {
-            rc |= write_resource(g, o.out, vrg_graph_output(g), k, writer) != 0;
+            rc |= write_resource(g, o.out, vrg_graph_output(g), k, writer, 0, k + 1) != 0;
             for (int i = 0; rc == 0 && i < o.dump_count; i++)
-                rc |= write_resource(g, o.out, o.dumps[i], k, writer) != 0;
+                rc |= write_resource(g, o.out, o.dumps[i], k, writer, o.dump_exr, k + 1) != 0;
         }
         if (o.watch && vrg_graph_reload_ms(g) != reloaded) {
             reloaded = vrg_graph_reload_ms(g);
@@ -536,12 +567,76 @@ static int cmd_render(int argc, char **argv)
         rc = 1;
     }
     if (rc == 0)
-        rc |= write_resource(g, o.out, vrg_graph_output(g), -1, NULL) != 0;
+        rc |= write_resource(g, o.out, vrg_graph_output(g), -1, NULL, 0, done) != 0;
     for (int i = 0; rc == 0 && i < o.dump_count; i++)
-        rc |= write_resource(g, o.out, o.dumps[i], -1, NULL) != 0;
+        rc |= write_resource(g, o.out, o.dumps[i], -1, NULL, o.dump_exr, done) != 0;
     if (rc == 0 && o.json)
         rc |= write_json(o.json, ctx, g, &o, &times, wall) != 0;
     free(times.ring), free(times.sum);
+    return finish(ctx, g, rc);
+}
+
+static const char *usage_inspect =
+    "usage: voxrg inspect GRAPH --pixel X,Y [--frame N] [--size WxH] [--camera PATH] [--json FILE]\n"
+    "                           [--set PASS.PARAM=VALUE]... [--validate] [--device NAME|INDEX]\n"
+    "Renders frames 0 to N (default 0) headless, as render does (--camera: the path's\n"
+    "camera at each frame), and prints pixel X,Y of every image resource of the graph\n"
+    "after frame N, in schedule order: the pass that writes it, the resource, its format,\n"
+    "the texel read (X,Y scaled to the resource's size) and every channel's stored\n"
+    "value exactly (halves and floats to 17 significant digits, nan and inf as such,\n"
+    "uint as integers), each history resource followed by its @prev copy (what frame N\n"
+    "read). Where the graph has a motion image (the gbuffer's motion, in pixels), the\n"
+    "pixel of the previous frame its vector points to. --json writes the same as JSON\n"
+    "(values, and each channel's stored bits). X,Y outside the graph's size is an error.\n";
+
+static int cmd_inspect(int argc, char **argv)
+{
+    options o;
+    int rc = parse_options(argc, argv, &o, usage_inspect);
+    if (rc || o.help)
+        return rc ? rc : (fputs(usage_inspect, stdout), 0);
+    if (!o.pixel)
+        return usage_error(usage_inspect, "--pixel X,Y is missing%s", "");
+    /* render's options would do nothing here */
+    static const char *render_only[] = {"--dump", "--frames", "--out", "--watch", "--sequence", "--interval", "--json-frames", "--dot", "--no-device"};
+    for (int i = 0; i < argc; i++)
+        for (size_t k = 0; k < sizeof render_only / sizeof render_only[0]; k++)
+            if (!strcmp(argv[i], render_only[k]))
+                return usage_error(usage_inspect, "%s is not an option of `voxrg inspect` (--frame N picks the frame)", argv[i]);
+    o.keep_images = 1; /* every image stays readable to the end of the frame */
+    vrg_context *ctx;
+    vrg_graph *g = NULL;
+    if (load(&o, &ctx, &g) != 0)
+        return finish(ctx, g, 1);
+    uint32_t w, h;
+    vrg_graph_size(g, &w, &h);
+    if (o.pixel_x >= w || o.pixel_y >= h) {
+        fprintf(stderr, "error: --pixel %s is outside the graph's %ux%u (X from 0 to %u, Y from 0 to %u)\n", o.pixel, w, h, w - 1, h - 1);
+        return finish(ctx, g, 2);
+    }
+    vrg_camera_path path = {0};
+    if ((o.camera && vrg_camera_path_load(o.camera, &path, stderr) != 0) || (o.json && vrg_cli_out_file_dir(o.json) != 0)) {
+        vrg_camera_path_free(&path);
+        return finish(ctx, g, 1);
+    }
+    vrg_camera camera = *vrg_graph_camera(g);
+    uint32_t sub = vrg_graph_subframes(g);
+    for (uint32_t k = 0; k <= o.frame && rc == 0; k++) {
+        if (path.count) {
+            vrg_camera_path_eval(&path, (float)(k * vrg_graph_frame_seconds(g)), &camera);
+            vrg_graph_set_camera(g, &camera);
+        }
+        for (uint32_t s = 0; s < sub && rc == 0; s++)
+            if (vrg_graph_frame(g) != 0) {
+                fprintf(stderr, "error: frame %u failed\n", k);
+                rc = 1;
+            }
+    }
+    vrg_camera_path_free(&path);
+    if (rc == 0 && vrg_graph_wait(g) != 0)
+        rc = 1;
+    if (rc == 0 && vrg_cli_inspect_report(g, o.graph, o.pixel_x, o.pixel_y, o.frame, stdout, o.json) != 0)
+        rc = 1;
     return finish(ctx, g, rc);
 }
 
@@ -820,6 +915,8 @@ int main(int argc, char **argv)
         return cmd_render(argc - 2, argv + 2);
     if (!strcmp(argv[1], "run"))
         return cmd_run(argc - 2, argv + 2);
+    if (!strcmp(argv[1], "inspect"))
+        return cmd_inspect(argc - 2, argv + 2);
     if (!strcmp(argv[1], "plugins"))
         return cmd_plugins(argc - 2, argv + 2);
     if (!strcmp(argv[1], "bench"))

@@ -38,6 +38,23 @@ int vrg_graph_resource_kind(const vrg_graph *g, const char *name)
     return -1;
 }
 
+int vrg_graph_resource_info(const vrg_graph *g, const char *name, vrg_resource_info *out)
+{
+    memset(out, 0, sizeof *out);
+    int i = _vrg_graph_find_resource(g, name);
+    if (i < 0)
+        return -1;
+    const _vrg_resource *r = &g->res[i];
+    out->kind = r->kind;
+    out->format = r->format;
+    out->width = r->width;
+    out->height = r->height;
+    out->size = r->size;
+    out->writer = r->writer >= 0 ? g->passes[r->writer].name : NULL;
+    out->history = r->history;
+    return 0;
+}
+
 static const vrg_pass *scene_of(const vrg_graph *g)
 {
     for (int i = 0; i < g->pass_count; i++)

@@ -3,6 +3,7 @@
  * for a viewer, which picks one to show (kept in TRANSFER_SRC after each
  * frame, as the output is). */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "internal.h"
@@ -152,6 +153,28 @@ int vrg_graph_read_buffer(vrg_graph *g, const char *name, void **data, uint64_t 
     *data = malloc(r->size);
     memcpy(*data, last_readback(g) + g->readback_offset[i], r->size);
     *size = r->size;
+    return 0;
+}
+
+int vrg_graph_read_texels(vrg_graph *g, const char *name, void **data, uint64_t *size)
+{
+    *data = NULL;
+    *size = 0;
+    int i = find_readable(g, name);
+    if (i < 0)
+        return -1;
+    _vrg_resource *r = &g->res[i];
+    if (r->kind != VRG_IMAGE) {
+        _vrg_error(&g->diag, VRG_E_WRONG_READ, "resource '%s' is a buffer: use vrg_graph_read_buffer", name);
+        return -1;
+    }
+    uint64_t bytes = (uint64_t)r->width * r->height * _vrg_format_bytes(r->format);
+    if (!(*data = malloc(bytes))) {
+        _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "resource '%s': out of memory for %llu bytes", name, (unsigned long long)bytes);
+        return -1;
+    }
+    memcpy(*data, last_readback(g) + g->readback_offset[i], bytes);
+    *size = bytes;
     return 0;
 }
 
@@ -372,4 +395,24 @@ int vrg_graph_read_pixels(vrg_graph *g, uint32_t x, uint32_t y, vrg_pixel_value 
             decode_texel((const uint8_t *)g->readback_map + g->pixel_offset + (size_t)e * VRG_PIXEL_BYTES, r->format, v);
     }
     return n;
+}
+
+const char *vrg_pixel_value_text(const vrg_pixel_value *v, char *buf, size_t cap)
+{
+    if (!cap)
+        return buf;
+    if (!v->kept) {
+        snprintf(buf, cap, "(not kept)");
+        return buf;
+    }
+    size_t used = 0;
+    buf[0] = 0;
+    for (uint32_t c = 0; c < v->channels && used < cap; c++) {
+        const char *sep = c ? ", " : "(";
+        int n = v->is_uint ? snprintf(buf + used, cap - used, "%s%u", sep, v->bits[c]) : snprintf(buf + used, cap - used, "%s%.17g", sep, v->value[c]);
+        used += n > 0 ? (size_t)n : 0;
+    }
+    if (used < cap)
+        snprintf(buf + used, cap - used, ")");
+    return buf;
 }

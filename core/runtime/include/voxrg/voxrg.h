@@ -207,9 +207,29 @@ typedef struct vrg_pixel_value {
  * next frame may follow at once (the images are left as its barriers
  * expect). */
 int vrg_graph_read_pixels(vrg_graph *g, uint32_t x, uint32_t y, vrg_pixel_value *out, uint32_t max);
+/* Its channels as `voxrg inspect` prints them: "(c0, c1, ...)", a float
+ * to 17 significant digits (read as a double, the stored value exactly),
+ * nan / inf as such, a uint as an integer; "(not kept)" where kept is 0.
+ * Returns buf. */
+const char *vrg_pixel_value_text(const vrg_pixel_value *v, char *buf, size_t cap);
 
 /* VRG_IMAGE or VRG_BUFFER, or -1 if the graph has no such resource. */
 int vrg_graph_resource_kind(const vrg_graph *g, const char *resource);
+/* A resource as the graph declares and allocated it. */
+typedef struct vrg_resource_info {
+    vrg_resource_kind kind;
+    VkFormat format;         /* images; buffers: their texel-read views' format, VK_FORMAT_UNDEFINED if none */
+    uint32_t width, height;  /* images */
+    uint64_t size;           /* buffers: bytes */
+    const char *writer;      /* the pass that writes it; NULL: none */
+    int history;             /* read through @prev: two copies */
+} vrg_resource_info;
+/* 0, or -1 if the graph has no such resource. */
+int vrg_graph_resource_info(const vrg_graph *g, const char *resource, vrg_resource_info *out);
+/* An image resource's bytes as stored, read back after the last frame
+ * (as vrg_graph_read): rows of texels of its format, tightly packed. Caller
+ * frees *data. */
+int vrg_graph_read_texels(vrg_graph *g, const char *resource, void **data, uint64_t *size);
 /* Bytes of a buffer resource written in the last frame. Caller frees *data. */
 int vrg_graph_read_buffer(vrg_graph *g, const char *resource, void **data, uint64_t *size);
 

@@ -1,0 +1,165 @@
+#!/usr/bin/env python3
+"""--dump's files and `voxrg inspect`, end to end on tests/graphs/nan_pixel.ini
+(pattern -> nan_pixel, one NaN at 5,3 channel B -> blur):
+ - exr_roundtrip: the EXR dumps, read by exr_pixel (OpenEXR's own C library,
+   none of voxrg's code), hold exactly what `inspect --json` prints (stored
+   bits) at several pixels; the NaN is kept; rg32ui is a uint EXR;
+ - dump_png: --dump-format png writes PNGs as before (no .exr);
+ - buffer_sidecar: a buffer dump is NAME.bin plus NAME.json saying its size,
+   texel format and writer;
+ - inspect_errors: a pixel outside the image, bad --pixel syntax, no --pixel,
+   render's options: a clear error, non-zero exit, nothing printed as values.
+Usage: test_dump_inspect.py VOXRG EXR_PIXEL TESTS_DIR OUT_DIR CASE"""
+import json
+import math
+import os
+import shutil
+import struct
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import png_pixels  # noqa: E402
+
+VOXRG, EXR_PIXEL, TESTS, OUT, CASE = sys.argv[1:6]
+GRAPH = os.path.join(TESTS, "graphs", "nan_pixel.ini")
+failures = []
+
+
+def check(cond, what):
+    if not cond:
+        failures.append(what)
+        print("FAIL:", what, flush=True)
+    return cond
+
+
+def run(args, timeout=300):
+    p = subprocess.run([VOXRG] + args, capture_output=True, text=True, timeout=timeout)
+    return p.returncode, p.stdout, p.stderr
+
+
+def exr_pixel(path, x, y):
+    """{channel name: (type, bits)} as OpenEXR reads the file."""
+    p = subprocess.run([EXR_PIXEL, path, str(x), str(y)], capture_output=True, text=True, timeout=60)
+    if not check(p.returncode == 0, f"exr_pixel {path} {x} {y}: {p.stderr.strip()}"):
+        return {}
+    out = {}
+    for line in p.stdout.splitlines()[1:]:
+        name, kind, bits = line.split()
+        out[name] = (kind, int(bits))
+    return out
+
+
+def names(n):
+    return ["Y"] if n == 1 else ["R", "G", "B", "A"][:n]
+
+
+def half_value(bits):
+    return struct.unpack("<e", struct.pack("<H", bits))[0]
+
+
+def exr_roundtrip():
+    dumps = "gradient,poisoned,depth,ids,final"
+    rc, _, err = run(["render", GRAPH, "--validate", "--out", OUT, "--dump", dumps])
+    if not check(rc == 0, f"render --dump exited {rc}: {err}"):
+        return
+    for res in dumps.split(","):
+        check(os.path.isfile(os.path.join(OUT, res + ".exr")), f"{res}.exr not written")
+    check(os.path.isfile(os.path.join(OUT, "final.png")), "the output is not final.png")
+    want_type = {"rgba16f": "half", "r32f": "float", "rg32ui": "uint"}
+    for x, y in ((5, 3), (0, 0), (39, 23), (17, 11)):
+        js = os.path.join(OUT, f"inspect-{x}-{y}.json")
+        rc, text, err = run(["inspect", GRAPH, "--validate", "--pixel", f"{x},{y}", "--json", js])
+        if not check(rc == 0, f"inspect --pixel {x},{y} exited {rc}: {err}"):
+            continue
+        images = json.load(open(js))["images"]
+        check([i["resource"] for i in images] == ["gradient", "poisoned", "depth", "ids", "final"],
+              f"inspect lists {[i['resource'] for i in images]}")
+        for img in images:
+            stored = exr_pixel(os.path.join(OUT, img["resource"] + ".exr"), x, y)
+            chans = names(len(img["bits"]))
+            check(sorted(stored) == sorted(chans), f"{img['resource']}: EXR channels {sorted(stored)}, inspect has {chans}")
+            for c, name in enumerate(chans):
+                kind, bits = stored.get(name, (None, None))
+                check(kind == want_type[img["format"]], f"{img['resource']}.{name} is {kind} in the EXR ({img['format']})")
+                check(bits == img["bits"][c],
+                      f"{img['resource']}.{name} at {x},{y}: EXR bits {bits}, inspect {img['bits'][c]} ({img['values'][c]})")
+            if img["resource"] == "ids":
+                check(img["values"] == [x, y * 65536 + 7], f"ids at {x},{y}: {img['values']}")
+            if img["resource"] == "depth":
+                check(img["values"] == [x + y / 1024], f"depth at {x},{y}: {img['values']}")
+        # the NaN, and the value printed as JSON can hold it
+        poisoned = images[1]
+        if (x, y) == (5, 3):
+            check(poisoned["values"][2] == "nan" and math.isnan(half_value(poisoned["bits"][2])),
+                  f"the NaN at 5,3: inspect says {poisoned['values'][2]} (bits {poisoned['bits'][2]})")
+            kind, bits = exr_pixel(os.path.join(OUT, "poisoned.exr"), 5, 3).get("B", (None, 0))
+            check(math.isnan(half_value(bits)), f"poisoned.exr at 5,3 channel B is {half_value(bits)}, not NaN")
+            check("nan" in text.split("poisoned")[1].splitlines()[0], f"the table does not show the NaN: {text}")
+        else:
+            check(all(isinstance(v, float) or isinstance(v, int) for v in poisoned["values"]), f"{x},{y}: {poisoned['values']}")
+    # +Inf too
+    rc, _, err = run(["render", GRAPH, "--out", OUT, "--dump", "poisoned", "--set", "poison.value=1"])
+    kind, bits = exr_pixel(os.path.join(OUT, "poisoned.exr"), 5, 3).get("B", (None, 0))
+    check(rc == 0 and half_value(bits) == math.inf, f"poisoned.exr with value=1 at 5,3 channel B: {half_value(bits)} ({err})")
+
+
+def dump_png():
+    rc, _, err = run(["render", GRAPH, "--out", OUT, "--dump", "gradient,final", "--dump-format", "png"])
+    if not check(rc == 0, f"render --dump-format png exited {rc}: {err}"):
+        return
+    check(not [f for f in os.listdir(OUT) if f.endswith(".exr")], f"--dump-format png wrote EXR files: {os.listdir(OUT)}")
+    w, h, px = png_pixels.load(os.path.join(OUT, "gradient.png"))
+    check((w, h) == (40, 24), f"gradient.png is {w}x{h}")
+    # the gradient's closed form (x/39, y/23, 0.5), sRGB-encoded as the PNG maps colour
+    r, g, b = px(39, 0)
+    check(r == 255 and g == 0 and b == 188, f"gradient.png at 39,0 is {(r, g, b)}, not (255, 0, 188)")
+    rc, _, err = run(["render", GRAPH, "--out", OUT, "--dump-format", "tiff"])
+    check(rc == 2 and "--dump-format 'tiff'" in err, f"--dump-format tiff: exit {rc}, {err}")
+
+
+def buffer_sidecar():
+    rc, _, err = run(["render", os.path.join(TESTS, "graphs", "buffer.ini"), "--out", OUT, "--dump", "numbers"])
+    if not check(rc == 0, f"render --dump numbers exited {rc}: {err}"):
+        return
+    data = open(os.path.join(OUT, "numbers.bin"), "rb").read()
+    check(len(data) == 4096 and struct.unpack_from("<3I", data, 0) == (0, 7, 14), f"numbers.bin: {len(data)} bytes")
+    meta = json.load(open(os.path.join(OUT, "numbers.json")))
+    check(meta == {"resource": "numbers", "kind": "buffer", "file": "numbers.bin", "bytes": 4096, "texel_format": "rgba32ui",
+                   "written_by": "fill", "frames_rendered": 1}, f"numbers.json: {meta}")
+
+
+def inspect_errors():
+    for bad in ("5", "5,", ",3", "a,b", "-1,2", "5,3,1", "5 ,3", "1e3,2", "99999999999,1"):
+        rc, text, err = run(["inspect", GRAPH, "--pixel", bad])
+        check(rc == 2 and f"--pixel '{bad}': expected X,Y" in err and not text, f"--pixel {bad!r}: exit {rc}, stdout {text!r}, {err}")
+    for x, y in ((40, 0), (0, 24), (1000, 1000)):
+        rc, text, err = run(["inspect", GRAPH, "--pixel", f"{x},{y}"])
+        check(rc == 2 and "outside the graph's 40x24" in err and not text, f"--pixel {x},{y}: exit {rc}, {err}")
+    rc, text, err = run(["inspect", GRAPH, "--pixel", "39,23", "--size", "20x12"])
+    check(rc == 2 and "outside the graph's 20x12" in err, f"--pixel 39,23 at --size 20x12: exit {rc}, {err}")
+    rc, _, err = run(["inspect", GRAPH])
+    check(rc == 2 and "--pixel X,Y is missing" in err, f"no --pixel: exit {rc}, {err}")
+    for opt in (["--frames", "2"], ["--dump", "final"], ["--out", OUT]):
+        rc, _, err = run(["inspect", GRAPH, "--pixel", "1,1"] + opt)
+        check(rc == 2 and f"{opt[0]} is not an option of `voxrg inspect`" in err, f"inspect {opt}: exit {rc}, {err}")
+    rc, _, err = run(["render", GRAPH, "--pixel", "1,1"])
+    check(rc == 2 and "--pixel is an option of `voxrg inspect`" in err, f"render --pixel: exit {rc}, {err}")
+
+
+CASES = (exr_roundtrip, dump_png, buffer_sidecar, inspect_errors)
+
+
+def main():
+    cases = {c.__name__: c for c in CASES}
+    if CASE not in cases:
+        sys.exit(f"usage: test_dump_inspect.py VOXRG EXR_PIXEL TESTS_DIR OUT_DIR {'|'.join(cases)}")
+    shutil.rmtree(OUT, ignore_errors=True)
+    os.makedirs(OUT)
+    cases[CASE]()
+    print("FAILED" if failures else "ok")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
