@@ -38,7 +38,7 @@ const char *const vrg_cli_compare_usage =
     "                     [--grid [@GRAPH:]PASS.PARAM=A,B,...]... [--baseline NAME]\n"
     "                     [--cases FILE | [--camera PATH] [--start N] [--frames N] [--size WxH] [--warmup N]] [--out DIR]\n"
     "                     [--ref-set PASS.PARAM=VALUE]... [--cache DIR] [--score cpu|device] [--validate] [--device NAME|INDEX]\n"
-    "                     [--shard I/N]\n"
+    "                     [--shard I/N] [--check-finite]\n"
     "       voxrg compare --merge OUT SHARD_DIR...\n"
     "Renders every candidate (each graph, and each --variant: the graph GRAPH names, a\n"
     "listed graph's candidate name, path or file name, else the first graph, with those\n"
@@ -63,7 +63,9 @@ const char *const vrg_cli_compare_usage =
     "--shard I/N (I from 0 to N-1, or auto: $SLURM_ARRAY_TASK_ID or\n"
     "$JOB_COMPLETION_INDEX) runs the I-th of N contiguous slices of the (case,\n"
     "candidate) tasks and writes DIR/shard.txt and frames/ instead of a report;\n"
-    "--merge OUT reads the N shards' folders and writes the run's report to OUT.\n";
+    "--merge OUT reads the N shards' folders and writes the run's report to OUT.\n"
+    "--check-finite (as render's; --validate checks too) fails the run at the first NaN\n"
+    "or infinity a pass writes into a float image, naming the pass, resource, pixel and frame.\n";
 
 typedef struct options {
     const char **graphs; /* [argc] each, as the arguments are at most */
@@ -78,6 +80,7 @@ typedef struct options {
     int ref_set_count;
     uint32_t width, height, frames, warmup, start;
     int validate, help;
+    int check_finite; /* NaN/Inf checks after each pass (vrg_graph_desc.check_finite) */
     int shard, shards; /* --shard I/N; shards 0: the whole run */
     /* the case being run: its scene.PARAM=VALUE overrides, for every graph */
     char *const *scene;
@@ -161,6 +164,10 @@ static int parse_options(int argc, char **argv, options *o)
         }
         if (!strcmp(a, "--validate")) {
             o->validate = 1;
+            continue;
+        }
+        if (!strcmp(a, "--check-finite")) {
+            o->check_finite = 1;
             continue;
         }
         if (a[0] != '-') {
@@ -271,7 +278,8 @@ static vrg_graph *load(vrg_context *ctx, const char *graph, const char *const *s
         all[n++] = sets[i];
     for (int i = 0; i < o->scene_count; i++)
         all[n++] = o->scene[i];
-    vrg_graph_desc d = {.path = graph, .overrides = all, .override_count = (uint32_t)n, .width = o->width, .height = o->height};
+    vrg_graph_desc d = {.path = graph, .overrides = all, .override_count = (uint32_t)n, .width = o->width, .height = o->height,
+                        .check_finite = o->check_finite};
     vrg_graph *g = NULL;
     int rc = vrg_graph_load(ctx, &d, &g);
     free(all);

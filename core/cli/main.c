@@ -66,8 +66,8 @@ static const char *usage_check =
 static const char *usage_render =
     "usage: voxrg render GRAPH [--frames N] [--size WxH] [--out DIR] [--set PASS.PARAM=VALUE]...\n"
     "                          [--camera PATH] [--dump RES[,RES...]] [--dump-format exr|png] [--json FILE]\n"
-    "                          [--validate] [--watch] [--sequence] [--interval MS] [--json-frames N]\n"
-    "                          [--gpu-timeout S] [--device NAME|INDEX]\n"
+    "                          [--validate] [--check-finite] [--watch] [--sequence] [--interval MS]\n"
+    "                          [--json-frames N] [--gpu-timeout S] [--device NAME|INDEX]\n"
     "Renders N frames (default 1) headless and writes DIR/OUTPUT.png (default DIR: out),\n"
     "plus DIR/RES.exr for each dumped image: OpenEXR, halves and floats as stored (NaN\n"
     "and Inf kept), uint formats as uint channels, 8-bit ones as floats (--dump-format png:\n"
@@ -78,7 +78,11 @@ static const char *usage_render =
     "all, and DIR and the folder of --json are checked before the first frame.\n"
     "--camera plays a camera path (graphs/paths/*.path) at the\n"
     "graph's fps. --validate turns on the Khronos validation layer with\n"
-    "synchronization validation; any message fails the run. A graph that accumulates\n"
+    "synchronization validation; any message fails the run. --check-finite checks every\n"
+    "float image each pass writes, on the device right after the pass: the first NaN or\n"
+    "infinity fails the run (exit 1) naming the pass, resource, channel, pixel and frame,\n"
+    "with the pass's inputs at that pixel (every image is then kept to the end of the\n"
+    "frame, one frame in flight); --validate checks too, without the inputs. A graph that accumulates\n"
     "(the accumulate pass's samples_per_frame) gets that many graph frames per output\n"
     "frame, the camera held still: a converged reference per camera-path frame.\n"
     "--watch reloads saved shaders (and the files they #include), the graph file and\n"
@@ -115,6 +119,7 @@ typedef struct options {
     double interval_ms, gpu_timeout_s;
     int validate, no_device, help, watch, sequence;
     int dump_exr;                   /* --dump-format: 1 exr (default), 0 png */
+    int check_finite;               /* render, run: NaN/Inf checks after each pass */
     int keep_images;                /* inspect: every image readable after the frame */
     const char *pixel;              /* inspect: --pixel X,Y as given */
     uint32_t pixel_x, pixel_y, frame;
@@ -169,6 +174,11 @@ static int parse_options(int argc, char **argv, options *o, const char *usage)
             o->sequence = 1, takes = 0;
         else if (!strcmp(a, "--no-device"))
             o->no_device = 1, takes = 0;
+        else if (!strcmp(a, "--check-finite")) {
+            if (usage != usage_render && usage != usage_run)
+                return usage_error(usage, "%s is an option of `voxrg render`, `run` and `compare`", a);
+            o->check_finite = 1, takes = 0;
+        }
         else if (a[0] == '-' && !is_valued_option(a))
             return usage_error(usage, "unknown option '%s'", a);
         else if (a[0] == '-' && !next)
@@ -289,6 +299,7 @@ static int load(const options *o, vrg_context **ctx, vrg_graph **g)
         .readback = o->dumps,
         .readback_count = (uint32_t)o->dump_count,
         .keep_images = o->keep_images,
+        .check_finite = o->check_finite,
     };
     if (vrg_graph_load(*ctx, &gd, g) != 0) {
         fprintf(stderr, "%s: graph not loaded\n", o->graph);
@@ -644,7 +655,7 @@ static const char *usage_run =
     "usage: voxrg run [GRAPH] [--ab GRAPH_B] [--window WxH] [--scale S | --size WxH] [--filter nearest|bilinear]\n"
     "                       [--frames N] [--set PASS.PARAM=VALUE]... [--out DIR]\n"
     "                       [--camera PATH] [--record PATH] [--show RESOURCE] [--screenshot FILE] [--validate]\n"
-    "                       [--gpu-timeout S] [--device NAME|INDEX]\n"
+    "                       [--check-finite] [--gpu-timeout S] [--device NAME|INDEX]\n"
     "Renders GRAPH (default: the shipped graphs/interactive.ini) in a window until it is\n"
     "closed (or for N frames), presenting its output.\n"
     "The window is --window WxH (default 1280x720, at most the screen; with --size\n"
@@ -694,7 +705,8 @@ static const char *usage_run =
     "Saved shaders, the graph file and rebuilt plugins reload while it runs; errors\n"
     "are printed with FILE:LINE and the last good version keeps running. --camera\n"
     "plays a camera path instead of the fly camera; --screenshot writes the last of\n"
-    "N frames to FILE. Without a display, use `voxrg render`.\n";
+    "N frames to FILE. --check-finite stops at the first NaN or infinity a pass writes\n"
+    "(as render's). Without a display, use `voxrg render`.\n";
 
 static int cmd_run(int argc, char **argv)
 {
@@ -723,7 +735,8 @@ static int cmd_run(int argc, char **argv)
                          .window_w = o.window_w ? o.window_w : o.width, .window_h = o.window_h ? o.window_h : o.height,
                          .width = o.width, .height = o.height,
                          .scale = o.scale > 0 ? o.scale : o.width ? 1.0 : 0.5, .scale_auto = !(o.scale > 0) && !o.width, .filter = o.filter < 0 ? 1 : o.filter,
-                         .frames = frames_given ? o.frames : 0, .validate = o.validate, .gpu_timeout_s = o.gpu_timeout_s};
+                         .frames = frames_given ? o.frames : 0, .validate = o.validate, .check_finite = o.check_finite,
+                         .gpu_timeout_s = o.gpu_timeout_s};
     return vrg_cli_run(&r);
 }
 

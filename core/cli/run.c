@@ -1419,7 +1419,7 @@ int vrg_cli_run(const vrg_run_options *o)
      * reads (a pass's debug output) is then computed, and listed */
     const char *const *shown_read = o->show ? (const char *const *)&o->show : NULL;
     vrg_graph_desc d = {.path = o->graph, .overrides = o->sets, .override_count = o->set_count, .width = render.width, .height = render.height,
-                        .keep_images = 1, .readback = shown_read, .readback_count = o->show ? 1u : 0u};
+                        .keep_images = 1, .readback = shown_read, .readback_count = o->show ? 1u : 0u, .check_finite = o->check_finite};
     if (vrg_graph_load(w.ctx, &d, &g) != 0)
         goto out;
     vrg_graph_watch(g, 1); /* hot reload is what the window is for */
@@ -1433,7 +1433,8 @@ int vrg_cli_run(const vrg_run_options *o)
     if (o->ab) { /* B: its own graph file at A's size, the same world, camera and seed */
         uint32_t aw, ah;
         vrg_graph_size(g, &aw, &ah);
-        vrg_graph_desc db = {.path = o->ab, .width = aw, .height = ah, .keep_images = 1}; /* Tab shows B's image of the same name */
+        vrg_graph_desc db = {.path = o->ab, .width = aw, .height = ah, .keep_images = 1,
+                             .check_finite = o->check_finite}; /* Tab shows B's image of the same name */
         if (vrg_graph_load(w.ctx, &db, &gb) != 0)
             goto out;
         char why[1024];

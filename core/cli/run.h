@@ -16,6 +16,7 @@ typedef struct vrg_run_options {
     int filter;                  /* the upscale to the window: 0 nearest, 1 bilinear */
     uint32_t frames;        /* 0: until the window closes */
     int validate;
+    int check_finite;       /* NaN/Inf checks after each pass (vrg_graph_desc.check_finite) */
     double gpu_timeout_s;   /* 0: the default (vrg_context_desc) */
 } vrg_run_options;
 /* `voxrg run`: returns the exit status. */

@@ -60,7 +60,8 @@ def half_value(bits):
 
 def exr_roundtrip():
     dumps = "gradient,poisoned,depth,ids,final"
-    rc, _, err = run(["render", GRAPH, "--validate", "--out", OUT, "--dump", dumps])
+    # not under --validate, which checks for NaN (check_finite) and stops at this one
+    rc, _, err = run(["render", GRAPH, "--out", OUT, "--dump", dumps])
     if not check(rc == 0, f"render --dump exited {rc}: {err}"):
         return
     for res in dumps.split(","):
@@ -69,7 +70,7 @@ def exr_roundtrip():
     want_type = {"rgba16f": "half", "r32f": "float", "rg32ui": "uint"}
     for x, y in ((5, 3), (0, 0), (39, 23), (17, 11)):
         js = os.path.join(OUT, f"inspect-{x}-{y}.json")
-        rc, text, err = run(["inspect", GRAPH, "--validate", "--pixel", f"{x},{y}", "--json", js])
+        rc, text, err = run(["inspect", GRAPH, "--pixel", f"{x},{y}", "--json", js])
         if not check(rc == 0, f"inspect --pixel {x},{y} exited {rc}: {err}"):
             continue
         images = json.load(open(js))["images"]
@@ -147,7 +148,41 @@ def inspect_errors():
     check(rc == 2 and "--pixel is an option of `voxrg inspect`" in err, f"render --pixel: exit {rc}, {err}")
 
 
-CASES = (exr_roundtrip, dump_png, buffer_sidecar, inspect_errors)
+def check_finite():
+    # the NaN at 5,3 (channel B) of poisoned: named at nan_pixel's pass, not at blur (smooth), which spreads it
+    rc, _, err = run(["render", GRAPH, "--check-finite", "--validate", "--frames", "3", "--out", OUT])
+    check(rc == 1, f"render --check-finite of a NaN exited {rc}")
+    for want in ("error[VRG-E081]: frame 0: pass 'poison' (plugin nan_pixel) wrote NaN to 'poisoned' (rgba16f), channel 2 (B) of pixel 5,3",
+                 "Its inputs there: gradient (rgba16f) at 5,3: (0.128173828125, 0.13037109375, 0.5, 1)"):
+        check(want in err, f"--check-finite does not say {want!r}: {err}")
+    check("'smooth'" not in err and "'final'" not in err and "validation message" not in err, f"--check-finite blames more: {err}")
+    check(err.count("VRG-E081") == 1, f"the NaN is reported {err.count('VRG-E081')} times: {err}")
+    # +Inf elsewhere, in another channel; then -Inf is not what nan_pixel writes, so only these two
+    rc, _, err = run(["render", GRAPH, "--check-finite", "--out", OUT, "--set", "poison.x=17", "--set", "poison.y=11",
+                      "--set", "poison.channel=0", "--set", "poison.value=1"])
+    check(rc == 1 and "wrote +Inf to 'poisoned' (rgba16f), channel 0 (R) of pixel 17,11" in err, f"+Inf at 17,11: exit {rc}, {err}")
+    # --validate alone checks too (the frames in flight and memory as loaded), without the inputs
+    rc, _, err = run(["render", GRAPH, "--validate", "--out", OUT])
+    check(rc == 1 and "pass 'poison' (plugin nan_pixel) wrote NaN to 'poisoned' (rgba16f), channel 2 (B) of pixel 5,3" in err
+          and "Its inputs" not in err, f"--validate alone: exit {rc}, {err}")
+    # the inspect of that pixel agrees
+    rc, text, _ = run(["inspect", GRAPH, "--pixel", "5,3"])
+    check(rc == 0 and "(0.128173828125, 0.13037109375, nan, 1)" in text, f"inspect 5,3: {text}")
+
+
+def check_finite_clean():
+    # no NaN: the checks pass, under validation, and change no image
+    rc, _, err = run(["render", GRAPH, "--check-finite", "--validate", "--frames", "2", "--set", "poison.x=-1", "--out", OUT])
+    check(rc == 0, f"render --check-finite without a NaN exited {rc}: {err}")
+    graph = os.path.join(TESTS, "..", "graphs", "thesis.ini")
+    for name, extra in (("plain", []), ("checked", ["--check-finite", "--validate"])):
+        rc, _, err = run(["render", graph, "--frames", "3", "--size", "96x54", "--out", os.path.join(OUT, name)] + extra, timeout=600)
+        check(rc == 0, f"thesis.ini {name} exited {rc}: {err}")
+    a, b = (open(os.path.join(OUT, n, "ldr.png"), "rb").read() for n in ("plain", "checked"))
+    check(a == b, "thesis.ini renders other bytes with --check-finite")
+
+
+CASES = (exr_roundtrip, dump_png, buffer_sidecar, inspect_errors, check_finite, check_finite_clean)
 
 
 def main():

@@ -94,6 +94,7 @@
     X(VRG_E_WATCH_FAILED, "VRG-E078", "watch-failed", "hot reload cannot watch the graph's files")                                        \
     X(VRG_E_PIXEL_OUTSIDE, "VRG-E079", "pixel-outside", "a pixel is read that lies outside the graph's size")                             \
     X(VRG_E_SHADER_INTERFACE, "VRG-E080", "shader-interface", "a shader-only pass's shader does not declare a valid interface (binding names, @param annotations)") \
+    X(VRG_E_NOT_FINITE, "VRG-E081", "not-finite", "a pass wrote NaN or infinity into a float image (check_finite)")                     \
     /* warnings */                                                                                                                          \
     X(VRG_W_UNUSED_RESOURCE, "VRG-W001", "unused-resource", "a [resource] section configures a resource no pass uses")                    \
     X(VRG_W_PLUGIN_SHADOWED, "VRG-W002", "plugin-shadowed", "a plugin of the same name earlier on the search path is used instead")     \

@@ -103,6 +103,12 @@ static int readback_buffer(vrg_graph *g)
     }
     g->progress_offset = size;
     size += 4 * VRG_MAX_PASSES;
+    if (g->check_finite) {
+        VkDeviceSize align = g->ctx->props.limits.minStorageBufferOffsetAlignment;
+        g->finite_stride = align > 4 ? align : 4; /* a word per check, each bound alone */
+        g->finite_offset = align256(size);
+        size = g->finite_offset + (VkDeviceSize)_vrg_finite_plan(g) * g->finite_stride;
+    }
     g->timestamp_offset = size;
     size += 2 * sizeof(uint64_t) * VRG_MAX_PASSES;
     g->readback_slot_bytes = align256(size);
@@ -112,7 +118,8 @@ static int readback_buffer(vrg_graph *g)
     /* one texel of each image's two copies for vrg_graph_read_pixels */
     g->pixel_offset = size;
     size += 2 * VRG_MAX_RESOURCES * VRG_PIXEL_BYTES;
-    VkBufferCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = size, .usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT};
+    VkBufferCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = size,
+                             .usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT | (g->check_finite ? VK_BUFFER_USAGE_STORAGE_BUFFER_BIT : 0)};
     VkMemoryRequirements req = {0};
     int type = -1;
     if (vkCreateBuffer(dev, &ci, NULL, &g->readback_buffer) == VK_SUCCESS) {
@@ -179,6 +186,13 @@ int _vrg_graph_load_replacing(vrg_context *ctx, const vrg_graph_desc *desc, vrg_
     if (!ast->fatal && (rc == 0 || ast->section_count > 0))
         rc = _vrg_validate(g, ast, desc) | rc;
     free(ast);
+    /* the inputs of a pass that wrote NaN are read when its frame ended:
+     * every image kept to the end, no later frame begun */
+    g->check_finite = desc->check_finite ? 2 : ctx && ctx->validate ? 1 : 0;
+    if (desc->check_finite) {
+        g->desc.keep_images = 1;
+        g->frames_in_flight = 1;
+    }
     if (rc == 0)
         rc = _vrg_compile(g);
     if (rc == 0 && ctx) {
@@ -188,6 +202,8 @@ int _vrg_graph_load_replacing(vrg_context *ctx, const vrg_graph_desc *desc, vrg_
     }
     if (rc == 0)
         rc = _vrg_allocate(g);
+    if (rc == 0 && ctx && g->check_finite)
+        rc = _vrg_finite_create(g);
     if (rc == 0 && ctx) {
         rc = frame_objects(g);
         if (rc == 0)
@@ -233,6 +249,7 @@ void vrg_graph_destroy(vrg_graph *g)
         }
         _vrg_free_retired(g, 1); /* also what destroy callbacks freed just now */
         free_readback(g);
+        _vrg_finite_destroy(g);
         _vrg_free_resources(g);
         free_frame_objects(g);
     }

@@ -298,25 +298,10 @@ static int pixel_entries(const vrg_graph *g, int *res, int *prev)
     return n;
 }
 
-int vrg_graph_read_pixels(vrg_graph *g, uint32_t x, uint32_t y, vrg_pixel_value *out, uint32_t max)
+int _vrg_read_texels_at(vrg_graph *g, int n, const int *res, const int *prev, const uint32_t *tx, const uint32_t *ty, vrg_pixel_value *out)
 {
-    if (!g->ctx) {
-        _vrg_error(&g->diag, VRG_E_NO_DEVICE, "graph '%s' was loaded without a device: no pixel to read", g->name);
-        return -1;
-    }
-    if (g->last_slot < 0) {
-        _vrg_error(&g->diag, VRG_E_NOT_READ_BACK, "pixel (%u, %u): no frame rendered yet", x, y);
-        return -1;
-    }
-    if (x >= g->width || y >= g->height) {
-        _vrg_error(&g->diag, VRG_E_PIXEL_OUTSIDE, "pixel (%u, %u) is outside the graph's %ux%u (0..%u, 0..%u)", x, y, g->width, g->height,
-                   g->width - 1, g->height - 1);
-        return -1;
-    }
     if (_vrg_wait_frames(g) != 0)
         return -1;
-    int res[2 * VRG_MAX_RESOURCES], prev[2 * VRG_MAX_RESOURCES];
-    int n = pixel_entries(g, res, prev);
     /* every frame has ended: the next slot's command buffer and fence are free */
     struct _vrg_frame_slot *s = &g->slots[g->submitted % g->frames_in_flight];
     VkCommandBuffer cmd = s->cmd;
@@ -341,7 +326,7 @@ int vrg_graph_read_pixels(vrg_graph *g, uint32_t x, uint32_t y, vrg_pixel_value 
         VkBufferImageCopy region = {
             .bufferOffset = g->pixel_offset + (VkDeviceSize)e * VRG_PIXEL_BYTES,
             .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-            .imageOffset = {(int32_t)((uint64_t)x * r->width / g->width), (int32_t)((uint64_t)y * r->height / g->height), 0},
+            .imageOffset = {(int32_t)tx[e], (int32_t)ty[e], 0},
             .imageExtent = {1, 1, 1},
         };
         vkCmdCopyImageToBuffer(cmd, r->image[_vrg_copy_of(g, res[e], r->history && !prev[e])], VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
@@ -366,26 +351,26 @@ int vrg_graph_read_pixels(vrg_graph *g, uint32_t x, uint32_t y, vrg_pixel_value 
     VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cbi};
     vkResetFences(g->ctx->dev.device, 1, &s->fence);
     if (vkQueueSubmit2(g->ctx->dev.queue, 1, &si, s->fence) != VK_SUCCESS) {
-        _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "pixel (%u, %u): submitting the copies failed", x, y);
+        _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "reading pixels: submitting the copies failed");
         return -1;
     }
     double waited;
     _vrg_wait_result w = _vrg_wait_fence(g->ctx, s->fence, &waited);
     if (w != VRG_WAIT_DONE) {
-        _vrg_error(&g->diag, w == VRG_WAIT_FAILED ? VRG_E_DEVICE_LOST : VRG_E_GPU_TIMEOUT, "pixel (%u, %u): the copies %s after %.1f s", x, y,
+        _vrg_error(&g->diag, w == VRG_WAIT_FAILED ? VRG_E_DEVICE_LOST : VRG_E_GPU_TIMEOUT, "reading pixels: the copies %s after %.1f s",
                    w == VRG_WAIT_FAILED ? "failed" : w == VRG_WAIT_INTERRUPTED ? "were interrupted" : "timed out", waited);
         return -1;
     }
-    for (int e = 0; e < n && (uint32_t)e < max; e++) {
+    for (int e = 0; e < n; e++) {
         const _vrg_resource *r = &g->res[res[e]];
         vrg_pixel_value *v = &out[e];
         memset(v, 0, sizeof *v);
         v->resource = r->name;
-        v->pass = g->passes[r->writer].name;
+        v->pass = r->writer >= 0 ? g->passes[r->writer].name : "";
         v->format = r->format;
         v->channels = _vrg_format_channels(r->format);
-        v->x = (uint32_t)((uint64_t)x * r->width / g->width);
-        v->y = (uint32_t)((uint64_t)y * r->height / g->height);
+        v->x = tx[e];
+        v->y = ty[e];
         v->width = r->width;
         v->height = r->height;
         v->prev = prev[e];
@@ -394,7 +379,41 @@ int vrg_graph_read_pixels(vrg_graph *g, uint32_t x, uint32_t y, vrg_pixel_value 
         if (kept[e])
             decode_texel((const uint8_t *)g->readback_map + g->pixel_offset + (size_t)e * VRG_PIXEL_BYTES, r->format, v);
     }
-    return n;
+    return 0;
+}
+
+int vrg_graph_read_pixels(vrg_graph *g, uint32_t x, uint32_t y, vrg_pixel_value *out, uint32_t max)
+{
+    if (!g->ctx) {
+        _vrg_error(&g->diag, VRG_E_NO_DEVICE, "graph '%s' was loaded without a device: no pixel to read", g->name);
+        return -1;
+    }
+    if (g->last_slot < 0) {
+        _vrg_error(&g->diag, VRG_E_NOT_READ_BACK, "pixel (%u, %u): no frame rendered yet", x, y);
+        return -1;
+    }
+    if (x >= g->width || y >= g->height) {
+        _vrg_error(&g->diag, VRG_E_PIXEL_OUTSIDE, "pixel (%u, %u) is outside the graph's %ux%u (0..%u, 0..%u)", x, y, g->width, g->height,
+                   g->width - 1, g->height - 1);
+        return -1;
+    }
+    int res[2 * VRG_MAX_RESOURCES], prev[2 * VRG_MAX_RESOURCES];
+    uint32_t tx[2 * VRG_MAX_RESOURCES], ty[2 * VRG_MAX_RESOURCES];
+    int n = pixel_entries(g, res, prev);
+    vrg_pixel_value *all = malloc(((size_t)n + 1) * sizeof *all);
+    if (!all) {
+        _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "pixel (%u, %u): out of memory", x, y);
+        return -1;
+    }
+    for (int e = 0; e < n; e++) {
+        tx[e] = (uint32_t)((uint64_t)x * g->res[res[e]].width / g->width);
+        ty[e] = (uint32_t)((uint64_t)y * g->res[res[e]].height / g->height);
+    }
+    int rc = _vrg_read_texels_at(g, n, res, prev, tx, ty, all);
+    if (rc == 0)
+        memcpy(out, all, (size_t)(n < (int)max ? n : (int)max) * sizeof *out);
+    free(all);
+    return rc == 0 ? n : -1;
 }
 
 const char *vrg_pixel_value_text(const vrg_pixel_value *v, char *buf, size_t cap)

@@ -369,6 +369,13 @@ struct vrg_graph {
     VkDeviceSize pixel_offset;    /* after the slots' parts: vrg_graph_read_pixels's texels, VRG_PIXEL_BYTES each */
     vrg_camera camera;        /* for the next frame */
     vrg_camera last_camera;   /* the last frame's */
+    /* NaN/Inf checks after each pass (check_finite.c): 2 with
+     * vrg_graph_desc.check_finite (the pass's inputs reported too), 1 under
+     * the context's validation alone, 0 off */
+    int check_finite;
+    struct _vrg_finite *finite;
+    VkDeviceSize finite_offset;   /* within a slot's part: a result word per check, finite_stride apart */
+    VkDeviceSize finite_stride;
 };
 
 /* ---- the dispatch helper's pipelines (dispatch.c) ---- */
@@ -412,6 +419,24 @@ int _vrg_graph_find_resource(const vrg_graph *g, const char *name);
 int _vrg_graph_add_resource(vrg_graph *g, const char *name);
 /* Which copy of resource res this frame uses (prev: the @prev one). */
 int _vrg_copy_of(const vrg_graph *g, int res, int prev);
+
+/* ---- check_finite.c: NaN and infinity in the float images passes write ---- */
+/* The pipeline (on load when g->check_finite). 0, or -1 after the error. */
+int _vrg_finite_create(vrg_graph *g);
+void _vrg_finite_destroy(vrg_graph *g);
+/* The checks of the schedule: how many result words a slot's part needs. */
+int _vrg_finite_plan(vrg_graph *g);
+/* Recording: the frame's result words reset, the checks after scheduled
+ * pass k, the results made visible to the host. */
+void _vrg_finite_begin(vrg_graph *g, VkCommandBuffer cmd, VkDeviceSize slot_base);
+void _vrg_finite_after_pass(vrg_graph *g, VkCommandBuffer cmd, VkDeviceSize slot_base, int k);
+void _vrg_finite_end(vrg_graph *g, VkCommandBuffer cmd, VkDeviceSize slot_base);
+/* After the frame of that slot ended: 0, or -1 after the error naming the
+ * first pass, resource, channel, pixel and frame (and the pass's inputs). */
+int _vrg_finite_collect(vrg_graph *g, VkDeviceSize slot_base, uint64_t frame_index);
+/* Texel (tx[e], ty[e]) of entry e (resource res[e], its @prev copy where
+ * prev[e]) after the last frame, as vrg_graph_read_pixels reads them. */
+int _vrg_read_texels_at(vrg_graph *g, int n, const int *res, const int *prev, const uint32_t *tx, const uint32_t *ty, vrg_pixel_value *out);
 
 /* ---- format.c: the image formats a graph names ---- */
 uint64_t _vrg_format_bytes(VkFormat f);

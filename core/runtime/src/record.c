@@ -201,7 +201,7 @@ static int wait_slot(vrg_graph *g, struct _vrg_frame_slot *s)
         g->finished = s->serial;
         read_timestamps(g, s);
     }
-    return 0;
+    return g->check_finite ? _vrg_finite_collect(g, s->readback_base, s->frame_index) : 0;
 }
 
 int _vrg_wait_frames(vrg_graph *g)
@@ -245,6 +245,8 @@ int _vrg_record_frame(vrg_graph *g)
     /* after a reset history is invalid, unless a reload carried every
      * history resource over (vrg_res_history_valid tells them apart) */
     int lost = clear_kept(g, cmd);
+    if (g->check_finite)
+        _vrg_finite_begin(g, cmd, s->readback_base);
     g->frame.history_valid = !g->history_reset || (g->history_carried && !lost);
     /* carried resources continue last frame, so motion is from its camera */
     g->frame.prev_camera = g->frame.history_valid || g->history_carried ? g->last_camera : g->camera;
@@ -280,8 +282,12 @@ int _vrg_record_frame(vrg_graph *g)
         failed |= p->failed;
         if (s->queries)
             vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, s->queries, (uint32_t)(2 * k + 1));
+        if (g->check_finite) /* after the pass's end timestamp: not in its time */
+            _vrg_finite_after_pass(g, cmd, s->readback_base, k);
         mark_done(g, cmd, s, k);
     }
+    if (g->check_finite)
+        _vrg_finite_end(g, cmd, s->readback_base);
     copy_readbacks(g, cmd, s);
     vkEndCommandBuffer(cmd);
     VkCommandBufferSubmitInfo cbi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = cmd};

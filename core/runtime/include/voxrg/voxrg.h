@@ -82,6 +82,16 @@ typedef struct vrg_graph_desc {
      * not share memory), so that a viewer can show any of them
      * (vrg_graph_show). */
     int keep_images;
+    /* After each pass a compute shader checks every float image it writes
+     * (its slots' images of a half, float or r11g11b10f format); the first
+     * NaN or infinity fails the frame (vrg_graph_frame or the wait that
+     * ends it) with an error (VRG-E081) naming the pass, resource, channel,
+     * pixel (the first in row order) and frame, and the pass's inputs at
+     * that pixel. It implies keep_images and one frame in flight, so that
+     * the inputs are still there when the frame ends. A context with
+     * validation checks too, keeping memory and frames in flight as loaded,
+     * without the inputs. */
+    int check_finite;
 } vrg_graph_desc;
 
 /* Parse, validate, compile. With ctx, also create the passes and allocate:
