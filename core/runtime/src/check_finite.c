@@ -216,6 +216,14 @@ void _vrg_finite_end(vrg_graph *g, VkCommandBuffer cmd, VkDeviceSize slot_base)
     vkCmdPipelineBarrier2(cmd, &dep);
 }
 
+int _vrg_finite_failed(vrg_graph *g)
+{
+    if (!g->finite_failed)
+        return 0;
+    g->finite_failed = 0;
+    return -1;
+}
+
 static const char *channel_name(uint32_t channels, uint32_t c)
 {
     static const char *rgba[] = {"R", "G", "B", "A"};

@@ -58,7 +58,9 @@ int vrg_graph_wait(vrg_graph *g)
         _vrg_error(&g->diag, VRG_E_GPU_BUSY, "graph '%s': the GPU is still busy with a frame that timed out or was interrupted", g->name);
         return -1;
     }
-    return g->ctx ? _vrg_wait_frames(g) : 0;
+    if (g->ctx && _vrg_wait_frames(g) != 0)
+        return -1;
+    return _vrg_finite_failed(g);
 }
 
 void vrg_graph_reset_history(vrg_graph *g) { g->history_reset = 1; }

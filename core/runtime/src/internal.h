@@ -373,6 +373,7 @@ struct vrg_graph {
      * vrg_graph_desc.check_finite (the pass's inputs reported too), 1 under
      * the context's validation alone, 0 off */
     int check_finite;
+    int finite_failed;            /* a frame that ended wrote one: reported, not yet returned by a frame or wait */
     struct _vrg_finite *finite;
     VkDeviceSize finite_offset;   /* within a slot's part: a result word per check, finite_stride apart */
     VkDeviceSize finite_stride;
@@ -434,9 +435,16 @@ void _vrg_finite_end(vrg_graph *g, VkCommandBuffer cmd, VkDeviceSize slot_base);
 /* After the frame of that slot ended: 0, or -1 after the error naming the
  * first pass, resource, channel, pixel and frame (and the pass's inputs). */
 int _vrg_finite_collect(vrg_graph *g, VkDeviceSize slot_base, uint64_t frame_index);
+/* -1 once after a collect found one (the failure goes to the host's next
+ * vrg_graph_frame or vrg_graph_wait), else 0. */
+int _vrg_finite_failed(vrg_graph *g);
+
+/* ---- pixels.c: one texel of images after a frame ---- */
 /* Texel (tx[e], ty[e]) of entry e (resource res[e], its @prev copy where
- * prev[e]) after the last frame, as vrg_graph_read_pixels reads them. */
+ * prev[e]) after the last frame, as vrg_graph_read_pixels reads them; every
+ * frame must have ended (_vrg_wait_frames). 0, or -1 after the error. */
 int _vrg_read_texels_at(vrg_graph *g, int n, const int *res, const int *prev, const uint32_t *tx, const uint32_t *ty, vrg_pixel_value *out);
+float _vrg_half_to_float(uint16_t h);
 
 /* ---- format.c: the image formats a graph names ---- */
 uint64_t _vrg_format_bytes(VkFormat f);

@@ -201,7 +201,11 @@ static int wait_slot(vrg_graph *g, struct _vrg_frame_slot *s)
         g->finished = s->serial;
         read_timestamps(g, s);
     }
-    return g->check_finite ? _vrg_finite_collect(g, s->readback_base, s->frame_index) : 0;
+    /* a NaN fails the frame's host call (vrg_graph_frame or vrg_graph_wait),
+     * not the wait itself: readbacks and destroy go on */
+    if (g->check_finite && _vrg_finite_collect(g, s->readback_base, s->frame_index) != 0)
+        g->finite_failed = 1;
+    return 0;
 }
 
 int _vrg_wait_frames(vrg_graph *g)
@@ -224,7 +228,7 @@ int _vrg_record_frame(vrg_graph *g)
     uint32_t slot = (uint32_t)(g->submitted % g->frames_in_flight);
     struct _vrg_frame_slot *s = &g->slots[slot];
     /* the only wait: for the frame that used this slot (frames_in_flight ago) */
-    if (wait_slot(g, s) != 0)
+    if (wait_slot(g, s) != 0 || _vrg_finite_failed(g))
         return -1;
     _vrg_free_retired(g, 0);
     double start = now_ms(); /* the runtime's CPU time: up to the submit, not the GPU's */
