@@ -180,6 +180,23 @@ def check_finite_clean():
         check(rc == 0, f"thesis.ini {name} exited {rc}: {err}")
     a, b = (open(os.path.join(OUT, n, "ldr.png"), "rb").read() for n in ("plain", "checked"))
     check(a == b, "thesis.ini renders other bytes with --check-finite")
+    # inspect of a graph with a motion image: the vector's target pixel, along a moving camera
+    js = os.path.join(OUT, "thesis.json")
+    rc, text, err = run(["inspect", graph, "--pixel", "40,20", "--frame", "2", "--size", "96x54", "--camera",
+                         os.path.join(TESTS, "..", "graphs", "paths", "walk.path"), "--json", js], timeout=600)
+    if check(rc == 0, f"inspect thesis.ini exited {rc}: {err}"):
+        d = json.load(open(js))
+        m = d.get("motion", {})
+        motion = [i for i in d["images"] if i["resource"] == "gbuffer.motion"]
+        check(m.get("resource") == "gbuffer.motion" and motion and m["vector"] == motion[0]["values"],
+              f"inspect's motion {m} is not gbuffer.motion's value {motion}")
+        if m.get("vector"):
+            want = [math.floor(40 - m["vector"][0] + 0.5), math.floor(20 - m["vector"][1] + 0.5)]
+            check(m["previous_pixel"] == want, f"motion target {m['previous_pixel']}, not {want}")
+            check(f"motion (gbuffer.motion): the previous frame's pixel {want[0]},{want[1]}" in text, f"the table's motion line: {text}")
+        names = [i["resource"] + ("@prev" if i["prev"] else "") for i in d["images"]]
+        check(names.index("gbuffer.depth") < names.index("ldr") and "reproject.length@prev" in names,
+              f"inspect's order or @prev copies: {names}")
 
 
 CASES = (exr_roundtrip, dump_png, buffer_sidecar, inspect_errors, check_finite, check_finite_clean)
