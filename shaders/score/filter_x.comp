@@ -1,84 +1,85 @@
 #version 450
 // The device scorer's horizontal filters: FLIP's contrast sensitivity terms
 // and feature responses (edge pixels repeat beyond the borders), SSIM's five
-// moments over the 11 pixels from x on (valid mode). An invocation filters
-// SEG pixels of a row from one window of its inputs, read once (the reads,
-// not the sums, are what costs on a CPU device). The sums run over the taps
-// in the CPU's order.
-// The loops over the SEG pixels and the taps are unrolled, so that the
-// window is indexed by constants and stays in registers (on lavapipe the
-// first compile takes longer; Mesa's shader cache keeps the result).
+// moments over the 11 pixels from x on (valid mode), stored by column for
+// filter_y.comp (a column's values consecutive). An invocation walks along
+// STRIP pixels of one row with a window of each input in registers: each
+// pixel shifts the windows and reads one value per input, and the loop's
+// body is small. On a CPU device (lavapipe) each read or write is a
+// per-lane bounds-checked access, the bulk of the stage's instructions.
 #extension GL_EXT_control_flow_attributes : require
 #include "score.glsl"
-layout(local_size_x = 8, local_size_y = 8) in;
-#define WIN (SEG + 2 * CSF_R)
+layout(local_size_x = 8, local_size_y = 1) in;
+#define WIN (2 * CSF_R + 1)
 
-// the window: plane p from x0 - CSF_R on, edge pixels repeated
-void window(uint p, uint row, int x0, out float v[WIN])
+// the CPU's convolution at the window's centre, sum over i of
+// k[i + r] · src[x - i], the kernel being symmetric (anti: antisymmetric),
+// so that the taps at ±i share a weight
+float conv(float v[WIN], int k, int r, bool anti)
 {
-    for (int t = 0; t < WIN; t++)
-        v[t] = planes[plane(p, row + uint(clamp_x(x0 - CSF_R + t)))];
-}
-
-// the CPU's convolution at x0 + j: sum over i of k[i + r] · src[x0 + j - i]
-float conv(float v[WIN], int k, int r, int j)
-{
-    float s = 0.0;
-    [[unroll]] for (int i = -r; i <= r; i++)
-        s += kern[k + i + r] * v[j - i + CSF_R];
-    return s;
+    float a = kern[k + r] * v[CSF_R], b = 0.0;
+    [[unroll]] for (int i = 1; i <= r; i++) {
+        float p = (anti ? v[CSF_R - i] - v[CSF_R + i] : v[CSF_R - i] + v[CSF_R + i]) * kern[k + r + i];
+        if ((i & 1) == 1)
+            b += p;
+        else
+            a += p;
+    }
+    return a + b;
 }
 
 void main()
 {
-    uvec2 g = gl_GlobalInvocationID.xy;
-    int x0 = int(g.x) * SEG;
-    if (x0 >= int(pc.width) || g.y >= pc.height)
+    uint y = gl_GlobalInvocationID.x;
+    int x0 = int(gl_WorkGroupID.y) * STRIP, x1 = min(x0 + STRIP, int(pc.width));
+    if (y >= pc.height)
         return;
-    uint row = g.y * pc.width;
-    int n = min(SEG, int(pc.width) - x0);
-    float v[WIN];
-    for (uint im = 0u; im < 2u; im++) {
-        uint opp = P_OPP + 3u * im, t = T_CSF + 4u * im, f = T_FEAT + 3u * im;
-        window(opp, row, x0, v);
-        [[unroll]] for (int j = 0; j < SEG; j++)
-            if (j < n)
-                tmp[plane(t, row + uint(x0 + j))] = conv(v, K_CSF, CSF_R, j);
-        // FLIP's features see the achromatic channel as (Y + 16) / 116
-        for (int e = 0; e < WIN; e++)
-            v[e] = (v[e] + 16.0) / 116.0;
-        [[unroll]] for (int j = 0; j < SEG; j++)
-            for (int k = 0; k < 3 && j < n; k++)
-                tmp[plane(f + uint(k), row + uint(x0 + j))] = conv(v, K_FEAT + k * FEAT_TAPS, FEAT_R, j);
-        window(opp + 1u, row, x0, v);
-        [[unroll]] for (int j = 0; j < SEG; j++)
-            if (j < n)
-                tmp[plane(t + 1u, row + uint(x0 + j))] = conv(v, K_CSF + CSF_TAPS, CSF_R, j);
-        window(opp + 2u, row, x0, v);
-        [[unroll]] for (int j = 0; j < SEG; j++)
-            if (j < n) {
-                tmp[plane(t + 2u, row + uint(x0 + j))] = conv(v, K_CSF + 2 * CSF_TAPS, CSF_R, j);
-                tmp[plane(t + 3u, row + uint(x0 + j))] = conv(v, K_CSF + 3 * CSF_TAPS, CSF_R, j);
-            }
-    }
-    // SSIM: windows from x on, those that fit
-    float a[SEG + SSIM_W], b[SEG + SSIM_W];
-    for (int t = 0; t < SEG + SSIM_W - 1; t++) {
-        uint x = uint(min(x0 + t, int(pc.width) - 1));
-        a[t] = planes[plane(P_LUMA_TEST, row + x)];
-        b[t] = planes[plane(P_LUMA_REF, row + x)];
-    }
-    for (int j = 0; j < n && x0 + j + SSIM_W <= int(pc.width); j++) {
-        float m[5] = float[5](0.0, 0.0, 0.0, 0.0, 0.0);
-        for (int k = 0; k < SSIM_W; k++) {
-            float w = kern[K_SSIM + k];
-            m[0] += w * a[j + k];
-            m[1] += w * b[j + k];
-            m[2] += w * (a[j + k] * a[j + k]);
-            m[3] += w * (b[j + k] * b[j + k]);
-            m[4] += w * (a[j + k] * b[j + k]);
+    uint row = y * pc.width;
+    // w: pixels x - CSF_R .. x + CSF_R of the opponent channels, and of the
+    // achromatic one as FLIP's features see it, (Y + 16) / 116; a, b: SSIM's
+    // lumas from x on
+    float w[2][4][WIN], a[SSIM_W], b[SSIM_W];
+    for (int x = x0 - 2 * CSF_R; x < x1; x++) {
+        [[unroll]] for (int im = 0; im < 2; im++) {
+            [[unroll]] for (int c = 0; c < 4; c++)
+                [[unroll]] for (int t = 0; t < WIN - 1; t++)
+                    w[im][c][t] = w[im][c][t + 1];
+            uint e = row + uint(clamp_x(x + CSF_R)), opp = P_OPP + 3u * uint(im);
+            w[im][0][WIN - 1] = planes[plane(opp, e)];
+            w[im][1][WIN - 1] = planes[plane(opp + 1u, e)];
+            w[im][2][WIN - 1] = planes[plane(opp + 2u, e)];
+            w[im][3][WIN - 1] = (w[im][0][WIN - 1] + 16.0) / 116.0;
         }
-        for (uint c = 0u; c < 5u; c++)
-            tmp[plane(T_SSIM + c, row + uint(x0 + j))] = m[c];
+        [[unroll]] for (int t = 0; t < SSIM_W - 1; t++)
+            a[t] = a[t + 1], b[t] = b[t + 1];
+        uint e = row + uint(clamp_x(x + SSIM_W - 1));
+        a[SSIM_W - 1] = planes[plane(P_LUMA_TEST, e)];
+        b[SSIM_W - 1] = planes[plane(P_LUMA_REF, e)];
+        if (x < x0)
+            continue;
+        uint o = uint(x) * pc.height + y;
+        [[unroll]] for (int im = 0; im < 2; im++) {
+            uint t = T_CSF + 4u * uint(im), f = T_FEAT + 3u * uint(im);
+            tmp[plane(t, o)] = conv(w[im][0], K_CSF, CSF_R, false);
+            tmp[plane(t + 1u, o)] = conv(w[im][1], K_CSF + CSF_TAPS, CSF_R, false);
+            tmp[plane(t + 2u, o)] = conv(w[im][2], K_CSF + 2 * CSF_TAPS, CSF_R, false);
+            tmp[plane(t + 3u, o)] = conv(w[im][2], K_CSF + 3 * CSF_TAPS, CSF_R, false);
+            tmp[plane(f, o)] = conv(w[im][3], K_FEAT, FEAT_R, true);
+            tmp[plane(f + 1u, o)] = conv(w[im][3], K_FEAT + FEAT_TAPS, FEAT_R, false);
+            tmp[plane(f + 2u, o)] = conv(w[im][3], K_FEAT + 2 * FEAT_TAPS, FEAT_R, false);
+        }
+        if (x + SSIM_W <= int(pc.width)) {
+            float m[5] = float[5](0.0, 0.0, 0.0, 0.0, 0.0);
+            [[unroll]] for (int k = 0; k < SSIM_W; k++) {
+                float wk = kern[K_SSIM + k];
+                m[0] += wk * a[k];
+                m[1] += wk * b[k];
+                m[2] += wk * (a[k] * a[k]);
+                m[3] += wk * (b[k] * b[k]);
+                m[4] += wk * (a[k] * b[k]);
+            }
+            [[unroll]] for (int c = 0; c < 5; c++)
+                tmp[plane(T_SSIM + uint(c), o)] = m[c];
+        }
     }
 }

@@ -2,30 +2,34 @@
 // The device scorer's vertical filters and per-pixel errors: FLIP's
 // filtered colours in Hunt-adjusted Lab, their HyAB distance and the
 // feature difference give FLIP's error; SSIM's moments give the SSIM of the
-// window whose corner is the pixel (0 where no window fits). An invocation
-// does SEG pixels of a column from one window of each input, read once.
-// The loops over the SEG pixels and the taps are unrolled, so that the
-// window is indexed by constants and stays in registers (on lavapipe the
-// first compile takes longer; Mesa's shader cache keeps the result).
+// window whose corner is the pixel (0 where no window fits). The horizontal
+// filters' planes are stored by column (filter_x.comp), so that a column's
+// values are consecutive. An invocation walks down STRIP rows of one column
+// with a window of each plane in registers: each row shifts the windows
+// and reads one value per plane, and the loop's body is small. On a CPU
+// device (lavapipe) each read is a per-lane bounds-checked load, the bulk
+// of the stage's instructions, and the unrolled body of earlier versions
+// overflowed the instruction cache.
 #extension GL_EXT_control_flow_attributes : require
 #include "score.glsl"
-layout(local_size_x = 8, local_size_y = 8) in;
-#define WIN (SEG + 2 * CSF_R)
+layout(local_size_x = 8, local_size_y = 1) in;
+#define WIN (2 * CSF_R + 1)
+#define COLUMN_PLANES 14 // T_CSF and T_FEAT of both images
 
-// the window: plane t of column x from y0 - CSF_R on, edge pixels repeated
-void window(uint t, uint x, int y0, out float v[WIN])
+// the CPU's convolution at the window's centre, sum over i of
+// k[i + r] · src[y - i], the kernel being symmetric (anti: antisymmetric),
+// so that the taps at ±i share a weight
+float conv(float v[WIN], int k, int r, bool anti)
 {
-    for (int i = 0; i < WIN; i++)
-        v[i] = tmp[plane(t, uint(clamp_y(y0 - CSF_R + i)) * pc.width + x)];
-}
-
-// the CPU's convolution at y0 + j: sum over i of k[i + r] · src[y0 + j - i]
-float conv(float v[WIN], int k, int r, int j)
-{
-    float s = 0.0;
-    [[unroll]] for (int i = -r; i <= r; i++)
-        s += kern[k + i + r] * v[j - i + CSF_R];
-    return s;
+    float a = kern[k + r] * v[CSF_R], b = 0.0;
+    [[unroll]] for (int i = 1; i <= r; i++) {
+        float p = (anti ? v[CSF_R - i] - v[CSF_R + i] : v[CSF_R - i] + v[CSF_R + i]) * kern[k + r + i];
+        if ((i & 1) == 1)
+            b += p;
+        else
+            a += p;
+    }
+    return a + b;
 }
 
 float lab_f(float t)
@@ -64,8 +68,8 @@ float flip_error(vec3 ref, vec3 test, vec2 ref_features, vec2 test_features)
     return pow(color, 1.0 - f);
 }
 
-// SSIM of the window whose corner is pixel (x, y0 + j), from its column
-// of horizontal moments
+// SSIM of the window whose corner is the pixel, from its column of
+// horizontal moments
 float ssim(float m[5])
 {
     const float c1 = 0.01 * 0.01, c2 = 0.03 * 0.03;
@@ -76,59 +80,50 @@ float ssim(float m[5])
 
 void main()
 {
-    uvec2 g = gl_GlobalInvocationID.xy;
-    int y0 = int(g.y) * SEG;
-    if (g.x >= pc.width || y0 >= int(pc.height))
+    uint x = gl_GlobalInvocationID.x;
+    int y0 = int(gl_WorkGroupID.y) * STRIP, y1 = min(y0 + STRIP, int(pc.height));
+    if (x >= pc.width)
         return;
-    uint x = g.x;
-    int n = min(SEG, int(pc.height) - y0);
-    float v[WIN];
-    vec3 colour[2][SEG];
-    vec2 features[2][SEG];
-    for (uint im = 0u; im < 2u; im++) {
-        uint t = T_CSF + 4u * im, f = T_FEAT + 3u * im;
-        const int d = K_FEAT, d2 = K_FEAT + FEAT_TAPS, gk = K_FEAT + 2 * FEAT_TAPS;
-        window(t, x, y0, v);
-        [[unroll]] for (int j = 0; j < SEG; j++)
-            colour[im][j].x = kern[K_SHARE + 0] * conv(v, K_CSF, CSF_R, j);
-        window(t + 1u, x, y0, v);
-        [[unroll]] for (int j = 0; j < SEG; j++)
-            colour[im][j].y = kern[K_SHARE + 1] * conv(v, K_CSF + CSF_TAPS, CSF_R, j);
-        window(t + 2u, x, y0, v);
-        [[unroll]] for (int j = 0; j < SEG; j++)
-            colour[im][j].z = kern[K_SHARE + 2] * conv(v, K_CSF + 2 * CSF_TAPS, CSF_R, j);
-        window(t + 3u, x, y0, v);
-        [[unroll]] for (int j = 0; j < SEG; j++)
-            colour[im][j].z += kern[K_SHARE + 3] * conv(v, K_CSF + 3 * CSF_TAPS, CSF_R, j);
-        // edges: d along x then g along y, and g along x then d along y;
-        // points alike with the second derivative
-        window(f, x, y0, v);
-        [[unroll]] for (int j = 0; j < SEG; j++)
-            features[im][j].x = conv(v, gk, FEAT_R, j);
-        window(f + 1u, x, y0, v);
-        [[unroll]] for (int j = 0; j < SEG; j++)
-            features[im][j].y = conv(v, gk, FEAT_R, j);
-        window(f + 2u, x, y0, v);
-        [[unroll]] for (int j = 0; j < SEG; j++) {
-            float ey = conv(v, d, FEAT_R, j), py = conv(v, d2, FEAT_R, j);
-            vec2 xs = features[im][j];
-            features[im][j] = vec2(sqrt(xs.x * xs.x + ey * ey), sqrt(xs.y * xs.y + py * py));
-        }
-    }
-    [[unroll]] for (int j = 0; j < SEG; j++)
-        if (j < n)
-            planes[plane(P_FLIP, uint(y0 + j) * pc.width + x)] = flip_error(colour[0][j], colour[1][j], features[0][j], features[1][j]);
-    float col[5][SEG + SSIM_W - 1];
-    for (uint c = 0u; c < 5u; c++)
-        for (int i = 0; i < SEG + SSIM_W - 1; i++)
-            col[c][i] = tmp[plane(T_SSIM + c, uint(min(y0 + i, int(pc.height) - 1)) * pc.width + x)];
+    uint col = x * pc.height;
     bool fits = x + uint(SSIM_W) <= pc.width;
-    [[unroll]] for (int j = 0; j < SEG && j < n; j++) {
-        float m[5] = float[5](0.0, 0.0, 0.0, 0.0, 0.0);
-        for (int k = 0; k < SSIM_W; k++)
-            for (uint c = 0u; c < 5u; c++)
-                m[c] += kern[K_SSIM + k] * col[c][j + k];
-        bool window = fits && y0 + j + SSIM_W <= int(pc.height);
-        planes[plane(P_SSIM, uint(y0 + j) * pc.width + x)] = window ? ssim(m) : 0.0;
+    // w: rows y - CSF_R .. y + CSF_R of each plane; s: rows y .. y + SSIM_W - 1 of SSIM's moments
+    float w[COLUMN_PLANES][WIN], s[5][SSIM_W];
+    for (int y = y0 - 2 * CSF_R; y < y1; y++) {
+        [[unroll]] for (int p = 0; p < COLUMN_PLANES; p++) {
+            [[unroll]] for (int t = 0; t < WIN - 1; t++)
+                w[p][t] = w[p][t + 1];
+            w[p][WIN - 1] = tmp[plane(uint(p), col + uint(clamp_y(y + CSF_R)))];
+        }
+        [[unroll]] for (int c = 0; c < 5; c++) {
+            [[unroll]] for (int t = 0; t < SSIM_W - 1; t++)
+                s[c][t] = s[c][t + 1];
+            s[c][SSIM_W - 1] = tmp[plane(T_SSIM + uint(c), col + uint(clamp_y(y + SSIM_W - 1)))];
+        }
+        if (y < y0)
+            continue;
+        vec3 colour[2];
+        vec2 features[2];
+        const int d = K_FEAT, d2 = K_FEAT + FEAT_TAPS, gk = K_FEAT + 2 * FEAT_TAPS;
+        [[unroll]] for (int im = 0; im < 2; im++) {
+            int t = int(T_CSF) + 4 * im, f = int(T_FEAT) + 3 * im;
+            colour[im].x = kern[K_SHARE + 0] * conv(w[t], K_CSF, CSF_R, false);
+            colour[im].y = kern[K_SHARE + 1] * conv(w[t + 1], K_CSF + CSF_TAPS, CSF_R, false);
+            colour[im].z = kern[K_SHARE + 2] * conv(w[t + 2], K_CSF + 2 * CSF_TAPS, CSF_R, false);
+            colour[im].z += kern[K_SHARE + 3] * conv(w[t + 3], K_CSF + 3 * CSF_TAPS, CSF_R, false);
+            // edges: d along x then g along y, and g along x then d along y;
+            // points alike with the second derivative
+            float ex = conv(w[f], gk, FEAT_R, false), px = conv(w[f + 1], gk, FEAT_R, false);
+            float ey = conv(w[f + 2], d, FEAT_R, true), py = conv(w[f + 2], d2, FEAT_R, false);
+            features[im] = vec2(sqrt(ex * ex + ey * ey), sqrt(px * px + py * py));
+        }
+        uint i = uint(y) * pc.width + x;
+        planes[plane(P_FLIP, i)] = flip_error(colour[0], colour[1], features[0], features[1]);
+        float m[5];
+        [[unroll]] for (int c = 0; c < 5; c++) {
+            m[c] = 0.0;
+            [[unroll]] for (int k = 0; k < SSIM_W; k++)
+                m[c] += kern[K_SSIM + k] * s[c][k];
+        }
+        planes[plane(P_SSIM, i)] = fits && y + SSIM_W <= int(pc.height) ? ssim(m) : 0.0;
     }
 }

@@ -8,7 +8,8 @@ layout(std430, binding = 2) buffer CandPrev { uint cand_prev[]; };
 layout(std430, binding = 3) buffer RefPrev { uint ref_prev[]; };
 // per-pixel planes, width * height floats each (P_*)
 layout(std430, binding = 4) buffer Planes { float planes[]; };
-// the horizontal filters' results, width * height floats each (T_*)
+// the horizontal filters' results, width * height floats each (T_*), by
+// column (pixel (x, y) at x * height + y), as the vertical filters read them
 layout(std430, binding = 5) buffer Tmp { float tmp[]; };
 // per pixel: squared error and temporal error in 8-bit steps (exact integers)
 layout(std430, binding = 6) buffer Ints { uint ints[]; };
@@ -33,7 +34,7 @@ layout(push_constant) uniform P { uint width, height; } pc;
 #define T_SSIM 14u
 #define TMP_PLANES 19u
 // CSF_R and FEAT_R come as defines (the radii of the CPU's kernels), and
-// SEG: the pixels an invocation of a filter stage filters along its axis
+// STRIP: the pixels an invocation of a filter stage walks along its axis
 #define CSF_TAPS (2 * CSF_R + 1)
 #define FEAT_TAPS (2 * FEAT_R + 1)
 #define K_CSF 0                        // four kernels: A, RG, BY0, BY1

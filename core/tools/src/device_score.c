@@ -16,10 +16,11 @@
 /* as shaders/score/score.glsl lays them out */
 enum { PLANES = 10, P_FLIP = 8, TMP_PLANES = 19, BINDINGS = 9 };
 enum { REDUCE_CHUNK = 256 * 16, PARTIAL_WORDS = 4, MAX_TAPS = 64 };
-/* Pixels an invocation of a filter stage filters, from one window of its
- * input read once: on a CPU device (lavapipe) the reads cost, not the sums,
- * and this made the filters about 4x faster than an invocation per pixel. */
-enum { SEGMENT = 8 };
+/* Pixels an invocation of a filter stage walks along its axis, its windows
+ * in registers, one read per input and pixel: on a CPU device (lavapipe)
+ * the per-lane reads and writes are most of the work, not the sums
+ * (docs/benchmarks.md has what each shape cost). */
+enum { STRIP = 128 };
 enum { STAGE_PREPARE, STAGE_FILTER_X, STAGE_FILTER_Y, STAGE_REDUCE, STAGES };
 static const char *const stage_files[STAGES] = {"prepare.comp", "filter_x.comp", "filter_y.comp", "reduce.comp"};
 
@@ -109,16 +110,30 @@ static int make_buffers(vrg_device_scorer *s, uint32_t csf_r, uint32_t feat_r)
     return rc;
 }
 
-/* The kernels as shaders/score/score.glsl reads them (K_*), rounded to float. */
-static void write_kernels(vrg_device_scorer *s, int csf_r, int feat_r)
+/* k[r - i] == sign · k[r + i]: the filter stages add the two pixels at ±i
+ * (or subtract them) before weighting them once. */
+static int mirrored(const float *k, int r, float sign)
+{
+    for (int i = 1; i <= r; i++)
+        if (k[r - i] != sign * k[r + i])
+            return 0;
+    return 1;
+}
+
+/* The kernels as shaders/score/score.glsl reads them (K_*), rounded to
+ * float. Returns -1 after saying which is not (anti)symmetric. */
+static int write_kernels(vrg_device_scorer *s, int csf_r, int feat_r)
 {
     double ppd = vrg_flip_pixels_per_degree(), k[MAX_TAPS];
     float *out = s->kernels.mapped, share[4];
     static const int channel[4] = {0, 1, 2, 2}, term[4] = {0, 0, 0, 1};
+    int symmetric = 1;
     for (int t = 0; t < 4; t++) {
         share[t] = (float)_vrg_flip_csf_kernel(channel[t], term[t], ppd, csf_r, k);
         for (int i = 0; i <= 2 * csf_r; i++)
-            *out++ = (float)k[i];
+            out[i] = (float)k[i];
+        symmetric &= mirrored(out, csf_r, 1);
+        out += 2 * csf_r + 1;
     }
     for (int t = 0; t < 4; t++)
         *out++ = share[t];
@@ -126,12 +141,20 @@ static void write_kernels(vrg_device_scorer *s, int csf_r, int feat_r)
     _vrg_flip_feature_kernels(ppd, 0, feat_r, d, g);
     _vrg_flip_feature_kernels(ppd, 1, feat_r, d2, g);
     const double *feat[3] = {d, d2, g};
-    for (int f = 0; f < 3; f++)
+    for (int f = 0; f < 3; f++) {
         for (int i = 0; i <= 2 * feat_r; i++)
-            *out++ = (float)feat[f][i];
+            out[i] = (float)feat[f][i];
+        symmetric &= mirrored(out, feat_r, f == 0 ? -1 : 1); /* d is antisymmetric */
+        out += 2 * feat_r + 1;
+    }
     _vrg_ssim_kernel(k);
     for (int i = 0; i < VRG_SSIM_WINDOW; i++)
         *out++ = (float)k[i];
+    if (!symmetric) {
+        fprintf(stderr, "error: device scorer: FLIP's filter kernels are not symmetric (d antisymmetric), as the filter stages take them\n");
+        return -1;
+    }
+    return 0;
 }
 
 static int make_pipelines(vrg_device_scorer *s, int csf_r, int feat_r)
@@ -148,7 +171,7 @@ static int make_pipelines(vrg_device_scorer *s, int csf_r, int feat_r)
     if (vkCreateDescriptorSetLayout(dev, &sli, NULL, &s->set_layout) != VK_SUCCESS || vkCreatePipelineLayout(dev, &pli, NULL, &s->layout) != VK_SUCCESS)
         return -1;
     char defines[64], path[1200];
-    snprintf(defines, sizeof defines, "CSF_R=%d FEAT_R=%d SEG=%d", csf_r, feat_r, SEGMENT);
+    snprintf(defines, sizeof defines, "CSF_R=%d FEAT_R=%d STRIP=%d", csf_r, feat_r, STRIP);
     for (int i = 0; i < STAGES; i++) {
         snprintf(path, sizeof path, "%s/shaders/score/%s", vrg_data_dir(), stage_files[i]);
         VkShaderModule sm = vrg_compile_compute_shader(s->ctx, path, defines); /* says why it failed */
@@ -237,7 +260,10 @@ int vrg_device_scorer_create(vrg_context *ctx, uint32_t width, uint32_t height, 
         vrg_device_scorer_destroy(s);
         return -1;
     }
-    write_kernels(s, csf_r, feat_r);
+    if (write_kernels(s, csf_r, feat_r) != 0) {
+        vrg_device_scorer_destroy(s);
+        return -1;
+    }
     *out = s;
     return 0;
 }
@@ -322,9 +348,8 @@ static void record(vrg_device_scorer *s, VkCommandBuffer cmd)
     uint32_t size[2] = {s->width, s->height};
     vkCmdPushConstants(cmd, s->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof size, size);
     uint32_t gx = (s->width + 7) / 8, gy = (s->height + 7) / 8;
-    /* the filters: an invocation per SEGMENT pixels along the filter's axis */
-    const uint32_t segments_x = (s->width + SEGMENT - 1) / SEGMENT, segments_y = (s->height + SEGMENT - 1) / SEGMENT;
-    const uint32_t groups[3][2] = {{gx, gy}, {(segments_x + 7) / 8, gy}, {gx, (segments_y + 7) / 8}};
+    /* the filters: 8 rows (columns) per group, STRIP pixels along each */
+    const uint32_t groups[3][2] = {{gx, gy}, {gy, (s->width + STRIP - 1) / STRIP}, {gx, (s->height + STRIP - 1) / STRIP}};
     for (int stage = STAGE_PREPARE; stage <= STAGE_FILTER_Y; stage++) {
         dispatch(s, cmd, stage, groups[stage][0], groups[stage][1]);
         barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, shader);
