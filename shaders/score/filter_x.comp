@@ -1,16 +1,38 @@
 #version 450
-// The device scorer's horizontal filters: FLIP's contrast sensitivity terms
-// and feature responses (edge pixels repeat beyond the borders), SSIM's five
-// moments over the 11 pixels from x on (valid mode), stored by column for
-// filter_y.comp (a column's values consecutive). An invocation walks along
-// STRIP pixels of one row with a window of each input in registers: each
-// pixel shifts the windows and reads one value per input, and the loop's
-// body is small. On a CPU device (lavapipe) each read or write is a
-// per-lane bounds-checked access, the bulk of the stage's instructions.
+// The device scorer's first stage, along rows: from the 8-bit pixels,
+// FLIP's opponent (YCxCz) channels and SSIM's luma of both images; their
+// horizontal filters, FLIP's contrast sensitivity terms and feature
+// responses (edge pixels repeat beyond the borders) and SSIM's five moments
+// over the 11 pixels from x on (valid mode), stored by column for
+// filter_y.comp (a column's values consecutive); and the exact integer
+// sums of the squared and temporal errors of the 8-bit values.
+// An invocation walks along STRIP pixels of one row with a window of each
+// channel in registers: each pixel shifts the windows and reads one pixel
+// of each image, and the loop's body is small. On a CPU device (lavapipe)
+// every read or write is a per-lane bounds-checked access, the bulk of the
+// stage's instructions, not the sums.
 #extension GL_EXT_control_flow_attributes : require
 #include "score.glsl"
 layout(local_size_x = 8, local_size_y = 1) in;
 #define WIN (2 * CSF_R + 1)
+// SSIM's window (x .. x + 10) is the right half of the filters' window
+#if CSF_R < SSIM_W - 1
+#error "FLIP's filter radius is shorter than SSIM's window"
+#endif
+
+vec3 unit(uvec3 b) { return vec3(b) / 255.0; }
+
+float srgb_decode(float c) { return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4); }
+
+vec3 ycxcz(vec3 rgb)
+{
+    vec3 lin = vec3(srgb_decode(rgb.r), srgb_decode(rgb.g), srgb_decode(rgb.b));
+    vec3 wp = white();
+    vec3 v = rgb_to_xyz(lin) / wp;
+    return vec3(116.0 * v.y - 16.0, 500.0 * (v.x - v.y), 200.0 * (v.y - v.z));
+}
+
+float luma(vec3 c) { return 0.2989 * c.r + 0.5870 * c.g + 0.1140 * c.b; }
 
 // the CPU's convolution at the window's centre, sum over i of
 // k[i + r] · src[x - i], the kernel being symmetric (anti: antisymmetric),
@@ -30,36 +52,48 @@ float conv(float v[WIN], int k, int r, bool anti)
 
 void main()
 {
-    uint y = gl_GlobalInvocationID.x;
-    int x0 = int(gl_WorkGroupID.y) * STRIP, x1 = min(x0 + STRIP, int(pc.width));
+    uint y = gl_GlobalInvocationID.x, strip = gl_WorkGroupID.y;
+    int x0 = int(strip) * STRIP, x1 = min(x0 + STRIP, int(pc.width));
     if (y >= pc.height)
         return;
     uint row = y * pc.width;
-    // w: pixels x - CSF_R .. x + CSF_R of the opponent channels, and of the
-    // achromatic one as FLIP's features see it, (Y + 16) / 116; a, b: SSIM's
-    // lumas from x on
-    float w[2][4][WIN], a[SSIM_W], b[SSIM_W];
+    // w: pixels x - CSF_R .. x + CSF_R of the opponent channels of the
+    // candidate (0) and the reference (1), and of the achromatic one as
+    // FLIP's features see it, (Y + 16) / 116; l: SSIM's lumas
+    float w[2][4][WIN], l[2][WIN];
+    uint sq = 0u, temporal = 0u;
+    // the window's new pixel e = x + CSF_R: from x0 - CSF_R on, the first
+    // 2 CSF_R steps only fill the windows
     for (int x = x0 - 2 * CSF_R; x < x1; x++) {
+        int e = x + CSF_R;
+        uint i = row + uint(clamp_x(e));
+        uvec3 px[2] = uvec3[2](bytes(cand[i]), bytes(ref_px[i]));
         [[unroll]] for (int im = 0; im < 2; im++) {
-            [[unroll]] for (int c = 0; c < 4; c++)
-                [[unroll]] for (int t = 0; t < WIN - 1; t++)
+            [[unroll]] for (int t = 0; t < WIN - 1; t++) {
+                [[unroll]] for (int c = 0; c < 4; c++)
                     w[im][c][t] = w[im][c][t + 1];
-            uint e = row + uint(clamp_x(x + CSF_R)), opp = P_OPP + 3u * uint(im);
-            w[im][0][WIN - 1] = planes[plane(opp, e)];
-            w[im][1][WIN - 1] = planes[plane(opp + 1u, e)];
-            w[im][2][WIN - 1] = planes[plane(opp + 2u, e)];
-            w[im][3][WIN - 1] = (w[im][0][WIN - 1] + 16.0) / 116.0;
+                l[im][t] = l[im][t + 1];
+            }
+            vec3 rgb = unit(px[im]), o = ycxcz(rgb);
+            w[im][0][WIN - 1] = o.x;
+            w[im][1][WIN - 1] = o.y;
+            w[im][2][WIN - 1] = o.z;
+            w[im][3][WIN - 1] = (o.x + 16.0) / 116.0;
+            l[im][WIN - 1] = luma(rgb) - SSIM_SHIFT;
         }
-        [[unroll]] for (int t = 0; t < SSIM_W - 1; t++)
-            a[t] = a[t + 1], b[t] = b[t + 1];
-        uint e = row + uint(clamp_x(x + SSIM_W - 1));
-        a[SSIM_W - 1] = planes[plane(P_LUMA_TEST, e)];
-        b[SSIM_W - 1] = planes[plane(P_LUMA_REF, e)];
+        // each pixel's errors once, by the strip it is in
+        if (e >= x0 && e < x1) {
+            ivec3 d = ivec3(px[0]) - ivec3(px[1]);
+            sq += uint(d.r * d.r + d.g * d.g + d.b * d.b);
+            ivec3 dt = abs((ivec3(px[0]) - ivec3(bytes(cand_prev[i]))) - (ivec3(px[1]) - ivec3(bytes(ref_prev[i]))));
+            temporal += uint(dt.r + dt.g + dt.b);
+        }
         if (x < x0)
             continue;
         uint o = uint(x) * pc.height + y;
+        // tmp's planes: the reference's (image 1 here) first
         [[unroll]] for (int im = 0; im < 2; im++) {
-            uint t = T_CSF + 4u * uint(im), f = T_FEAT + 3u * uint(im);
+            uint t = T_CSF + 4u * uint(1 - im), f = T_FEAT + 3u * uint(1 - im);
             tmp[plane(t, o)] = conv(w[im][0], K_CSF, CSF_R, false);
             tmp[plane(t + 1u, o)] = conv(w[im][1], K_CSF + CSF_TAPS, CSF_R, false);
             tmp[plane(t + 2u, o)] = conv(w[im][2], K_CSF + 2 * CSF_TAPS, CSF_R, false);
@@ -71,15 +105,17 @@ void main()
         if (x + SSIM_W <= int(pc.width)) {
             float m[5] = float[5](0.0, 0.0, 0.0, 0.0, 0.0);
             [[unroll]] for (int k = 0; k < SSIM_W; k++) {
-                float wk = kern[K_SSIM + k];
-                m[0] += wk * a[k];
-                m[1] += wk * b[k];
-                m[2] += wk * (a[k] * a[k]);
-                m[3] += wk * (b[k] * b[k]);
-                m[4] += wk * (a[k] * b[k]);
+                float wk = kern[K_SSIM + k], a = l[0][CSF_R + k], b = l[1][CSF_R + k];
+                m[0] += wk * a;
+                m[1] += wk * b;
+                m[2] += wk * (a * a);
+                m[3] += wk * (b * b);
+                m[4] += wk * (a * b);
             }
             [[unroll]] for (int c = 0; c < 5; c++)
                 tmp[plane(T_SSIM + uint(c), o)] = m[c];
         }
     }
+    partials[2u * (strip * pc.height + y)] = sq;
+    partials[2u * (strip * pc.height + y) + 1u] = temporal;
 }

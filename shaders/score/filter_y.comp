@@ -1,15 +1,15 @@
 #version 450
-// The device scorer's vertical filters and per-pixel errors: FLIP's
-// filtered colours in Hunt-adjusted Lab, their HyAB distance and the
-// feature difference give FLIP's error; SSIM's moments give the SSIM of the
-// window whose corner is the pixel (0 where no window fits). The horizontal
-// filters' planes are stored by column (filter_x.comp), so that a column's
-// values are consecutive. An invocation walks down STRIP rows of one column
-// with a window of each plane in registers: each row shifts the windows
-// and reads one value per plane, and the loop's body is small. On a CPU
-// device (lavapipe) each read is a per-lane bounds-checked load, the bulk
-// of the stage's instructions, and the unrolled body of earlier versions
-// overflowed the instruction cache.
+// The device scorer's second stage, down columns: FLIP's vertical filters,
+// the filtered colours in Hunt-adjusted Lab, their HyAB distance and the
+// feature difference give FLIP's error per pixel (its map); SSIM's
+// vertical moments give the SSIM of the window whose corner is the pixel
+// (where one fits). Each invocation adds its strip's FLIP and SSIM values
+// in row order: the same sums on every run. The horizontal stage's planes
+// are stored by column (filter_x.comp), so that a column's values are
+// consecutive. An invocation walks down STRIP rows of one column with a
+// window of each plane in registers: each row shifts the windows and reads
+// one value per plane, and the loop's body is small (on lavapipe, per-lane
+// bounds-checked reads are most of the instructions).
 #extension GL_EXT_control_flow_attributes : require
 #include "score.glsl"
 layout(local_size_x = 8, local_size_y = 1) in;
@@ -80,14 +80,15 @@ float ssim(float m[5])
 
 void main()
 {
-    uint x = gl_GlobalInvocationID.x;
-    int y0 = int(gl_WorkGroupID.y) * STRIP, y1 = min(y0 + STRIP, int(pc.height));
+    uint x = gl_GlobalInvocationID.x, strip = gl_WorkGroupID.y;
+    int y0 = int(strip) * STRIP, y1 = min(y0 + STRIP, int(pc.height));
     if (x >= pc.width)
         return;
     uint col = x * pc.height;
     bool fits = x + uint(SSIM_W) <= pc.width;
     // w: rows y - CSF_R .. y + CSF_R of each plane; s: rows y .. y + SSIM_W - 1 of SSIM's moments
     float w[COLUMN_PLANES][WIN], s[5][SSIM_W];
+    float flip_sum = 0.0, ssim_sum = 0.0;
     for (int y = y0 - 2 * CSF_R; y < y1; y++) {
         [[unroll]] for (int p = 0; p < COLUMN_PLANES; p++) {
             [[unroll]] for (int t = 0; t < WIN - 1; t++)
@@ -116,14 +117,19 @@ void main()
             float ey = conv(w[f + 2], d, FEAT_R, true), py = conv(w[f + 2], d2, FEAT_R, false);
             features[im] = vec2(sqrt(ex * ex + ey * ey), sqrt(px * px + py * py));
         }
-        uint i = uint(y) * pc.width + x;
-        planes[plane(P_FLIP, i)] = flip_error(colour[0], colour[1], features[0], features[1]);
+        float e = flip_error(colour[0], colour[1], features[0], features[1]);
+        flip_map[uint(y) * pc.width + x] = e;
+        flip_sum += e;
         float m[5];
         [[unroll]] for (int c = 0; c < 5; c++) {
             m[c] = 0.0;
             [[unroll]] for (int k = 0; k < SSIM_W; k++)
                 m[c] += kern[K_SSIM + k] * s[c][k];
         }
-        planes[plane(P_SSIM, i)] = fits && y + SSIM_W <= int(pc.height) ? ssim(m) : 0.0;
+        if (fits && y + SSIM_W <= int(pc.height))
+            ssim_sum += ssim(m);
     }
+    uint p = P_COLUMNS + 2u * (strip * pc.width + x);
+    partials[p] = floatBitsToUint(flip_sum);
+    partials[p + 1u] = floatBitsToUint(ssim_sum);
 }

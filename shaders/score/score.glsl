@@ -6,35 +6,31 @@ layout(std430, binding = 0) buffer Cand { uint cand[]; };
 layout(std430, binding = 1) buffer Ref { uint ref_px[]; };
 layout(std430, binding = 2) buffer CandPrev { uint cand_prev[]; };
 layout(std430, binding = 3) buffer RefPrev { uint ref_prev[]; };
-// per-pixel planes, width * height floats each (P_*)
-layout(std430, binding = 4) buffer Planes { float planes[]; };
+// FLIP's error per pixel, row by row (the map compare shows)
+layout(std430, binding = 4) buffer Flip { float flip_map[]; };
 // the horizontal filters' results, width * height floats each (T_*), by
 // column (pixel (x, y) at x * height + y), as the vertical filters read them
 layout(std430, binding = 5) buffer Tmp { float tmp[]; };
-// per pixel: squared error and temporal error in 8-bit steps (exact integers)
-layout(std430, binding = 6) buffer Ints { uint ints[]; };
-// per workgroup of the reduction: FLIP, SSIM (float bits), squared error, temporal
-layout(std430, binding = 7) buffer Partials { uint partials[]; };
+// per strip of an invocation, its sums in pixel order: first the
+// horizontal stage's (squared and temporal error in 8-bit steps, exact
+// integers), row y's strip s at 2 (s · height + y); then the vertical
+// stage's (FLIP and SSIM, float bits), column x's strip s at
+// P_COLUMNS + 2 (s · width + x)
+layout(std430, binding = 6) buffer Partials { uint partials[]; };
 // the filter kernels, from the CPU metrics' own code (K_*)
-layout(std430, binding = 8) buffer Kernels { float kern[]; };
+layout(std430, binding = 7) buffer Kernels { float kern[]; };
 layout(push_constant) uniform P { uint width, height; } pc;
 
-// planes: FLIP's opponent (YCxCz) channels of the reference (0-2) and the
-// candidate (3-5), SSIM's lumas, FLIP's error, SSIM's value per window
-#define P_OPP 0u
-#define P_LUMA_TEST 6u
-#define P_LUMA_REF 7u
-#define P_FLIP 8u
-#define P_SSIM 9u
-#define PLANES 10u
 // tmp: per image the CSF terms A, RG, BY0, BY1 (0-7), the feature responses
-// d·y, d2·y, g·y (8-13), SSIM's five moments (14-18)
+// d·x, d2·x, g·x (8-13), SSIM's five moments (14-18)
 #define T_CSF 0u
 #define T_FEAT 8u
 #define T_SSIM 14u
 #define TMP_PLANES 19u
 // CSF_R and FEAT_R come as defines (the radii of the CPU's kernels), and
 // STRIP: the pixels an invocation of a filter stage walks along its axis
+#define STRIPS_X ((pc.width + uint(STRIP) - 1u) / uint(STRIP))
+#define P_COLUMNS (2u * STRIPS_X * pc.height)
 #define CSF_TAPS (2 * CSF_R + 1)
 #define FEAT_TAPS (2 * FEAT_R + 1)
 #define K_CSF 0                        // four kernels: A, RG, BY0, BY1
@@ -42,7 +38,7 @@ layout(push_constant) uniform P { uint width, height; } pc;
 #define K_FEAT (K_SHARE + 4)           // d, d2, g
 #define K_SSIM (K_FEAT + 3 * FEAT_TAPS)
 #define SSIM_W 11
-// SSIM's lumas are stored less this: the moments' variances E[a²] - E[a]²
+// SSIM's lumas are taken less this: the moments' variances E[a²] - E[a]²
 // (shift-invariant) then cancel less of the float precision
 #define SSIM_SHIFT 0.5
 

@@ -1,10 +1,12 @@
-/* Scoring on the device (voxrg/device_score.h): four compute stages on the
- * context's queue (shaders/score/): per-pixel conversions, the horizontal
- * filters, the vertical filters with the per-pixel errors, and fixed-order
- * per-workgroup sums, which the host adds in order in double. The
- * candidate and reference of the previous frame stay on the device (two
- * slots, used in turn) for the temporal error. The filter kernels come from
- * the CPU metrics' own code (metrics_kernels.h). */
+/* Scoring on the device (voxrg/device_score.h): two compute stages on the
+ * context's queue (shaders/score/): along rows, the per-pixel conversions,
+ * the horizontal filters and the integer errors; down columns, the
+ * vertical filters with FLIP's and SSIM's per-pixel values. Each
+ * invocation adds the values of its strip of pixels in order, and the
+ * host adds the strips' sums in order in double: the same scores on every
+ * run. The candidate and reference of the previous frame stay on the
+ * device (two slots, used in turn) for the temporal error. The filter
+ * kernels come from the CPU metrics' own code (metrics_kernels.h). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -14,15 +16,14 @@
 #include "metrics_kernels.h"
 
 /* as shaders/score/score.glsl lays them out */
-enum { PLANES = 10, P_FLIP = 8, TMP_PLANES = 19, BINDINGS = 9 };
-enum { REDUCE_CHUNK = 256 * 16, PARTIAL_WORDS = 4, MAX_TAPS = 64 };
+enum { TMP_PLANES = 19, BINDINGS = 8, MAX_TAPS = 64 };
 /* Pixels an invocation of a filter stage walks along its axis, its windows
  * in registers, one read per input and pixel: on a CPU device (lavapipe)
  * the per-lane reads and writes are most of the work, not the sums
  * (docs/benchmarks.md has what each shape cost). */
 enum { STRIP = 128 };
-enum { STAGE_PREPARE, STAGE_FILTER_X, STAGE_FILTER_Y, STAGE_REDUCE, STAGES };
-static const char *const stage_files[STAGES] = {"prepare.comp", "filter_x.comp", "filter_y.comp", "reduce.comp"};
+enum { STAGE_FILTER_X, STAGE_FILTER_Y, STAGES };
+static const char *const stage_files[STAGES] = {"filter_x.comp", "filter_y.comp"};
 
 typedef struct scorer_buffer {
     VkBuffer buffer;
@@ -34,9 +35,10 @@ typedef struct scorer_buffer {
 struct vrg_device_scorer {
     vrg_context *ctx;
     const vrg_device *dev;
-    uint32_t width, height, groups;
+    uint32_t width, height;
+    uint32_t strips_x, strips_y; /* per row, per column */
     /* cand, ref: a slot each per parity; the other slot is the previous frame */
-    scorer_buffer cand[2], ref[2], planes, tmp, ints, partials, kernels, upload, map;
+    scorer_buffer cand[2], ref[2], flip, tmp, partials, kernels, upload, map;
     VkDescriptorSetLayout set_layout;
     VkPipelineLayout layout;
     VkPipeline pipelines[STAGES];
@@ -87,6 +89,12 @@ static void free_buffer(VkDevice dev, scorer_buffer *b)
     vkFreeMemory(dev, b->memory, NULL); /* unmaps */
 }
 
+/* two words per strip: the rows' strips, then the columns' */
+static VkDeviceSize partial_words(const vrg_device_scorer *s)
+{
+    return 2 * ((VkDeviceSize)s->strips_x * s->height + (VkDeviceSize)s->strips_y * s->width);
+}
+
 static int make_buffers(vrg_device_scorer *s, uint32_t csf_r, uint32_t feat_r)
 {
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
@@ -98,10 +106,9 @@ static int make_buffers(vrg_device_scorer *s, uint32_t csf_r, uint32_t feat_r)
         rc |= make_buffer(s, &s->cand[p], n * 4, copied, 0);
         rc |= make_buffer(s, &s->ref[p], n * 4, copied, 0);
     }
-    rc |= make_buffer(s, &s->planes, n * 4 * PLANES, copied, 0);
+    rc |= make_buffer(s, &s->flip, n * 4, copied, 0);
     rc |= make_buffer(s, &s->tmp, n * 4 * TMP_PLANES, storage, 0);
-    rc |= make_buffer(s, &s->ints, n * 4 * 2, storage, 0);
-    rc |= make_buffer(s, &s->partials, (VkDeviceSize)s->groups * PARTIAL_WORDS * 4, storage, 1);
+    rc |= make_buffer(s, &s->partials, partial_words(s) * 4, storage, 1);
     rc |= make_buffer(s, &s->kernels, (VkDeviceSize)kernel_floats * 4, storage, 1);
     rc |= make_buffer(s, &s->upload, n * 4 * 2, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, 1);
     rc |= make_buffer(s, &s->map, n * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, 1);
@@ -206,7 +213,7 @@ static int make_sets(vrg_device_scorer *s)
     if (vkAllocateDescriptorSets(dev, &dai, s->sets) != VK_SUCCESS)
         return -1;
     for (int p = 0; p < 2; p++) {
-        const scorer_buffer *bufs[BINDINGS] = {&s->cand[p], &s->ref[p], &s->cand[1 - p], &s->ref[1 - p], &s->planes, &s->tmp, &s->ints, &s->partials, &s->kernels};
+        const scorer_buffer *bufs[BINDINGS] = {&s->cand[p], &s->ref[p], &s->cand[1 - p], &s->ref[1 - p], &s->flip, &s->tmp, &s->partials, &s->kernels};
         VkDescriptorBufferInfo info[BINDINGS];
         VkWriteDescriptorSet wr[BINDINGS];
         for (uint32_t i = 0; i < BINDINGS; i++) {
@@ -245,8 +252,7 @@ int vrg_device_scorer_create(vrg_context *ctx, uint32_t width, uint32_t height, 
     s->ctx = ctx;
     s->dev = vrg_context_device(ctx);
     s->width = width, s->height = height;
-    uint64_t n = (uint64_t)width * height;
-    s->groups = (uint32_t)((n + REDUCE_CHUNK - 1) / REDUCE_CHUNK);
+    s->strips_x = (width + STRIP - 1) / STRIP, s->strips_y = (height + STRIP - 1) / STRIP;
     double ppd = vrg_flip_pixels_per_degree();
     int csf_r = _vrg_flip_csf_radius(ppd), feat_r = _vrg_flip_feature_radius(ppd);
     if (2 * csf_r + 1 > MAX_TAPS || 2 * feat_r + 1 > MAX_TAPS) { /* write_kernels' arrays */
@@ -282,7 +288,7 @@ void vrg_device_scorer_destroy(vrg_device_scorer *s)
         vkDestroyPipeline(dev, s->pipelines[i], NULL);
     vkDestroyPipelineLayout(dev, s->layout, NULL);
     vkDestroyDescriptorSetLayout(dev, s->set_layout, NULL);
-    scorer_buffer *bufs[] = {&s->cand[0], &s->cand[1], &s->ref[0], &s->ref[1], &s->planes, &s->tmp, &s->ints, &s->partials, &s->kernels, &s->upload, &s->map};
+    scorer_buffer *bufs[] = {&s->cand[0], &s->cand[1], &s->ref[0], &s->ref[1], &s->flip, &s->tmp, &s->partials, &s->kernels, &s->upload, &s->map};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++)
         free_buffer(dev, bufs[i]);
     free(s);
@@ -347,18 +353,14 @@ static void record(vrg_device_scorer *s, VkCommandBuffer cmd)
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s->layout, 0, 1, &s->sets[s->parity], 0, NULL);
     uint32_t size[2] = {s->width, s->height};
     vkCmdPushConstants(cmd, s->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof size, size);
-    uint32_t gx = (s->width + 7) / 8, gy = (s->height + 7) / 8;
-    /* the filters: 8 rows (columns) per group, STRIP pixels along each */
-    const uint32_t groups[3][2] = {{gx, gy}, {gy, (s->width + STRIP - 1) / STRIP}, {gx, (s->height + STRIP - 1) / STRIP}};
-    for (int stage = STAGE_PREPARE; stage <= STAGE_FILTER_Y; stage++) {
-        dispatch(s, cmd, stage, groups[stage][0], groups[stage][1]);
-        barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, shader);
-    }
-    dispatch(s, cmd, STAGE_REDUCE, s->groups, 1);
+    /* 8 rows (columns) per group, a strip of each per invocation */
+    dispatch(s, cmd, STAGE_FILTER_X, (s->height + 7) / 8, s->strips_x);
+    barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, shader);
+    dispatch(s, cmd, STAGE_FILTER_Y, (s->width + 7) / 8, s->strips_y);
     if (s->want_map) {
         barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-        VkBufferCopy map = {bytes * P_FLIP, 0, bytes};
-        vkCmdCopyBuffer(cmd, s->planes.buffer, s->map.buffer, 1, &map);
+        VkBufferCopy map = {0, 0, bytes};
+        vkCmdCopyBuffer(cmd, s->flip.buffer, s->map.buffer, 1, &map);
     }
     /* what the host reads, and what the next frame's work (also another
      * submission on this queue) overwrites, ordered after all of this */
@@ -412,15 +414,19 @@ int vrg_device_score_collect(vrg_device_scorer *s, float *map, vrg_device_scores
         fprintf(stderr, "error: device scorer: the device failed while scoring a frame\n");
         return -1;
     }
+    /* the strips' sums, added in order */
     double flip = 0, ssim = 0, sq = 0, temporal = 0;
     const uint32_t *part = s->partials.mapped;
-    for (uint32_t g = 0; g < s->groups; g++) {
+    size_t rows = (size_t)s->strips_x * s->height, columns = (size_t)s->strips_y * s->width;
+    for (size_t i = 0; i < rows; i++) {
+        sq += part[2 * i];
+        temporal += part[2 * i + 1];
+    }
+    for (size_t i = 0; i < columns; i++) {
         float f[2];
-        memcpy(f, part + PARTIAL_WORDS * g, sizeof f);
+        memcpy(f, part + 2 * rows + 2 * i, sizeof f);
         flip += f[0];
         ssim += f[1];
-        sq += part[PARTIAL_WORDS * g + 2];
-        temporal += part[PARTIAL_WORDS * g + 3];
     }
     double n = (double)s->width * s->height, channels = 3 * n;
     double mse = sq / (255.0 * 255.0 * channels);
