@@ -67,7 +67,7 @@ void main()
     for (int x = x0 - 2 * CSF_R; x < x1; x++) {
         int e = x + CSF_R;
         uint i = row + uint(clamp_x(e));
-        uvec3 px[2] = uvec3[2](bytes(cand[i]), bytes(ref_px[i]));
+        uvec3 px[2] = uvec3[2](bytes(pc.cand.u[i]), bytes(pc.ref_px.u[i]));
         [[unroll]] for (int im = 0; im < 2; im++) {
             [[unroll]] for (int t = 0; t < WIN - 1; t++) {
                 [[unroll]] for (int c = 0; c < 4; c++)
@@ -85,7 +85,7 @@ void main()
         if (e >= x0 && e < x1) {
             ivec3 d = ivec3(px[0]) - ivec3(px[1]);
             sq += uint(d.r * d.r + d.g * d.g + d.b * d.b);
-            ivec3 dt = abs((ivec3(px[0]) - ivec3(bytes(cand_prev[i]))) - (ivec3(px[1]) - ivec3(bytes(ref_prev[i]))));
+            ivec3 dt = abs((ivec3(px[0]) - ivec3(bytes(pc.cand_prev.u[i]))) - (ivec3(px[1]) - ivec3(bytes(pc.ref_prev.u[i]))));
             temporal += uint(dt.r + dt.g + dt.b);
         }
         if (x < x0)
@@ -94,13 +94,13 @@ void main()
         // tmp's planes: the reference's (image 1 here) first
         [[unroll]] for (int im = 0; im < 2; im++) {
             uint t = T_CSF + 4u * uint(1 - im), f = T_FEAT + 3u * uint(1 - im);
-            tmp[plane(t, o)] = conv(w[im][0], K_CSF, CSF_R, false);
-            tmp[plane(t + 1u, o)] = conv(w[im][1], K_CSF + CSF_TAPS, CSF_R, false);
-            tmp[plane(t + 2u, o)] = conv(w[im][2], K_CSF + 2 * CSF_TAPS, CSF_R, false);
-            tmp[plane(t + 3u, o)] = conv(w[im][2], K_CSF + 3 * CSF_TAPS, CSF_R, false);
-            tmp[plane(f, o)] = conv(w[im][3], K_FEAT, FEAT_R, true);
-            tmp[plane(f + 1u, o)] = conv(w[im][3], K_FEAT + FEAT_TAPS, FEAT_R, false);
-            tmp[plane(f + 2u, o)] = conv(w[im][3], K_FEAT + 2 * FEAT_TAPS, FEAT_R, false);
+            pc.tmp.f[plane(t, o)] = conv(w[im][0], K_CSF, CSF_R, false);
+            pc.tmp.f[plane(t + 1u, o)] = conv(w[im][1], K_CSF + CSF_TAPS, CSF_R, false);
+            pc.tmp.f[plane(t + 2u, o)] = conv(w[im][2], K_CSF + 2 * CSF_TAPS, CSF_R, false);
+            pc.tmp.f[plane(t + 3u, o)] = conv(w[im][2], K_CSF + 3 * CSF_TAPS, CSF_R, false);
+            pc.tmp.f[plane(f, o)] = conv(w[im][3], K_FEAT, FEAT_R, true);
+            pc.tmp.f[plane(f + 1u, o)] = conv(w[im][3], K_FEAT + FEAT_TAPS, FEAT_R, false);
+            pc.tmp.f[plane(f + 2u, o)] = conv(w[im][3], K_FEAT + 2 * FEAT_TAPS, FEAT_R, false);
         }
         if (x + SSIM_W <= int(pc.width)) {
             float m[5] = float[5](0.0, 0.0, 0.0, 0.0, 0.0);
@@ -113,9 +113,9 @@ void main()
                 m[4] += wk * (a * b);
             }
             [[unroll]] for (int c = 0; c < 5; c++)
-                tmp[plane(T_SSIM + uint(c), o)] = m[c];
+                pc.tmp.f[plane(T_SSIM + uint(c), o)] = m[c];
         }
     }
-    partials[2u * (strip * pc.height + y)] = sq;
-    partials[2u * (strip * pc.height + y) + 1u] = temporal;
+    pc.partials.u[2u * (strip * pc.height + y)] = sq;
+    pc.partials.u[2u * (strip * pc.height + y) + 1u] = temporal;
 }

@@ -93,12 +93,12 @@ void main()
         [[unroll]] for (int p = 0; p < COLUMN_PLANES; p++) {
             [[unroll]] for (int t = 0; t < WIN - 1; t++)
                 w[p][t] = w[p][t + 1];
-            w[p][WIN - 1] = tmp[plane(uint(p), col + uint(clamp_y(y + CSF_R)))];
+            w[p][WIN - 1] = pc.tmp.f[plane(uint(p), col + uint(clamp_y(y + CSF_R)))];
         }
         [[unroll]] for (int c = 0; c < 5; c++) {
             [[unroll]] for (int t = 0; t < SSIM_W - 1; t++)
                 s[c][t] = s[c][t + 1];
-            s[c][SSIM_W - 1] = tmp[plane(T_SSIM + uint(c), col + uint(clamp_y(y + SSIM_W - 1)))];
+            s[c][SSIM_W - 1] = pc.tmp.f[plane(T_SSIM + uint(c), col + uint(clamp_y(y + SSIM_W - 1)))];
         }
         if (y < y0)
             continue;
@@ -118,7 +118,7 @@ void main()
             features[im] = vec2(sqrt(ex * ex + ey * ey), sqrt(px * px + py * py));
         }
         float e = flip_error(colour[0], colour[1], features[0], features[1]);
-        flip_map[uint(y) * pc.width + x] = e;
+        pc.flip_map.f[uint(y) * pc.width + x] = e;
         flip_sum += e;
         float m[5];
         [[unroll]] for (int c = 0; c < 5; c++) {
@@ -130,6 +130,6 @@ void main()
             ssim_sum += ssim(m);
     }
     uint p = P_COLUMNS + 2u * (strip * pc.width + x);
-    partials[p] = floatBitsToUint(flip_sum);
-    partials[p + 1u] = floatBitsToUint(ssim_sum);
+    pc.partials.u[p] = floatBitsToUint(flip_sum);
+    pc.partials.u[p + 1u] = floatBitsToUint(ssim_sum);
 }

@@ -1,25 +1,32 @@
 // The device scorer's buffers (core/tools/src/device_score.c): compare's
 // metrics (core/tools/src/metrics.c is the reference, docs/compare.md the
 // definitions) computed where the frame was rendered. Pixels are RGBA8
-// words, R in the low byte: the bytes compare writes to PNG.
-layout(std430, binding = 0) buffer Cand { uint cand[]; };
-layout(std430, binding = 1) buffer Ref { uint ref_px[]; };
-layout(std430, binding = 2) buffer CandPrev { uint cand_prev[]; };
-layout(std430, binding = 3) buffer RefPrev { uint ref_prev[]; };
-// FLIP's error per pixel, row by row (the map compare shows)
-layout(std430, binding = 4) buffer Flip { float flip_map[]; };
-// the horizontal filters' results, width * height floats each (T_*), by
-// column (pixel (x, y) at x * height + y), as the vertical filters read them
-layout(std430, binding = 5) buffer Tmp { float tmp[]; };
-// per strip of an invocation, its sums in pixel order: first the
-// horizontal stage's (squared and temporal error in 8-bit steps, exact
-// integers), row y's strip s at 2 (s · height + y); then the vertical
-// stage's (FLIP and SSIM, float bits), column x's strip s at
-// P_COLUMNS + 2 (s · width + x)
-layout(std430, binding = 6) buffer Partials { uint partials[]; };
+// words, R in the low byte: the bytes compare writes to PNG. The buffers
+// read and written per pixel come by address (on lavapipe those accesses
+// are vector gathers and scatters, a storage buffer's are bounds-checked
+// per lane); the kernels, read at uniform offsets, are bound.
+#extension GL_EXT_buffer_reference : require
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer Words { uint u[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer Floats { float f[]; };
 // the filter kernels, from the CPU metrics' own code (K_*)
-layout(std430, binding = 7) buffer Kernels { float kern[]; };
-layout(push_constant) uniform P { uint width, height; } pc;
+layout(std430, binding = 0) buffer Kernels { float kern[]; };
+layout(push_constant) uniform P {
+    uint width, height;
+    // this frame's and the previous frame's pixels
+    Words cand, ref_px, cand_prev, ref_prev;
+    // the horizontal filters' results, width * height floats each (T_*),
+    // by column (pixel (x, y) at x * height + y), as the vertical filters
+    // read them
+    Floats tmp;
+    // FLIP's error per pixel, row by row (the map compare shows)
+    Floats flip_map;
+    // per strip of an invocation, its sums in pixel order: first the
+    // horizontal stage's (squared and temporal error in 8-bit steps, exact
+    // integers), row y's strip s at 2 (s · height + y); then the vertical
+    // stage's (FLIP and SSIM, float bits), column x's strip s at
+    // P_COLUMNS + 2 (s · width + x)
+    Words partials;
+} pc;
 
 // tmp: per image the CSF terms A, RG, BY0, BY1 (0-7), the feature responses
 // d·x, d2·x, g·x (8-13), SSIM's five moments (14-18)

@@ -16,7 +16,7 @@
 #include "metrics_kernels.h"
 
 /* as shaders/score/score.glsl lays them out */
-enum { TMP_PLANES = 19, BINDINGS = 8, MAX_TAPS = 64 };
+enum { TMP_PLANES = 19, MAX_TAPS = 64 };
 /* Pixels an invocation of a filter stage walks along its axis, its windows
  * in registers, one read per input and pixel: on a CPU device (lavapipe)
  * the per-lane reads and writes are most of the work, not the sums
@@ -30,6 +30,7 @@ typedef struct scorer_buffer {
     VkDeviceMemory memory;
     void *mapped; /* host-visible ones */
     VkDeviceSize size;
+    VkDeviceAddress address;
 } scorer_buffer;
 
 struct vrg_device_scorer {
@@ -43,7 +44,7 @@ struct vrg_device_scorer {
     VkPipelineLayout layout;
     VkPipeline pipelines[STAGES];
     VkDescriptorPool pool;
-    VkDescriptorSet sets[2];
+    VkDescriptorSet set; /* the kernels; the rest by address (push constants) */
     VkCommandPool cmd_pool;
     VkCommandBuffer cmd;
     VkFence fence;
@@ -69,6 +70,7 @@ static int make_buffer(vrg_device_scorer *s, scorer_buffer *b, VkDeviceSize size
 {
     VkDevice dev = s->dev->device;
     b->size = size;
+    int address = (usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) != 0;
     VkBufferCreateInfo bi = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = size, .usage = usage, .sharingMode = VK_SHARING_MODE_EXCLUSIVE};
     if (vkCreateBuffer(dev, &bi, NULL, &b->buffer) != VK_SUCCESS)
         return -1;
@@ -77,9 +79,15 @@ static int make_buffer(vrg_device_scorer *s, scorer_buffer *b, VkDeviceSize size
     const VkMemoryPropertyFlags coherent = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
     int type = host ? memory_type(s->dev, req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_CACHED_BIT, coherent)
                     : memory_type(s->dev, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
-    VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size, .memoryTypeIndex = (uint32_t)type};
+    VkMemoryAllocateFlagsInfo flags = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO, .flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT};
+    VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .pNext = address ? &flags : NULL, .allocationSize = req.size,
+                               .memoryTypeIndex = (uint32_t)type};
     if (type < 0 || vkAllocateMemory(dev, &ai, NULL, &b->memory) != VK_SUCCESS || vkBindBufferMemory(dev, b->buffer, b->memory, 0) != VK_SUCCESS)
         return -1;
+    if (address) {
+        VkBufferDeviceAddressInfo info = {.sType = VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO, .buffer = b->buffer};
+        b->address = vkGetBufferDeviceAddress(dev, &info);
+    }
     return host ? (vkMapMemory(dev, b->memory, 0, VK_WHOLE_SIZE, 0, &b->mapped) == VK_SUCCESS ? 0 : -1) : 0;
 }
 
@@ -97,8 +105,11 @@ static VkDeviceSize partial_words(const vrg_device_scorer *s)
 
 static int make_buffers(vrg_device_scorer *s, uint32_t csf_r, uint32_t feat_r)
 {
-    const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    const VkBufferUsageFlags copied = storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+    /* per-pixel buffers by address: on lavapipe the stages' reads and
+     * writes through an address are vector gathers and scatters, through
+     * a storage buffer binding a bounds-checked access per lane */
+    const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, addressed = VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+    const VkBufferUsageFlags copied = addressed | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
     VkDeviceSize n = (VkDeviceSize)s->width * s->height;
     uint32_t kernel_floats = 4 * (2 * csf_r + 1) + 4 + 3 * (2 * feat_r + 1) + VRG_SSIM_WINDOW;
     int rc = 0;
@@ -107,8 +118,8 @@ static int make_buffers(vrg_device_scorer *s, uint32_t csf_r, uint32_t feat_r)
         rc |= make_buffer(s, &s->ref[p], n * 4, copied, 0);
     }
     rc |= make_buffer(s, &s->flip, n * 4, copied, 0);
-    rc |= make_buffer(s, &s->tmp, n * 4 * TMP_PLANES, storage, 0);
-    rc |= make_buffer(s, &s->partials, partial_words(s) * 4, storage, 1);
+    rc |= make_buffer(s, &s->tmp, n * 4 * TMP_PLANES, addressed, 0);
+    rc |= make_buffer(s, &s->partials, partial_words(s) * 4, addressed, 1);
     rc |= make_buffer(s, &s->kernels, (VkDeviceSize)kernel_floats * 4, storage, 1);
     rc |= make_buffer(s, &s->upload, n * 4 * 2, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, 1);
     rc |= make_buffer(s, &s->map, n * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, 1);
@@ -164,15 +175,20 @@ static int write_kernels(vrg_device_scorer *s, int csf_r, int feat_r)
     return 0;
 }
 
+/* as shaders/score/score.glsl's push constants: the frame's size and the
+ * addresses of the buffers the stages read and write per pixel */
+typedef struct scorer_push {
+    uint32_t width, height;
+    VkDeviceAddress cand, ref, cand_prev, ref_prev, tmp, flip, partials;
+} scorer_push;
+
 static int make_pipelines(vrg_device_scorer *s, int csf_r, int feat_r)
 {
     VkDevice dev = s->dev->device;
-    VkDescriptorSetLayoutBinding b[BINDINGS];
-    for (uint32_t i = 0; i < BINDINGS; i++)
-        b[i] = (VkDescriptorSetLayoutBinding){.binding = i, .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .descriptorCount = 1,
-                                              .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT};
-    VkDescriptorSetLayoutCreateInfo sli = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO, .bindingCount = BINDINGS, .pBindings = b};
-    VkPushConstantRange range = {VK_SHADER_STAGE_COMPUTE_BIT, 0, 2 * sizeof(uint32_t)};
+    VkDescriptorSetLayoutBinding b = {.binding = 0, .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .descriptorCount = 1,
+                                      .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT};
+    VkDescriptorSetLayoutCreateInfo sli = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO, .bindingCount = 1, .pBindings = &b};
+    VkPushConstantRange range = {VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(scorer_push)};
     VkPipelineLayoutCreateInfo pli = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, .setLayoutCount = 1, .pSetLayouts = &s->set_layout,
                                       .pushConstantRangeCount = 1, .pPushConstantRanges = &range};
     if (vkCreateDescriptorSetLayout(dev, &sli, NULL, &s->set_layout) != VK_SUCCESS || vkCreatePipelineLayout(dev, &pli, NULL, &s->layout) != VK_SUCCESS)
@@ -199,30 +215,23 @@ static int make_pipelines(vrg_device_scorer *s, int csf_r, int feat_r)
     return 0;
 }
 
-/* Set p reads slot p as this frame and slot 1 - p as the previous one. */
-static int make_sets(vrg_device_scorer *s)
+/* The kernels are the one buffer bound: they are read at uniform
+ * offsets. */
+static int make_set(vrg_device_scorer *s)
 {
     VkDevice dev = s->dev->device;
-    VkDescriptorPoolSize size = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * BINDINGS};
-    VkDescriptorPoolCreateInfo dpi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, .maxSets = 2, .poolSizeCount = 1, .pPoolSizes = &size};
-    VkDescriptorSetLayout layouts[2] = {s->set_layout, s->set_layout};
-    VkDescriptorSetAllocateInfo dai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO, .descriptorSetCount = 2, .pSetLayouts = layouts};
+    VkDescriptorPoolSize size = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
+    VkDescriptorPoolCreateInfo dpi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, .maxSets = 1, .poolSizeCount = 1, .pPoolSizes = &size};
+    VkDescriptorSetAllocateInfo dai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO, .descriptorSetCount = 1, .pSetLayouts = &s->set_layout};
     if (vkCreateDescriptorPool(dev, &dpi, NULL, &s->pool) != VK_SUCCESS)
         return -1;
     dai.descriptorPool = s->pool;
-    if (vkAllocateDescriptorSets(dev, &dai, s->sets) != VK_SUCCESS)
+    if (vkAllocateDescriptorSets(dev, &dai, &s->set) != VK_SUCCESS)
         return -1;
-    for (int p = 0; p < 2; p++) {
-        const scorer_buffer *bufs[BINDINGS] = {&s->cand[p], &s->ref[p], &s->cand[1 - p], &s->ref[1 - p], &s->flip, &s->tmp, &s->partials, &s->kernels};
-        VkDescriptorBufferInfo info[BINDINGS];
-        VkWriteDescriptorSet wr[BINDINGS];
-        for (uint32_t i = 0; i < BINDINGS; i++) {
-            info[i] = (VkDescriptorBufferInfo){bufs[i]->buffer, 0, VK_WHOLE_SIZE};
-            wr[i] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = s->sets[p], .dstBinding = i, .descriptorCount = 1,
-                                           .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .pBufferInfo = &info[i]};
-        }
-        vkUpdateDescriptorSets(dev, BINDINGS, wr, 0, NULL);
-    }
+    VkDescriptorBufferInfo info = {s->kernels.buffer, 0, VK_WHOLE_SIZE};
+    VkWriteDescriptorSet wr = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = s->set, .dstBinding = 0, .descriptorCount = 1,
+                               .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .pBufferInfo = &info};
+    vkUpdateDescriptorSets(dev, 1, &wr, 0, NULL);
     return 0;
 }
 
@@ -251,6 +260,15 @@ int vrg_device_scorer_create(vrg_context *ctx, uint32_t width, uint32_t height, 
         return -1;
     s->ctx = ctx;
     s->dev = vrg_context_device(ctx);
+    /* the context enables it wherever the device has it */
+    VkPhysicalDeviceVulkan12Features v12 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    VkPhysicalDeviceFeatures2 f2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &v12};
+    vkGetPhysicalDeviceFeatures2(s->dev->physical_device, &f2);
+    if (!v12.bufferDeviceAddress) {
+        fprintf(stderr, "error: device scorer: %s lacks bufferDeviceAddress, through which the scoring stages reach their buffers\n", s->dev->name);
+        free(s);
+        return -1;
+    }
     s->width = width, s->height = height;
     s->strips_x = (width + STRIP - 1) / STRIP, s->strips_y = (height + STRIP - 1) / STRIP;
     double ppd = vrg_flip_pixels_per_degree();
@@ -260,7 +278,7 @@ int vrg_device_scorer_create(vrg_context *ctx, uint32_t width, uint32_t height, 
         free(s);
         return -1;
     }
-    if (make_buffers(s, (uint32_t)csf_r, (uint32_t)feat_r) != 0 || make_pipelines(s, csf_r, feat_r) != 0 || make_sets(s) != 0 ||
+    if (make_buffers(s, (uint32_t)csf_r, (uint32_t)feat_r) != 0 || make_pipelines(s, csf_r, feat_r) != 0 || make_set(s) != 0 ||
         make_commands(s) != 0) {
         fprintf(stderr, "error: the device scorer could not be set up on %s\n", s->dev->name);
         vrg_device_scorer_destroy(s);
@@ -350,9 +368,12 @@ static void record(vrg_device_scorer *s, VkCommandBuffer cmd)
     VkBufferCopy ref = {bytes, 0, bytes};
     vkCmdCopyBuffer(cmd, s->upload.buffer, s->ref[s->parity].buffer, 1, &ref);
     barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, shader);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s->layout, 0, 1, &s->sets[s->parity], 0, NULL);
-    uint32_t size[2] = {s->width, s->height};
-    vkCmdPushConstants(cmd, s->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof size, size);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s->layout, 0, 1, &s->set, 0, NULL);
+    /* slot parity is this frame; the other slot the previous one */
+    uint32_t p = s->parity;
+    scorer_push push = {s->width,           s->height,     s->cand[p].address, s->ref[p].address,     s->cand[1 - p].address,
+                        s->ref[1 - p].address, s->tmp.address, s->flip.address,    s->partials.address};
+    vkCmdPushConstants(cmd, s->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
     /* 8 rows (columns) per group, a strip of each per invocation */
     dispatch(s, cmd, STAGE_FILTER_X, (s->height + 7) / 8, s->strips_x);
     barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, shader);
