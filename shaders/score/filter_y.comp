@@ -6,24 +6,27 @@
 // (where one fits). Each invocation adds its strip's FLIP and SSIM values
 // in row order: the same sums on every run. The horizontal stage's planes
 // are stored by column (filter_x.comp), so that a column's values are
-// consecutive. An invocation walks down STRIP rows of one column with a
-// window of each plane in registers: each row shifts the windows and reads
-// one value per plane, and the loop's body is small (on lavapipe, per-lane
-// bounds-checked reads are most of the instructions).
+// consecutive. An invocation walks down STRIP rows of one column, STEP rows
+// a step, with a window of each plane in registers: a step shifts the
+// windows once and reads STEP values of each plane, and the loop's body
+// stays small (docs/benchmarks.md).
 #extension GL_EXT_control_flow_attributes : require
 #include "score.glsl"
 layout(local_size_x = 8, local_size_y = 1) in;
 #define WIN (2 * CSF_R + 1)
+#define STEP 4
+#define WK (WIN + STEP - 1)
+#define SK (SSIM_W + STEP - 1)
 #define COLUMN_PLANES 14 // T_CSF and T_FEAT of both images
 
 // the CPU's convolution at the window's centre, sum over i of
 // k[i + r] · src[y - i], the kernel being symmetric (anti: antisymmetric),
 // so that the taps at ±i share a weight
-float conv(float v[WIN], int k, int r, bool anti)
+float conv(float v[WK], int c, int k, int r, bool anti)
 {
-    float a = kern[k + r] * v[CSF_R], b = 0.0;
+    float a = kern[k + r] * v[c], b = 0.0;
     [[unroll]] for (int i = 1; i <= r; i++) {
-        float p = (anti ? v[CSF_R - i] - v[CSF_R + i] : v[CSF_R - i] + v[CSF_R + i]) * kern[k + r + i];
+        float p = (anti ? v[c - i] - v[c + i] : v[c - i] + v[c + i]) * kern[k + r + i];
         if ((i & 1) == 1)
             b += p;
         else
@@ -86,48 +89,57 @@ void main()
         return;
     uint col = x * pc.height;
     bool fits = x + uint(SSIM_W) <= pc.width;
-    // w: rows y - CSF_R .. y + CSF_R of each plane; s: rows y .. y + SSIM_W - 1 of SSIM's moments
-    float w[COLUMN_PLANES][WIN], s[5][SSIM_W];
+    // w: rows y - CSF_R .. y + STEP - 1 + CSF_R of each plane; s: rows
+    // y .. y + STEP - 1 + SSIM_W - 1 of SSIM's moments
+    float w[COLUMN_PLANES][WK], s[5][SK];
     float flip_sum = 0.0, ssim_sum = 0.0;
-    for (int y = y0 - 2 * CSF_R; y < y1; y++) {
+    // the steps before y0 only fill the windows
+    for (int y = y0 - STEP * ((2 * CSF_R + STEP - 1) / STEP); y < y1; y += STEP) {
         [[unroll]] for (int p = 0; p < COLUMN_PLANES; p++) {
-            [[unroll]] for (int t = 0; t < WIN - 1; t++)
-                w[p][t] = w[p][t + 1];
-            w[p][WIN - 1] = pc.tmp.f[plane(uint(p), col + uint(clamp_y(y + CSF_R)))];
+            [[unroll]] for (int t = 0; t < WK - STEP; t++)
+                w[p][t] = w[p][t + STEP];
+            [[unroll]] for (int j = 0; j < STEP; j++)
+                w[p][WK - STEP + j] = pc.tmp.f[plane(uint(p), col + uint(clamp_y(y + CSF_R + j)))];
         }
         [[unroll]] for (int c = 0; c < 5; c++) {
-            [[unroll]] for (int t = 0; t < SSIM_W - 1; t++)
-                s[c][t] = s[c][t + 1];
-            s[c][SSIM_W - 1] = pc.tmp.f[plane(T_SSIM + uint(c), col + uint(clamp_y(y + SSIM_W - 1)))];
+            [[unroll]] for (int t = 0; t < SK - STEP; t++)
+                s[c][t] = s[c][t + STEP];
+            [[unroll]] for (int j = 0; j < STEP; j++)
+                s[c][SK - STEP + j] = pc.tmp.f[plane(T_SSIM + uint(c), col + uint(clamp_y(y + SSIM_W - 1 + j)))];
         }
         if (y < y0)
             continue;
-        vec3 colour[2];
-        vec2 features[2];
-        const int d = K_FEAT, d2 = K_FEAT + FEAT_TAPS, gk = K_FEAT + 2 * FEAT_TAPS;
-        [[unroll]] for (int im = 0; im < 2; im++) {
-            int t = int(T_CSF) + 4 * im, f = int(T_FEAT) + 3 * im;
-            colour[im].x = kern[K_SHARE + 0] * conv(w[t], K_CSF, CSF_R, false);
-            colour[im].y = kern[K_SHARE + 1] * conv(w[t + 1], K_CSF + CSF_TAPS, CSF_R, false);
-            colour[im].z = kern[K_SHARE + 2] * conv(w[t + 2], K_CSF + 2 * CSF_TAPS, CSF_R, false);
-            colour[im].z += kern[K_SHARE + 3] * conv(w[t + 3], K_CSF + 3 * CSF_TAPS, CSF_R, false);
-            // edges: d along x then g along y, and g along x then d along y;
-            // points alike with the second derivative
-            float ex = conv(w[f], gk, FEAT_R, false), px = conv(w[f + 1], gk, FEAT_R, false);
-            float ey = conv(w[f + 2], d, FEAT_R, true), py = conv(w[f + 2], d2, FEAT_R, false);
-            features[im] = vec2(sqrt(ex * ex + ey * ey), sqrt(px * px + py * py));
+        [[unroll]] for (int j = 0; j < STEP; j++) {
+            int yj = y + j, c = CSF_R + j;
+            if (yj >= y1)
+                break;
+            vec3 colour[2];
+            vec2 features[2];
+            const int d = K_FEAT, d2 = K_FEAT + FEAT_TAPS, gk = K_FEAT + 2 * FEAT_TAPS;
+            [[unroll]] for (int im = 0; im < 2; im++) {
+                int t = int(T_CSF) + 4 * im, f = int(T_FEAT) + 3 * im;
+                colour[im].x = kern[K_SHARE + 0] * conv(w[t], c, K_CSF, CSF_R, false);
+                colour[im].y = kern[K_SHARE + 1] * conv(w[t + 1], c, K_CSF + CSF_TAPS, CSF_R, false);
+                colour[im].z = kern[K_SHARE + 2] * conv(w[t + 2], c, K_CSF + 2 * CSF_TAPS, CSF_R, false);
+                colour[im].z += kern[K_SHARE + 3] * conv(w[t + 3], c, K_CSF + 3 * CSF_TAPS, CSF_R, false);
+                // edges: d along x then g along y, and g along x then d along y;
+                // points alike with the second derivative
+                float ex = conv(w[f], c, gk, FEAT_R, false), px = conv(w[f + 1], c, gk, FEAT_R, false);
+                float ey = conv(w[f + 2], c, d, FEAT_R, true), py = conv(w[f + 2], c, d2, FEAT_R, false);
+                features[im] = vec2(sqrt(ex * ex + ey * ey), sqrt(px * px + py * py));
+            }
+            float e = flip_error(colour[0], colour[1], features[0], features[1]);
+            pc.flip_map.f[uint(yj) * pc.width + x] = e;
+            flip_sum += e;
+            float m[5];
+            [[unroll]] for (int q = 0; q < 5; q++) {
+                m[q] = 0.0;
+                [[unroll]] for (int k = 0; k < SSIM_W; k++)
+                    m[q] += kern[K_SSIM + k] * s[q][j + k];
+            }
+            if (fits && yj + SSIM_W <= int(pc.height))
+                ssim_sum += ssim(m);
         }
-        float e = flip_error(colour[0], colour[1], features[0], features[1]);
-        pc.flip_map.f[uint(y) * pc.width + x] = e;
-        flip_sum += e;
-        float m[5];
-        [[unroll]] for (int c = 0; c < 5; c++) {
-            m[c] = 0.0;
-            [[unroll]] for (int k = 0; k < SSIM_W; k++)
-                m[c] += kern[K_SSIM + k] * s[c][k];
-        }
-        if (fits && y + SSIM_W <= int(pc.height))
-            ssim_sum += ssim(m);
     }
     uint p = P_COLUMNS + 2u * (strip * pc.width + x);
     pc.partials.u[p] = floatBitsToUint(flip_sum);
