@@ -17,10 +17,10 @@
 
 /* as shaders/score/score.glsl lays them out */
 enum { TMP_PLANES = 19, MAX_TAPS = 64 };
-/* Pixels an invocation of a filter stage walks along its axis, its windows
- * in registers, one read per input and pixel: on a CPU device (lavapipe)
- * the per-lane reads and writes are most of the work, not the sums
- * (docs/benchmarks.md has what each shape cost). */
+/* Pixels an invocation of a stage walks along its axis, its windows in
+ * registers, one read per input and pixel: on a CPU device (lavapipe) the
+ * reads, the writes and the windows' shifts are most of the work, not the
+ * sums (docs/benchmarks.md has what each shape cost). */
 enum { STRIP = 128 };
 enum { STAGE_FILTER_X, STAGE_FILTER_Y, STAGES };
 static const char *const stage_files[STAGES] = {"filter_x.comp", "filter_y.comp"};
