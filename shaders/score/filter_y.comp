@@ -129,7 +129,8 @@ void main()
                 features[im] = vec2(sqrt(ex * ex + ey * ey), sqrt(px * px + py * py));
             }
             float e = flip_error(colour[0], colour[1], features[0], features[1]);
-            pc.flip_map.f[uint(yj) * pc.width + x] = e;
+            if (pc.want_map != 0u)
+                pc.flip_map.f[uint(yj) * pc.width + x] = e;
             flip_sum += e;
             float m[5];
             [[unroll]] for (int q = 0; q < 5; q++) {

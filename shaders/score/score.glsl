@@ -26,6 +26,8 @@ layout(push_constant) uniform P {
     // stage's (FLIP and SSIM, float bits), column x's strip s at
     // P_COLUMNS + 2 (s · width + x)
     Words partials;
+    // not 0: FLIP's map is wanted (else its values are only added)
+    uint want_map;
 } pc;
 
 // tmp: per image the CSF terms A, RG, BY0, BY1 (0-7), the feature responses

@@ -180,6 +180,7 @@ static int write_kernels(vrg_device_scorer *s, int csf_r, int feat_r)
 typedef struct scorer_push {
     uint32_t width, height;
     VkDeviceAddress cand, ref, cand_prev, ref_prev, tmp, flip, partials;
+    uint32_t want_map; /* FLIP's map written (else only summed) */
 } scorer_push;
 
 static int make_pipelines(vrg_device_scorer *s, int csf_r, int feat_r)
@@ -372,7 +373,7 @@ static void record(vrg_device_scorer *s, VkCommandBuffer cmd)
     /* slot parity is this frame; the other slot the previous one */
     uint32_t p = s->parity;
     scorer_push push = {s->width,           s->height,     s->cand[p].address, s->ref[p].address,     s->cand[1 - p].address,
-                        s->ref[1 - p].address, s->tmp.address, s->flip.address,    s->partials.address};
+                        s->ref[1 - p].address, s->tmp.address, s->flip.address,    s->partials.address, (uint32_t)s->want_map};
     vkCmdPushConstants(cmd, s->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
     /* 8 rows (columns) per group, a strip of each per invocation */
     dispatch(s, cmd, STAGE_FILTER_X, (s->height + 7) / 8, s->strips_x);
