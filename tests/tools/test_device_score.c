@@ -1,6 +1,6 @@
 /* The device scorer (voxrg/device_score.h) against the CPU metrics
  * (voxrg/metrics.h), the reference, on the same bytes: synthetic images at
- * two sizes and frames rendered by a shipped graph, scored from the graph's
+ * three sizes and frames rendered by a shipped graph, scored from the graph's
  * output image without reading it back; the same frame scored again gives
  * the same bits. The tolerances are docs/compare.md's ("Scoring on the
  * device"). */
@@ -149,6 +149,8 @@ static void test_synthetic(void)
 {
     synthetic_size(64, 36);
     synthetic_size(320, 180);
+    /* sizes the stages' strips (128 pixels) and steps (4) do not divide */
+    synthetic_size(131, 37);
 }
 
 static vrg_graph *load_raw(const char *const sets[3], uint32_t w, uint32_t h)
