@@ -16,6 +16,14 @@ static int cmp_double(const void *a, const void *b)
     return x < y ? -1 : x > y;
 }
 
+int vrg_bench_room(int n, int k)
+{
+    if (n + k <= VRG_BENCH_MAX)
+        return 0;
+    fprintf(stderr, "error: bench: more than %d figures\n", VRG_BENCH_MAX);
+    return -1;
+}
+
 vrg_bench_figure vrg_bench_summarise(const char *name, const char *unit, double *v, int n)
 {
     vrg_bench_figure f = {0};

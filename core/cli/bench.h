@@ -23,8 +23,11 @@ typedef struct vrg_bench_opts {
 /* median, min, max, p99 of v[0..n) (v is sorted) */
 vrg_bench_figure vrg_bench_summarise(const char *name, const char *unit, double *v, int n);
 
-/* Each suite appends its figures to out[*count...] (room for VRG_BENCH_MAX). */
-#define VRG_BENCH_MAX 640
+/* Each suite appends its figures to out[*count...] (room for VRG_BENCH_MAX)
+ * and asks vrg_bench_room(n, k) before appending k more: past the room it
+ * is an error saying so, never a dropped or overrun figure. */
+#define VRG_BENCH_MAX 4096
+int vrg_bench_room(int n, int k);
 int vrg_bench_terrain(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure *out, int *count);
 int vrg_bench_rays(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure *out, int *count);
 int vrg_bench_reload(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure *out, int *count);

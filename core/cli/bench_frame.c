@@ -55,6 +55,8 @@ static int measure(vrg_context *ctx, const vrg_bench_opts *o, const char *name, 
         gpu[f] = sum;
         ratio[f] = ray_sum > 0 ? sum / ray_sum : 0;
     }
+    if (rc == 0)
+        rc = vrg_bench_room(n, 3 + (int)np);
     if (rc == 0) {
         char fig[160];
         snprintf(fig, sizeof fig, "frame: %s whole frame GPU, %ux%u, walk.path", name, o->width, o->height);
@@ -66,7 +68,7 @@ static int measure(vrg_context *ctx, const vrg_bench_opts *o, const char *name, 
             out[n++] = vrg_bench_summarise(fig, "x", ratio, frames);
         }
         double *v = malloc(sizeof(double) * (size_t)frames);
-        for (uint32_t i = 0; i < np && n < VRG_BENCH_MAX - 8; i++) {
+        for (uint32_t i = 0; i < np; i++) {
             if (pass[i] < 0) /* culled, or no timestamps */
                 continue;
             for (int f = 0; f < frames; f++)
@@ -129,10 +131,8 @@ static int measure_output(vrg_context *ctx, const vrg_bench_opts *o, const char 
         unlink(file);
     }
     rmdir(where);
-    if (rc == 0 && n + 2 > VRG_BENCH_MAX) {
-        fprintf(stderr, "error: bench: more than %d figures\n", VRG_BENCH_MAX);
-        rc = -1;
-    }
+    if (rc == 0)
+        rc = vrg_bench_room(n, 2);
     if (rc == 0) {
         char fig[160];
         double per_frame = wall / (frames - warm), ratio = gpu > 0 ? wall / gpu : 0;

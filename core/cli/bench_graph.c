@@ -60,6 +60,8 @@ static int baseline(vrg_context *ctx, vrg_capture *const cap[2], int runs, doubl
 int vrg_bench_graph(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure *out, int *count)
 {
     int runs = o->smoke ? 2 : (o->runs < 20 ? 20 : o->runs), n = *count, rc = 0;
+    if (vrg_bench_room(n, 8))
+        return -1;
     char path[1100];
     snprintf(path, sizeof path, "%s/graphs/thesis.ini", vrg_data_dir());
     /* compile: parse, validate, schedule, lifetimes and the aliasing plan (no device) */

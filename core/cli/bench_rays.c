@@ -17,6 +17,8 @@ int vrg_bench_rays(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure *
     int runs = o->runs;
     uint32_t width = o->width, height = o->height;
     int n = *count;
+    if (vrg_bench_room(n, 2 * 4 * 2)) /* backends x ray kinds x (ms, Mrays/s) */
+        return -1;
     static const char *backends[] = {"dda", "rayquery"};
     for (int b = 0; b < 2; b++) {
         int rq = b == 1;

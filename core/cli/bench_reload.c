@@ -111,6 +111,8 @@ int vrg_bench_reload(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figure
     char shader[1100], graph[1100], text[4096];
     double ms[64];
     int n = *count, ok = 1;
+    if (vrg_bench_room(n, 4))
+        return -1;
     /* a shader saved: recompiled (glslang) and JIT-compiled (lavapipe) */
     snprintf(shader, sizeof shader, "%s/user.comp", dir);
     snprintf(text, sizeof text, reload_shader, 0);

@@ -36,6 +36,8 @@ int vrg_bench_terrain(vrg_context *ctx, const vrg_bench_opts *o, vrg_bench_figur
 {
     int runs = o->runs, radius = o->smoke ? 2 : o->radius; /* smoke: a small world, a short walk */
     int n = *count;
+    if (vrg_bench_room(n, 2 * 4 + 2)) /* two thread counts x 4, the walk's 2 */
+        return -1;
     /* whole-world generation (radius 13: 27 x 27 x 3 chunks), 1 and 2 threads */
     for (int threads = 1; threads <= 2; threads++) {
         double wait[64], per_thread[64], integ[64], upload[64];
