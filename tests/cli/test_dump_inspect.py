@@ -3,10 +3,14 @@
 (pattern -> nan_pixel, one NaN at 5,3 channel B -> blur):
  - exr_roundtrip: the EXR dumps, read by exr_pixel (OpenEXR's own C library,
    none of voxrg's code), hold exactly what `inspect --json` prints (stored
-   bits) at several pixels; the NaN is kept; rg32ui is a uint EXR;
+   bits) at several pixels; the NaN is kept; rg32ui is a uint EXR; an rgba8
+   image (unorm8.ini) is the float32 of byte / 255, which inspect prints
+   with the byte;
  - dump_png: --dump-format png writes PNGs as before (no .exr);
  - buffer_sidecar: a buffer dump is NAME.bin plus NAME.json saying its size,
    texel format and writer;
+ - check_finite_clean: inspect's motion target is, of the previous frame's
+   pixels around it, the one nearest this frame's surface point;
  - inspect_errors: a pixel outside the image, bad --pixel syntax, no --pixel,
    render's options: a clear error, non-zero exit, nothing printed as values.
 Usage: test_dump_inspect.py VOXRG EXR_PIXEL TESTS_DIR OUT_DIR CASE"""
@@ -39,13 +43,15 @@ def run(args, timeout=300):
 
 
 def exr_pixel(path, x, y):
-    """{channel name: (type, bits)} as OpenEXR reads the file."""
+    """{channel name: (type, bits)} as OpenEXR reads the file. Every channel
+    is linear light or data: its pLinear (perceptually linear) must be 0."""
     p = subprocess.run([EXR_PIXEL, path, str(x), str(y)], capture_output=True, text=True, timeout=60)
     if not check(p.returncode == 0, f"exr_pixel {path} {x} {y}: {p.stderr.strip()}"):
         return {}
     out = {}
     for line in p.stdout.splitlines()[1:]:
-        name, kind, bits = line.split()
+        name, kind, bits, plinear = line.split()
+        check(plinear == "0", f"{path}: channel {name} has pLinear {plinear}, not 0")
         out[name] = (kind, int(bits))
     return out
 
@@ -99,10 +105,49 @@ def exr_roundtrip():
             check("nan" in text.split("poisoned")[1].splitlines()[0], f"the table does not show the NaN: {text}")
         else:
             check(all(isinstance(v, float) or isinstance(v, int) for v in poisoned["values"]), f"{x},{y}: {poisoned['values']}")
+    unorm8_roundtrip()
     # +Inf too
     rc, _, err = run(["render", GRAPH, "--out", OUT, "--dump", "poisoned", "--set", "poison.value=1"])
     kind, bits = exr_pixel(os.path.join(OUT, "poisoned.exr"), 5, 3).get("B", (None, 0))
     check(rc == 0 and half_value(bits) == math.inf, f"poisoned.exr with value=1 at 5,3 channel B: {half_value(bits)} ({err})")
+
+
+def float_bits(v):
+    return struct.unpack("<I", struct.pack("<f", v))[0]
+
+
+def unorm8_roundtrip():
+    """rgba8 (tonemap's ldr): the EXR holds the float32 of byte / 255, and
+    inspect prints that float exactly and the stored byte."""
+    graph = os.path.join(TESTS, "graphs", "unorm8.ini")
+    rc, _, err = run(["render", graph, "--out", OUT, "--dump", "ldr"])
+    if not check(rc == 0, f"render unorm8.ini --dump ldr exited {rc}: {err}"):
+        return
+    for x, y in ((0, 0), (39, 23), (17, 11)):
+        js = os.path.join(OUT, f"inspect-ldr-{x}-{y}.json")
+        rc, text, err = run(["inspect", graph, "--pixel", f"{x},{y}", "--json", js])
+        if not check(rc == 0, f"inspect unorm8.ini --pixel {x},{y} exited {rc}: {err}"):
+            continue
+        ldr = [i for i in json.load(open(js))["images"] if i["resource"] == "ldr"]
+        if not check(len(ldr) == 1 and ldr[0]["format"] == "rgba8", f"inspect unorm8.ini lists {ldr}"):
+            continue
+        img = ldr[0]
+        stored = exr_pixel(os.path.join(OUT, "ldr.exr"), x, y)
+        for c, name in enumerate(names(4)):
+            kind, bits = stored.get(name, (None, None))
+            byte, value = img["bits"][c], img["values"][c]
+            check(kind == "float" and 0 <= byte <= 255, f"ldr.{name} at {x},{y}: {kind} in the EXR, byte {byte}")
+            # independent of both: the float32 of the byte / 255
+            want = float_bits(byte / 255)
+            check(bits == want and float_bits(value) == want and struct.unpack("<f", struct.pack("<I", want))[0] == value,
+                  f"ldr.{name} at {x},{y}: EXR bits {bits}, inspect {value} (byte {byte}), float32 of byte/255 has bits {want}")
+        row = [l for l in text.splitlines() if " ldr " in l]
+        bytes_text = "bytes (" + ", ".join(str(b) for b in img["bits"]) + ")"
+        check(len(row) == 1 and bytes_text in row[0], f"the table's ldr line does not say {bytes_text!r}: {row}")
+    # the pattern's closed form at 39,0 through the linear curve, sRGB-encoded: (1, 0, 0.5) -> bytes 255, 0, 188
+    rc, _, _ = run(["inspect", graph, "--pixel", "39,0", "--json", os.path.join(OUT, "ldr-39-0.json")])
+    ldr = [i for i in json.load(open(os.path.join(OUT, "ldr-39-0.json")))["images"] if i["resource"] == "ldr"] if rc == 0 else []
+    check(ldr and ldr[0]["bits"][:3] == [255, 0, 188], f"ldr at 39,0: {ldr}")
 
 
 def dump_png():

@@ -1,8 +1,8 @@
 /* An independent reader of voxrg's OpenEXR dumps for the tests: OpenEXR's
  * own C library (OpenEXRCore), none of voxrg's code. Prints the file's size,
  * then one line per channel of pixel (X, Y): its name, type (uint, half,
- * float) and stored bits as an unsigned integer, in the file's channel
- * order (sorted by name).
+ * float), stored bits as an unsigned integer and the header's pLinear, in
+ * the file's channel order (sorted by name).
  * Usage: exr_pixel FILE X Y; exit 1 on any error. */
 #include <stdio.h>
 #include <stdlib.h>
@@ -62,7 +62,12 @@ int main(int argc, char **argv)
         uint32_t bits = 0;
         memcpy(&bits, p, ch->bytes_per_element);
         const char *type = ch->data_type == EXR_PIXEL_UINT ? "uint" : ch->data_type == EXR_PIXEL_HALF ? "half" : "float";
-        printf("%s %s %u\n", ch->channel_name, type, bits);
+        /* the header's pLinear of that channel (the chlist is sorted by name, as the decoder's channels) */
+        int plinear = -1;
+        for (int k = 0; k < chl->num_channels; k++)
+            if (!strcmp(chl->entries[k].name.str, ch->channel_name))
+                plinear = chl->entries[k].p_linear;
+        printf("%s %s %u %d\n", ch->channel_name, type, bits, plinear);
     }
     exr_decoding_destroy(ctx, &dec);
     free(buf);

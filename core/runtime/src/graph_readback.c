@@ -30,7 +30,11 @@ static int find_readable(vrg_graph *g, const char *name)
 /* The last submitted frame's part of the readback buffer. */
 static const uint8_t *last_readback(const vrg_graph *g) { return (const uint8_t *)g->readback_map + g->slots[g->last_slot].readback_base; }
 
-static float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f); }
+float _vrg_unorm8_to_float(uint8_t byte, int srgb)
+{
+    float c = byte / 255.0f;
+    return !srgb ? c : c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);
+}
 
 VkImageView vrg_graph_image_view(vrg_graph *g, const char *name)
 {
@@ -80,8 +84,8 @@ int vrg_graph_read(vrg_graph *g, const char *name, vrg_image_data *out)
             switch (r->format) {
             case VK_FORMAT_R8_UNORM:
             case VK_FORMAT_R8G8_UNORM:
-            case VK_FORMAT_R8G8B8A8_UNORM: v[c] = src[p * ch + c] / 255.0f; break;
-            case VK_FORMAT_R8G8B8A8_SRGB: v[c] = c < 3 ? srgb_to_linear(src[p * 4 + c] / 255.0f) : src[p * 4 + c] / 255.0f; break;
+            case VK_FORMAT_R8G8B8A8_UNORM: v[c] = _vrg_unorm8_to_float(src[p * ch + c], 0); break;
+            case VK_FORMAT_R8G8B8A8_SRGB: v[c] = _vrg_unorm8_to_float(src[p * 4 + c], c < 3); break;
             case VK_FORMAT_R16_SFLOAT:
             case VK_FORMAT_R16G16_SFLOAT:
             case VK_FORMAT_R16G16B16A16_SFLOAT: {

@@ -445,6 +445,9 @@ int _vrg_finite_failed(vrg_graph *g);
  * frame must have ended (_vrg_wait_frames). 0, or -1 after the error. */
 int _vrg_read_texels_at(vrg_graph *g, int n, const int *res, const int *prev, const uint32_t *tx, const uint32_t *ty, vrg_pixel_value *out);
 float _vrg_half_to_float(uint16_t h);
+/* An 8-bit UNORM channel as vrg_graph_read (and so an EXR dump) gives it:
+ * byte / 255 in float, an sRGB colour channel (srgb) decoded to linear. */
+float _vrg_unorm8_to_float(uint8_t byte, int srgb);
 
 /* ---- format.c: the image formats a graph names ---- */
 uint64_t _vrg_format_bytes(VkFormat f);

@@ -52,7 +52,8 @@ static void decode_texel(const uint8_t *src, VkFormat format, vrg_pixel_value *v
         case VK_FORMAT_R8G8B8A8_UNORM:
         case VK_FORMAT_R8G8B8A8_SRGB:
             bits = src[c];
-            value = bits / 255.0;
+            /* the float an EXR dump holds (vrg_graph_read's), exactly */
+            value = _vrg_unorm8_to_float(src[c], format == VK_FORMAT_R8G8B8A8_SRGB && c < 3);
             break;
         case VK_FORMAT_R16_SFLOAT:
         case VK_FORMAT_R16G16_SFLOAT:
@@ -191,6 +192,15 @@ const char *vrg_pixel_value_text(const vrg_pixel_value *v, char *buf, size_t cap
         used += n > 0 ? (size_t)n : 0;
     }
     if (used < cap)
+        used += (size_t)snprintf(buf + used, cap - used, ")");
+    /* an 8-bit value is the float an EXR dump holds; the byte is what is stored */
+    int unorm8 = v->format == VK_FORMAT_R8_UNORM || v->format == VK_FORMAT_R8G8_UNORM || v->format == VK_FORMAT_R8G8B8A8_UNORM ||
+                 v->format == VK_FORMAT_R8G8B8A8_SRGB;
+    for (uint32_t c = 0; unorm8 && c < v->channels && used < cap; c++) {
+        int n = snprintf(buf + used, cap - used, "%s%u", c ? ", " : " bytes (", v->bits[c]);
+        used += n > 0 ? (size_t)n : 0;
+    }
+    if (unorm8 && used < cap)
         snprintf(buf + used, cap - used, ")");
     return buf;
 }

@@ -70,8 +70,10 @@ int vrg_write_exr(const char *path, uint32_t width, uint32_t height, uint32_t ch
         rc = exr_add_part(ctx, "image", EXR_STORAGE_SCANLINE, &part);
     if (rc == EXR_ERR_SUCCESS)
         rc = exr_initialize_required_attr_simple(ctx, part, (int32_t)width, (int32_t)height, EXR_COMPRESSION_ZIP);
+    /* pLinear 0: linear light and data (depth, ids), not perceptually
+     * uniform values, which lossy compressors would quantize evenly */
     for (uint32_t c = 0; c < channels && rc == EXR_ERR_SUCCESS; c++)
-        rc = exr_add_channel(ctx, part, vrg_exr_channel_name(channels, c), (exr_pixel_type_t)type, EXR_PERCEPTUALLY_LINEAR, 1, 1);
+        rc = exr_add_channel(ctx, part, vrg_exr_channel_name(channels, c), (exr_pixel_type_t)type, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
     if (rc == EXR_ERR_SUCCESS)
         rc = exr_write_header(ctx);
     if (rc == EXR_ERR_SUCCESS)

@@ -202,8 +202,9 @@ typedef struct vrg_pixel_value {
      * uint; a unorm's byte; r11g11b10f's 11-, 11- and 10-bit floats. */
     uint32_t bits[4];
     /* Each channel's exact value: a half or float as that float (NaN and
-     * Inf kept), a uint as that integer, a unorm (sRGB too, undecoded) as
-     * byte / 255. */
+     * Inf kept), a uint as that integer, a unorm as the float32 of
+     * byte / 255 (rgba8_srgb's R, G, B decoded to linear first): the float
+     * vrg_graph_read gives and an EXR dump holds, exactly. */
     double value[4];
 } vrg_pixel_value;
 /* The pixel (x, y) of the graph's size of every image resource the last
@@ -218,9 +219,10 @@ typedef struct vrg_pixel_value {
  * expect). */
 int vrg_graph_read_pixels(vrg_graph *g, uint32_t x, uint32_t y, vrg_pixel_value *out, uint32_t max);
 /* Its channels as `voxrg inspect` prints them: "(c0, c1, ...)", a float
- * to 17 significant digits (read as a double, the stored value exactly),
- * nan / inf as such, a uint as an integer; "(not kept)" where kept is 0.
- * Returns buf. */
+ * to 17 significant digits (read as a double, the value exactly), nan /
+ * inf as such, a uint as an integer, an 8-bit format's value followed by
+ * its stored bytes: "(v0, ...) bytes (b0, ...)"; "(not kept)" where kept
+ * is 0. Returns buf. */
 const char *vrg_pixel_value_text(const vrg_pixel_value *v, char *buf, size_t cap);
 
 /* VRG_IMAGE or VRG_BUFFER, or -1 if the graph has no such resource. */
