@@ -91,15 +91,28 @@ int vrg_cli_inspect_report(vrg_graph *g, const char *graph_path, uint32_t x, uin
 {
     uint32_t w, h;
     vrg_graph_size(g, &w, &h);
-    int cap = 2 * 512;
+    /* a first guess; the call says how many there are: then room for all */
+    int cap = 16;
     vrg_pixel_value *v = calloc((size_t)cap, sizeof *v);
-    int n = v ? vrg_graph_read_pixels(g, x, y, v, (uint32_t)cap) : -1;
-    if (n < 0) {
+    if (!v) {
+        fprintf(stderr, "error: pixel %u,%u: out of memory\n", x, y);
+        return -1;
+    }
+    int n = vrg_graph_read_pixels(g, x, y, v, (uint32_t)cap);
+    if (n > cap) {
+        free(v);
+        cap = n;
+        v = calloc((size_t)cap, sizeof *v);
+        if (!v) {
+            fprintf(stderr, "error: pixel %u,%u: out of memory for %d rows\n", x, y, n);
+            return -1;
+        }
+        n = vrg_graph_read_pixels(g, x, y, v, (uint32_t)cap);
+    }
+    if (n < 0 || n > cap) { /* n > cap: the graph cannot change between the calls */
         free(v);
         return -1;
     }
-    if (n > cap)
-        n = cap;
     fprintf(out, "pixel %u,%u of %ux%u, frame %llu, %s\n", x, y, w, h, (unsigned long long)frame, graph_path);
     fprintf(out, "%-20s %-28s %-11s %-11s %s\n", "pass", "resource", "format", "texel", "value");
     int motion = -1;
