@@ -569,8 +569,16 @@ static int ensure_buffer(window_state *w, display_buffer *b, VkDeviceSize size, 
             VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size, .memoryTypeIndex = i};
             if (vkAllocateMemory(dev, &ai, NULL, &b->memory) != VK_SUCCESS)
                 break;
-            vkBindBufferMemory(dev, b->buffer, b->memory, 0);
-            vkMapMemory(dev, b->memory, 0, VK_WHOLE_SIZE, 0, &b->map);
+            VkResult r = vkBindBufferMemory(dev, b->buffer, b->memory, 0);
+            if (r == VK_SUCCESS)
+                r = vkMapMemory(dev, b->memory, 0, VK_WHOLE_SIZE, 0, &b->map);
+            if (r != VK_SUCCESS || !b->map) {
+                fprintf(stderr, "error: binding or mapping the window's display buffer of %llu bytes failed (%d)\n", (unsigned long long)size, r);
+                vkDestroyBuffer(dev, b->buffer, NULL);
+                vkFreeMemory(dev, b->memory, NULL);
+                *b = (display_buffer){0};
+                return -1;
+            }
             b->size = size;
             return 0;
         }

@@ -99,9 +99,14 @@ int _vrg_read_texels_at(vrg_graph *g, int n, const int *res, const int *prev, co
      * buffer and fence are free */
     struct _vrg_frame_slot *s = &g->slots[g->submitted % g->frames_in_flight];
     VkCommandBuffer cmd = s->cmd;
-    vkResetCommandBuffer(cmd, 0);
     VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
-    vkBeginCommandBuffer(cmd, &bi);
+    VkResult vr = vkResetCommandBuffer(cmd, 0);
+    if (vr == VK_SUCCESS)
+        vr = vkBeginCommandBuffer(cmd, &bi);
+    if (vr != VK_SUCCESS) {
+        _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "reading pixels: beginning the copies' command buffer failed (%d)", vr);
+        return -1;
+    }
     _vrg_barrier_rec b[2 * VRG_MAX_RESOURCES] = {0};
     int nb = 0, kept[2 * VRG_MAX_RESOURCES];
     /* The last frame's copy of a history resource: the frame counter moved
@@ -140,10 +145,17 @@ int _vrg_read_texels_at(vrg_graph *g, int n, const int *res, const int *prev, co
     };
     VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .bufferMemoryBarrierCount = 1, .pBufferMemoryBarriers = &host};
     vkCmdPipelineBarrier2(cmd, &dep);
-    vkEndCommandBuffer(cmd);
+    vr = vkEndCommandBuffer(cmd);
+    if (vr != VK_SUCCESS) {
+        _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "reading pixels: recording the copies failed (%d)", vr);
+        return -1;
+    }
     VkCommandBufferSubmitInfo cbi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = cmd};
     VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cbi};
-    vkResetFences(g->ctx->dev.device, 1, &s->fence);
+    if (vkResetFences(g->ctx->dev.device, 1, &s->fence) != VK_SUCCESS) {
+        _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "reading pixels: resetting the fence failed");
+        return -1;
+    }
     if (vkQueueSubmit2(g->ctx->dev.queue, 1, &si, s->fence) != VK_SUCCESS) {
         _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "reading pixels: submitting the copies failed");
         return -1;
