@@ -65,7 +65,8 @@ const char *const vrg_cli_compare_usage =
     "candidate) tasks and writes DIR/shard.txt and frames/ instead of a report;\n"
     "--merge OUT reads the N shards' folders and writes the run's report to OUT.\n"
     "--check-finite (as render's; --validate checks too) fails the run at the first NaN\n"
-    "or infinity a pass writes into a float image, naming the pass, resource, pixel and frame.\n";
+    "or infinity a pass writes into a float image through its slots (not its internal\n"
+    "images), naming the pass, resource, pixel and frame.\n";
 
 typedef struct options {
     const char **graphs; /* [argc] each, as the arguments are at most */

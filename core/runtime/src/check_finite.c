@@ -118,18 +118,32 @@ static int writes(const vrg_pass *p, int i)
     return 0;
 }
 
+/* The shader's key is (pixel * 4 + channel) * 4 + kind in 32 bits. */
+#define FINITE_MAX_TEXELS (1u << 28)
+
 int _vrg_finite_plan(vrg_graph *g)
 {
     struct _vrg_finite *f = g->finite;
     free(f->checks);
     f->count = 0;
     f->checks = calloc((size_t)g->schedule_count * VRG_MAX_SLOTS + 1, sizeof *f->checks);
-    for (int k = 0; f->checks && k < g->schedule_count; k++) {
+    if (!f->checks) {
+        _vrg_error(&g->diag, VRG_E_OUT_OF_MEMORY, "checking for NaN and infinity: out of memory");
+        return -1;
+    }
+    for (int k = 0; k < g->schedule_count; k++) {
         const vrg_pass *p = &g->passes[g->schedule[k]];
         for (int i = 0; i < g->res_count; i++) {
             const _vrg_resource *r = &g->res[i];
-            if (r->kind == VRG_IMAGE && r->first_use >= 0 && is_float(r->format) && writes(p, i))
-                f->checks[f->count++] = (_vrg_finite_check){k, i};
+            if (!(r->kind == VRG_IMAGE && r->first_use >= 0 && is_float(r->format) && writes(p, i)))
+                continue;
+            if ((uint64_t)r->width * r->height > FINITE_MAX_TEXELS) {
+                _vrg_error(&g->diag, VRG_E_DEVICE_UNSUPPORTED,
+                           "checking for NaN and infinity: resource '%s' (%ux%u) has more than %u texels, which the check cannot number",
+                           r->name, r->width, r->height, FINITE_MAX_TEXELS);
+                return -1;
+            }
+            f->checks[f->count++] = (_vrg_finite_check){k, i};
         }
     }
     return f->count;

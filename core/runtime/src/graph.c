@@ -107,7 +107,10 @@ static int readback_buffer(vrg_graph *g)
         VkDeviceSize align = g->ctx->props.limits.minStorageBufferOffsetAlignment;
         g->finite_stride = align > 4 ? align : 4; /* a word per check, each bound alone */
         g->finite_offset = align256(size);
-        size = g->finite_offset + (VkDeviceSize)_vrg_finite_plan(g) * g->finite_stride;
+        int checks = _vrg_finite_plan(g);
+        if (checks < 0)
+            return -1;
+        size = g->finite_offset + (VkDeviceSize)checks * g->finite_stride;
     }
     g->timestamp_offset = size;
     size += 2 * sizeof(uint64_t) * VRG_MAX_PASSES;

@@ -425,7 +425,9 @@ int _vrg_copy_of(const vrg_graph *g, int res, int prev);
 /* The pipeline (on load when g->check_finite). 0, or -1 after the error. */
 int _vrg_finite_create(vrg_graph *g);
 void _vrg_finite_destroy(vrg_graph *g);
-/* The checks of the schedule: how many result words a slot's part needs. */
+/* The checks of the schedule: how many result words a slot's part needs,
+ * or -1 after the error (out of memory; an image of more than 2^28 texels,
+ * which the shader's 32-bit key cannot number). */
 int _vrg_finite_plan(vrg_graph *g);
 /* Recording: the frame's result words reset, the checks after scheduled
  * pass k, the results made visible to the host. */

@@ -83,7 +83,9 @@ typedef struct vrg_graph_desc {
      * (vrg_graph_show). */
     int keep_images;
     /* After each pass a compute shader checks every float image it writes
-     * (its slots' images of a half, float or r11g11b10f format); the first
+     * through its slots (images of a half, float or r11g11b10f format; not
+     * the pass's internal images, vrg_pass_request_image, which stay
+     * unchecked); an image of more than 2^28 texels fails the load. The first
      * NaN or infinity fails the frame (vrg_graph_frame or the wait that
      * ends it) with an error (VRG-E081) naming the pass, resource, channel,
      * pixel (the first in row order) and frame, and the pass's inputs at
