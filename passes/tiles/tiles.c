@@ -93,6 +93,22 @@ static int integer_format(VkFormat f)
     }
 }
 
+/* Formats are known from here on (not yet in check()): an integer input
+ * fails the load at its in.tN line, before any frame. */
+static int create(vrg_pass *pass)
+{
+    int bad = 0;
+    for (int i = 0; i < TILES; i++) {
+        char name[32];
+        snprintf(name, sizeof name, "t%d", i);
+        vrg_res r = vrg_pass_res(pass, name);
+        if (vrg_res_connected(r) && integer_format(vrg_res_format(pass, r)))
+            bad |= vrg_pass_error_at(pass, vrg_pass_slot_line(pass, name),
+                                     "in.t%d: an integer image cannot be shown (sampled as floats): connect a float or UNORM image", i) != 0;
+    }
+    return bad ? -1 : 0;
+}
+
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     tiles_push pc = {0};
@@ -103,10 +119,6 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         vrg_res r = vrg_pass_res(pass, name);
         if (!vrg_res_connected(r))
             continue;
-        if (integer_format(vrg_res_format(pass, r))) {
-            vrg_pass_error(pass, "in.t%d: an integer image cannot be shown (sampled as floats): connect a float or UNORM image", i);
-            return;
-        }
         pc.connected |= 1u << i;
         last = i;
         snprintf(name, sizeof name, "t%d_channel", i);
@@ -142,6 +154,7 @@ static const vrg_plugin_desc desc = {
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .check = check,
+    .create = create,
     .execute = execute,
     .dispatches = dispatches,
     .dispatch_count = sizeof dispatches / sizeof dispatches[0],

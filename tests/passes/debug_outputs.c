@@ -389,11 +389,17 @@ static void test_tiles_layout(void)
                              "[scene]\nplugin = blocks\nbox = 0 0 0 15 0 15 white\n"
                              "[pass gbuffer]\nplugin = gbuffer\nin.world = world\nin.frame = frame\nin.atlas = atlas\n"
                              "[pass tiles]\nplugin = tiles\nin.t0 = gbuffer.ids\nout.view = view\n";
-    g = load_text(ids, NULL, 0);
-    if (!g)
-        return;
-    fprintf(stderr, "(an error about in.t0 follows: wanted)\n");
-    CHECK(vrg_graph_frame(g) != 0, "an integer image in a tile was not refused");
+    /* refused on load, at the in.t0 line (16), before any frame */
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *diag = open_memstream(&buf, &len);
+    vrg_graph_desc d = {.path = "tiles_ids.ini", .text = ids, .diag = diag};
+    g = NULL;
+    int rc = vrg_graph_load(ctx, &d, &g);
+    fclose(diag);
+    CHECK(rc != 0 && buf && strstr(buf, "tiles_ids.ini:16: error") && strstr(buf, "in.t0: an integer image cannot be shown"),
+          "an integer image in a tile was not refused at in.t0's line:\n%s", buf ? buf : "");
+    free(buf);
     vrg_graph_destroy(g);
 }
 

@@ -552,6 +552,14 @@ int _vrg_pass_lookup(const vrg_pass *p, const char *name, int *res, int *prev, i
     return -1;
 }
 
+int vrg_pass_slot_line(const vrg_pass *p, const char *slot)
+{
+    for (uint32_t s = 0; s < p->plugin->desc->slot_count; s++)
+        if (!strcmp(vrg_slot(p, (int)s)->name, slot))
+            return p->slots[s].dummy ? 0 : p->slots[s].line;
+    return 0;
+}
+
 vrg_res vrg_pass_res(const vrg_pass *p, const char *name)
 {
     int res, prev, slot;

@@ -276,6 +276,9 @@ vrg_pass *vrg_pass_previous_instance(const vrg_pass *pass);
 /* Report an error that names this pass (and its plugin); returns -1. */
 int vrg_pass_error(vrg_pass *pass, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
+/* The graph line that connects slot `slot` (its in.NAME / out.NAME key),
+ * for vrg_pass_error_at; 0 where the graph does not connect it. */
+int vrg_pass_slot_line(const vrg_pass *pass, const char *slot);
 /* An error at a line of the graph file (e.g. a parameter's, from vrg_param_item). */
 int vrg_pass_error_at(vrg_pass *pass, int line, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 
