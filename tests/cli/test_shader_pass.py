@@ -5,7 +5,11 @@ checks, lists, renders under --validate, and --set changes the picture;
 `voxrg plugins NAME` shows its slots and parameters; float, int, uint and
 bool members are packed at their offsets (a pass writes them); each broken
 interface is an error at the shader's FILE:LINE (a push member without or
-with a malformed annotation, a binding neither in_ nor out_), a graph that
+with a malformed annotation, a binding neither in_ nor out_, a push block
+past the 128 bytes the values are packed into, a default, min or max its
+type cannot hold, a format qualifier no graph allocates, a member named as
+a graph key), a member on the block's brace lines or a block comment with
+braces does not confuse the block's reading, a graph that
 wires a buffer to its image slot or a format its declaration forbids, or
 sets a parameter it does not declare, is an error at the graph's line; a
 folder with NAME.so and NAME.comp loads the .so; `new-pass
@@ -141,7 +145,52 @@ broken("min without max", "min=0 max=1 help=\"fog per", "min=0 help=\"fog per", 
 broken("a vector member", "    float density;", "    vec2 density;", "vec2 density;", r"'density' is not a scalar", fog=FOG.replace("params.density", "params.density.x"))
 broken("a default outside the range", "default=0.02", "default=2", "float density;", r"default 2 lies outside \[0, 1\]")
 broken("a binding neither in_ nor out_", "in_position", "gpos", "sampler2D gpos", r"'gpos' is neither in_NAME nor out_NAME")
+# the parameters are packed into 128 bytes (the push-constant size every device has): a block past them
+# is refused at each member that lies past, before anything packs it
+pads = "".join("\n    float pad%d; // @param default=0 help=\"padding\"" % i for i in range(40))
+falloff = next(l for l in FOG.split("\n") if "float falloff;" in l)
+broken("a push block of 43 floats", falloff, falloff + pads, "float pad29;", r"'pad29' lies at bytes 128 to 131 of block 'Params', past the 128 bytes")
+broken("a member at offset 200", "    float falloff;", "    layout(offset = 200) float falloff;", "float falloff;", r"'falloff' lies at bytes 200 to 203 .* past the 128 bytes")
+# a range or default outside what the member's type holds (the value is cast to it when packed)
+height = next(l for l in FOG.split("\n") if "float height;" in l)
+broken("an int's min below -2^31", height, height.replace("float", "int  ").replace("min=-256", "min=-1e12"), "int   height;",
+       r"'height' is an int: its min= is -1e\+12, outside \[-2147483648, 2147483647\]")
+broken("a uint's max above 2^32-1", height, height.replace("float", "uint ").replace("min=-256 max=256", "min=0 max=1e10"), "uint  height;",
+       r"'height' is a uint: its max= is 1e\+10, outside \[0, 4294967295\]")
+broken("a float's max above FLT_MAX", "min=0 max=1 help=\"fog per", "min=0 max=1e39 help=\"fog per", "float density;", r"'density' is a float: its max= is 1e\+39, outside")
+# a format qualifier no graph allocates: an error at the binding, not "no format qualifier" nor any format
+broken("an output format voxrg does not allocate", "binding = 3, rgba16f", "binding = 3, rgba8_snorm", "out_color;",
+       r"'out_color': format qualifier rgba8_snorm is not one voxrg allocates \(one of r8, ")
+broken("an input format voxrg does not allocate", "layout(binding = 2) uniform sampler2D in_position;", "layout(binding = 2, rg16_snorm) uniform readonly image2D in_position;",
+       "in_position;", r"'in_position': format qualifier rg16_snorm is not one voxrg allocates",
+       fog=FOG.replace("texelFetch(in_position, vrg_pixel_in(p, size, textureSize(in_position, 0)), 0)", "imageLoad(in_position, vrg_pixel_in(p, size, imageSize(in_position)))"))
+# a member with a name the graph's [pass] section keeps for itself: at the member's line
+broken("a member named plugin", "float falloff;", "float plugin; ", "float plugin;", r"'plugin' has a name the graph file keeps for itself",
+       fog=FOG.replace("params.falloff", "params.plugin"))
+broken("a member named output_scale", "float falloff;", "float output_scale;", "float output_scale;", r"'output_scale' has a name the graph file keeps for itself",
+       fog=FOG.replace("params.falloff", "params.output_scale"))
 save(comp, FOG)
+
+
+def fine(what, old, new):
+    """The page's fog with old replaced by new still checks, and lists its three parameters."""
+    src = FOG.replace(old, new)
+    assert src != FOG, what
+    save(comp, src)
+    rc, out = run("check", "heightfog.ini", "--no-device")
+    rc2, out2 = run("plugins", "heightfog", env={"VOXRG_PLUGIN_PATH": OUT})
+    check(rc == 0 and rc2 == 0 and all(re.search(r"%s\s+float default" % m, out2) for m in ("density", "height", "falloff")),
+          "%s: exit %d, %d\n%s%s" % (what, rc, rc2, out, out2))
+
+
+# the block's lines: a member on the brace's line, a comment holding braces or push_constant
+fine("a member on the closing brace's line", falloff + "\n} params;", falloff.replace("float falloff;", "float falloff; } params;"))
+fine("a member on the opening brace's line", "uniform Params {\n    float density;", "uniform Params { float density;")
+fine("a block comment with a brace inside the block", density, "    /* a } closes nothing here */\n" + density)
+fine("a block comment naming push_constant and a brace before the block", "layout(push_constant)",
+     "/* layout(push_constant) uniform Old {\n   float density; */\nlayout(push_constant)")
+save(comp, FOG)
+
 
 
 def graph_error(what, old, new, pattern):

@@ -65,6 +65,14 @@ const char *_vrg_glsl_format_name(VkFormat f)
     return _vrg_format_name(f);
 }
 
+const char *_vrg_spv_format_glsl(int spv_format)
+{
+    for (size_t i = 0; i < sizeof image_formats / sizeof image_formats[0]; i++)
+        if ((int)image_formats[i].spv == spv_format)
+            return image_formats[i].glsl;
+    return NULL;
+}
+
 static VkFormat vk_format_of(SpvImageFormat f)
 {
     for (size_t i = 0; i < sizeof image_formats / sizeof image_formats[0]; i++)
@@ -289,8 +297,10 @@ static int reflect_resources(spvc_compiler comp, spvc_resources res, const char 
                     b.runtime_array = dims > 0 && spvc_type_get_array_dimension(last, 0) == 0;
                 }
             }
-            if (kinds[k] == SPVC_RESOURCE_TYPE_STORAGE_IMAGE)
+            if (kinds[k] == SPVC_RESOURCE_TYPE_STORAGE_IMAGE) {
+                b.spv_format = (int)spvc_type_get_image_storage_format(type);
                 b.format = vk_format_of(spvc_type_get_image_storage_format(type));
+            }
             if (kinds[k] == SPVC_RESOURCE_TYPE_STORAGE_IMAGE || kinds[k] == SPVC_RESOURCE_TYPE_STORAGE_BUFFER)
                 access_qualifiers(comp, &list[i], kinds[k] == SPVC_RESOURCE_TYPE_STORAGE_BUFFER, &b);
             const char *name = spvc_compiler_get_name(comp, list[i].id);

@@ -8,7 +8,8 @@
 typedef struct _vrg_reflected_binding {
     uint32_t set, binding;
     VkDescriptorType type;
-    VkFormat format; /* storage images: the format qualifier (UNDEFINED: none) */
+    VkFormat format; /* storage images: the format qualifier (UNDEFINED: none, or one with no VkFormat here) */
+    int spv_format;  /* storage images: the qualifier as SPIR-V has it (0, SpvImageFormatUnknown: none) */
     int readonly, writeonly; /* storage images and buffers: declared so (every member of a buffer) */
     int image_dim;           /* images: SpvDim (1: 2D), else -1 */
     uint64_t block_bytes;    /* buffers: the block's declared size (a runtime array counts 0) */
@@ -38,5 +39,7 @@ typedef struct _vrg_reflection {
 int _vrg_reflect(const uint32_t *spv, size_t words, const char *src, const char *path, _vrg_reflection *out, FILE *diag);
 void _vrg_reflection_free(_vrg_reflection *r);
 const char *_vrg_glsl_format_name(VkFormat f);
+/* A SPIR-V image format's GLSL qualifier, or NULL for one not in reflect.c's table. */
+const char *_vrg_spv_format_glsl(int spv_format);
 const char *_vrg_descriptor_type_name(VkDescriptorType t);
 #endif

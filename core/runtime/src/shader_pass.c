@@ -14,6 +14,7 @@
  * binding names are what a C pass would bind by (reflect.h). */
 #define _GNU_SOURCE
 #include <ctype.h>
+#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
@@ -228,6 +229,45 @@ typedef struct member_line {
     size_t comment_len;
 } member_line;
 
+/* The source with each block comment blanked out (its newlines kept, so
+ * the lines still count): a brace or `push_constant` in a comment is no
+ * code. A block comment's opener inside a // comment is comment text. */
+static char *strip_block_comments(const char *src)
+{
+    char *out = strdup(src);
+    if (!out)
+        return NULL;
+    for (char *c = out; *c; c++) {
+        if (c[0] == '/' && c[1] == '/') {
+            while (c[1] && c[1] != '\n')
+                c++;
+        } else if (c[0] == '/' && c[1] == '*') {
+            c[0] = c[1] = ' ';
+            for (c += 2; *c && !(c[0] == '*' && c[1] == '/'); c++)
+                if (*c != '\n')
+                    *c = ' ';
+            if (!*c)
+                break;
+            c[0] = c[1] = ' ';
+            c++;
+        }
+    }
+    return out;
+}
+
+/* Where `word` occurs as a whole word in s[0..n), or -1. */
+static long word_at(const char *s, size_t n, const char *word)
+{
+    size_t w = strlen(word);
+    for (size_t i = 0; w && i + w <= n; i++)
+        if (strncmp(s + i, word, w) == 0 && (i == 0 || !word_char(s[i - 1])) && (i + w == n || !word_char(s[i + w])))
+            return (long)i;
+    return -1;
+}
+
+/* src: the source without block comments. The member is the first whole
+ * word `member` inside the block's braces, on any of its lines: the one
+ * with `{`, or the one with `}` before the brace. */
 static int find_member(const char *src, const char *member, const _vrg_reflection *r, member_line *out)
 {
     src_reader rd = {.p = src};
@@ -241,21 +281,31 @@ static int find_member(const char *src, const char *member, const _vrg_reflectio
                 continue;
             in_block = 1;
         }
-        for (size_t i = 0; i < n; i++)
-            depth += l.text[i] == '{' ? 1 : l.text[i] == '}' ? -1 : 0;
-        if (has_word(l.text, n, member) && depth > 0) {
-            snprintf(out->file, sizeof out->file, "%s", l.file);
-            out->line = l.line;
-            out->members_on_line = 0;
-            for (int m = 0; m < r->push_member_count; m++)
-                out->members_on_line += has_word(l.text, n, r->push_members[m].name);
-            out->is_bool = has_word(l.text, n, "bool");
-            out->comment = comment;
-            out->comment_len = comment ? l.len - (size_t)(comment - l.text) : 0;
-            return 0;
+        int entered = depth > 0;
+        for (size_t i = 0, from = 0; i <= n; i++) {
+            if (i < n && l.text[i] != '{' && l.text[i] != '}')
+                continue;
+            /* the code between braces: inside the block when depth > 0 */
+            long at = depth > 0 ? word_at(l.text + from, i - from, member) : -1;
+            if (at >= 0) {
+                snprintf(out->file, sizeof out->file, "%s", l.file);
+                out->line = l.line;
+                out->members_on_line = 0;
+                for (int m = 0; m < r->push_member_count; m++)
+                    out->members_on_line += has_word(l.text, n, r->push_members[m].name);
+                out->is_bool = has_word(l.text, n, "bool");
+                out->comment = comment;
+                out->comment_len = comment ? l.len - (size_t)(comment - l.text) : 0;
+                return 0;
+            }
+            if (i < n) {
+                depth += l.text[i] == '{' ? 1 : -1;
+                entered |= depth > 0;
+                from = i + 1;
+                if (entered && depth <= 0)
+                    return -1; /* the block's closing brace */
+            }
         }
-        if (in_block && depth <= 0 && memchr(l.text, '}', n))
-            break;
     }
     return -1;
 }
@@ -271,10 +321,36 @@ static int parse_params(struct _vrg_shader_pass *sp, vrg_plugin_desc *desc, cons
         return -1;
     }
     static const char *form = "one member per line: `float density; // @param default=0.02 min=0 max=1 help=\"what it does\"` (docs/plugin-abi.md)";
+    char *code = strip_block_comments(src);
+    if (!code) {
+        _vrg_error(d, VRG_E_OUT_OF_MEMORY, "%s: out of memory reading the push-constant block", pfile);
+        return -1;
+    }
+    /* the runtime packs the values into this many bytes (dispatch.c), the
+     * push-constant size every Vulkan device has */
+    int past_limit = 0;
     for (int m = 0; m < r->push_member_count; m++) {
         const _vrg_push_member *pm = &r->push_members[m];
         member_line ml;
-        if (find_member(src, pm->name, r, &ml) != 0) {
+        int found = find_member(code, pm->name, r, &ml) == 0;
+        if ((uint64_t)pm->offset + pm->size > VRG_SHADER_PASS_PUSH_MAX) {
+            past_limit = 1;
+            shader_error(d, found ? ml.file : pfile, found ? ml.line : pline, "a pass's parameters take at most 128 bytes: 32 scalars at offsets 0 to 124",
+                         "push-constant member '%s' lies at bytes %u to %u of block '%s', past the %d bytes a pass's parameters may take", pm->name, pm->offset,
+                         pm->offset + pm->size - 1, r->push_name, VRG_SHADER_PASS_PUSH_MAX);
+        }
+    }
+    if (r->push_bytes > VRG_SHADER_PASS_PUSH_MAX && !past_limit)
+        shader_error(d, pfile, pline, "a pass's parameters take at most 128 bytes: 32 scalars at offsets 0 to 124",
+                     "push-constant block '%s' is %u bytes, more than the %d a pass's parameters may take", r->push_name, r->push_bytes, VRG_SHADER_PASS_PUSH_MAX);
+    if (d->errors > errors) {
+        free(code);
+        return -1;
+    }
+    for (int m = 0; m < r->push_member_count; m++) {
+        const _vrg_push_member *pm = &r->push_members[m];
+        member_line ml;
+        if (find_member(code, pm->name, r, &ml) != 0) {
             shader_error(d, pfile, pline, form, "push-constant member '%s' of block '%s': its declaring line is not found (a member named by a macro?)", pm->name,
                          r->push_name);
             continue;
@@ -289,6 +365,11 @@ static int parse_params(struct _vrg_shader_pass *sp, vrg_plugin_desc *desc, cons
             continue;
         }
         int is_bool = pm->scalar == VRG_PUSH_BOOL || ml.is_bool;
+        if (strcmp(pm->name, "plugin") == 0 || strcmp(pm->name, "output_scale") == 0) {
+            shader_error(d, ml.file, ml.line, "plugin and output_scale are the graph's keys in a [pass] section: rename the member",
+                         "push-constant member '%s' has a name the graph file keeps for itself", pm->name);
+            continue;
+        }
         if (!ml.comment) {
             shader_error(d, ml.file, ml.line, form, "push-constant member '%s' has no @param annotation", pm->name);
             continue;
@@ -299,6 +380,24 @@ static int parse_params(struct _vrg_shader_pass *sp, vrg_plugin_desc *desc, cons
         if (problem) {
             shader_error(d, ml.file, ml.line, form, "push-constant member '%s': malformed @param annotation: %s", pm->name, problem);
             continue;
+        }
+        /* what the member's type holds: the value is cast to it when packed */
+        if (!is_bool) {
+            double lo = pm->scalar == VRG_PUSH_INT ? -2147483648.0 : pm->scalar == VRG_PUSH_UINT ? 0 : -FLT_MAX;
+            double hi = pm->scalar == VRG_PUSH_INT ? 2147483647.0 : pm->scalar == VRG_PUSH_UINT ? 4294967295.0 : FLT_MAX;
+            const char *type = pm->scalar == VRG_PUSH_INT ? "an int" : pm->scalar == VRG_PUSH_UINT ? "a uint" : "a float";
+            const char *key = NULL;
+            double v = 0;
+            if (a.def < lo || a.def > hi)
+                key = "default", v = a.def;
+            else if (a.has_min && (a.min < lo || a.min > hi))
+                key = "min", v = a.min;
+            else if (a.has_max && (a.max < lo || a.max > hi))
+                key = "max", v = a.max;
+            if (key) {
+                shader_error(d, ml.file, ml.line, NULL, "push-constant member '%s' is %s: its %s= is %g, outside [%.10g, %.10g], what it holds", pm->name, type, key, v, lo, hi);
+                continue;
+            }
         }
         vrg_param_desc *pd = &sp->params[m];
         snprintf(sp->param_names[m], sizeof sp->param_names[m], "%s", pm->name);
@@ -323,6 +422,7 @@ static int parse_params(struct _vrg_shader_pass *sp, vrg_plugin_desc *desc, cons
         if ((problem = _vrg_param_problem(pd, why, sizeof why)))
             shader_error(d, ml.file, ml.line, form, "push-constant member '%s': @param %s", pm->name, problem);
     }
+    free(code);
     desc->params = sp->params;
     desc->param_count = (uint32_t)r->push_member_count;
     return d->errors > errors ? -1 : 0;
@@ -388,7 +488,14 @@ static int parse_slots(struct _vrg_shader_pass *sp, vrg_plugin_desc *desc, const
                 shader_error(d, file, line, "declare it `readonly`, or name it out_X", "binding '%s' is an input, but its storage image is not declared readonly", name);
             if (is_out && s->access == VRG_ACCESS_STORAGE_READ)
                 shader_error(d, file, line, "an output is writeonly (or read and written)", "binding '%s' is an output, but it is declared readonly", name);
-            if (is_out && !b->format)
+            if (b->spv_format && (!b->format || _vrg_format_parse(_vrg_format_name(b->format)) != b->format)) { /* not one a graph can name */
+                const char *q = _vrg_spv_format_glsl(b->spv_format);
+                char unknown[48];
+                if (!q)
+                    snprintf(unknown, sizeof unknown, "(SPIR-V image format %d)", b->spv_format), q = unknown;
+                shader_error(d, file, line, "use one a graph can name, as GLSL writes it (r11g11b10f is r11f_g11f_b10f)",
+                             "binding '%s': format qualifier %s is not one voxrg allocates (%s)", name, q, _vrg_format_list());
+            } else if (is_out && !b->format)
                 shader_error(d, file, line, "layout(binding = N, rgba16f) uniform writeonly image2D out_X;", "binding '%s' is an output with no format qualifier: its format is the output's", name);
             break;
         case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER:

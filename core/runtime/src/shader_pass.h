@@ -7,6 +7,9 @@
 #include "reflect.h"
 
 #define VRG_SHADER_PASS_HELP_MAX 256
+/* the bytes _vrg_shader_pass_execute (dispatch.c) packs the parameters into:
+ * the push-constant size every Vulkan device has */
+#define VRG_SHADER_PASS_PUSH_MAX 128
 
 struct _vrg_shader_pass {
     vrg_param_desc params[VRG_MAX_PARAMS];
