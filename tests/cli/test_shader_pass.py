@@ -9,7 +9,8 @@ with a malformed annotation, a binding neither in_ nor out_, a push block
 past the 128 bytes the values are packed into, a default, min or max its
 type cannot hold, a format qualifier no graph allocates, a member named as
 a graph key), a member on the block's brace lines or a block comment with
-braces does not confuse the block's reading, a graph that
+braces does not confuse the block's reading, a listing skips a C plugin's
+helper shader (no in_/out_ binding), a graph that
 wires a buffer to its image slot or a format its declaration forbids, or
 sets a parameter it does not declare, is an error at the graph's line; a
 folder with NAME.so and NAME.comp loads the .so; `new-pass
@@ -191,6 +192,16 @@ fine("a block comment naming push_constant and a brace before the block", "layou
      "/* layout(push_constant) uniform Old {\n   float density; */\nlayout(push_constant)")
 save(comp, FOG)
 
+# a C plugin's helper shader on the search path (no in_/out_ binding, compiles only with its plugin's
+# defines) is no shader-only pass: a listing skips it; a graph naming it is told why
+helper = os.path.join(OUT, "heightfog_pass2.comp")
+save(helper, "#version 460\n// a C plugin's second dispatch\nlayout(local_size_x = 8) in;\n"
+             "layout(binding = 0, r32f) uniform image2D accum;\nvoid main() { imageStore(accum, ivec2(0), vec4(HELPER_SCALE)); }\n")
+rc, out = run("plugins", env={"VOXRG_PLUGIN_PATH": OUT})
+check(rc == 0 and "heightfog_pass2" not in out and re.search(r"\bheightfog\b", out), "voxrg plugins lists (or fails on) a helper shader: exit %d\n%s" % (rc, out))
+rc, out = run("plugins", "heightfog_pass2", env={"VOXRG_PLUGIN_PATH": OUT})
+check(rc != 0 and "heightfog_pass2.comp" in out, "voxrg plugins heightfog_pass2 (named): exit %d\n%s" % (rc, out))
+os.remove(helper)
 
 
 def graph_error(what, old, new, pattern):

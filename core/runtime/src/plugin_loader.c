@@ -26,6 +26,7 @@
  * libraries beside it (PREFIX/lib, its RUNPATH $ORIGIN/../..) whatever the
  * host has loaded. */
 #define _GNU_SOURCE
+#include <ctype.h>
 #include <dirent.h>
 #include <dlfcn.h>
 #include <elf.h>
@@ -965,6 +966,45 @@ int _vrg_plugin_reload(const char *path, _vrg_diag *d)
     return 0;
 }
 
+/* Whether a .comp's own text names a slot: a word in_NAME or out_NAME
+ * outside comments. A listing skips one that names none: it is a C
+ * plugin's helper shader (say NAME_pass2.comp beside NAME.so), which only
+ * compiles with the defines its plugin dispatches it with, not a pass
+ * (docs/plugin-abi.md, "A pass in one file"). A graph that names it
+ * still loads it, and says what is wrong. Unreadable: 1 (listed, so the
+ * failure is said). */
+static int names_a_slot(const char *file)
+{
+    FILE *f = fopen(file, "r");
+    if (!f)
+        return 1;
+    int c, prev = '\n', found = 0;
+    size_t w = 0; /* characters of the current word so far */
+    char word[5];
+    enum { CODE, LINE_COMMENT, BLOCK_COMMENT } state = CODE;
+    while (!found && (c = fgetc(f)) != EOF) {
+        if (state == LINE_COMMENT)
+            state = c == '\n' ? CODE : state;
+        else if (state == BLOCK_COMMENT) {
+            if (prev == '*' && c == '/')
+                state = CODE, c = ' ';
+        } else if (prev == '/' && (c == '/' || c == '*')) {
+            state = c == '/' ? LINE_COMMENT : BLOCK_COMMENT;
+            c = ' ';
+        } else if (isalnum(c) || c == '_') {
+            if (w < sizeof word)
+                word[w] = (char)c;
+            w++;
+            /* a character after "in_" or "out_" at the word's start */
+            found = (w > 3 && strncmp(word, "in_", 3) == 0) || (w > 4 && strncmp(word, "out_", 4) == 0);
+        } else
+            w = 0;
+        prev = c;
+    }
+    fclose(f);
+    return found;
+}
+
 static int by_name(const void *a, const void *b)
 {
     return strcmp((*(const _vrg_plugin *const *)a)->name, (*(const _vrg_plugin *const *)b)->name);
@@ -999,7 +1039,7 @@ int _vrg_plugin_list(const _vrg_plugin **out, int max, FILE *problems, int *fail
             char file[VRG_PATH_MAX + VRG_NAME_MAX + 8];
             /* only the file the search order picks for this name, once
              * (a folder holding both: the .so) */
-            if (search_path_find(&s, name, 0, file, sizeof file) == i && (ext == 3 || !ambiguous(&s, i, name)))
+            if (search_path_find(&s, name, 0, file, sizeof file) == i && (ext == 3 || (!ambiguous(&s, i, name) && names_a_slot(file))))
                 _vrg_plugin_load(name, NULL, NULL, &diag, 0);
         }
         if (dir)
