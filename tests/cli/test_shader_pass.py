@@ -17,7 +17,8 @@ folder with NAME.so and NAME.comp loads the .so; `new-pass
 --shader` writes a pass that renders; and under `render --watch` an edit
 of the file shows within BOUND frames, an interface change re-validates
 the graph (one it no longer fits is an error at the graph's line), and a
-broken edit keeps the last good version, said with FILE:LINE.
+broken edit keeps the last good version, said with FILE:LINE; a change to
+the include holding the push block re-reads the members' offsets.
 Usage: test_shader_pass.py VOXRG SOURCE_DIR OUT_DIR"""
 import os
 import re
@@ -242,19 +243,20 @@ check(rc == 0, "the scaffold's graph: exit %d\n%s" % (rc, out))
 
 # hot reload under render --watch
 class Render:
-    def __init__(self):
-        self.dir = os.path.join(OUT, "watch")
+    def __init__(self, ini=graph, out="watch", output="ldr", size="160x90"):
+        self.dir = os.path.join(OUT, out)
+        self.output = output
         os.makedirs(self.dir)
         self.err_path = os.path.join(self.dir, "stderr.txt")
         self.err = open(self.err_path, "w")
-        self.proc = subprocess.Popen([VOXRG, "render", graph, "--size", "160x90", "--watch", "--validate", "--frames", "0", "--interval", "30",
+        self.proc = subprocess.Popen([VOXRG, "render", ini, "--size", size, "--watch", "--validate", "--frames", "0", "--interval", "30",
                                       "--sequence", "--out", self.dir], stdout=subprocess.DEVNULL, stderr=self.err)
 
     def path(self, k):
-        return os.path.join(self.dir, "ldr-%05d.png" % k)
+        return os.path.join(self.dir, "%s-%05d.png" % (self.output, k))
 
     def latest(self):
-        ks = [int(m.group(1)) for m in map(re.compile(r"ldr-(\d{5})\.png$").match, os.listdir(self.dir)) if m]
+        ks = [int(m.group(1)) for m in map(re.compile(r"%s-(\d{5})\.png$" % self.output).match, os.listdir(self.dir)) if m]
         return max(ks, default=-1)
 
     def frame(self, k):
@@ -326,6 +328,48 @@ finally:
     r.proc.send_signal(signal.SIGTERM)
     rc = r.proc.wait(timeout=120)
     check(rc == 0, "render --watch under --validate: exit %d\n%s" % (rc, open(r.err_path).read()))
+
+# the push block in an include: its change re-reads the interface (the members' offsets), so the
+# values are packed where the recompiled shader reads them
+INC_DIR = os.path.join(OUT, "inc")
+os.makedirs(INC_DIR)
+save(os.path.join(INC_DIR, "incpass.comp"), """#version 460
+// incpass: its parameters declared in an include
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0, rgba8) uniform writeonly image2D out_color;
+#include "incparams.glsl"
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, imageSize(out_color))))
+        return;
+    imageStore(out_color, p, vec4(params.a, params.b, 0.0, 1.0));
+}
+""")
+A = '    float a; // @param default=%s min=0 max=1 help="red"\n'
+B = '    float b; // @param default=0.8 min=0 max=1 help="green"\n'
+params_h = os.path.join(INC_DIR, "incparams.glsl")
+save(params_h, "layout(push_constant) uniform Params {\n" + A % "0.2" + B + "} params;\n")
+inc_graph = os.path.join(INC_DIR, "inc.ini")
+save(inc_graph, "[graph]\noutput = color\nwidth = 16\nheight = 8\nplugin_path = .\n\n[pass inc]\nplugin = incpass\nout.color = color\n")
+r = Render(inc_graph, "inc_watch", "color", "16x8")
+try:
+    r.frame(2)
+    first = png_pixels.load(r.path(2))[2](1, 1)
+    check(all(abs(x - y) <= 1 for x, y in zip(first, (51, 204, 0))), "incpass before the edit: pixel %s, want (51, 204, 0)" % (first,))
+    k = r.latest()
+    # the members swapped (their offsets too), and a's default new
+    save(params_h, "layout(push_constant) uniform Params {\n" + B + A % "0.6" + "} params;\n")
+    end, px = time.time() + WAIT_S, first
+    while px == first and time.time() < end and r.proc.poll() is None:
+        k += 1
+        r.frame(k)
+        px = png_pixels.load(r.path(k))[2](1, 1)
+    check(all(abs(x - y) <= 1 for x, y in zip(px, (153, 204, 0))), "an include's push block changed: pixel %s, want (153, 204, 0)\n%s" % (px, open(r.err_path).read()))
+finally:
+    r.proc.send_signal(signal.SIGTERM)
+    rc = r.proc.wait(timeout=120)
+    check(rc == 0, "render --watch of incpass under --validate: exit %d\n%s" % (rc, open(r.err_path).read()))
 
 if failures:
     print("%d failure(s)" % len(failures))

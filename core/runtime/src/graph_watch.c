@@ -64,6 +64,17 @@ static void note_source_saved(vrg_graph *g, const char *path)
     }
 }
 
+typedef struct shader_dep_hit {
+    const char *path;
+    int found;
+} shader_dep_hit;
+
+static void is_changed_dep(void *user, const char *path)
+{
+    shader_dep_hit *h = user;
+    h->found |= strcmp(h->path, path) == 0;
+}
+
 /* Saved shaders: recompile the pipelines that read them before this frame
  * records. Failures keep the old pipeline; their messages (FILE:LINE) go to
  * the diagnostics as usual and are kept for vrg_graph_reload_error. */
@@ -80,10 +91,16 @@ static void apply_reloads(vrg_graph *g)
         for (int i = 0; i < n; i++)
             if (strcmp(changed[i], self) == 0)
                 note_source_saved(g, changed[i]);
-    /* a rebuilt plugin: also the host's to reload (a new graph instance) */
+    /* a rebuilt plugin: also the host's to reload (a new graph instance).
+     * A shader-only pass's interface is read from its file and every file
+     * it includes (a push block or binding may be declared in an include):
+     * a change to any of them re-reads it, as a rebuilt plugin */
     for (int i = 0; i < n; i++)
         for (int k = 0; k < g->pass_count; k++) {
-            if (strcmp(changed[i], g->passes[k].plugin->source) != 0)
+            shader_dep_hit hit = {.path = changed[i]};
+            if (g->passes[k].plugin->shader_pass)
+                _vrg_pipelines_deps(&g->passes[k], is_changed_dep, &hit);
+            if (strcmp(changed[i], g->passes[k].plugin->source) != 0 && !hit.found)
                 continue;
             g->passes[k].plugin_rebuilt = 1;
             g->plugins_rebuilt = 1;
@@ -97,7 +114,7 @@ static void apply_reloads(vrg_graph *g)
         g->diag.out = mem;
     int failed = 0, swapped = 0;
     for (int i = 0; i < g->pass_count; i++) {
-        /* a shader-only pass's own file is its interface too: the host's
+        /* a shader-only pass's files (its own and its includes) are its interface too: the host's
          * reload (a new version of the plugin) re-reads and re-checks it */
         if (g->passes[i].plugin_rebuilt && g->passes[i].plugin->shader_pass)
             continue;
