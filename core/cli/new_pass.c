@@ -364,15 +364,19 @@ static int make_dir(const char *dir)
 
 /* The graph for a one-file pass: the C scaffold's, with the pass found
  * beside the graph and no build step named. */
-static char *shader_graph(const char *name)
+static char *shader_graph(const char *name, const char **why)
 {
+    *why = "out of memory";
     char *g = instantiate(graph_template, name);
     if (!g)
         return NULL;
     const char *from = strstr(g, "[graph]");
     const char *old_path = "plugin_path = build\n";
     char *at = strstr(g, old_path);
-    if (!from || !at) {
+    if (!from || !at || at < from) {
+        /* the C scaffold's graph changed under this edit: a bug of voxrg, not of the user's input */
+        *why = "internal error: the C scaffold's graph template has no [graph] section followed by 'plugin_path = build' to replace "
+               "(core/cli/new_pass.c, shader_graph)";
         free(g);
         return NULL;
     }
@@ -427,10 +431,11 @@ int vrg_cli_new_pass(const char *name, const char *dir, int shader)
     for (int k = 0; k < count; k++) {
         int i = shader ? shader_files[k] : k;
         file_path(path, sizeof path, dir, name, i);
-        char *text = !shader ? instantiate(tmpls[i], name) : i == 1 ? instantiate(shader_template, name) : i == 3 ? shader_graph(name) : instantiate(readme_template, name);
+        const char *why = "out of memory";
+        char *text = !shader ? instantiate(tmpls[i], name) : i == 1 ? instantiate(shader_template, name) : i == 3 ? shader_graph(name, &why) : instantiate(readme_template, name);
         int rc = text ? vrg_output_write(path, text, strlen(text)) : -1;
         if (!text)
-            fprintf(stderr, "error: new-pass: out of memory\n");
+            fprintf(stderr, "error: new-pass: %s: %s was not written\n", why, path);
         free(text);
         if (rc != 0)
             return 1;
