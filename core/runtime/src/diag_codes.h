@@ -80,7 +80,7 @@
     X(VRG_E_SHADER_BINDING_UNBOUND, "VRG-E064", "shader-binding-unbound", "a shader declares a binding its dispatch does not bind (no slot or resource there, or a set other than 0)") \
     X(VRG_E_SHADER_BINDING_TYPE, "VRG-E065", "shader-binding-type", "a shader's binding has another descriptor type than the bound slot's access gives") \
     X(VRG_E_SHADER_IMAGE_FORMAT, "VRG-E066", "shader-image-format", "a shader's storage image format qualifier is not the bound image's format") \
-    X(VRG_E_SHADER_PUSH_SIZE, "VRG-E067", "shader-push-size", "a shader's push-constant block is larger than the push constants its dispatch gives") \
+    X(VRG_E_SHADER_PUSH_SIZE, "VRG-E067", "shader-push-size", "a shader's push-constant block is not the size of the push constants its dispatch gives") \
     X(VRG_E_SHADER_ACCESS, "VRG-E068", "shader-access", "a shader declares a storage binding readonly that its dispatch binds for writing, or writeonly for reading") \
     /* the device and the running graph */                                                                                                  \
     X(VRG_E_DEVICE_UNSUPPORTED, "VRG-E070", "device-unsupported", "the device lacks an extension, format or size the graph needs")         \
@@ -95,6 +95,8 @@
     X(VRG_E_PIXEL_OUTSIDE, "VRG-E079", "pixel-outside", "a pixel is read that lies outside the graph's size")                             \
     X(VRG_E_SHADER_INTERFACE, "VRG-E080", "shader-interface", "a shader-only pass's shader does not declare a valid interface (binding names, @param annotations)") \
     X(VRG_E_NOT_FINITE, "VRG-E081", "not-finite", "a pass wrote NaN or infinity into a float image (check_finite)")                     \
+    X(VRG_E_SHADER_PUSH_MEMBER, "VRG-E082", "shader-push-member", "a push-constant member packed by name has no value (no parameter or vrg_push_* of its name), another type, or a value names no member") \
+    X(VRG_E_SHADER_BINDING_NAME, "VRG-E083", "shader-binding-name", "a binding named after a slot (in_X, out_X, frame) is bound to another resource: two bindings swapped") \
     /* warnings */                                                                                                                          \
     X(VRG_W_UNUSED_RESOURCE, "VRG-W001", "unused-resource", "a [resource] section configures a resource no pass uses")                    \
     X(VRG_W_PLUGIN_SHADOWED, "VRG-W002", "plugin-shadowed", "a plugin of the same name earlier on the search path is used instead")     \

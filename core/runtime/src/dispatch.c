@@ -22,6 +22,7 @@ typedef struct bound_set {
      * its type and format are not known */
     unsigned char unknown[VRG_MAX_BINDINGS];
     char labels[VRG_MAX_BINDINGS][2 * VRG_NAME_MAX + 32]; /* "slot 'out.color'" */
+    int slot[VRG_MAX_BINDINGS]; /* the bound slot, -1: an internal resource */
     uint32_t count;
     uint32_t push_size; /* the dispatch's */
 } bound_set;
@@ -34,6 +35,9 @@ typedef struct _vrg_pipeline {
     bound_set bs;     /* from the dispatch that made it */
     uint32_t push_bytes; /* the shader's push-constant block */
     char push_where[VRG_PATH_MAX + 16];
+    char push_name[64];
+    _vrg_push_member *members; /* the block's, packed by name when the dispatch's push_size is 0 */
+    int member_count;
     uint32_t local[3];
     VkDescriptorSetLayout set_layout;
     VkPipelineLayout layout;
@@ -79,6 +83,109 @@ static int check_access(vrg_pass *p, const bound_set *bs, const _vrg_reflected_b
     return 0;
 }
 
+/* The slot a binding's name names: in_X the input slot X, out_X the output
+ * X, a uniform block `frame` (frame.glsl) the input `frame`; else -1. */
+static int named_slot(const vrg_plugin_desc *pd, const _vrg_reflected_binding *b)
+{
+    const char *name = b->name;
+    vrg_slot_dir dir = VRG_IN;
+    if (strncmp(name, "in_", 3) == 0)
+        name += 3;
+    else if (strncmp(name, "out_", 4) == 0)
+        name += 4, dir = VRG_OUT;
+    else if (strcmp(name, "frame") != 0 || b->type != VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER)
+        return -1;
+    for (uint32_t s = 0; s < pd->slot_count; s++)
+        if (pd->slots[s].dir == dir && strcmp(pd->slots[s].name, name) == 0)
+            return (int)s;
+    return -1;
+}
+
+/* A binding named after a slot is bound to that slot: a pair of bindings of
+ * the same type swapped in the shader (or in the pass's bindings[]) passes
+ * every other check and renders wrong. -1 after the error at its line. */
+static int check_name(vrg_pass *p, const bound_set *bs, const _vrg_reflection *r, const _vrg_reflected_binding *b, FILE *diag)
+{
+    const vrg_plugin_desc *pd = p->plugin->desc;
+    uint32_t i = b->binding;
+    int want = named_slot(pd, b);
+    if (want < 0 || bs->slot[i] == want)
+        return 0;
+    const char *code = _vrg_diag_info_of(VRG_E_SHADER_BINDING_NAME)->code;
+    /* the binding named after the slot bound here, if it holds this one's */
+    for (int k = 0; bs->slot[i] >= 0 && k < r->count; k++) {
+        const _vrg_reflected_binding *o = &r->bindings[k];
+        if (o == b || o->set != 0 || o->binding >= bs->count || named_slot(pd, o) != bs->slot[i])
+            continue;
+        if (bs->slot[o->binding] == want) {
+            if (o->binding > i) /* the pair once, at its first binding */
+                fprintf(diag, "%s: error[%s]: bindings %u '%s' and %u '%s' (%s) are swapped: pass '%s' (plugin %s) binds %s at binding %u and %s at %u\n",
+                        b->where, code, i, b->name, o->binding, o->name, o->where, p->name, pd->name, bs->labels[i], i, bs->labels[o->binding], o->binding);
+            return -1;
+        }
+        fprintf(diag, "%s: error[%s]: binding %u '%s' is named after slot '%s.%s', but pass '%s' (plugin %s) binds %s there, which binding %u '%s' (%s) is named after\n",
+                b->where, code, i, b->name, pd->slots[want].dir == VRG_IN ? "in" : "out", pd->slots[want].name, p->name, pd->name, bs->labels[i], o->binding,
+                o->name, o->where);
+        return -1;
+    }
+    fprintf(diag, "%s: error[%s]: binding %u '%s' is named after slot '%s.%s', but pass '%s' (plugin %s) binds %s there\n", b->where, code, i, b->name,
+            pd->slots[want].dir == VRG_IN ? "in" : "out", pd->slots[want].name, p->name, pd->name, bs->labels[i]);
+    return -1;
+}
+
+static const char *scalar_name(int s)
+{
+    return s == VRG_PUSH_FLOAT ? "float" : s == VRG_PUSH_INT ? "int" : s == VRG_PUSH_UINT ? "uint" : s == VRG_PUSH_BOOL ? "bool" : "no scalar";
+}
+
+static const char *param_type_name(vrg_param_type t)
+{
+    return t == VRG_PARAM_FLOAT ? "float" : t == VRG_PARAM_INT ? "int" : t == VRG_PARAM_BOOL ? "bool" : "string";
+}
+
+/* Whether parameter pd fits member m packed by name (plugin.h, vrg_push_float). */
+static int param_fits(const vrg_param_desc *pd, const _vrg_push_member *m)
+{
+    switch (pd->type) {
+    case VRG_PARAM_FLOAT: return m->scalar == VRG_PUSH_FLOAT;
+    case VRG_PARAM_INT: return m->scalar == VRG_PUSH_INT || (m->scalar == VRG_PUSH_UINT && pd->min >= 0 && !(pd->min == 0 && pd->max == 0));
+    case VRG_PARAM_BOOL: return m->scalar == VRG_PUSH_BOOL || m->scalar == VRG_PUSH_INT || m->scalar == VRG_PUSH_UINT;
+    default: return 0;
+    }
+}
+
+static const vrg_param_desc *param_named(const vrg_plugin_desc *pd, const char *name)
+{
+    for (uint32_t i = 0; i < pd->param_count; i++)
+        if (strcmp(pd->params[i].name, name) == 0)
+            return &pd->params[i];
+    return NULL;
+}
+
+/* Members packed by name: each a scalar, and one named after a parameter
+ * of a type that fits (plugin.h); errors at the member's line. */
+static int check_members(vrg_pass *p, const _vrg_push_member *members, int count, FILE *diag)
+{
+    const vrg_plugin_desc *pd = p->plugin->desc;
+    const char *code = _vrg_diag_info_of(VRG_E_SHADER_PUSH_MEMBER)->code;
+    int errors = 0;
+    for (int m = 0; m < count; m++) {
+        const _vrg_push_member *pm = &members[m];
+        const vrg_param_desc *param = param_named(pd, pm->name);
+        if (pm->scalar == VRG_PUSH_OTHER || pm->vecsize != 1 || pm->columns != 1 || pm->array_dims) {
+            fprintf(diag, "%s: error[%s]: push-constant member '%s' is not a scalar float, int, uint or bool, which pass '%s' (plugin %s) packs by name "
+                          "(push_size 0): compute vectors in the shader from scalars\n", pm->where, code, pm->name, p->name, pd->name);
+            errors++;
+        } else if (param && !param_fits(param, pm)) {
+            fprintf(diag, "%s: error[%s]: push-constant member '%s' is a %s, but parameter '%s' of pass '%s' (plugin %s) is a%s %s%s\n", pm->where, code, pm->name,
+                    scalar_name(pm->scalar), param->name, p->name, pd->name, param->type == VRG_PARAM_INT ? "n" : "", param_type_name(param->type),
+                    param->type == VRG_PARAM_INT && pm->scalar == VRG_PUSH_UINT ? " that may be negative (give it min >= 0)" : "");
+            errors++;
+        }
+    }
+    return errors;
+}
+
 /* The shader's declarations against what the dispatch binds: every error
  * and warning at the declaring line; -1 when any is an error. */
 static int check_reflection(vrg_pass *p, const char *path, const bound_set *bs, const _vrg_reflection *r, FILE *diag)
@@ -89,7 +196,9 @@ static int check_reflection(vrg_pass *p, const char *path, const bound_set *bs, 
     for (int k = 0; k < r->count; k++) {
         const _vrg_reflected_binding *b = &r->bindings[k];
         uint32_t i = b->binding;
-        if (b->set != 0) {
+        if (b->set == 0 && i < bs->count && !bs->unknown[i] && check_name(p, bs, r, b, diag) != 0) {
+            errors++;
+        } else if (b->set != 0) {
             fprintf(diag, "%s: error[%s]: binding %u '%s' is in set %u, but pass '%s' (plugin %s) binds set 0 only\n", b->where,
                     _vrg_diag_info_of(VRG_E_SHADER_BINDING_UNBOUND)->code, i, b->name, b->set, p->name, plugin);
             errors++;
@@ -116,9 +225,13 @@ static int check_reflection(vrg_pass *p, const char *path, const bound_set *bs, 
         } else if (is_storage(b->type) && check_access(p, bs, b, diag) != 0)
             errors++;
     }
-    if (r->push_bytes > bs->push_size) {
-        fprintf(diag, "%s: error[%s]: push-constant block '%s' is %u bytes, but pass '%s' (plugin %s) pushes %u (vrg_dispatch_desc.push_size)\n", r->push_where,
-                _vrg_diag_info_of(VRG_E_SHADER_PUSH_SIZE)->code, r->push_name, r->push_bytes, p->name, plugin, bs->push_size);
+    if (!bs->push_size)
+        errors += check_members(p, r->push_members, r->push_member_count, diag);
+    else if (r->push_bytes != bs->push_size) {
+        /* a C struct of another size than the block: the members' offsets cannot agree */
+        fprintf(diag, "%s: error[%s]: push-constant block '%s' is %u bytes, but pass '%s' (plugin %s) pushes %u (vrg_dispatch_desc.push_size): "
+                      "set push_size 0 to push by name (vrg_push_float)\n", r->push_bytes ? r->push_where : path, _vrg_diag_info_of(VRG_E_SHADER_PUSH_SIZE)->code,
+                r->push_name, r->push_bytes, p->name, plugin, bs->push_size);
         errors++;
     }
     /* every shipped pass declares each slot it binds, in either mode */
@@ -148,9 +261,15 @@ static int build_pipeline(vrg_pass *p, _vrg_pipeline *pl)
     }
     int mismatch = check_reflection(p, pl->path, &pl->bs, &sm.refl, diag);
     pl->push_bytes = sm.refl.push_bytes;
-    snprintf(pl->push_where, sizeof pl->push_where, "%s", sm.refl.push_where);
+    snprintf(pl->push_where, sizeof pl->push_where, "%s", sm.refl.push_bytes ? sm.refl.push_where : pl->path);
+    snprintf(pl->push_name, sizeof pl->push_name, "%s", sm.refl.push_name);
+    pl->members = sm.refl.push_members;
+    pl->member_count = sm.refl.push_member_count;
+    sm.refl.push_members = NULL;
     _vrg_reflection_free(&sm.refl);
     if (mismatch != 0) {
+        free(pl->members);
+        pl->members = NULL;
         vkDestroyShaderModule(dev, sm.module, NULL);
         free(sm.deps);
         _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "shader %s does not match what the pass binds", pl->path);
@@ -189,6 +308,8 @@ static int build_pipeline(vrg_pass *p, _vrg_pipeline *pl)
         vkDestroyDescriptorSetLayout(dev, pl->set_layout, NULL);
         free(pl->deps);
         pl->deps = NULL;
+        free(pl->members);
+        pl->members = NULL;
         pl->layout = VK_NULL_HANDLE;
         pl->set_layout = VK_NULL_HANDLE;
         _vrg_pass_fail(p, VRG_E_SHADER_FAILED, "vkCreateComputePipelines failed for %s (%d)", pl->path, res);
@@ -204,6 +325,7 @@ static void free_pipeline_objects(VkDevice dev, _vrg_pipeline *pl)
     vkDestroyPipelineLayout(dev, pl->layout, NULL);
     vkDestroyDescriptorSetLayout(dev, pl->set_layout, NULL);
     free(pl->deps);
+    free(pl->members);
 }
 
 /* A replaced pipeline: earlier frames in flight may still run it. */
@@ -223,7 +345,7 @@ static int same_bindings(const bound_set *a, const bound_set *b)
 {
     uint32_t n = a->count;
     return n == b->count && memcmp(a->types, b->types, n * sizeof *a->types) == 0 && memcmp(a->formats, b->formats, n * sizeof *a->formats) == 0 &&
-           memcmp(a->access, b->access, n * sizeof *a->access) == 0;
+           memcmp(a->access, b->access, n * sizeof *a->access) == 0 && memcmp(a->slot, b->slot, n * sizeof *a->slot) == 0;
 }
 
 /* The file of a shader the pass names; -1 after reporting where it looked. */
@@ -310,6 +432,7 @@ int _vrg_pipelines_reload(vrg_pass *p, char (*changed)[VRG_PATH_MAX], int count)
          * the frames in flight that may run them have ended */
         _vrg_pipeline fresh = *pl;
         fresh.deps = NULL;
+        fresh.members = NULL;
         fresh.pipeline = VK_NULL_HANDLE;
         fresh.layout = VK_NULL_HANDLE;
         fresh.set_layout = VK_NULL_HANDLE;
@@ -449,6 +572,7 @@ static int describe_dispatch(vrg_pass *p, const vrg_dispatch_desc *d, bound *b, 
     bs->push_size = d->push_size;
     for (int i = 0; i < n; i++) {
         bs->access[i] = b[i].access;
+        bs->slot[i] = b[i].slot;
         label_binding(p, &b[i], d->bindings[i].res, bs->labels[i], sizeof bs->labels[i]);
         if (b[i].access == VRG_ACCESS_TRANSFER_SRC || b[i].access == VRG_ACCESS_TRANSFER_DST || b[i].access == VRG_ACCESS_AS_BUILD)
             return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "binding %d: %s access cannot be bound to a shader", i, _vrg_access_name(b[i].access));
@@ -499,7 +623,134 @@ static int declared(const vrg_plugin_desc *pd, const vrg_dispatch_desc *d)
     return 0;
 }
 
+/* ---- push constants by name ---- */
+
+static void push_value(vrg_pass *p, const char *setter, const char *member, int scalar, uint32_t word)
+{
+    if (!member || !*member || strlen(member) >= VRG_NAME_MAX) {
+        _vrg_pass_fail(p, VRG_E_PASS_API_MISUSE, "%s: member name '%.64s' is empty or longer than %d characters", setter, member ? member : "(null)",
+                       VRG_NAME_MAX - 1);
+        return;
+    }
+    _vrg_push_value *v = NULL;
+    for (int i = 0; i < p->push_count && !v; i++)
+        if (strcmp(p->push_values[i].name, member) == 0)
+            v = &p->push_values[i];
+    if (!v) {
+        if (p->push_count == p->push_cap) {
+            int cap = p->push_cap ? 2 * p->push_cap : 16;
+            _vrg_push_value *grown = realloc(p->push_values, (size_t)cap * sizeof *grown);
+            if (!grown) {
+                _vrg_pass_fail(p, VRG_E_OUT_OF_MEMORY, "%s(\"%s\"): out of memory", setter, member);
+                return;
+            }
+            p->push_values = grown;
+            p->push_cap = cap;
+        }
+        v = &p->push_values[p->push_count++];
+    }
+    *v = (_vrg_push_value){.scalar = scalar, .setter = setter, .word = word};
+    snprintf(v->name, sizeof v->name, "%s", member);
+}
+
+void vrg_push_float(vrg_pass *pass, const char *member, float value)
+{
+    uint32_t word;
+    memcpy(&word, &value, sizeof word);
+    push_value(pass, "vrg_push_float", member, VRG_PUSH_FLOAT, word);
+}
+
+void vrg_push_int(vrg_pass *pass, const char *member, int32_t value) { push_value(pass, "vrg_push_int", member, VRG_PUSH_INT, (uint32_t)value); }
+void vrg_push_uint(vrg_pass *pass, const char *member, uint32_t value) { push_value(pass, "vrg_push_uint", member, VRG_PUSH_UINT, value); }
+void vrg_push_bool(vrg_pass *pass, const char *member, int value) { push_value(pass, "vrg_push_bool", member, VRG_PUSH_BOOL, value != 0); }
+
+static int value_fits(int setter, _vrg_push_scalar member)
+{
+    return setter == (int)member || (setter == VRG_PUSH_BOOL && (member == VRG_PUSH_INT || member == VRG_PUSH_UINT));
+}
+
+/* The block's bytes from the values set (vrg_push_*) and the parameters,
+ * each at its member's offset; -1 after the errors at the members' lines. */
+static int pack_by_name(vrg_pass *p, const _vrg_pipeline *pl, unsigned char *out, FILE *diag)
+{
+    const vrg_plugin_desc *pd = p->plugin->desc;
+    const char *code = _vrg_diag_info_of(VRG_E_SHADER_PUSH_MEMBER)->code;
+    int errors = check_members(p, pl->members, pl->member_count, diag);
+    memset(out, 0, 128);
+    for (int i = 0; i < p->push_count; i++)
+        p->push_values[i].used = 0;
+    for (int m = 0; m < pl->member_count; m++) {
+        const _vrg_push_member *pm = &pl->members[m];
+        if (pm->scalar == VRG_PUSH_OTHER || pm->vecsize != 1 || pm->columns != 1 || pm->array_dims)
+            continue; /* check_members said */
+        _vrg_push_value *v = NULL;
+        for (int i = 0; i < p->push_count && !v; i++)
+            if (strcmp(p->push_values[i].name, pm->name) == 0)
+                v = &p->push_values[i];
+        const vrg_param_desc *param = param_named(pd, pm->name);
+        uint32_t word = 0;
+        if (v) {
+            v->used = 1;
+            if (!value_fits(v->scalar, pm->scalar)) {
+                fprintf(diag, "%s: error[%s]: push-constant member '%s' is a %s, but pass '%s' (plugin %s) sets it with %s, a %s\n", pm->where, code, pm->name,
+                        scalar_name(pm->scalar), p->name, pd->name, v->setter, scalar_name(v->scalar));
+                errors++;
+                continue;
+            }
+            word = v->word;
+        } else if (param) {
+            if (!param_fits(param, pm))
+                continue; /* check_members said */
+            double x = vrg_param(p, param->name);
+            if (pm->scalar == VRG_PUSH_FLOAT) {
+                float f = (float)x;
+                memcpy(&word, &f, sizeof word);
+            } else if (param->type == VRG_PARAM_BOOL)
+                word = x != 0;
+            else if (pm->scalar == VRG_PUSH_INT)
+                word = (uint32_t)(int32_t)x;
+            else
+                word = (uint32_t)x;
+        } else {
+            fprintf(diag, "%s: error[%s]: push-constant member '%s' has no value: pass '%s' (plugin %s) has no parameter '%s' and set none with vrg_push_* "
+                          "before this dispatch\n", pm->where, code, pm->name, p->name, pd->name, pm->name);
+            errors++;
+            continue;
+        }
+        memcpy(out + pm->offset, &word, sizeof word);
+    }
+    for (int i = 0; i < p->push_count; i++) {
+        const _vrg_push_value *v = &p->push_values[i];
+        if (v->used)
+            continue;
+        char names[512] = "";
+        for (int m = 0; m < pl->member_count; m++) {
+            size_t len = strlen(names);
+            snprintf(names + len, sizeof names - len, "%s%s", m ? ", " : "", pl->members[m].name);
+        }
+        if (pl->member_count)
+            fprintf(diag, "%s: error[%s]: pass '%s' (plugin %s) sets '%s' (%s), but push-constant block '%s' has no member '%s' (its members: %s)\n", pl->push_where,
+                    code, p->name, pd->name, v->name, v->setter, pl->push_name, v->name, names);
+        else
+            fprintf(diag, "%s: error[%s]: pass '%s' (plugin %s) sets '%s' (%s), but the shader declares no push-constant block\n", pl->push_where, code, p->name,
+                    pd->name, v->name, v->setter);
+        errors++;
+    }
+    if (errors)
+        return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "push constants of %s do not match what the pass pushes by name (above)", pl->path);
+    return 0;
+}
+
+static int dispatch_one(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d);
+
 int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
+{
+    int rc = dispatch_one(p, cmd, d);
+    p->push_count = 0; /* consumed, whatever happened */
+    return rc;
+}
+
+static int dispatch_one(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
 {
     vrg_graph *g = p->graph;
     const vrg_plugin_desc *pd = p->plugin->desc;
@@ -517,8 +768,19 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
     _vrg_pipeline *pl = get_pipeline(p, d->shader, defines, &bs);
     if (!pl)
         return -1;
-    if (pl->push_bytes > d->push_size) { /* another dispatch of the same pipeline */
-        FILE *diag = g->diag.out ? g->diag.out : stderr;
+    FILE *diag = g->diag.out ? g->diag.out : stderr;
+    const void *push = d->push;
+    uint32_t push_size = d->push_size;
+    unsigned char packed[128];
+    if (!d->push_size) {
+        if (pack_by_name(p, pl, packed, diag) != 0)
+            return -1;
+        push = packed;
+        push_size = pl->push_bytes;
+    } else if (p->push_count) {
+        return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "'%s' was set with %s, but this dispatch of %s pushes its own %u bytes (push_size): push_size 0 packs by name",
+                              p->push_values[0].name, p->push_values[0].setter, pl->path, d->push_size);
+    } else if (pl->push_bytes != d->push_size) { /* another dispatch of the same pipeline */
         fprintf(diag, "%s: error[%s]: push-constant block is %u bytes, but pass '%s' (plugin %s) pushes %u (vrg_dispatch_desc.push_size)\n", pl->push_where,
                 _vrg_diag_info_of(VRG_E_SHADER_PUSH_SIZE)->code, pl->push_bytes, p->name, p->plugin->desc->name, d->push_size);
         return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "push constants of %u bytes for shader %s, which reads %u", d->push_size, pl->path, pl->push_bytes);
@@ -597,40 +859,21 @@ int vrg_dispatch(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_desc *d)
         gz = 1;
     }
     if (g->capture)
-        _vrg_capture_dispatch(g->capture, pl->pipeline, pl->layout, (uint32_t)n, w, d->push, d->push_size, (const uint32_t[3]){gx, gy, gz});
+        _vrg_capture_dispatch(g->capture, pl->pipeline, pl->layout, (uint32_t)n, w, push, push_size, (const uint32_t[3]){gx, gy, gz});
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pl->pipeline);
     if (n)
         g->ctx->push_descriptor(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pl->layout, 0, (uint32_t)n, w);
-    if (d->push_size)
-        vkCmdPushConstants(cmd, pl->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, d->push_size, d->push);
+    if (push_size)
+        vkCmdPushConstants(cmd, pl->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, push_size, push);
     vkCmdDispatch(cmd, gx, gy, gz);
     return 0;
 }
 
 /* A shader-only pass (shader_pass.c) is one dispatch of its shader, its
- * push constants the parameters' values at the members' reflected offsets. */
+ * push constants packed by name from its parameters (push_size 0). */
 void _vrg_shader_pass_execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    const struct _vrg_shader_pass *sp = pass->plugin->shader_pass;
-    unsigned char push[128] = {0};
-    for (uint32_t i = 0; i < pass->plugin->desc->param_count; i++) {
-        double v = vrg_param(pass, sp->params[i].name);
-        uint32_t word;
-        switch (sp->param_scalar[i]) {
-        case VRG_PUSH_FLOAT: {
-            float f = (float)v;
-            memcpy(&word, &f, sizeof word);
-            break;
-        }
-        case VRG_PUSH_INT: word = (uint32_t)(int32_t)v; break;
-        case VRG_PUSH_BOOL: word = v != 0; break;
-        default: word = (uint32_t)v; break;
-        }
-        memcpy(push + sp->param_offset[i], &word, sizeof word);
-    }
-    vrg_dispatch_desc d = sp->dispatch;
-    d.push = push;
-    (void)vrg_dispatch(pass, cmd, &d);
+    (void)vrg_dispatch(pass, cmd, &pass->plugin->shader_pass->dispatch);
 }
 
 /* ---- vrg_graph_check_shaders: every declared dispatch, before any frame ---- */

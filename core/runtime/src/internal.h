@@ -220,7 +220,19 @@ struct vrg_pass {
     struct _vrg_shared *shared; /* vrg_pass_share */
     char **inputs;            /* vrg_pass_input_file: data files, in the order named */
     int input_count;
+    struct _vrg_push_value *push_values; /* vrg_push_*: set since the pass's last dispatch */
+    int push_count, push_cap;
 };
+
+/* A push-constant member's value set by name (vrg_push_float, ...), packed
+ * by the pass's next vrg_dispatch (dispatch.c). */
+typedef struct _vrg_push_value {
+    char name[VRG_NAME_MAX];
+    int scalar; /* reflect.h's _vrg_push_scalar of the setter */
+    const char *setter;
+    uint32_t word;
+    int used; /* packed into a member by the dispatch */
+} _vrg_push_value;
 
 typedef struct _vrg_pass_figure {
     char *name;

@@ -133,6 +133,9 @@ void _vrg_pass_free_params(vrg_pass *p)
     free(p->inputs);
     p->inputs = NULL;
     p->input_count = 0;
+    free(p->push_values);
+    p->push_values = NULL;
+    p->push_count = p->push_cap = 0;
 }
 
 static int string_param(const vrg_pass *p, const char *name)

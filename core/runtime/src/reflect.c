@@ -1,7 +1,7 @@
 /* What a compiled compute shader declares, read from its SPIR-V with
  * SPIRV-Cross's C API: each descriptor binding (set, number, descriptor
  * type, a storage image's format qualifier, name) and the push-constant
- * block's size, each with the GLSL line that declares it, so that
+ * block's size and members, each with the GLSL line that declares it, so that
  * dispatch.c can check them against what a pass binds. */
 #include <spirv_cross_c.h>
 #include <stdio.h>
@@ -176,6 +176,45 @@ static void find_line(const char *src, const char *path, const char *key, const 
     }
 }
 
+/* FILE:LINE of a push-constant member: the first line after the one with
+ * `push_constant` that has its name as a word (the block's own line when
+ * the member is declared on it). `where` keeps its value when none is. */
+static void find_member_line(const char *src, const char *member, char *where, size_t cap)
+{
+    char file[VRG_PATH_MAX] = "";
+    int line = 0, in_block = 0;
+    for (const char *p = src; p && *p;) {
+        const char *end = strchr(p, '\n');
+        size_t n = end ? (size_t)(end - p) : strlen(p);
+        line++;
+        const char *s = p;
+        while (s < p + n && (*s == ' ' || *s == '\t'))
+            s++;
+        if (strncmp(s, "#line", 5) == 0) {
+            char *q;
+            long l = strtol(s + 5, &q, 10);
+            const char *quote = memchr(q, '"', (size_t)(p + n - q));
+            const char *close = quote ? memchr(quote + 1, '"', (size_t)(p + n - quote - 1)) : NULL;
+            if (close)
+                snprintf(file, sizeof file, "%.*s", (int)(close - quote - 1), quote + 1);
+            line = (int)l - 1;
+        } else {
+            const char *comment = NULL;
+            for (size_t i = 0; i + 1 < n && !comment; i++)
+                if (p[i] == '/' && p[i + 1] == '/')
+                    comment = p + i;
+            size_t code = comment ? (size_t)(comment - p) : n;
+            in_block |= has_word(p, code, "push_constant");
+            if (in_block && has_word(p, code, member)) {
+                if (file[0])
+                    snprintf(where, cap, "%s:%d", file, line);
+                return;
+            }
+        }
+        p = end ? end + 1 : NULL;
+    }
+}
+
 /* ---- reflection ---- */
 
 static VkDescriptorType descriptor_type_of(spvc_resource_type rt, spvc_type type)
@@ -237,7 +276,7 @@ static _vrg_push_scalar scalar_of(spvc_basetype t)
 }
 
 /* Each member of the push-constant block: name, offset, size and type. */
-static int push_members(spvc_compiler comp, spvc_type_id base_id, spvc_type type, _vrg_reflection *out)
+static int push_members(spvc_compiler comp, spvc_type_id base_id, spvc_type type, const char *src, _vrg_reflection *out)
 {
     unsigned n = spvc_type_get_num_member_types(type);
     out->push_members = calloc(n ? n : 1, sizeof *out->push_members);
@@ -259,6 +298,8 @@ static int push_members(spvc_compiler comp, spvc_type_id base_id, spvc_type type
         pm->vecsize = spvc_type_get_vector_size(mt);
         pm->columns = spvc_type_get_columns(mt);
         pm->array_dims = spvc_type_get_num_array_dimensions(mt);
+        snprintf(pm->where, sizeof pm->where, "%s", out->push_where);
+        find_member_line(src, pm->name, pm->where, sizeof pm->where);
     }
     out->push_member_count = (int)n;
     return 0;
@@ -321,11 +362,11 @@ static int reflect_resources(spvc_compiler comp, spvc_resources res, const char 
         if (spvc_compiler_get_declared_struct_size(comp, type, &size) != SPVC_SUCCESS)
             return -1;
         out->push_bytes = (uint32_t)size;
-        if (push_members(comp, push[i].base_type_id, type, out) != 0)
-            return -1;
         const char *block = spvc_compiler_get_name(comp, push[i].base_type_id);
         snprintf(out->push_name, sizeof out->push_name, "%s", block && *block ? block : push[i].name);
         find_line(src, path, "push_constant", out->push_name, NULL, ANY_LINE, out->push_where, sizeof out->push_where);
+        if (push_members(comp, push[i].base_type_id, type, src, out) != 0)
+            return -1;
     }
     return 0;
 }

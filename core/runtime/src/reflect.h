@@ -25,6 +25,7 @@ typedef struct _vrg_push_member {
     uint32_t offset, size;
     _vrg_push_scalar scalar; /* the element's scalar type (OTHER: a struct, double, 16-bit, ...) */
     uint32_t vecsize, columns, array_dims;
+    char where[VRG_PATH_MAX + 16]; /* FILE:LINE of its declaration (the block's when not found) */
 } _vrg_push_member;
 typedef struct _vrg_reflection {
     _vrg_reflected_binding *bindings;

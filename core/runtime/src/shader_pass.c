@@ -7,7 +7,8 @@
  *     slot `frame`;
  *   - each member of the push-constant block is a parameter, its default,
  *     range and help from the `// @param ...` annotation on its line; the
- *     runtime packs the values at the members' reflected offsets;
+ *     runtime packs the values by name at the members' reflected offsets,
+ *     as it does for a C pass's dispatch with push_size 0 (dispatch.c);
  *   - the first image output (lowest binding) sets the dispatch size; a
  *     shader that includes pixel.glsl runs its pixel loop.
  * Reflection is by name, so nothing is stated twice: the same member and
@@ -416,8 +417,6 @@ static int parse_params(struct _vrg_shader_pass *sp, vrg_plugin_desc *desc, cons
             pd->min = 0, pd->max = 1;
         if (pm->scalar == VRG_PUSH_INT && !is_bool && !a.has_min) /* what the member holds */
             pd->min = -2147483648.0, pd->max = 2147483647.0;
-        sp->param_offset[m] = pm->offset;
-        sp->param_scalar[m] = is_bool ? VRG_PUSH_BOOL : pm->scalar;
         /* the descriptor's checks (range, whole numbers), here at the line */
         if ((problem = _vrg_param_problem(pd, why, sizeof why)))
             shader_error(d, ml.file, ml.line, form, "push-constant member '%s': @param %s", pm->name, problem);
@@ -624,7 +623,7 @@ int _vrg_shader_pass_load(_vrg_plugin *p, _vrg_diag *d, int line)
         dep = nl ? nl + 1 : dep + n;
     }
     sp->dispatch.shader = sp->shader;
-    sp->dispatch.push_size = sm.refl.push_bytes;
+    sp->dispatch.push_size = 0; /* packed by name (dispatch.c), as a C pass's */
     sp->dispatch.pixel_loop = pixel_loop;
     desc->dispatches = &sp->dispatch;
     desc->dispatch_count = 1;

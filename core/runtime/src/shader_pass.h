@@ -15,8 +15,6 @@ struct _vrg_shader_pass {
     vrg_param_desc params[VRG_MAX_PARAMS];
     char param_names[VRG_MAX_PARAMS][VRG_NAME_MAX];
     char param_help[VRG_MAX_PARAMS][VRG_SHADER_PASS_HELP_MAX];
-    uint32_t param_offset[VRG_MAX_PARAMS];
-    _vrg_push_scalar param_scalar[VRG_MAX_PARAMS];
     vrg_slot_desc slots[VRG_MAX_SLOTS];
     char slot_names[VRG_MAX_SLOTS][VRG_NAME_MAX];
     char slot_help[VRG_MAX_SLOTS][VRG_SHADER_PASS_HELP_MAX];
@@ -35,7 +33,7 @@ void _vrg_shader_pass_free(_vrg_plugin *p);
 /* FILE:LINE of the binding a shader-only pass's slot comes from, NULL for
  * another plugin's slot: graph errors about the slot name both sides. */
 const char *_vrg_shader_pass_slot_where(const _vrg_plugin *p, const vrg_slot_desc *sd);
-/* Records a shader-only pass (dispatch.c): its push constants packed from
- * the parameters at the members' offsets, its one dispatch. */
+/* Records a shader-only pass (dispatch.c): its one dispatch, its push
+ * constants packed by name from the parameters. */
 void _vrg_shader_pass_execute(vrg_pass *pass, VkCommandBuffer cmd);
 #endif

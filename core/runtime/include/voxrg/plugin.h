@@ -490,12 +490,19 @@ typedef struct vrg_dispatch_desc {
      * through their 1x1 stand-ins), except acceleration structures that do
      * not exist, which is why they are declared last. Whenever one is bound
      * at binding i, the shader is compiled with VRG_ACCEL_BINDING=i (the
-     * voxel layer's trace.glsl then uses its ray-query backend on it). */
+     * voxel layer's trace.glsl then uses its ray-query backend on it).
+     * Either way a shader binding named after a slot (in_X: input X,
+     * out_X: output X, a uniform block `frame`: input frame) must be bound
+     * to that slot: a swapped pair is an error naming both (VRG-E083). */
     vrg_binding bindings[VRG_MAX_BINDINGS];
     /* Preprocessor definitions for this variant, "NAME" or "NAME=VALUE",
      * separated by spaces or ';' (each set is its own cached pipeline). */
     const char *defines;
-    const void *push; /* push constants, at most 128 bytes */
+    /* Push constants. push_size 0 (and push NULL): packed by name, the
+     * way to push them (vrg_push_float below). Else the bytes at push,
+     * exactly the size of the shader's push-constant block (a struct
+     * mirroring the block in C: another size is an error), at most 128. */
+    const void *push;
     uint32_t push_size;
     /* Dispatch domain: this resource's extent (default: the first image
      * output), divided by the shader's local size, rounded up. */
@@ -506,6 +513,23 @@ typedef struct vrg_dispatch_desc {
      * count in y by it. VRG_PIXEL_ROWS is 32 on a CPU device, 1 on a GPU. */
     int pixel_loop;
 } vrg_dispatch_desc;
+
+/* Push constants by name. A dispatch with push_size 0 whose shader
+ * declares a push-constant block fills each member of the block by its
+ * name, at the offset reflection reads from the SPIR-V: with the value set
+ * by vrg_push_* since the pass's last dispatch, else with the pass's
+ * parameter of that name. A member with neither, a value or parameter of
+ * another type (a float parameter or vrg_push_float: a float member; an
+ * int parameter: int or uint, uint only when its min is 0 or more; a bool
+ * parameter or vrg_push_bool: a bool (uint in SPIR-V), int or uint;
+ * vrg_push_int: int; vrg_push_uint: uint), a member that is no scalar, or
+ * a value set that names no member, is an error at the member's (or the
+ * block's) FILE:LINE and fails the dispatch. Values are consumed by the
+ * pass's next vrg_dispatch, whatever it returns: set them before each. */
+void vrg_push_float(vrg_pass *pass, const char *member, float value);
+void vrg_push_int(vrg_pass *pass, const char *member, int32_t value);
+void vrg_push_uint(vrg_pass *pass, const char *member, uint32_t value);
+void vrg_push_bool(vrg_pass *pass, const char *member, int value);
 
 /* Compiles (once, cached per pass) and records the dispatch, with barriers
  * for bound resources whose state differs from what the binding needs.

@@ -1,0 +1,52 @@
+/* Test plugin for push constants packed by name (no C struct): one dispatch
+ * of push.comp, found on $VOXRG_SHADER_PATH where tests/cli/test_push_names.sh
+ * writes shaders that get one thing wrong. The block's members take the
+ * parameters gain (float) and steps (int) by name, and frame_index, which
+ * the pass computes (vrg_push_uint); set_extra = 1 also sets a value 'extra'
+ * (vrg_push_float). Its outputs are bound by name: in_/out_ bindings of
+ * the shader against the slots color and mask (both rgba16f, so that a
+ * swapped pair passes every check of type and format). */
+#include "voxrg/plugin.h"
+
+static const vrg_slot_desc slots[] = {
+    {.name = "color", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE,
+     .format = VK_FORMAT_R16G16B16A16_SFLOAT, .help = "binding 0: rgba16f storage image"},
+    {.name = "mask", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE,
+     .format = VK_FORMAT_R16G16B16A16_SFLOAT, .help = "binding 1: rgba16f storage image"},
+    {.name = "values", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_STORAGE_WRITE, .size = 16,
+     .help = "binding 2: what the shader read from its push constants"},
+};
+
+static const vrg_param_desc params[] = {
+    {.name = "gain", .type = VRG_PARAM_FLOAT, .default_value = 0.5, .min = 0, .max = 1, .help = "packed into the member 'gain'"},
+    {.name = "steps", .type = VRG_PARAM_INT, .default_value = 3, .min = 0, .max = 100, .help = "packed into the member 'steps'"},
+    {.name = "set_extra", .type = VRG_PARAM_BOOL, .default_value = 0, .min = 0, .max = 1, .help = "also sets 'extra' (vrg_push_float)"},
+};
+
+static const vrg_dispatch_desc dispatches[] = {
+    {.shader = "push.comp"},
+};
+
+static void execute(vrg_pass *pass, VkCommandBuffer cmd)
+{
+    vrg_push_uint(pass, "frame_index", (uint32_t)vrg_pass_frame(pass)->frame_index);
+    if (vrg_param_int(pass, "set_extra"))
+        vrg_push_float(pass, "extra", 1.0f);
+    (void)vrg_dispatch(pass, cmd, &dispatches[0]);
+}
+
+static const vrg_plugin_desc desc = {
+    .abi_version = VRG_ABI_VERSION,
+    .name = "push_probe",
+    .kind = VRG_PLUGIN_PASS,
+    .help = "test: runs push.comp from $VOXRG_SHADER_PATH, its push constants packed by name",
+    .slots = slots,
+    .slot_count = sizeof slots / sizeof slots[0],
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .execute = execute,
+    .dispatches = dispatches,
+    .dispatch_count = sizeof dispatches / sizeof dispatches[0],
+};
+
+VRG_PLUGIN(desc)
