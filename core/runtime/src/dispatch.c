@@ -176,7 +176,7 @@ static int check_members(vrg_pass *p, const _vrg_push_member *members, int count
             fprintf(diag, "%s: error[%s]: push-constant member '%s' is not a scalar float, int, uint or bool, which pass '%s' (plugin %s) packs by name "
                           "(push_size 0): compute vectors in the shader from scalars\n", pm->where, code, pm->name, p->name, pd->name);
             errors++;
-        } else if (param && !param_fits(param, pm)) {
+        } else if (param && param->type != VRG_PARAM_STRING && !param_fits(param, pm)) {
             fprintf(diag, "%s: error[%s]: push-constant member '%s' is a %s, but parameter '%s' of pass '%s' (plugin %s) is a%s %s%s\n", pm->where, code, pm->name,
                     scalar_name(pm->scalar), param->name, p->name, pd->name, param->type == VRG_PARAM_INT ? "n" : "", param_type_name(param->type),
                     param->type == VRG_PARAM_INT && pm->scalar == VRG_PUSH_UINT ? " that may be negative (give it min >= 0)" : "");
@@ -698,6 +698,12 @@ static int pack_by_name(vrg_pass *p, const _vrg_pipeline *pl, unsigned char *out
                 continue;
             }
             word = v->word;
+        } else if (param && param->type == VRG_PARAM_STRING) {
+            fprintf(diag, "%s: error[%s]: push-constant member '%s' has no value: parameter '%s' of pass '%s' (plugin %s) is a string, which is not pushed: "
+                          "set the member with vrg_push_int (e.g. vrg_param_choice's index) before this dispatch\n", pm->where, code, pm->name, param->name, p->name,
+                    pd->name);
+            errors++;
+            continue;
         } else if (param) {
             if (!param_fits(param, pm))
                 continue; /* check_members said */

@@ -522,7 +522,9 @@ typedef struct vrg_dispatch_desc {
  * another type (a float parameter or vrg_push_float: a float member; an
  * int parameter: int or uint, uint only when its min is 0 or more; a bool
  * parameter or vrg_push_bool: a bool (uint in SPIR-V), int or uint;
- * vrg_push_int: int; vrg_push_uint: uint), a member that is no scalar, or
+ * vrg_push_int: int; vrg_push_uint: uint; a string parameter is not
+ * pushed: set its member, e.g. vrg_param_choice's index), a member that
+ * is no scalar, or
  * a value set that names no member, is an error at the member's (or the
  * block's) FILE:LINE and fails the dispatch. Values are consumed by the
  * pass's next vrg_dispatch, whatever it returns: set them before each. */
