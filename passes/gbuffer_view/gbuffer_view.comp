@@ -1,4 +1,13 @@
 #version 460
+// debug mosaic of the G-buffer: normals, depth, albedo, motion
+// The G-buffer as a 2x2 mosaic at full size, each quadrant showing its
+// source at half resolution (nearest, every other pixel):
+//   top-left     normal * 0.5 + 0.5 (sky black)
+//   top-right    linear depth as 1 - depth / far (sky black)
+//   bottom-left  albedo, sRGB-encoded and clamped (sky: sky radiance)
+//   bottom-right motion: hue = direction, brightness = |motion| * motion_scale
+//                (still pixels black)
+// Written as display values into an UNORM image.
 #include "pixel.glsl"
 
 // The device's workgroup shape and rows per invocation: pixel.glsl.
@@ -10,7 +19,8 @@ layout(binding = 3) uniform sampler2D in_albedo;
 layout(binding = 4) uniform sampler2D in_motion;
 layout(binding = 5, rgba8) uniform writeonly image2D out_view;
 layout(push_constant) uniform Params {
-    float far_depth, motion_scale;
+    float far;          // @param default=256 min=0.001 max=1e6 help="depth shown black (blocks)"
+    float motion_scale; // @param default=0.25 min=0 max=1e6 help="brightness per pixel of motion"
 } params;
 
 vec3 srgb_encode(vec3 c)
@@ -45,7 +55,7 @@ void shade(ivec2 p)
             c = texelFetch(in_normal, source(in_normal, q), 0).xyz * 0.5 + 0.5;
     } else if (quad == ivec2(1, 0)) {
         if (!sky)
-            c = vec3(clamp(1.0 - texelFetch(in_depth, source(in_depth, q), 0).r / params.far_depth, 0.0, 1.0));
+            c = vec3(clamp(1.0 - texelFetch(in_depth, source(in_depth, q), 0).r / params.far, 0.0, 1.0));
     } else if (quad == ivec2(0, 1)) {
         c = srgb_encode(texelFetch(in_albedo, source(in_albedo, q), 0).rgb);
     } else {
