@@ -36,23 +36,19 @@ static int create(vrg_pass *pass)
 
 static int camera_moved(const vrg_camera *a, const vrg_camera *b) { return memcmp(a, b, sizeof *a) != 0; }
 
-typedef struct accumulate_push {
-    int32_t reset, max_frames;
-} accumulate_push;
-
-/* every dispatch execute() records: checked by `voxrg check` */
+/* every dispatch execute() records: checked by `voxrg check`; its push
+ * constants are max_frames by name and reset */
 static const vrg_dispatch_desc dispatches[] = {
-    {.shader = "accumulate.comp", .push_size = sizeof(accumulate_push), .pixel_loop = 1},
+    {.shader = "accumulate.comp", .pixel_loop = 1},
 };
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     const vrg_frame_info *f = vrg_pass_frame(pass);
-    accumulate_push pc = {!vrg_res_history_valid(pass, vrg_pass_res(pass, "history")) || f->params_changed || camera_moved(&f->camera, &f->prev_camera), vrg_param_int(pass, "max_frames")};
-    vrg_pass_stat(pass, "reset", pc.reset);
-    vrg_dispatch_desc d = dispatches[0];
-    d.push = &pc;
-    (void)vrg_dispatch(pass, cmd, &d);
+    int reset = !vrg_res_history_valid(pass, vrg_pass_res(pass, "history")) || f->params_changed || camera_moved(&f->camera, &f->prev_camera);
+    vrg_pass_stat(pass, "reset", reset);
+    vrg_push_int(pass, "reset", reset);
+    (void)vrg_dispatch(pass, cmd, &dispatches[0]);
 }
 
 static const vrg_plugin_desc desc = {

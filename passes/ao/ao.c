@@ -31,24 +31,13 @@ static const vrg_slot_desc slots[] = {
      .help = "the scene's TLAS: trace with ray queries (traversal = rayquery)"},
 };
 
-typedef struct ao_push {
-    int32_t rays;
-    float radius;
-    int32_t stratified;
-} ao_push;
-
-/* every dispatch execute() records: checked by `voxrg check` */
+/* every dispatch execute() records: checked by `voxrg check`; its push
+ * constants are the parameters, by name */
 static const vrg_dispatch_desc dispatches[] = {
-    {.shader = "ao.comp", .push_size = sizeof(ao_push), .pixel_loop = 1},
+    {.shader = "ao.comp", .pixel_loop = 1},
 };
 
-static void execute(vrg_pass *pass, VkCommandBuffer cmd)
-{
-    ao_push pc = {vrg_param_int(pass, "rays"), (float)vrg_param(pass, "radius"), vrg_param_int(pass, "stratified")};
-    vrg_dispatch_desc d = dispatches[0];
-    d.push = &pc;
-    (void)vrg_dispatch(pass, cmd, &d);
-}
+static void execute(vrg_pass *pass, VkCommandBuffer cmd) { (void)vrg_dispatch(pass, cmd, &dispatches[0]); }
 
 static const vrg_plugin_desc desc = {
     .abi_version = VRG_ABI_VERSION,

@@ -36,15 +36,11 @@ static const vrg_slot_desc slots[] = {
      .help = "illumination at the size of position (the graph's unless its [resource] section says otherwise)"},
 };
 
-typedef struct upsample_push {
-    int32_t mode;
-    float plane_tolerance;
-} upsample_push;
-
 /* the one dispatch execute() records (every slot, in order): checked by
- * `voxrg check`; mode and tolerance are push constants */
+ * `voxrg check`; its push constants are plane_tolerance by name and the
+ * mode's index */
 static const vrg_dispatch_desc dispatches[] = {
-    {.shader = "bilateral_upsample.comp", .push_size = sizeof(upsample_push), .pixel_loop = 1},
+    {.shader = "bilateral_upsample.comp", .pixel_loop = 1},
 };
 
 static int check(vrg_pass *pass) { return vrg_param_choice(pass, "mode", modes, 3) < 0 ? -1 : 0; }
@@ -54,10 +50,8 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     static const char *low[] = {"low_position", "low_normal"}, *full[] = {"in.normal", "out.illumination"};
     if (vrg_pass_require_same_size(pass, "in.illumination", low, 2) != 0 || vrg_pass_require_same_size(pass, "in.position", full, 2) != 0)
         return;
-    upsample_push pc = {vrg_param_choice(pass, "mode", modes, 3), (float)vrg_param(pass, "plane_tolerance")};
-    vrg_dispatch_desc d = dispatches[0];
-    d.push = &pc;
-    (void)vrg_dispatch(pass, cmd, &d);
+    vrg_push_int(pass, "mode", vrg_param_choice(pass, "mode", modes, 3));
+    (void)vrg_dispatch(pass, cmd, &dispatches[0]);
 }
 
 static const vrg_plugin_desc desc = {

@@ -37,30 +37,20 @@ static const char *const modes[] = {"physical", "thesis"};
 
 static int check(vrg_pass *pass) { return vrg_param_choice(pass, "mode", modes, 2) < 0 ? -1 : 0; }
 
-typedef struct combine_push {
-    float direct_scale, indirect_scale, ao_scale;
-    int32_t mode, has_visibility, has_ao, has_indirect;
-} combine_push;
-
-/* every dispatch execute() records: checked by `voxrg check` */
+/* every dispatch execute() records: checked by `voxrg check`; its push
+ * constants are the scales by name, the mode's index and which optional
+ * inputs are connected */
 static const vrg_dispatch_desc dispatches[] = {
-    {.shader = "combine.comp", .push_size = sizeof(combine_push), .pixel_loop = 1},
+    {.shader = "combine.comp", .pixel_loop = 1},
 };
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    combine_push pc = {
-        (float)vrg_param(pass, "direct_scale"),
-        (float)vrg_param(pass, "indirect_scale"),
-        (float)vrg_param(pass, "ao_scale"),
-        vrg_param_choice(pass, "mode", modes, 2),
-        vrg_res_connected(vrg_pass_res(pass, "visibility")),
-        vrg_res_connected(vrg_pass_res(pass, "ao")),
-        vrg_res_connected(vrg_pass_res(pass, "indirect")),
-    };
-    vrg_dispatch_desc d = dispatches[0];
-    d.push = &pc;
-    (void)vrg_dispatch(pass, cmd, &d);
+    vrg_push_int(pass, "mode", vrg_param_choice(pass, "mode", modes, 2));
+    vrg_push_int(pass, "has_visibility", vrg_res_connected(vrg_pass_res(pass, "visibility")));
+    vrg_push_int(pass, "has_ao", vrg_res_connected(vrg_pass_res(pass, "ao")));
+    vrg_push_int(pass, "has_indirect", vrg_res_connected(vrg_pass_res(pass, "indirect")));
+    (void)vrg_dispatch(pass, cmd, &dispatches[0]);
 }
 
 static const vrg_plugin_desc desc = {

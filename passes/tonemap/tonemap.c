@@ -19,22 +19,16 @@ static const char *const curves[] = {"aces", "reinhard", "linear"};
 
 static int check(vrg_pass *pass) { return vrg_param_choice(pass, "curve", curves, 3) < 0 ? -1 : 0; }
 
-typedef struct tonemap_push {
-    float exposure;
-    int32_t curve;
-} tonemap_push;
-
-/* every dispatch execute() records: checked by `voxrg check` */
+/* every dispatch execute() records: checked by `voxrg check`; its push
+ * constants are exposure by name and the curve's index */
 static const vrg_dispatch_desc dispatches[] = {
-    {.shader = "tonemap.comp", .push_size = sizeof(tonemap_push), .pixel_loop = 1},
+    {.shader = "tonemap.comp", .pixel_loop = 1},
 };
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    tonemap_push pc = {(float)vrg_param(pass, "exposure"), vrg_param_choice(pass, "curve", curves, 3)};
-    vrg_dispatch_desc d = dispatches[0];
-    d.push = &pc;
-    (void)vrg_dispatch(pass, cmd, &d);
+    vrg_push_int(pass, "curve", vrg_param_choice(pass, "curve", curves, 3));
+    (void)vrg_dispatch(pass, cmd, &dispatches[0]);
 }
 
 static const vrg_plugin_desc desc = {

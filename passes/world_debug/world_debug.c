@@ -20,24 +20,16 @@ static const vrg_slot_desc slots[] = {
      .format = VK_FORMAT_R16G16B16A16_SFLOAT, .help = "the view"},
 };
 
-typedef struct world_debug_push {
-    int32_t mode, shadows;
-    float exposure, max_distance;
-    int32_t textured;
-} world_debug_push;
-
-/* every dispatch execute() records: checked by `voxrg check` */
+/* every dispatch execute() records: checked by `voxrg check`; its push
+ * constants are the parameters by name, and textured */
 static const vrg_dispatch_desc dispatches[] = {
-    {.shader = "world_debug.comp", .push_size = sizeof(world_debug_push), .pixel_loop = 1},
+    {.shader = "world_debug.comp", .pixel_loop = 1},
 };
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    world_debug_push pc = {vrg_param_int(pass, "mode"), vrg_param_int(pass, "shadows"), (float)vrg_param(pass, "exposure"),
-            (float)vrg_param(pass, "max_distance"), vrg_res_connected(vrg_pass_res(pass, "atlas"))};
-    vrg_dispatch_desc d = dispatches[0];
-    d.push = &pc;
-    (void)vrg_dispatch(pass, cmd, &d);
+    vrg_push_int(pass, "textured", vrg_res_connected(vrg_pass_res(pass, "atlas")));
+    (void)vrg_dispatch(pass, cmd, &dispatches[0]);
 }
 
 static const vrg_plugin_desc desc = {
