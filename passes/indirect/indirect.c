@@ -54,26 +54,16 @@ static const vrg_slot_desc slots[] = {
      .help = "the scene's TLAS: trace with ray queries (traversal = rayquery)"},
 };
 
-typedef struct indirect_push {
-    int32_t rays;
-    float max_distance;
-    int32_t shadow;
-    int32_t textured;
-    int32_t stratified;
-} indirect_push;
-
-/* every dispatch execute() records: checked by `voxrg check` */
+/* every dispatch execute() records: checked by `voxrg check`; its push
+ * constants are the parameters by name, and textured */
 static const vrg_dispatch_desc dispatches[] = {
-    {.shader = "indirect.comp", .push_size = sizeof(indirect_push), .pixel_loop = 1},
+    {.shader = "indirect.comp", .pixel_loop = 1},
 };
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    indirect_push pc = {vrg_param_int(pass, "rays"), (float)vrg_param(pass, "max_distance"), vrg_param_int(pass, "shadow"),
-            vrg_param_int(pass, "textures") && vrg_res_connected(vrg_pass_res(pass, "atlas")), vrg_param_int(pass, "stratified")};
-    vrg_dispatch_desc d = dispatches[0];
-    d.push = &pc;
-    (void)vrg_dispatch(pass, cmd, &d);
+    vrg_push_int(pass, "textured", vrg_param_int(pass, "textures") && vrg_res_connected(vrg_pass_res(pass, "atlas")));
+    (void)vrg_dispatch(pass, cmd, &dispatches[0]);
 }
 
 static const vrg_plugin_desc desc = {

@@ -43,17 +43,13 @@ static int check(vrg_pass *pass)
     return 0;
 }
 
-typedef struct mean_variance_push {
-    int32_t radius, min_history;
-} mean_variance_push;
-
-/* the dispatches execute() records: checked by `voxrg check`; size and
- * min_history are push constants. The second, with the variance output,
- * instead of the first when that is read. */
+/* the dispatches execute() records: checked by `voxrg check`; their push
+ * constants are min_history by name and the window's radius. The second,
+ * with the variance output, instead of the first when that is read. */
 static const vrg_dispatch_desc dispatches[] = {
-    {.shader = "mean_variance.comp", .push_size = sizeof(mean_variance_push), .pixel_loop = 1,
+    {.shader = "mean_variance.comp", .pixel_loop = 1,
      .bindings = {{"illumination"}, {"moments"}, {"length"}, {"position"}, {"normal"}, {"color"}}},
-    {.shader = "mean_variance.comp", .defines = "VARIANCE", .push_size = sizeof(mean_variance_push), .pixel_loop = 1},
+    {.shader = "mean_variance.comp", .defines = "VARIANCE", .pixel_loop = 1},
 };
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
@@ -61,11 +57,9 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     static const char *same[] = {"illumination", "moments", "length", "position", "normal"};
     if (vrg_pass_require_same_size(pass, "color", same, sizeof same / sizeof same[0]) != 0)
         return;
-    mean_variance_push pc = {vrg_param_int(pass, "size") / 2, vrg_param_int(pass, "min_history")};
+    vrg_push_int(pass, "radius", vrg_param_int(pass, "size") / 2);
     /* the unread debug output is a 1x1 stand-in: left out */
-    vrg_dispatch_desc d = dispatches[vrg_res_connected(vrg_pass_res(pass, "variance")) ? 1 : 0];
-    d.push = &pc;
-    (void)vrg_dispatch(pass, cmd, &d);
+    (void)vrg_dispatch(pass, cmd, &dispatches[vrg_res_connected(vrg_pass_res(pass, "variance")) ? 1 : 0]);
 }
 
 static const vrg_plugin_desc desc = {

@@ -44,30 +44,23 @@ static const vrg_slot_desc slots[] = {
      .help = "the scene's TLAS: trace with ray queries (traversal = rayquery)"},
 };
 
-typedef struct sun_shadow_push {
-    int32_t rays;
-    float sun_radius; /* radians */
-    float max_distance;
-    int32_t stratified;
-} sun_shadow_push;
-
-/* every dispatch execute() records: checked by `voxrg check` */
+/* every dispatch execute() records: checked by `voxrg check`; its push
+ * constants are the parameters by name, the sun's radius in radians and
+ * one ray for a point sun */
 static const vrg_dispatch_desc dispatches[] = {
-    {.shader = "sun_shadow.comp", .push_size = sizeof(sun_shadow_push), .pixel_loop = 1},
-    {.shader = "sun_shadow.comp", .defines = "OCCLUDER=1", .push_size = sizeof(sun_shadow_push), .pixel_loop = 1},
+    {.shader = "sun_shadow.comp", .pixel_loop = 1},
+    {.shader = "sun_shadow.comp", .defines = "OCCLUDER=1", .pixel_loop = 1},
 };
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    sun_shadow_push pc = {vrg_param_int(pass, "rays"), (float)(vrg_param(pass, "sun_radius") * 3.14159265358979323846 / 180.0),
-            (float)vrg_param(pass, "max_distance"), vrg_param_int(pass, "stratified")};
-    if (pc.sun_radius <= 0.0f)
-        pc.rays = 1;
+    float radians = (float)(vrg_param(pass, "sun_radius") * 3.14159265358979323846 / 180.0);
+    vrg_push_float(pass, "sun_radians", radians);
+    if (radians <= 0.0f)
+        vrg_push_int(pass, "rays", 1);
     /* the unconnected output is a 1x1 stand-in: the shader neither writes
      * it nor finds the closest hit the distance needs */
-    vrg_dispatch_desc d = dispatches[vrg_res_connected(vrg_pass_res(pass, "occluder")) ? 1 : 0];
-    d.push = &pc;
-    (void)vrg_dispatch(pass, cmd, &d);
+    (void)vrg_dispatch(pass, cmd, &dispatches[vrg_res_connected(vrg_pass_res(pass, "occluder")) ? 1 : 0]);
 }
 
 static const vrg_plugin_desc desc = {

@@ -18,7 +18,7 @@ layout(binding = 4, r16f) uniform writeonly image2D out_visibility;
 layout(binding = 5, r16f) uniform writeonly image2D out_occluder;
 layout(push_constant) uniform Params {
     int rays;
-    float sun_radius;  // radians; 0: exactly sun_dir, and rays == 1
+    float sun_radians;  // the parameter sun_radius in radians; 0: exactly sun_dir, and rays == 1
     float max_distance;
     int stratified; // rays from stratified points (rng_pair)
 } params;
@@ -57,9 +57,9 @@ void shade(ivec2 p)
     float dist = 0.0;
     for (int i = 0; i < params.rays; i++) {
         vec3 d = l;
-        if (params.sun_radius > 0.0) {
+        if (params.sun_radians > 0.0) {
             vec2 u = rng_pair(r, params.stratified != 0, uint(i), uint(params.rays));
-            d = sample_cone(l, params.sun_radius, u.x, u.y);
+            d = sample_cone(l, params.sun_radians, u.x, u.y);
         }
         if (dot(n, d) <= 0.0)
             continue;
