@@ -36,24 +36,18 @@ static const vrg_slot_desc slots[] = {
      .help = "the scene's TLAS: trace with ray queries (traversal = rayquery)"},
 };
 
-typedef struct gbuffer_push {
-    float max_distance;
-    int32_t textured;
-} gbuffer_push;
-
-/* every dispatch execute() records: checked by `voxrg check` */
+/* every dispatch execute() records: checked by `voxrg check`; their push
+ * constants are max_distance by name and textured */
 static const vrg_dispatch_desc dispatches[] = {
-    {.shader = "gbuffer.comp", .push_size = sizeof(gbuffer_push), .pixel_loop = 1},
-    {.shader = "gbuffer.comp", .defines = "EMISSION=1", .push_size = sizeof(gbuffer_push), .pixel_loop = 1},
+    {.shader = "gbuffer.comp", .pixel_loop = 1},
+    {.shader = "gbuffer.comp", .defines = "EMISSION=1", .pixel_loop = 1},
 };
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    gbuffer_push pc = {(float)vrg_param(pass, "max_distance"), vrg_param_int(pass, "textures") && vrg_res_connected(vrg_pass_res(pass, "atlas"))};
+    vrg_push_int(pass, "textured", vrg_param_int(pass, "textures") && vrg_res_connected(vrg_pass_res(pass, "atlas")));
     /* the unconnected emission is a 1x1 stand-in the shader does not write */
-    vrg_dispatch_desc d = dispatches[vrg_res_connected(vrg_pass_res(pass, "emission")) ? 1 : 0];
-    d.push = &pc;
-    (void)vrg_dispatch(pass, cmd, &d);
+    (void)vrg_dispatch(pass, cmd, &dispatches[vrg_res_connected(vrg_pass_res(pass, "emission")) ? 1 : 0]);
 }
 
 static const vrg_plugin_desc desc = {

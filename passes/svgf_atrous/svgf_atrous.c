@@ -68,18 +68,14 @@ static int create(vrg_pass *pass)
     return 0;
 }
 
-typedef struct atrous_push {
-    float sigma_z, sigma_n, sigma_l, skip_variance;
-    int32_t step;
-} atrous_push;
-
 /* Every dispatch execute() records, which `voxrg check` compiles: the
  * feedback copies, the pack, and the iterations by kernel radius, source
- * and destination (the last one unpacks into color). */
+ * and destination (the last one unpacks into color). The iterations' push
+ * constants: the sigmas and skip_variance by name, and step. */
 #define COPY_FROM(defs, src, access)                                                                                                             \
     {.shader = "svgf_atrous.comp", .defines = defs, .pixel_loop = 1, .bindings = {{src, access}, {"feedback", VRG_ACCESS_STORAGE_WRITE}}}
 #define ITERATION(defs, src, dst)                                                                                                                \
-    {.shader = "svgf_atrous.comp", .defines = defs, .push_size = sizeof(atrous_push), .pixel_loop = 1,                                         \
+    {.shader = "svgf_atrous.comp", .defines = defs, .pixel_loop = 1,                                                                          \
      .bindings = {{src, VRG_ACCESS_STORAGE_READ}, {"position"}, {"frame"}, {dst, VRG_ACCESS_STORAGE_WRITE}}}
 static const vrg_dispatch_desc dispatches[] = {
     COPY_FROM("COPY", "illumination", VRG_ACCESS_SAMPLED),
@@ -111,8 +107,6 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     if (vrg_pass_require_same_size(pass, "color", same, 5) != 0)
         return;
     int n = vrg_param_int(pass, "iterations"), fb = vrg_param_int(pass, "feedback");
-    atrous_push pc = {(float)vrg_param(pass, "sigma_z"), (float)vrg_param(pass, "sigma_n"), (float)vrg_param(pass, "sigma_l"),
-            (float)vrg_param(pass, "skip_variance"), 1};
     int radius = vrg_param_int(pass, "kernel") / 2; /* a define: the taps unroll */
     if (fb == 0 && copy(pass, cmd, "illumination", 0) != 0)
         return;
@@ -128,9 +122,8 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     for (int i = 0; i < n; i++) {
         int last = i == n - 1;
         const char *dst = last ? "color" : spare[i & 1];
-        pc.step = 1 << i;
-        vrg_dispatch_desc d = {.shader = "svgf_atrous.comp", .defines = defines[last], .push = &pc, .push_size = sizeof pc,
-                               .pixel_loop = 1, .domain = dst,
+        vrg_push_int(pass, "step", 1 << i);
+        vrg_dispatch_desc d = {.shader = "svgf_atrous.comp", .defines = defines[last], .pixel_loop = 1, .domain = dst,
                                .bindings = {{src, VRG_ACCESS_STORAGE_READ}, {"position"}, {"frame"}, {dst, VRG_ACCESS_STORAGE_WRITE}}};
         if (vrg_dispatch(pass, cmd, &d) != 0)
             return;

@@ -59,24 +59,21 @@ static int create(vrg_pass *pass)
     return vrg_res_connected(vrg_pass_request_image(pass, "rows", VK_FORMAT_R32G32B32A32_SFLOAT, 1.0f, VRG_ACCESS_STORAGE_WRITE)) ? 0 : -1;
 }
 
-typedef struct variance_push {
-    int32_t radius, min_history;
-} variance_push;
-
 /* every dispatch execute() records, which `voxrg check` compiles: temporal
  * mode's one, spatial mode's rows and columns, and the two that write
- * color, again with the variance output (when it is read) */
+ * color, again with the variance output (when it is read). Their push
+ * constants: min_history by name and the window's radius. */
 enum { TEMPORAL, ROWS, COLUMNS, TEMPORAL_VARIANCE, COLUMNS_VARIANCE };
 static const vrg_dispatch_desc dispatches[] = {
-    [TEMPORAL] = {.shader = "svgf_variance.comp", .defines = "TEMPORAL", .push_size = sizeof(variance_push), .pixel_loop = 1,
+    [TEMPORAL] = {.shader = "svgf_variance.comp", .defines = "TEMPORAL", .pixel_loop = 1,
                   .bindings = {{"illumination"}, {"moments"}, {"length"}, {"position"}, {"normal"}, {"color"}}},
-    [ROWS] = {.shader = "svgf_variance.comp", .defines = "ROWS", .push_size = sizeof(variance_push), .pixel_loop = 1, .domain = "rows",
+    [ROWS] = {.shader = "svgf_variance.comp", .defines = "ROWS", .pixel_loop = 1, .domain = "rows",
               .bindings = {{"illumination"}, {"position"}, {"rows", VRG_ACCESS_STORAGE_WRITE}}},
-    [COLUMNS] = {.shader = "svgf_variance.comp", .defines = "COLUMNS", .push_size = sizeof(variance_push), .pixel_loop = 1,
+    [COLUMNS] = {.shader = "svgf_variance.comp", .defines = "COLUMNS", .pixel_loop = 1,
                  .bindings = {{"illumination"}, {"position"}, {"rows", VRG_ACCESS_STORAGE_READ}, {"color"}}},
-    [TEMPORAL_VARIANCE] = {.shader = "svgf_variance.comp", .defines = "TEMPORAL VARIANCE", .push_size = sizeof(variance_push), .pixel_loop = 1,
+    [TEMPORAL_VARIANCE] = {.shader = "svgf_variance.comp", .defines = "TEMPORAL VARIANCE", .pixel_loop = 1,
                            .bindings = {{"illumination"}, {"moments"}, {"length"}, {"position"}, {"normal"}, {"color"}, {"variance"}}},
-    [COLUMNS_VARIANCE] = {.shader = "svgf_variance.comp", .defines = "COLUMNS VARIANCE", .push_size = sizeof(variance_push), .pixel_loop = 1,
+    [COLUMNS_VARIANCE] = {.shader = "svgf_variance.comp", .defines = "COLUMNS VARIANCE", .pixel_loop = 1,
                           .bindings = {{"illumination"}, {"position"}, {"rows", VRG_ACCESS_STORAGE_READ}, {"color"}, {"variance"}}},
 };
 
@@ -86,16 +83,16 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     if (vrg_pass_require_same_size(pass, "color", scratch, 1) != 0)
         return;
     int mode = vrg_param_choice(pass, "mode", modes, 2);
-    variance_push pc = {vrg_param_int(pass, "size") / 2, vrg_param_int(pass, "min_history")};
+    int radius = vrg_param_int(pass, "size") / 2;
     /* the unread debug output is a 1x1 stand-in: left out */
     int debug = vrg_res_connected(vrg_pass_res(pass, "variance"));
-    vrg_dispatch_desc d[3] = {dispatches[debug ? TEMPORAL_VARIANCE : TEMPORAL], dispatches[ROWS], dispatches[debug ? COLUMNS_VARIANCE : COLUMNS]};
-    for (int i = 0; i < 3; i++)
-        d[i].push = &pc;
-    if (mode == 1)
-        (void)vrg_dispatch(pass, cmd, &d[TEMPORAL]);
-    else if (vrg_dispatch(pass, cmd, &d[ROWS]) == 0)
-        (void)vrg_dispatch(pass, cmd, &d[COLUMNS]);
+    vrg_push_int(pass, "radius", radius);
+    if (mode == 1) {
+        (void)vrg_dispatch(pass, cmd, &dispatches[debug ? TEMPORAL_VARIANCE : TEMPORAL]);
+    } else if (vrg_dispatch(pass, cmd, &dispatches[ROWS]) == 0) {
+        vrg_push_int(pass, "radius", radius);
+        (void)vrg_dispatch(pass, cmd, &dispatches[debug ? COLUMNS_VARIANCE : COLUMNS]);
+    }
 }
 
 static const vrg_plugin_desc desc = {
