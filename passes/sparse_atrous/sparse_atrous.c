@@ -66,16 +66,13 @@ static int create(vrg_pass *pass)
     return 0;
 }
 
-typedef struct sparse_atrous_push {
-    float sigma_z, sigma_l, skip_variance;
-    int32_t step, long_history;
-} sparse_atrous_push;
-
 /* Every dispatch execute() records, which `voxrg check` compiles. The
  * iterations run pong -> ping -> pong ... -> color, so iteration i reads
  * pong when i is even and ping when odd: a pair's entry i & 1 is the one
  * for iteration i, and its copy to feedback reads that iteration's
- * destination. */
+ * destination. The iterations' push constants: sigma_z, sigma_l and
+ * skip_variance by name, step and long_history (which turns on per
+ * iteration). */
 enum {
     COPY_INPUT,
     COPY_COLOR,
@@ -89,7 +86,7 @@ enum {
     {.shader = "sparse_atrous.comp", .defines = defs, .pixel_loop = 1, .domain = "feedback",                                                    \
      .bindings = {{src, access}, {"feedback", VRG_ACCESS_STORAGE_WRITE}}}
 #define ITERATION(defs, src, dst)                                                                                                                \
-    {.shader = "sparse_atrous.comp", .defines = defs, .push_size = sizeof(sparse_atrous_push), .pixel_loop = 1, .domain = dst,                 \
+    {.shader = "sparse_atrous.comp", .defines = defs, .pixel_loop = 1, .domain = dst,                                                         \
      .bindings = {{src, VRG_ACCESS_STORAGE_READ}, {"position"}, {"frame"}, {dst, VRG_ACCESS_STORAGE_WRITE}}}
 static const vrg_dispatch_desc dispatches[] = {
     [COPY_INPUT] = COPY_FROM("COPY", "illumination", VRG_ACCESS_SAMPLED),
@@ -113,19 +110,16 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         return;
     int n = vrg_param_int(pass, "iterations"), fb = vrg_param_int(pass, "feedback");
     int long_history = vrg_param_int(pass, "long_history");
-    sparse_atrous_push pc = {(float)vrg_param(pass, "sigma_z"), (float)vrg_param(pass, "sigma_l"), (float)vrg_param(pass, "skip_variance"), 1, 0};
     if (fb == 0 && vrg_dispatch(pass, cmd, &dispatches[COPY_INPUT]) != 0)
         return;
     if (vrg_dispatch(pass, cmd, &dispatches[vrg_res_connected(vrg_pass_res(pass, "length")) ? PACK_LENGTH : PACK]) != 0)
         return;
     for (int i = 0; i < n; i++) {
         int last = i == n - 1;
-        vrg_dispatch_desc d = dispatches[(last ? FILTER_LAST : FILTER_PACKED) + (i & 1)];
-        d.push = &pc;
-        pc.step = 1 << i;
+        vrg_push_int(pass, "step", 1 << i);
         /* from this iteration on, long-history pixels are copied through */
-        pc.long_history = long_history > 0 && i >= vrg_param_int(pass, "long_iterations") ? long_history : 0;
-        if (vrg_dispatch(pass, cmd, &d) != 0)
+        vrg_push_int(pass, "long_history", long_history > 0 && i >= vrg_param_int(pass, "long_iterations") ? long_history : 0);
+        if (vrg_dispatch(pass, cmd, &dispatches[(last ? FILTER_LAST : FILTER_PACKED) + (i & 1)]) != 0)
             return;
         if (i + 1 == fb && vrg_dispatch(pass, cmd, &dispatches[last ? COPY_COLOR : COPY_PACKED + (i & 1)]) != 0)
             return;
