@@ -57,15 +57,12 @@ static int create(vrg_pass *pass)
     return 0;
 }
 
-typedef struct shadow_denoise_push {
-    float sun_radius, radius_scale, max_radius, sigma_z; /* sun_radius in radians */
-    int32_t taps, iteration;
-} shadow_denoise_push;
-
 /* Every dispatch execute() records, which `voxrg check` compiles: the pack
  * with and without the radius output, and the blurs. These run pong -> ping
  * -> pong ... -> out.visibility, so iteration i reads pong when i is even
- * and ping when odd: a pair's entry i & 1 is the one for iteration i. */
+ * and ping when odd: a pair's entry i & 1 is the one for iteration i.
+ * Push constants: the parameters by name, the sun's radius in radians and
+ * the iteration. */
 enum {
     PACK,
     PACK_RADIUS, /* radius is read: write it */
@@ -73,10 +70,10 @@ enum {
     BLUR_LAST = BLUR_PACKED + 2, /* + (i & 1): pong, ping -> out.visibility */
 };
 #define PACK_INTO_PONG(defs)                                                                                                                     \
-    {.shader = "shadow_denoise.comp", .defines = defs, .push_size = sizeof(shadow_denoise_push), .pixel_loop = 1, .domain = "pong",            \
+    {.shader = "shadow_denoise.comp", .defines = defs, .pixel_loop = 1, .domain = "pong",                                                       \
      .bindings = {{"in.visibility"}, {"occluder"}, {"position"}, {"normal"}, {"frame"}, {"pong", VRG_ACCESS_STORAGE_WRITE}, {"radius"}}}
 #define BLUR(defs, src, dst)                                                                                                                     \
-    {.shader = "shadow_denoise.comp", .defines = defs, .push_size = sizeof(shadow_denoise_push), .pixel_loop = 1, .domain = dst,               \
+    {.shader = "shadow_denoise.comp", .defines = defs, .pixel_loop = 1, .domain = dst,                                                          \
      .bindings = {{src, VRG_ACCESS_STORAGE_READ}, {"frame"}, {dst, VRG_ACCESS_STORAGE_WRITE}}}
 static const vrg_dispatch_desc dispatches[] = {
     [PACK] = PACK_INTO_PONG("PACK"),
@@ -92,19 +89,17 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     static const char *same[] = {"in.visibility", "occluder", "position", "normal", "ping", "pong"};
     if (vrg_pass_require_same_size(pass, "out.visibility", same, 6) != 0)
         return;
-    shadow_denoise_push pc = {(float)(vrg_param(pass, "sun_radius") * 3.14159265358979323846 / 180.0), (float)vrg_param(pass, "radius_scale"),
-            (float)vrg_param(pass, "max_radius"), (float)vrg_param(pass, "sigma_z"), vrg_param_int(pass, "taps"), 0};
+    float sun_radians = (float)(vrg_param(pass, "sun_radius") * 3.14159265358979323846 / 180.0);
     /* an unread radius is a 1x1 stand-in: the shader leaves it alone */
-    vrg_dispatch_desc pack = dispatches[vrg_res_connected(vrg_pass_res(pass, "radius")) ? PACK_RADIUS : PACK];
-    pack.push = &pc;
-    if (vrg_dispatch(pass, cmd, &pack) != 0)
+    vrg_push_float(pass, "sun_radians", sun_radians);
+    vrg_push_int(pass, "iteration", 0);
+    if (vrg_dispatch(pass, cmd, &dispatches[vrg_res_connected(vrg_pass_res(pass, "radius")) ? PACK_RADIUS : PACK]) != 0)
         return;
     int n = vrg_param_int(pass, "iterations");
     for (int i = 0; i < n; i++) {
-        vrg_dispatch_desc d = dispatches[(i == n - 1 ? BLUR_LAST : BLUR_PACKED) + (i & 1)];
-        d.push = &pc;
-        pc.iteration = i;
-        if (vrg_dispatch(pass, cmd, &d) != 0)
+        vrg_push_float(pass, "sun_radians", sun_radians);
+        vrg_push_int(pass, "iteration", i);
+        if (vrg_dispatch(pass, cmd, &dispatches[(i == n - 1 ? BLUR_LAST : BLUR_PACKED) + (i & 1)]) != 0)
             return;
     }
 }

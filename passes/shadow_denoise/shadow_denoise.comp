@@ -14,7 +14,7 @@
 layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
 
 layout(push_constant) uniform Params {
-    float sun_radius;    // radians
+    float sun_radians;   // the parameter sun_radius in radians
     float radius_scale;  // filter radius in penumbra half-widths
     float max_radius;    // pixels
     float sigma_z;
@@ -79,7 +79,7 @@ void shade(ivec2 p)
         float d = occluder_near(p, size, n, plane);
         // penumbra half-width d tan(a), in pixels
         if (d >= 0.0)
-            radius = min(params.radius_scale * d * tan(params.sun_radius) / max(footprint, 1e-6), params.max_radius);
+            radius = min(params.radius_scale * d * tan(params.sun_radians) / max(footprint, 1e-6), params.max_radius);
     }
     imageStore(out_dst, p, uvec4(floatBitsToUint(v), packHalf2x16(vec2(radius, footprint)), floatBitsToUint(plane), x.w == 0.0 ? SKY : axis_of(n)));
 #ifdef RADIUS_OUT
