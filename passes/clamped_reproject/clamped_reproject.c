@@ -99,29 +99,21 @@ static const vrg_slot_desc slots[] = {
              "(written only when read)"},
 };
 
-typedef struct clamped_reproject_push {
-    float alpha, fast_alpha, clamp_k, antilag, antilag_threshold, normal_threshold, plane_distance, footprints;
-    int32_t max_length, cubic, nearest, fallback, history_valid;
-} clamped_reproject_push;
-
-/* the DEBUG dispatch's: which debug outputs are read (DEBUG_* bits) */
-typedef struct clamped_reproject_debug_push {
-    clamped_reproject_push base;
-    int32_t outputs;
-} clamped_reproject_debug_push;
+/* the DEBUG dispatch's debug_outputs: which debug outputs are read */
 enum { DEBUG_DISOCCLUSION = 1, DEBUG_REPROJECTION = 2, DEBUG_CLAMP = 4 };
 
-/* the dispatches execute() records: checked by `voxrg check`; the
- * parameters are all push constants. The main one binds the 16 slots
+/* the dispatches execute() records: checked by `voxrg check`; their push
+ * constants are the parameters by name, history_valid and (DEBUG)
+ * debug_outputs. The main one binds the 16 slots
  * before the debug outputs, in order; the DEBUG one, recorded only when a
  * debug output is read, the inputs and the debug outputs. */
 #define CLAMPED_INPUTS                                                                                                                           \
     {"illumination"}, {"motion"}, {"position"}, {"normal"}, {"ids"}, {"history"}, {"prev_fast"}, {"prev_moments"}, {"prev_position"},          \
         {"prev_normal"}, {"prev_ids"}, {"frame"}
 static const vrg_dispatch_desc dispatches[] = {
-    {.shader = "clamped_reproject.comp", .push_size = sizeof(clamped_reproject_push), .pixel_loop = 1,
+    {.shader = "clamped_reproject.comp", .pixel_loop = 1,
      .bindings = {CLAMPED_INPUTS, {"color"}, {"fast"}, {"moments"}, {"length"}}},
-    {.shader = "clamped_reproject.comp", .defines = "DEBUG", .push_size = sizeof(clamped_reproject_debug_push), .pixel_loop = 1,
+    {.shader = "clamped_reproject.comp", .defines = "DEBUG", .pixel_loop = 1,
      .domain = "color", .bindings = {CLAMPED_INPUTS, {"disocclusion"}, {"reprojection"}, {"clamp"}}},
 };
 
@@ -137,33 +129,17 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     int valid = 1;
     for (unsigned i = 0; i < sizeof past / sizeof past[0]; i++)
         valid &= vrg_res_history_valid(pass, vrg_pass_res(pass, past[i]));
-    clamped_reproject_debug_push pc = {{
-        (float)vrg_param(pass, "alpha"),
-        (float)vrg_param(pass, "fast_alpha"),
-        (float)vrg_param(pass, "clamp_k"),
-        (float)vrg_param(pass, "antilag"),
-        (float)vrg_param(pass, "antilag_threshold"),
-        (float)vrg_param(pass, "normal_threshold"),
-        (float)vrg_param(pass, "plane_distance"),
-        (float)vrg_param(pass, "footprints"),
-        vrg_param_int(pass, "max_length"),
-        vrg_param_int(pass, "cubic"),
-        vrg_param_int(pass, "nearest"),
-        vrg_param_int(pass, "fallback"),
-        valid,
-    }};
-    vrg_dispatch_desc d = dispatches[0];
-    d.push = &pc;
-    if (vrg_dispatch(pass, cmd, &d) != 0)
+    vrg_push_int(pass, "history_valid", valid);
+    if (vrg_dispatch(pass, cmd, &dispatches[0]) != 0)
         return;
     /* unread debug outputs are 1x1 stand-ins: the shader leaves them alone */
-    pc.outputs = (vrg_res_connected(vrg_pass_res(pass, "disocclusion")) ? DEBUG_DISOCCLUSION : 0) |
-                 (vrg_res_connected(vrg_pass_res(pass, "reprojection")) ? DEBUG_REPROJECTION : 0) |
-                 (vrg_res_connected(vrg_pass_res(pass, "clamp")) ? DEBUG_CLAMP : 0);
-    if (pc.outputs) {
-        d = dispatches[1];
-        d.push = &pc;
-        (void)vrg_dispatch(pass, cmd, &d);
+    int outputs = (vrg_res_connected(vrg_pass_res(pass, "disocclusion")) ? DEBUG_DISOCCLUSION : 0) |
+                  (vrg_res_connected(vrg_pass_res(pass, "reprojection")) ? DEBUG_REPROJECTION : 0) |
+                  (vrg_res_connected(vrg_pass_res(pass, "clamp")) ? DEBUG_CLAMP : 0);
+    if (outputs) {
+        vrg_push_int(pass, "history_valid", valid);
+        vrg_push_int(pass, "debug_outputs", outputs);
+        (void)vrg_dispatch(pass, cmd, &dispatches[1]);
     }
 }
 
