@@ -68,26 +68,19 @@ static const vrg_slot_desc slots[] = {
              "fallback, 0 none (written only when read)"},
 };
 
-typedef struct svgf_reproject_push {
-    float alpha, moments_alpha, normal_threshold, plane_distance;
-    int32_t length_alpha, max_length, history_valid;
-} svgf_reproject_push;
-
-/* the DEBUG variant's: which debug outputs are read (DEBUG_* bits) */
-typedef struct svgf_reproject_debug_push {
-    svgf_reproject_push base;
-    int32_t outputs;
-} svgf_reproject_debug_push;
+/* the DEBUG variant's debug_outputs: which debug outputs are read */
 enum { DEBUG_DISOCCLUSION = 1, DEBUG_REPROJECTION = 2 };
 
-/* every dispatch execute() records: checked by `voxrg check`. The first
+/* every dispatch execute() records: checked by `voxrg check`; their push
+ * constants are the parameters by name, history_valid and (DEBUG)
+ * debug_outputs. The first
  * binds the slots before the debug outputs; the second, recorded instead
  * when a debug output is read, every slot */
 static const vrg_dispatch_desc dispatches[] = {
-    {.shader = "svgf_reproject.comp", .push_size = sizeof(svgf_reproject_push), .pixel_loop = 1,
+    {.shader = "svgf_reproject.comp", .pixel_loop = 1,
      .bindings = {{"illumination"}, {"motion"}, {"position"}, {"normal"}, {"ids"}, {"history"}, {"prev_moments"}, {"prev_length"},
                   {"prev_position"}, {"prev_normal"}, {"prev_ids"}, {"color"}, {"moments"}, {"length"}}},
-    {.shader = "svgf_reproject.comp", .defines = "DEBUG", .push_size = sizeof(svgf_reproject_debug_push), .pixel_loop = 1},
+    {.shader = "svgf_reproject.comp", .defines = "DEBUG", .pixel_loop = 1},
 };
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
@@ -102,21 +95,13 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     int valid = 1;
     for (unsigned i = 0; i < sizeof past / sizeof past[0]; i++)
         valid &= vrg_res_history_valid(pass, vrg_pass_res(pass, past[i]));
-    svgf_reproject_debug_push pc = {{
-        (float)vrg_param(pass, "alpha"),
-        (float)vrg_param(pass, "moments_alpha"),
-        (float)vrg_param(pass, "normal_threshold"),
-        (float)vrg_param(pass, "plane_distance"),
-        vrg_param_int(pass, "length_alpha"),
-        vrg_param_int(pass, "max_length"),
-        valid,
-    }};
     /* unread debug outputs are 1x1 stand-ins: the shader leaves them alone */
-    pc.outputs = (vrg_res_connected(vrg_pass_res(pass, "disocclusion")) ? DEBUG_DISOCCLUSION : 0) |
-                 (vrg_res_connected(vrg_pass_res(pass, "reprojection")) ? DEBUG_REPROJECTION : 0);
-    vrg_dispatch_desc d = dispatches[pc.outputs ? 1 : 0];
-    d.push = &pc;
-    (void)vrg_dispatch(pass, cmd, &d);
+    int outputs = (vrg_res_connected(vrg_pass_res(pass, "disocclusion")) ? DEBUG_DISOCCLUSION : 0) |
+                  (vrg_res_connected(vrg_pass_res(pass, "reprojection")) ? DEBUG_REPROJECTION : 0);
+    vrg_push_int(pass, "history_valid", valid);
+    if (outputs)
+        vrg_push_int(pass, "debug_outputs", outputs);
+    (void)vrg_dispatch(pass, cmd, &dispatches[outputs ? 1 : 0]);
 }
 
 static const vrg_plugin_desc desc = {
