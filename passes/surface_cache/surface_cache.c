@@ -154,16 +154,6 @@ static int create(vrg_pass *pass)
     return s->readback ? 0 : -1;
 }
 
-typedef struct surface_cache_push {
-    float cell_pixels;
-    uint32_t max_frames, evict_frames, mask, frame, channels;
-    uint32_t evict_first, evict_slots;
-    int32_t coarse_levels;
-    float young_samples;
-    int32_t use_fallback;
-    int32_t bilinear;
-} surface_cache_push;
-
 enum { EVICT, INSERT, RESOLVE, GATHER, EVICT_PER_SLOT, GATHER_OCCUPANCY }; /* EVICT on a GPU; GATHER when occupancy is read */
 /* How evict and resolve split their slots among invocations. A CPU device
  * (lavapipe) runs every invocation with its own set-up, so few long ones
@@ -178,19 +168,21 @@ enum { EVICT, INSERT, RESOLVE, GATHER, EVICT_PER_SLOT, GATHER_OCCUPANCY }; /* EV
 #define CPU_SLOTS_PER_INVOCATION 16u /* EVICT's on a CPU: surface_cache.comp's default */
 #define EVICT_SHARES 4u              /* each frame looks at one share of the table for cells to free */
 #define CPU_RESOLVE_GROUPS 256u      /* invocations striding through the listed cells, on a CPU */
+/* Push constants: the parameters by name, and what the pass computes each
+ * frame (set before each dispatch). */
 #define TABLE_BINDINGS {"signal"}, {"position"}, {"normal"}, {"frame"}, {"table"}
 static const vrg_dispatch_desc dispatches[] = {
-    [EVICT] = {.shader = "surface_cache.comp", .defines = "EVICT", .push_size = sizeof(surface_cache_push), .groups_x = 1, .groups_y = 1,
+    [EVICT] = {.shader = "surface_cache.comp", .defines = "EVICT", .groups_x = 1, .groups_y = 1,
                .groups_z = 1, .bindings = {TABLE_BINDINGS}},
-    [INSERT] = {.shader = "surface_cache.comp", .defines = "INSERT", .push_size = sizeof(surface_cache_push), .pixel_loop = 1,
+    [INSERT] = {.shader = "surface_cache.comp", .defines = "INSERT", .pixel_loop = 1,
                 .domain = "color", .bindings = {TABLE_BINDINGS}},
-    [RESOLVE] = {.shader = "surface_cache.comp", .defines = "RESOLVE", .push_size = sizeof(surface_cache_push), .groups_x = CPU_RESOLVE_GROUPS,
+    [RESOLVE] = {.shader = "surface_cache.comp", .defines = "RESOLVE", .groups_x = CPU_RESOLVE_GROUPS,
                  .groups_y = 1, .groups_z = 1, .bindings = {TABLE_BINDINGS}},
-    [GATHER] = {.shader = "surface_cache.comp", .defines = "GATHER", .push_size = sizeof(surface_cache_push), .pixel_loop = 1,
+    [GATHER] = {.shader = "surface_cache.comp", .defines = "GATHER", .pixel_loop = 1,
                 .domain = "color", .bindings = {{"signal"}, {"position"}, {"normal"}, {"frame"}, {"table", VRG_ACCESS_TEXEL_READ}, {"color"}, {"fallback"}}},
-    [EVICT_PER_SLOT] = {.shader = "surface_cache.comp", .defines = "EVICT SLOTS_PER_INVOCATION=1u", .push_size = sizeof(surface_cache_push),
+    [EVICT_PER_SLOT] = {.shader = "surface_cache.comp", .defines = "EVICT SLOTS_PER_INVOCATION=1u",
                         .groups_x = 1, .groups_y = 1, .groups_z = 1, .bindings = {TABLE_BINDINGS}},
-    [GATHER_OCCUPANCY] = {.shader = "surface_cache.comp", .defines = "GATHER OCCUPANCY", .push_size = sizeof(surface_cache_push), .pixel_loop = 1,
+    [GATHER_OCCUPANCY] = {.shader = "surface_cache.comp", .defines = "GATHER OCCUPANCY", .pixel_loop = 1,
                           .domain = "color",
                           .bindings = {{"signal"}, {"position"}, {"normal"}, {"frame"}, {"table", VRG_ACCESS_TEXEL_READ}, {"color"}, {"fallback"},
                                        {"occupancy"}}},
@@ -233,18 +225,6 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         vkCmdFillBuffer(cmd, buf, 0, VK_WHOLE_SIZE, 0);
     }
     uint32_t cells = (uint32_t)vrg_param_int(pass, "cells"), share = cells / EVICT_SHARES;
-    surface_cache_push pc = {(float)vrg_param(pass, "cell_pixels"),
-                             (uint32_t)vrg_param_int(pass, "max_frames"),
-                             (uint32_t)vrg_param_int(pass, "evict_frames"),
-                             cells - 1,
-                             (uint32_t)f->frame_index,
-                             (uint32_t)vrg_param_int(pass, "channels"),
-                             (uint32_t)(f->frame_index % EVICT_SHARES) * share,
-                             share,
-                             vrg_param_int(pass, "coarse_levels"),
-                             (float)vrg_param(pass, "young_samples"),
-                             vrg_res_connected(vrg_pass_res(pass, "fallback")),
-                             vrg_param_int(pass, "bilinear")};
     int per_slot = vrg_param_int(pass, "slot_invocations");
     if (per_slot < 0)
         per_slot = !s->cpu;
@@ -257,7 +237,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     uint32_t resolve_groups = CPU_RESOLVE_GROUPS;
     if (per_slot) {
         VkExtent2D size = vrg_res_extent(pass, vrg_pass_res(pass, "color"));
-        uint64_t listed_most = (uint64_t)size.width * size.height * (1u + (uint32_t)pc.coarse_levels);
+        uint64_t listed_most = (uint64_t)size.width * size.height * (1u + (uint32_t)vrg_param_int(pass, "coarse_levels"));
         if (listed_most > cells)
             listed_most = cells;
         uint64_t groups = (listed_most + GROUP - 1) / GROUP;
@@ -270,7 +250,11 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     int occupancy = vrg_res_connected(vrg_pass_res(pass, "occupancy"));
     for (int i = EVICT; i <= GATHER; i++) {
         vrg_dispatch_desc d = dispatches[i == EVICT && evict_per_slot ? EVICT_PER_SLOT : i == GATHER && occupancy ? GATHER_OCCUPANCY : i];
-        d.push = &pc;
+        vrg_push_uint(pass, "mask", cells - 1);
+        vrg_push_uint(pass, "frame_index", (uint32_t)f->frame_index);
+        vrg_push_uint(pass, "evict_first", (uint32_t)(f->frame_index % EVICT_SHARES) * share);
+        vrg_push_uint(pass, "evict_slots", share);
+        vrg_push_int(pass, "use_fallback", vrg_res_connected(vrg_pass_res(pass, "fallback")));
         if (i == EVICT)
             d.groups_x = (share + GROUP * evict_run - 1) / (GROUP * evict_run);
         if (i == RESOLVE)
