@@ -210,8 +210,9 @@ def cmake_build():
 
 def hot_reload(text):
     originals = {n: open(fog(n)).read() for n in ("fog.c", "fog.comp")}
-    store = "imageStore(out_tinted, p, vec4(c.rgb * pc.tint.rgb, c.a));"
-    strength = 'float strength = (float)vrg_param(pass, "strength");'
+    store = "imageStore(out_tinted, p, vec4(c.rgb * tint, c.a));"
+    # the C pass pushes its parameters by name: the edit sets strength itself
+    strength = "    (void)vrg_dispatch(pass, cmd, &dispatches[0]);"
     if not (check(store in originals["fog.comp"], "fog.comp has no line '%s' to edit" % store) and
             check(strength in originals["fog.c"], "fog.c has no line '%s' to edit" % strength)):
         return
@@ -221,7 +222,7 @@ def hot_reload(text):
 
         # the shader: the tint alone, so every pixel is the tint (1, 0.68, 0.44)
         k = w.settle()
-        save(fog("fog.comp"), originals["fog.comp"].replace(store, "imageStore(out_tinted, p, vec4(pc.tint.rgb, 1.0));"))
+        save(fog("fog.comp"), originals["fog.comp"].replace(store, "imageStore(out_tinted, p, vec4(tint, 1.0));"))
         check(w.first(k, lambda im: uniform(im, warm_red)) is not None,
               "hot reload: the edited fog.comp (the tint alone) did not show within %d frames of frame %d" % (BOUND, k))
 
@@ -230,7 +231,7 @@ def hot_reload(text):
         k = w.settle()
         os.utime(fog("fog.ini"), (time.time() - 3600, time.time() - 3600))
         before = len(w.reloads())
-        save(fog("fog.c"), originals["fog.c"].replace(strength, "float strength = 0;"))
+        save(fog("fog.c"), originals["fog.c"].replace(strength, '    vrg_push_float(pass, "strength", 0.0f);\n' + strength))
         started = time.time()
         built = cmake_build()
         check(built.returncode == 0, "hot reload: cmake --build of the edited fog.c failed:\n%s" % built.stdout[-3000:])
@@ -252,7 +253,7 @@ def hot_reload(text):
         check(all(uniform(w.frame(j), grey) for j in range(k + 1, k + 4)), "hot reload: the last good version stopped after the broken shader")
 
         # a build that fails: no new fog.so, the running version stays
-        save(fog("fog.c"), originals["fog.c"].replace(strength, "float strength = ;"))
+        save(fog("fog.c"), originals["fog.c"].replace(strength, '    vrg_push_float(pass, "strength", );\n' + strength))
         check(cmake_build().returncode != 0, "hot reload: fog.c with a syntax error built")
         k = w.latest()
         check(all(uniform(w.frame(j), grey) for j in range(k + 1, k + 4)), "hot reload: the running version changed after a failed build")
