@@ -110,6 +110,11 @@ render 0 "a value the block declares" --set probe.set_extra=1 --dump values
 words=$(od -An -tx4 -v "$out/img/values.bin" 2>/dev/null | tr -s ' ' | sed 's/^ //')
 if [ "$words" = "3f000000 00000003 00000000 3f800000" ]; then ok; else bad "extra: the shader read '$words'"; fi
 
+# a value set after the last dispatch: no dispatch reads it
+write_shader "$outputs" "$members" "0u"
+render 1 "a value set after the last dispatch" --set probe.set_late=1
+has stderr "error\[VRG-E062\]: pass 'probe' \(plugin [^)]*\): 'frame_index' was set with vrg_push_uint after the pass's last dispatch: no dispatch read it" "the value no dispatch read"
+
 # a vector member cannot be packed by name
 write_shader "$outputs" "$members
     vec2 extra;" "0u"

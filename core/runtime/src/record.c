@@ -281,6 +281,11 @@ int _vrg_record_frame(vrg_graph *g)
         else
             p->plugin->desc->execute(p, cmd);
         _vrg_running_leave(before);
+        /* a value pushed by name that no dispatch read: the pass's mistake */
+        if (p->push_count && !p->failed)
+            _vrg_pass_fail(p, VRG_E_PASS_API_MISUSE, "'%s' was set with %s after the pass's last dispatch: no dispatch read it", p->push_values[0].name,
+                           p->push_values[0].setter);
+        p->push_count = 0;
         g->pass_cpu_ms[g->schedule[k]] = now_ms() - t0;
         p->cmd = VK_NULL_HANDLE;
         failed |= p->failed;

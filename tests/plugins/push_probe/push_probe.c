@@ -2,10 +2,11 @@
  * of push.comp, found on $VOXRG_SHADER_PATH where tests/cli/test_push_names.sh
  * writes shaders that get one thing wrong. The block's members take the
  * parameters gain (float) and steps (int) by name, and frame_index, which
- * the pass computes (vrg_push_uint); set_extra = 1 also sets a value 'extra'
- * (vrg_push_float). Its outputs are bound by name: in_/out_ bindings of
- * the shader against the slots color and mask (both rgba16f, so that a
- * swapped pair passes every check of type and format). */
+ * the pass computes (vrg_push_uint); set_extra = 1 also sets a value
+ * 'extra' (vrg_push_float), set_late = 1 one after the dispatch. Its
+ * outputs are bound by name: in_/out_ bindings of the shader against the
+ * slots color and mask (both rgba16f, so that a swapped pair passes every
+ * check of type and format). */
 #include "voxrg/plugin.h"
 
 static const vrg_slot_desc slots[] = {
@@ -21,6 +22,7 @@ static const vrg_param_desc params[] = {
     {.name = "gain", .type = VRG_PARAM_FLOAT, .default_value = 0.5, .min = 0, .max = 1, .help = "packed into the member 'gain'"},
     {.name = "steps", .type = VRG_PARAM_INT, .default_value = 3, .min = 0, .max = 100, .help = "packed into the member 'steps'"},
     {.name = "set_extra", .type = VRG_PARAM_BOOL, .default_value = 0, .min = 0, .max = 1, .help = "also sets 'extra' (vrg_push_float)"},
+    {.name = "set_late", .type = VRG_PARAM_BOOL, .default_value = 0, .min = 0, .max = 1, .help = "sets 'frame_index' again after the dispatch"},
 };
 
 static const vrg_dispatch_desc dispatches[] = {
@@ -33,6 +35,8 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     if (vrg_param_int(pass, "set_extra"))
         vrg_push_float(pass, "extra", 1.0f);
     (void)vrg_dispatch(pass, cmd, &dispatches[0]);
+    if (vrg_param_int(pass, "set_late"))
+        vrg_push_uint(pass, "frame_index", 0);
 }
 
 static const vrg_plugin_desc desc = {

@@ -527,7 +527,8 @@ typedef struct vrg_dispatch_desc {
  * is no scalar, or
  * a value set that names no member, is an error at the member's (or the
  * block's) FILE:LINE and fails the dispatch. Values are consumed by the
- * pass's next vrg_dispatch, whatever it returns: set them before each. */
+ * pass's next vrg_dispatch, whatever it returns: set them before each; one
+ * set after execute()'s last dispatch fails the frame (VRG-E062). */
 void vrg_push_float(vrg_pass *pass, const char *member, float value);
 void vrg_push_int(vrg_pass *pass, const char *member, int32_t value);
 void vrg_push_uint(vrg_pass *pass, const char *member, uint32_t value);
