@@ -104,17 +104,13 @@ enum { DEBUG_DISOCCLUSION = 1, DEBUG_REPROJECTION = 2, DEBUG_CLAMP = 4 };
 
 /* the dispatches execute() records: checked by `voxrg check`; their push
  * constants are the parameters by name, history_valid and (DEBUG)
- * debug_outputs. The main one binds the 16 slots
- * before the debug outputs, in order; the DEBUG one, recorded only when a
+ * debug_outputs. Both bind by the shader's binding names: the main one the
+ * 16 slots before the debug outputs; the DEBUG one, recorded only when a
  * debug output is read, the inputs and the debug outputs. */
-#define CLAMPED_INPUTS                                                                                                                           \
-    {"illumination"}, {"motion"}, {"position"}, {"normal"}, {"ids"}, {"history"}, {"prev_fast"}, {"prev_moments"}, {"prev_position"},          \
-        {"prev_normal"}, {"prev_ids"}, {"frame"}
 static const vrg_dispatch_desc dispatches[] = {
-    {.shader = "clamped_reproject.comp", .pixel_loop = 1,
-     .bindings = {CLAMPED_INPUTS, {"color"}, {"fast"}, {"moments"}, {"length"}}},
+    {.shader = "clamped_reproject.comp", .pixel_loop = 1},
     {.shader = "clamped_reproject.comp", .defines = "DEBUG", .pixel_loop = 1,
-     .domain = "color", .bindings = {CLAMPED_INPUTS, {"disocclusion"}, {"reprojection"}, {"clamp"}}},
+     .domain = "color"},
 };
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)

@@ -45,10 +45,10 @@ static int check(vrg_pass *pass)
 
 /* the dispatches execute() records: checked by `voxrg check`; their push
  * constants are min_history by name and the window's radius. The second,
- * with the variance output, instead of the first when that is read. */
+ * with the variance output, instead of the first when that is read. Both
+ * bind by the shader's binding names (the first leaves variance out). */
 static const vrg_dispatch_desc dispatches[] = {
-    {.shader = "mean_variance.comp", .pixel_loop = 1,
-     .bindings = {{"illumination"}, {"moments"}, {"length"}, {"position"}, {"normal"}, {"color"}}},
+    {.shader = "mean_variance.comp", .pixel_loop = 1},
     {.shader = "mean_variance.comp", .defines = "VARIANCE", .pixel_loop = 1},
 };
 

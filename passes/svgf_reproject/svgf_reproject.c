@@ -75,11 +75,10 @@ enum { DEBUG_DISOCCLUSION = 1, DEBUG_REPROJECTION = 2 };
  * constants are the parameters by name, history_valid and (DEBUG)
  * debug_outputs. The first
  * binds the slots before the debug outputs; the second, recorded instead
- * when a debug output is read, every slot */
+ * when a debug output is read, every slot: both by the shader's binding
+ * names */
 static const vrg_dispatch_desc dispatches[] = {
-    {.shader = "svgf_reproject.comp", .pixel_loop = 1,
-     .bindings = {{"illumination"}, {"motion"}, {"position"}, {"normal"}, {"ids"}, {"history"}, {"prev_moments"}, {"prev_length"},
-                  {"prev_position"}, {"prev_normal"}, {"prev_ids"}, {"color"}, {"moments"}, {"length"}}},
+    {.shader = "svgf_reproject.comp", .pixel_loop = 1},
     {.shader = "svgf_reproject.comp", .defines = "DEBUG", .pixel_loop = 1},
 };
 

@@ -62,17 +62,17 @@ static int create(vrg_pass *pass)
 /* every dispatch execute() records, which `voxrg check` compiles: temporal
  * mode's one, spatial mode's rows and columns, and the two that write
  * color, again with the variance output (when it is read). Their push
- * constants: min_history by name and the window's radius. */
+ * constants: min_history by name and the window's radius. The temporal
+ * ones bind by the shader's binding names; the spatial ones name theirs,
+ * the internal rows among them. */
 enum { TEMPORAL, ROWS, COLUMNS, TEMPORAL_VARIANCE, COLUMNS_VARIANCE };
 static const vrg_dispatch_desc dispatches[] = {
-    [TEMPORAL] = {.shader = "svgf_variance.comp", .defines = "TEMPORAL", .pixel_loop = 1,
-                  .bindings = {{"illumination"}, {"moments"}, {"length"}, {"position"}, {"normal"}, {"color"}}},
+    [TEMPORAL] = {.shader = "svgf_variance.comp", .defines = "TEMPORAL", .pixel_loop = 1},
     [ROWS] = {.shader = "svgf_variance.comp", .defines = "ROWS", .pixel_loop = 1, .domain = "rows",
               .bindings = {{"illumination"}, {"position"}, {"rows", VRG_ACCESS_STORAGE_WRITE}}},
     [COLUMNS] = {.shader = "svgf_variance.comp", .defines = "COLUMNS", .pixel_loop = 1,
                  .bindings = {{"illumination"}, {"position"}, {"rows", VRG_ACCESS_STORAGE_READ}, {"color"}}},
-    [TEMPORAL_VARIANCE] = {.shader = "svgf_variance.comp", .defines = "TEMPORAL VARIANCE", .pixel_loop = 1,
-                           .bindings = {{"illumination"}, {"moments"}, {"length"}, {"position"}, {"normal"}, {"color"}, {"variance"}}},
+    [TEMPORAL_VARIANCE] = {.shader = "svgf_variance.comp", .defines = "TEMPORAL VARIANCE", .pixel_loop = 1},
     [COLUMNS_VARIANCE] = {.shader = "svgf_variance.comp", .defines = "COLUMNS VARIANCE", .pixel_loop = 1,
                           .bindings = {{"illumination"}, {"position"}, {"rows", VRG_ACCESS_STORAGE_READ}, {"color"}, {"variance"}}},
 };

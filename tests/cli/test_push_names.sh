@@ -121,11 +121,28 @@ write_shader "$outputs" "$members
 render 1 "a vector member"
 has stderr "^$pos:10: error\[VRG-E082\]: push-constant member 'extra' is not a scalar float, int, uint or bool" "the vector member at its line"
 
-# two same-typed bindings swapped (same format, same access): every other
-# check passes; the names bind them
+# bound by the shader's names: the bindings in any order (the buffer first)
+write_shader 'layout(binding = 1, rgba16f) uniform writeonly image2D out_color;
+layout(binding = 2, rgba16f) uniform writeonly image2D out_mask;' "$members" "0u"
+sed -i 's/binding = 2) writeonly buffer Values/binding = 0) writeonly buffer Values/' "$pos"
+render 0 "bindings in another order than the slots, bound by name" --dump values
+check 1 "the listed dispatch (color, mask, values at 0, 1, 2) does not fit that order"
+words=$(od -An -tx4 -v "$out/img/values.bin" 2>/dev/null | tr -s ' ' | sed 's/^ //')
+if [ "$words" = "3f000000 00000003 00000000 00000000" ]; then ok; else bad "by name: the shader read '$words'"; fi
+# the output (color) red: written through its own name
+python3 - "$out/img/color.png" "$(dirname "$0")" <<'PY' && ok || bad "by name: color is not red"
+import sys
+sys.path.insert(0, sys.argv[2])
+import png_pixels
+_, _, pixel = png_pixels.load(sys.argv[1])
+sys.exit(0 if tuple(pixel(0, 0))[:3] == (255, 0, 0) else 1)
+PY
+
+# two same-typed bindings swapped (same format, same access) where the pass
+# lists its bindings: every other check passes; the names find the swap
 write_shader 'layout(binding = 0, rgba16f) uniform writeonly image2D out_mask;
 layout(binding = 1, rgba16f) uniform writeonly image2D out_color;' "$members" "0u"
-render 1 "two same-typed bindings swapped"
+render 1 "two same-typed bindings swapped" --set probe.listed=1
 has stderr "^$pos:3: error\[VRG-E083\]: bindings 0 'out_mask' and 1 'out_color' \($pos:4\) are swapped: pass 'probe' \(plugin push_probe\) binds slot 'out.color' at binding 0 and slot 'out.mask' at 1$" "the swapped pair, both lines"
 check 1 "two same-typed bindings swapped"
 has check_stderr "^$pos:3: error\[VRG-E083\]: bindings 0 'out_mask' and 1 'out_color' \($pos:4\) are swapped" "check finds the swap"

@@ -2,6 +2,7 @@
  * resources bound". Pipelines are cached per pass; descriptors are pushed
  * (VK_KHR_push_descriptor), so there are no pools to manage; barriers for the
  * bound resources come from the same tracker the runtime uses between passes. */
+#define _GNU_SOURCE /* open_memstream */
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
@@ -405,6 +406,23 @@ static _vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *
     return pl;
 }
 
+typedef struct _vrg_name_plan {
+    char shader[256], defines[256];
+    int by_name;  /* 1: binding i is slot slot[i], from the shader's names */
+    uint32_t count;
+    int slot[VRG_MAX_BINDINGS];
+    struct _vrg_name_plan *next;
+} _vrg_name_plan;
+
+static void free_name_plans(vrg_pass *p)
+{
+    while (p->name_plans) {
+        _vrg_name_plan *n = p->name_plans;
+        p->name_plans = n->next;
+        free(n);
+    }
+}
+
 static int uses_file(const char *deps, const char *path)
 {
     size_t n = strlen(path);
@@ -454,6 +472,8 @@ int _vrg_pipelines_reload(vrg_pass *p, char (*changed)[VRG_PATH_MAX], int count)
         _vrg_graph_watch_pipeline(p->graph, pl->deps);
         swapped++;
     }
+    if (swapped || failed)
+        free_name_plans(p); /* a saved shader may name its bindings otherwise */
     p->failed = 0; /* a failed reload keeps the pass running on its old pipeline */
     return failed ? -1 : swapped;
 }
@@ -472,6 +492,7 @@ void _vrg_pipelines_deps(vrg_pass *p, void (*fn)(void *user, const char *path), 
 
 void _vrg_pipelines_destroy(vrg_pass *p)
 {
+    free_name_plans(p);
     VkDevice dev = p->graph->ctx ? p->graph->ctx->dev.device : VK_NULL_HANDLE;
     while (p->pipelines) {
         _vrg_pipeline *pl = p->pipelines;
@@ -506,11 +527,78 @@ static int names_slot(const vrg_plugin_desc *pd, const char *name)
     return 0;
 }
 
+/* A dispatch without bindings[] binds by the shader's names when every
+ * binding it declares (this variant, these defines) is named after a
+ * connected slot (in_X, out_X, frame), in set 0, numbered 0 to n-1: each
+ * slot where the shader says, and the slots it does not declare not at
+ * all. Else (a binding of another name, an acceleration structure, which
+ * is numbered by VRG_ACCEL_BINDING) every slot in declaration order. The
+ * plan is cached per shader and defines; a shader that does not compile
+ * has none (its pipeline reports the error). NULL: declaration order. */
+static const _vrg_name_plan *name_plan(vrg_pass *p, const vrg_dispatch_desc *d)
+{
+    const char *defines = d->defines ? d->defines : "";
+    for (_vrg_name_plan *n = p->name_plans; n; n = n->next)
+        if (strcmp(n->shader, d->shader) == 0 && strcmp(n->defines, defines) == 0)
+            return n->by_name ? n : NULL;
+    char path[VRG_PATH_MAX];
+    if (strlen(d->shader) >= sizeof((_vrg_name_plan *)0)->shader || strlen(defines) >= sizeof((_vrg_name_plan *)0)->defines ||
+        _vrg_shader_resolve(p, d->shader, path, sizeof path, NULL, 0) != 0)
+        return NULL;
+    /* its messages come when its pipeline is built */
+    char *text = NULL;
+    size_t len = 0;
+    FILE *quiet = open_memstream(&text, &len);
+    if (!quiet)
+        return NULL;
+    _vrg_shader_module sm;
+    int rc = _vrg_shader_compile(NULL, path, defines, &sm, quiet);
+    fclose(quiet);
+    free(text);
+    if (rc != 0)
+        return NULL;
+    _vrg_name_plan *n = calloc(1, sizeof *n);
+    if (!n) {
+        free(sm.deps);
+        _vrg_reflection_free(&sm.refl);
+        return NULL;
+    }
+    snprintf(n->shader, sizeof n->shader, "%s", d->shader);
+    snprintf(n->defines, sizeof n->defines, "%s", defines);
+    const vrg_plugin_desc *pd = p->plugin->desc;
+    n->by_name = sm.refl.count > 0 && sm.refl.count <= VRG_MAX_BINDINGS;
+    n->count = (uint32_t)sm.refl.count;
+    for (int i = 0; i < VRG_MAX_BINDINGS; i++)
+        n->slot[i] = -1;
+    for (int k = 0; k < sm.refl.count && n->by_name; k++) {
+        const _vrg_reflected_binding *b = &sm.refl.bindings[k];
+        int s = named_slot(pd, b);
+        n->by_name = b->set == 0 && b->binding < n->count && n->slot[b->binding] < 0 && s >= 0 && p->slots[s].res >= 0 &&
+                     pd->slots[s].kind != VRG_ACCEL;
+        if (n->by_name)
+            n->slot[b->binding] = s;
+    }
+    free(sm.deps);
+    _vrg_reflection_free(&sm.refl);
+    n->next = p->name_plans;
+    p->name_plans = n;
+    return n->by_name ? n : NULL;
+}
+
 /* n, or -1 after reporting; unknown[i]: an internal resource not made yet. */
 static int resolve_bindings(vrg_pass *p, const vrg_dispatch_desc *d, bound *out, unsigned char *unknown)
 {
     const vrg_plugin_desc *pd = p->plugin->desc;
     int n = 0;
+    const _vrg_name_plan *plan = !d->bindings[0].res && d->shader ? name_plan(p, d) : NULL;
+    if (plan) {
+        for (uint32_t i = 0; i < plan->count; i++) {
+            int s = plan->slot[i];
+            unknown[i] = 0;
+            out[i] = (bound){p->slots[s].res, p->slots[s].prev, pd->slots[s].access, s};
+        }
+        return (int)plan->count;
+    }
     if (!d->bindings[0].res) {
         for (uint32_t s = 0; s < pd->slot_count; s++) {
             int r = p->slots[s].res;

@@ -220,6 +220,7 @@ struct vrg_pass {
     struct _vrg_shared *shared; /* vrg_pass_share */
     char **inputs;            /* vrg_pass_input_file: data files, in the order named */
     int input_count;
+    struct _vrg_name_plan *name_plans;   /* dispatch.c: bindings derived from a shader's names */
     struct _vrg_push_value *push_values; /* vrg_push_*: set since the pass's last dispatch */
     int push_count, push_cap;
 };

@@ -4,9 +4,11 @@
  * parameters gain (float) and steps (int) by name, and frame_index, which
  * the pass computes (vrg_push_uint); set_extra = 1 also sets a value
  * 'extra' (vrg_push_float), set_late = 1 one after the dispatch. Its
- * outputs are bound by name: in_/out_ bindings of the shader against the
- * slots color and mask (both rgba16f, so that a swapped pair passes every
- * check of type and format). */
+ * outputs are bound by the shader's names (out_color, out_mask,
+ * out_values), or with listed = 1 by a list, color, mask and values at
+ * bindings 0, 1 and 2, against which the names are checked (color and mask
+ * both rgba16f, so that a swapped pair passes every check of type and
+ * format). */
 #include "voxrg/plugin.h"
 
 static const vrg_slot_desc slots[] = {
@@ -23,10 +25,13 @@ static const vrg_param_desc params[] = {
     {.name = "steps", .type = VRG_PARAM_INT, .default_value = 3, .min = 0, .max = 100, .help = "packed into the member 'steps'"},
     {.name = "set_extra", .type = VRG_PARAM_BOOL, .default_value = 0, .min = 0, .max = 1, .help = "also sets 'extra' (vrg_push_float)"},
     {.name = "set_late", .type = VRG_PARAM_BOOL, .default_value = 0, .min = 0, .max = 1, .help = "sets 'frame_index' again after the dispatch"},
+    {.name = "listed", .type = VRG_PARAM_BOOL, .default_value = 0, .min = 0, .max = 1,
+     .help = "the dispatch that lists its bindings (color, mask, values), not the one bound by the shader's names"},
 };
 
 static const vrg_dispatch_desc dispatches[] = {
     {.shader = "push.comp"},
+    {.shader = "push.comp", .bindings = {{"color"}, {"mask"}, {"values"}}},
 };
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
@@ -34,7 +39,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     vrg_push_uint(pass, "frame_index", (uint32_t)vrg_pass_frame(pass)->frame_index);
     if (vrg_param_int(pass, "set_extra"))
         vrg_push_float(pass, "extra", 1.0f);
-    (void)vrg_dispatch(pass, cmd, &dispatches[0]);
+    (void)vrg_dispatch(pass, cmd, &dispatches[vrg_param_int(pass, "listed")]);
     if (vrg_param_int(pass, "set_late"))
         vrg_push_uint(pass, "frame_index", 0);
 }

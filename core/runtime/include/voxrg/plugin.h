@@ -485,7 +485,11 @@ typedef struct vrg_dispatch_desc {
      * $VOXRG_SHADER_PATH, then the data folder's shaders/ (docs/plugin-abi.md,
      * "The dispatch helper"). */
     const char *shader;
-    /* Set 0, binding i = bindings[i]. When none are given, every slot of
+    /* Set 0, binding i = bindings[i]. When none are given and every
+     * binding the shader declares is named after a connected slot (in_X:
+     * input X, out_X: output X, a uniform block `frame`: input frame),
+     * numbered 0 to n-1, each is bound to its slot (the slots it does not
+     * declare are not bound). Otherwise, with none given, every slot of
      * the pass is bound in declaration order (unconnected optional inputs
      * through their 1x1 stand-ins), except acceleration structures that do
      * not exist, which is why they are declared last. Whenever one is bound
