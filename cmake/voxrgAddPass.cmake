@@ -48,8 +48,15 @@ function(voxrg_add_pass name)
       VERBATIM)
   endif()
   target_link_libraries(${name} PRIVATE voxrg::voxrg ${VRG_PASS_LIBRARIES})
-  set_target_properties(${name} PROPERTIES PREFIX "" C_VISIBILITY_PRESET hidden
-                        BUILD_RPATH "${_voxrg_lib_dir}" INSTALL_RPATH "${_voxrg_lib_dir}")
+  if(VOXRG_PASS_IN_TREE)
+    # voxrg's own build (its passes/): beside the build's plugins; installed
+    # in PREFIX/lib/voxrg/plugins, the libraries are two folders up
+    set_target_properties(${name} PROPERTIES PREFIX "" C_VISIBILITY_PRESET hidden
+                          LIBRARY_OUTPUT_DIRECTORY ${VOXRG_PLUGIN_OUTPUT_DIR} INSTALL_RPATH "$ORIGIN/../..")
+  else()
+    set_target_properties(${name} PROPERTIES PREFIX "" C_VISIBILITY_PRESET hidden
+                          BUILD_RPATH "${_voxrg_lib_dir}" INSTALL_RPATH "${_voxrg_lib_dir}")
+  endif()
   install(TARGETS ${name} LIBRARY DESTINATION ${VRG_PASS_DESTINATION})
   if(shaders)
     install(FILES ${shaders} DESTINATION ${VRG_PASS_DESTINATION}/${name})
