@@ -67,17 +67,13 @@ static int check(vrg_pass *pass)
     return bad ? -1 : 0;
 }
 
-typedef struct tiles_push {
-    int32_t columns, rows;
-    uint32_t connected;  /* bit i: t<i> is connected */
-    uint32_t modes[2];   /* 4 bits a tile (tiles 0-7, then 8): the channel (0 rgb .. 5 luma), +8: heat */
-    float lo[TILES], hi[TILES];
-} tiles_push;
-
 /* the one dispatch execute() records (every slot, in order): checked by
- * `voxrg check` */
+ * `voxrg check`. Its push constants, all computed here and set by name:
+ * columns and rows of the grid, connected (bit i: t<i> is connected),
+ * modes (4 bits a tile, tiles 0-7 then 8: the channel, 0 rgb .. 5 luma,
+ * +8: heat) and each tile's range lo, hi */
 static const vrg_dispatch_desc dispatches[] = {
-    {.shader = "tiles.comp", .push_size = sizeof(tiles_push), .pixel_loop = 1},
+    {.shader = "tiles.comp", .pixel_loop = 1},
 };
 
 static int integer_format(VkFormat f)
@@ -111,7 +107,8 @@ static int create(vrg_pass *pass)
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    tiles_push pc = {0};
+    uint32_t connected = 0, modes[2] = {0, 0};
+    float lo[TILES] = {0}, hi[TILES] = {0};
     int last = -1;
     for (int i = 0; i < TILES; i++) {
         char name[32];
@@ -119,17 +116,17 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         vrg_res r = vrg_pass_res(pass, name);
         if (!vrg_res_connected(r))
             continue;
-        pc.connected |= 1u << i;
+        connected |= 1u << i;
         last = i;
         snprintf(name, sizeof name, "t%d_channel", i);
         uint32_t mode = (uint32_t)vrg_param_choice(pass, name, channels, CHANNELS);
         snprintf(name, sizeof name, "t%d_heat", i);
         mode |= vrg_param_int(pass, name) ? 8u : 0u;
-        pc.modes[i / 8] |= mode << (4 * (i % 8));
+        modes[i / 8] |= mode << (4 * (i % 8));
         snprintf(name, sizeof name, "t%d_min", i);
-        pc.lo[i] = (float)vrg_param(pass, name);
+        lo[i] = (float)vrg_param(pass, name);
         snprintf(name, sizeof name, "t%d_max", i);
-        pc.hi[i] = (float)vrg_param(pass, name);
+        hi[i] = (float)vrg_param(pass, name);
     }
     int n = last + 1, columns = vrg_param_int(pass, "columns");
     if (columns == 0)
@@ -137,11 +134,13 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
             columns++;
     if (columns == 0)
         columns = 1;
-    pc.columns = columns;
-    pc.rows = n > 0 ? (n + columns - 1) / columns : 1;
-    vrg_dispatch_desc d = dispatches[0];
-    d.push = &pc;
-    (void)vrg_dispatch(pass, cmd, &d);
+    vrg_push_int(pass, "columns", columns);
+    vrg_push_int(pass, "rows", n > 0 ? (n + columns - 1) / columns : 1);
+    vrg_push_uint(pass, "connected", connected);
+    vrg_push_uints(pass, "modes", modes, 2);
+    vrg_push_floats(pass, "lo", lo, TILES);
+    vrg_push_floats(pass, "hi", hi, TILES);
+    (void)vrg_dispatch(pass, cmd, &dispatches[0]);
 }
 
 static const vrg_plugin_desc desc = {

@@ -17,11 +17,12 @@ import subprocess
 import sys
 
 # pass -> why it still pushes a C struct
-PUSH_STRUCTS = {"tiles": "its block holds arrays (per-tile ranges), which are not packed by name"}
+PUSH_STRUCTS = {}
 # (pass, parameter) -> why the C names a pushed parameter again: it computes the member from it
 COMPUTED = {
     ("sun_shadow", "rays"): "one ray for a point sun (sun_radius 0)",
     ("sparse_atrous", "long_history"): "turned on per iteration (long_iterations)",
+    ("tiles", "columns"): "0: as many as make the grid square",
 }
 
 

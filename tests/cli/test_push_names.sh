@@ -115,6 +115,17 @@ write_shader "$outputs" "$members" "0u"
 render 1 "a value set after the last dispatch" --set probe.set_late=1
 has stderr "error\[VRG-E062\]: pass 'probe' \(plugin [^)]*\): 'frame_index' was set with vrg_push_uint after the pass's last dispatch: no dispatch read it" "the value no dispatch read"
 
+# an array member, set by the pass (vrg_push_floats) with its length
+write_shader "$outputs" "$members
+    float weights[2];" "floatBitsToUint(push.weights[1])"
+render 0 "an array member" --set probe.set_array=2 --dump values
+words=$(od -An -tx4 -v "$out/img/values.bin" 2>/dev/null | tr -s ' ' | sed 's/^ //')
+if [ "$words" = "3f000000 00000003 00000000 3f400000" ]; then ok; else bad "array: the shader read '$words'"; fi
+render 1 "an array set with another count" --set probe.set_array=3
+has stderr "^$pos:10: error\[VRG-E082\]: push-constant member 'weights' is an array of 2 float, but pass 'probe' \(plugin push_probe\) sets it with vrg_push_floats, 3 float$" "the array's count at its line"
+render 1 "an array no value fills"
+has stderr "^$pos:10: error\[VRG-E082\]: push-constant member 'weights' \(an array of 2\) has no value" "the unset array at its line"
+
 # a vector member cannot be packed by name
 write_shader "$outputs" "$members
     vec2 extra;" "0u"

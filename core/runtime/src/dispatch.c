@@ -163,8 +163,16 @@ static const vrg_param_desc *param_named(const vrg_plugin_desc *pd, const char *
     return NULL;
 }
 
-/* Members packed by name: each a scalar, and one named after a parameter
- * of a type that fits (plugin.h); errors at the member's line. */
+/* A member packed by name: a scalar, or an array of them (set by the pass). */
+static int member_scalar(const _vrg_push_member *m) { return m->scalar != VRG_PUSH_OTHER && m->vecsize == 1 && m->columns == 1 && !m->array_dims; }
+static int member_array(const _vrg_push_member *m)
+{
+    return m->scalar != VRG_PUSH_OTHER && m->vecsize == 1 && m->columns == 1 && m->array_dims == 1 && m->array_len > 0 && m->array_len <= 32;
+}
+
+/* Members packed by name: each a scalar (or an array of them), and one
+ * named after a parameter a scalar of a type that fits (plugin.h); errors
+ * at the member's line. */
 static int check_members(vrg_pass *p, const _vrg_push_member *members, int count, FILE *diag)
 {
     const vrg_plugin_desc *pd = p->plugin->desc;
@@ -173,9 +181,13 @@ static int check_members(vrg_pass *p, const _vrg_push_member *members, int count
     for (int m = 0; m < count; m++) {
         const _vrg_push_member *pm = &members[m];
         const vrg_param_desc *param = param_named(pd, pm->name);
-        if (pm->scalar == VRG_PUSH_OTHER || pm->vecsize != 1 || pm->columns != 1 || pm->array_dims) {
-            fprintf(diag, "%s: error[%s]: push-constant member '%s' is not a scalar float, int, uint or bool, which pass '%s' (plugin %s) packs by name "
-                          "(push_size 0): compute vectors in the shader from scalars\n", pm->where, code, pm->name, p->name, pd->name);
+        if (!member_scalar(pm) && !member_array(pm)) {
+            fprintf(diag, "%s: error[%s]: push-constant member '%s' is not a scalar float, int, uint or bool (or an array of them), which pass '%s' "
+                          "(plugin %s) packs by name (push_size 0): compute vectors in the shader from scalars\n", pm->where, code, pm->name, p->name, pd->name);
+            errors++;
+        } else if (param && member_array(pm)) {
+            fprintf(diag, "%s: error[%s]: push-constant member '%s' is an array, which no parameter fills, but pass '%s' (plugin %s) has a parameter '%s': "
+                          "set the array with vrg_push_floats (or _ints, _uints)\n", pm->where, code, pm->name, p->name, pd->name, param->name);
             errors++;
         } else if (param && param->type != VRG_PARAM_STRING && !param_fits(param, pm)) {
             fprintf(diag, "%s: error[%s]: push-constant member '%s' is a %s, but parameter '%s' of pass '%s' (plugin %s) is a%s %s%s\n", pm->where, code, pm->name,
@@ -741,6 +753,34 @@ static void push_value(vrg_pass *p, const char *setter, const char *member, int 
     snprintf(v->name, sizeof v->name, "%s", member);
 }
 
+static void push_array(vrg_pass *p, const char *setter, const char *member, int scalar, const void *values, uint32_t count)
+{
+    if (!values || count == 0 || count > 32) {
+        _vrg_pass_fail(p, VRG_E_PASS_API_MISUSE, "%s(\"%.64s\"): %u values (1 to 32, the most 128 bytes of push constants hold)", setter,
+                       member ? member : "(null)", count);
+        return;
+    }
+    push_value(p, setter, member, scalar, 0);
+    for (int i = 0; i < p->push_count; i++)
+        if (member && strcmp(p->push_values[i].name, member) == 0) {
+            memcpy(p->push_values[i].words, values, count * sizeof(uint32_t));
+            p->push_values[i].count = count;
+        }
+}
+
+void vrg_push_floats(vrg_pass *pass, const char *member, const float *values, uint32_t count)
+{
+    push_array(pass, "vrg_push_floats", member, VRG_PUSH_FLOAT, values, count);
+}
+void vrg_push_ints(vrg_pass *pass, const char *member, const int32_t *values, uint32_t count)
+{
+    push_array(pass, "vrg_push_ints", member, VRG_PUSH_INT, values, count);
+}
+void vrg_push_uints(vrg_pass *pass, const char *member, const uint32_t *values, uint32_t count)
+{
+    push_array(pass, "vrg_push_uints", member, VRG_PUSH_UINT, values, count);
+}
+
 void vrg_push_float(vrg_pass *pass, const char *member, float value)
 {
     uint32_t word;
@@ -763,13 +803,18 @@ static int pack_by_name(vrg_pass *p, const _vrg_pipeline *pl, unsigned char *out
 {
     const vrg_plugin_desc *pd = p->plugin->desc;
     const char *code = _vrg_diag_info_of(VRG_E_SHADER_PUSH_MEMBER)->code;
+    if (pl->push_bytes > 128) {
+        fprintf(diag, "%s: error[%s]: push-constant block '%s' is %u bytes, more than the 128 a dispatch pushes\n", pl->push_where,
+                _vrg_diag_info_of(VRG_E_SHADER_PUSH_SIZE)->code, pl->push_name, pl->push_bytes);
+        return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "push constants of %s: a block of %u bytes (at most 128)", pl->path, pl->push_bytes);
+    }
     int errors = check_members(p, pl->members, pl->member_count, diag);
     memset(out, 0, 128);
     for (int i = 0; i < p->push_count; i++)
         p->push_values[i].used = 0;
     for (int m = 0; m < pl->member_count; m++) {
         const _vrg_push_member *pm = &pl->members[m];
-        if (pm->scalar == VRG_PUSH_OTHER || pm->vecsize != 1 || pm->columns != 1 || pm->array_dims)
+        if (!member_scalar(pm) && !member_array(pm))
             continue; /* check_members said */
         _vrg_push_value *v = NULL;
         for (int i = 0; i < p->push_count && !v; i++)
@@ -777,8 +822,33 @@ static int pack_by_name(vrg_pass *p, const _vrg_pipeline *pl, unsigned char *out
                 v = &p->push_values[i];
         const vrg_param_desc *param = param_named(pd, pm->name);
         uint32_t word = 0;
+        if (member_array(pm)) {
+            if (!v) {
+                if (!param) /* else check_members said */
+                    fprintf(diag, "%s: error[%s]: push-constant member '%s' (an array of %u) has no value: pass '%s' (plugin %s) set none with "
+                                  "vrg_push_floats (or _ints, _uints) before this dispatch\n", pm->where, code, pm->name, pm->array_len, p->name, pd->name);
+                errors += !param;
+                continue;
+            }
+            v->used = 1;
+            if (v->count != pm->array_len || v->scalar != (int)pm->scalar) {
+                fprintf(diag, "%s: error[%s]: push-constant member '%s' is an array of %u %s, but pass '%s' (plugin %s) sets it with %s, %u %s\n", pm->where,
+                        code, pm->name, pm->array_len, scalar_name(pm->scalar), p->name, pd->name, v->setter, v->count ? v->count : 1, scalar_name(v->scalar));
+                errors++;
+                continue;
+            }
+            for (uint32_t k = 0; k < v->count; k++)
+                memcpy(out + pm->offset + k * pm->array_stride, &v->words[k], sizeof(uint32_t));
+            continue;
+        }
         if (v) {
             v->used = 1;
+            if (v->count) {
+                fprintf(diag, "%s: error[%s]: push-constant member '%s' is a %s, but pass '%s' (plugin %s) sets it with %s, %u values\n", pm->where, code,
+                        pm->name, scalar_name(pm->scalar), p->name, pd->name, v->setter, v->count);
+                errors++;
+                continue;
+            }
             if (!value_fits(v->scalar, pm->scalar)) {
                 fprintf(diag, "%s: error[%s]: push-constant member '%s' is a %s, but pass '%s' (plugin %s) sets it with %s, a %s\n", pm->where, code, pm->name,
                         scalar_name(pm->scalar), p->name, pd->name, v->setter, scalar_name(v->scalar));

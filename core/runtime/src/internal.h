@@ -231,7 +231,9 @@ typedef struct _vrg_push_value {
     char name[VRG_NAME_MAX];
     int scalar; /* reflect.h's _vrg_push_scalar of the setter */
     const char *setter;
-    uint32_t word;
+    uint32_t word;          /* a scalar's */
+    uint32_t words[32];     /* an array's (vrg_push_floats, ...): count of them */
+    uint32_t count;         /* 0: a scalar */
     int used; /* packed into a member by the dispatch */
 } _vrg_push_value;
 

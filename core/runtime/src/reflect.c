@@ -298,6 +298,12 @@ static int push_members(spvc_compiler comp, spvc_type_id base_id, spvc_type type
         pm->vecsize = spvc_type_get_vector_size(mt);
         pm->columns = spvc_type_get_columns(mt);
         pm->array_dims = spvc_type_get_num_array_dimensions(mt);
+        unsigned stride = 0;
+        if (pm->array_dims == 1 && spvc_type_array_dimension_is_literal(mt, 0) &&
+            spvc_compiler_type_struct_member_array_stride(comp, type, m, &stride) == SPVC_SUCCESS) {
+            pm->array_len = (uint32_t)spvc_type_get_array_dimension(mt, 0);
+            pm->array_stride = stride;
+        }
         snprintf(pm->where, sizeof pm->where, "%s", out->push_where);
         find_member_line(src, pm->name, pm->where, sizeof pm->where);
     }

@@ -25,6 +25,7 @@ typedef struct _vrg_push_member {
     uint32_t offset, size;
     _vrg_push_scalar scalar; /* the element's scalar type (OTHER: a struct, double, 16-bit, ...) */
     uint32_t vecsize, columns, array_dims;
+    uint32_t array_len, array_stride; /* a one-dimensional array of literal length: its length and stride, else 0 */
     char where[VRG_PATH_MAX + 16]; /* FILE:LINE of its declaration (the block's when not found) */
 } _vrg_push_member;
 typedef struct _vrg_reflection {

@@ -3,7 +3,8 @@
  * writes shaders that get one thing wrong. The block's members take the
  * parameters gain (float) and steps (int) by name, and frame_index, which
  * the pass computes (vrg_push_uint); set_extra = 1 also sets a value
- * 'extra' (vrg_push_float), set_late = 1 one after the dispatch. Its
+ * 'extra' (vrg_push_float), set_late = 1 one after the dispatch,
+ * set_array = N the array 'weights' to N values (vrg_push_floats). Its
  * outputs are bound by the shader's names (out_color, out_mask,
  * out_values), or with listed = 1 by a list, color, mask and values at
  * bindings 0, 1 and 2, against which the names are checked (color and mask
@@ -25,6 +26,8 @@ static const vrg_param_desc params[] = {
     {.name = "steps", .type = VRG_PARAM_INT, .default_value = 3, .min = 0, .max = 100, .help = "packed into the member 'steps'"},
     {.name = "set_extra", .type = VRG_PARAM_BOOL, .default_value = 0, .min = 0, .max = 1, .help = "also sets 'extra' (vrg_push_float)"},
     {.name = "set_late", .type = VRG_PARAM_BOOL, .default_value = 0, .min = 0, .max = 1, .help = "sets 'frame_index' again after the dispatch"},
+    {.name = "set_array", .type = VRG_PARAM_INT, .default_value = 0, .min = 0, .max = 3,
+     .help = "sets 'weights' to that many floats (0.25, 0.75, 1; 0: not at all) with vrg_push_floats"},
     {.name = "listed", .type = VRG_PARAM_BOOL, .default_value = 0, .min = 0, .max = 1,
      .help = "the dispatch that lists its bindings (color, mask, values), not the one bound by the shader's names"},
 };
@@ -37,6 +40,9 @@ static const vrg_dispatch_desc dispatches[] = {
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     vrg_push_uint(pass, "frame_index", (uint32_t)vrg_pass_frame(pass)->frame_index);
+    static const float weights[] = {0.25f, 0.75f, 1.0f};
+    if (vrg_param_int(pass, "set_array"))
+        vrg_push_floats(pass, "weights", weights, (uint32_t)vrg_param_int(pass, "set_array"));
     if (vrg_param_int(pass, "set_extra"))
         vrg_push_float(pass, "extra", 1.0f);
     (void)vrg_dispatch(pass, cmd, &dispatches[vrg_param_int(pass, "listed")]);

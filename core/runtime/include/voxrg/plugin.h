@@ -528,7 +528,8 @@ typedef struct vrg_dispatch_desc {
  * parameter or vrg_push_bool: a bool (uint in SPIR-V), int or uint;
  * vrg_push_int: int; vrg_push_uint: uint; a string parameter is not
  * pushed: set its member, e.g. vrg_param_choice's index), a member that
- * is no scalar, or
+ * is neither a scalar nor an array of them, an array set with another
+ * count than its length, or
  * a value set that names no member, is an error at the member's (or the
  * block's) FILE:LINE and fails the dispatch. Values are consumed by the
  * pass's next vrg_dispatch, whatever it returns: set them before each; one
@@ -537,6 +538,11 @@ void vrg_push_float(vrg_pass *pass, const char *member, float value);
 void vrg_push_int(vrg_pass *pass, const char *member, int32_t value);
 void vrg_push_uint(vrg_pass *pass, const char *member, uint32_t value);
 void vrg_push_bool(vrg_pass *pass, const char *member, int value);
+/* An array member (`float lo[9];`): count values, the array's length, of
+ * its element type; arrays take only values set so, never a parameter. */
+void vrg_push_floats(vrg_pass *pass, const char *member, const float *values, uint32_t count);
+void vrg_push_ints(vrg_pass *pass, const char *member, const int32_t *values, uint32_t count);
+void vrg_push_uints(vrg_pass *pass, const char *member, const uint32_t *values, uint32_t count);
 
 /* Compiles (once, cached per pass) and records the dispatch, with barriers
  * for bound resources whose state differs from what the binding needs.
