@@ -426,7 +426,7 @@ typedef struct _vrg_name_plan {
     struct _vrg_name_plan *next;
 } _vrg_name_plan;
 
-static void free_name_plans(vrg_pass *p)
+void _vrg_name_plans_free(vrg_pass *p)
 {
     while (p->name_plans) {
         _vrg_name_plan *n = p->name_plans;
@@ -485,7 +485,7 @@ int _vrg_pipelines_reload(vrg_pass *p, char (*changed)[VRG_PATH_MAX], int count)
         swapped++;
     }
     if (swapped || failed)
-        free_name_plans(p); /* a saved shader may name its bindings otherwise */
+        _vrg_name_plans_free(p); /* a saved shader may name its bindings otherwise */
     p->failed = 0; /* a failed reload keeps the pass running on its old pipeline */
     return failed ? -1 : swapped;
 }
@@ -504,7 +504,7 @@ void _vrg_pipelines_deps(vrg_pass *p, void (*fn)(void *user, const char *path), 
 
 void _vrg_pipelines_destroy(vrg_pass *p)
 {
-    free_name_plans(p);
+    _vrg_name_plans_free(p);
     VkDevice dev = p->graph->ctx ? p->graph->ctx->dev.device : VK_NULL_HANDLE;
     while (p->pipelines) {
         _vrg_pipeline *pl = p->pipelines;

@@ -258,6 +258,7 @@ void vrg_graph_destroy(vrg_graph *g)
     }
     for (int i = 0; i < g->pass_count; i++) {
         _vrg_pass_free_params(&g->passes[i]);
+        _vrg_name_plans_free(&g->passes[i]);
         _vrg_pass_free_shared(&g->passes[i]);
         _vrg_pass_clear_stats(&g->passes[i], 1);
         if (g->passes[i].plugin)

@@ -396,6 +396,8 @@ struct vrg_graph {
 
 /* ---- the dispatch helper's pipelines (dispatch.c) ---- */
 void _vrg_pipelines_destroy(vrg_pass *p);
+/* The bindings dispatch.c derived from shaders' names (made with or without a device). */
+void _vrg_name_plans_free(vrg_pass *p);
 /* Hot reload: recompile this pass's pipelines that use any of the changed
  * files; a pipeline whose new version fails keeps running (the errors go to
  * diag). Returns how many were swapped, -1 if any failed. */
