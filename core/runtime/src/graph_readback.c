@@ -30,12 +30,6 @@ static int find_readable(vrg_graph *g, const char *name)
 /* The last submitted frame's part of the readback buffer. */
 static const uint8_t *last_readback(const vrg_graph *g) { return (const uint8_t *)g->readback_map + g->slots[g->last_slot].readback_base; }
 
-float _vrg_unorm8_to_float(uint8_t byte, int srgb)
-{
-    float c = byte / 255.0f;
-    return !srgb ? c : c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);
-}
-
 VkImageView vrg_graph_image_view(vrg_graph *g, const char *name)
 {
     int i = find_readable(g, name);

@@ -1,6 +1,7 @@
 /* One texel of images after a frame, as stored: copied to the readback
  * buffer's pixel area and decoded to bits and exact values
  * (vrg_graph_read_pixels, and --check-finite's report of a pass's inputs). */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,6 +28,12 @@ float _vrg_half_to_float(uint16_t h)
     float f;
     memcpy(&f, &bits, 4);
     return f;
+}
+
+float _vrg_unorm8_to_float(uint8_t byte, int srgb)
+{
+    float c = byte / 255.0f;
+    return !srgb ? c : c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);
 }
 
 /* Whether resource i still holds what the frame wrote: no resource that
