@@ -2,7 +2,6 @@
  * and dumped resources (converted to floats), and the images themselves
  * for a viewer, which picks one to show (kept in TRANSFER_SRC after each
  * frame, as the output is). */
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include "internal.h"
