@@ -46,7 +46,7 @@ int _vrg_finite_create(vrg_graph *g)
     struct _vrg_finite *f = calloc(1, sizeof *f);
     g->finite = f;
     if (!f) {
-        _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "check_finite: out of memory");
+        _vrg_error(&g->diag, VRG_E_OUT_OF_MEMORY, "check_finite: out of memory");
         return -1;
     }
     char path[VRG_PATH_MAX];

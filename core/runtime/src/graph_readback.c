@@ -228,7 +228,7 @@ int vrg_graph_read_pixels(vrg_graph *g, uint32_t x, uint32_t y, vrg_pixel_value 
     int n = pixel_entries(g, res, prev);
     vrg_pixel_value *all = malloc(((size_t)n + 1) * sizeof *all);
     if (!all) {
-        _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "pixel (%u, %u): out of memory", x, y);
+        _vrg_error(&g->diag, VRG_E_OUT_OF_MEMORY, "pixel (%u, %u): out of memory", x, y);
         return -1;
     }
     for (int e = 0; e < n; e++) {
@@ -236,7 +236,7 @@ int vrg_graph_read_pixels(vrg_graph *g, uint32_t x, uint32_t y, vrg_pixel_value 
         ty[e] = (uint32_t)((uint64_t)y * g->res[res[e]].height / g->height);
     }
     int rc = _vrg_wait_frames(g) == 0 ? _vrg_read_texels_at(g, n, res, prev, tx, ty, all) : -1;
-    if (rc == 0)
+    if (rc == 0 && max > 0) /* max 0: the count alone (out may be NULL) */
         memcpy(out, all, (size_t)(n < (int)max ? n : (int)max) * sizeof *out);
     free(all);
     return rc == 0 ? n : -1;
