@@ -808,7 +808,7 @@ static int pack_by_name(vrg_pass *p, const _vrg_pipeline *pl, unsigned char *out
                 _vrg_diag_info_of(VRG_E_SHADER_PUSH_SIZE)->code, pl->push_name, pl->push_bytes);
         return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "push constants of %s: a block of %u bytes (at most 128)", pl->path, pl->push_bytes);
     }
-    int errors = check_members(p, pl->members, pl->member_count, diag);
+    int errors = 0; /* the members' types against the parameters: checked once, when pl was built (check_reflection) */
     memset(out, 0, 128);
     for (int i = 0; i < p->push_count; i++)
         p->push_values[i].used = 0;
