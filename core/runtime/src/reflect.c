@@ -134,6 +134,25 @@ static long literal_binding(const char *s, size_t n)
 
 #define ANY_LINE (-2L)
 
+/* A `#line N "FILE"` directive at p (n bytes): file and line follow it
+ * (line counts the next line as N); 0 for any other line. */
+static int line_directive(const char *p, size_t n, char *file, size_t cap, int *line)
+{
+    const char *s = p;
+    while (s < p + n && (*s == ' ' || *s == '\t'))
+        s++;
+    if (strncmp(s, "#line", 5) != 0)
+        return 0;
+    char *q;
+    long l = strtol(s + 5, &q, 10);
+    const char *quote = memchr(q, '"', (size_t)(p + n - q));
+    const char *close = quote ? memchr(quote + 1, '"', (size_t)(p + n - quote - 1)) : NULL;
+    if (close)
+        snprintf(file, cap, "%.*s", (int)(close - quote - 1), quote + 1);
+    *line = (int)l - 1;
+    return 1;
+}
+
 /* The source expanded by shader.c carries `#line N "file"` where an include
  * starts and ends; FILE:LINE of the declaration of a resource: the line
  * with `key` (binding, push_constant) and its name (or block name), preferring one whose literal
@@ -150,18 +169,7 @@ static void find_line(const char *src, const char *path, const char *key, const 
         const char *end = strchr(p, '\n');
         size_t n = end ? (size_t)(end - p) : strlen(p);
         line++;
-        const char *s = p;
-        while (s < p + n && (*s == ' ' || *s == '\t'))
-            s++;
-        if (strncmp(s, "#line", 5) == 0) {
-            char *q;
-            long l = strtol(s + 5, &q, 10);
-            const char *quote = memchr(q, '"', (size_t)(p + n - q));
-            const char *close = quote ? memchr(quote + 1, '"', (size_t)(p + n - quote - 1)) : NULL;
-            if (close)
-                snprintf(file, sizeof file, "%.*s", (int)(close - quote - 1), quote + 1);
-            line = (int)l - 1;
-        } else if (has_word(p, n, key)) {
+        if (!line_directive(p, n, file, sizeof file, &line) && has_word(p, n, key)) {
             int named = has_word(p, n, name) || (block && has_word(p, n, block));
             long lit = literal_binding(p, n);
             int rank = named && lit == binding ? 3 : named ? 2 : lit == binding || binding == ANY_LINE ? 1 : 0;
@@ -187,18 +195,7 @@ static void find_member_line(const char *src, const char *member, char *where, s
         const char *end = strchr(p, '\n');
         size_t n = end ? (size_t)(end - p) : strlen(p);
         line++;
-        const char *s = p;
-        while (s < p + n && (*s == ' ' || *s == '\t'))
-            s++;
-        if (strncmp(s, "#line", 5) == 0) {
-            char *q;
-            long l = strtol(s + 5, &q, 10);
-            const char *quote = memchr(q, '"', (size_t)(p + n - q));
-            const char *close = quote ? memchr(quote + 1, '"', (size_t)(p + n - quote - 1)) : NULL;
-            if (close)
-                snprintf(file, sizeof file, "%.*s", (int)(close - quote - 1), quote + 1);
-            line = (int)l - 1;
-        } else {
+        if (!line_directive(p, n, file, sizeof file, &line)) {
             const char *comment = NULL;
             for (size_t i = 0; i + 1 < n && !comment; i++)
                 if (p[i] == '/' && p[i + 1] == '/')
