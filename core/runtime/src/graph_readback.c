@@ -111,7 +111,10 @@ int vrg_graph_read(vrg_graph *g, const char *name, vrg_image_data *out)
     return 0;
 }
 
-int vrg_graph_read_buffer(vrg_graph *g, const char *name, void **data, uint64_t *size)
+/* A malloc'd copy of readable resource `name`'s bytes as the last frame
+ * left them, when it is of `kind` (else the error names `other`, the read
+ * for the other kind); its size is the buffer's, or the image's texels. */
+static int copy_readback(vrg_graph *g, const char *name, vrg_resource_kind kind, const char *other, void **data, uint64_t *size)
 {
     *data = NULL;
     *size = 0;
@@ -119,36 +122,28 @@ int vrg_graph_read_buffer(vrg_graph *g, const char *name, void **data, uint64_t 
     if (i < 0)
         return -1;
     _vrg_resource *r = &g->res[i];
-    if (r->kind != VRG_BUFFER) {
-        _vrg_error(&g->diag, VRG_E_WRONG_READ, "resource '%s' is an image: use vrg_graph_read", name);
+    if (r->kind != kind) {
+        _vrg_error(&g->diag, VRG_E_WRONG_READ, "resource '%s' is %s: use %s", name, kind == VRG_BUFFER ? "an image" : "a buffer", other);
         return -1;
     }
-    *data = malloc(r->size);
-    memcpy(*data, last_readback(g) + g->readback_offset[i], r->size);
-    *size = r->size;
-    return 0;
-}
-
-int vrg_graph_read_texels(vrg_graph *g, const char *name, void **data, uint64_t *size)
-{
-    *data = NULL;
-    *size = 0;
-    int i = find_readable(g, name);
-    if (i < 0)
-        return -1;
-    _vrg_resource *r = &g->res[i];
-    if (r->kind != VRG_IMAGE) {
-        _vrg_error(&g->diag, VRG_E_WRONG_READ, "resource '%s' is a buffer: use vrg_graph_read_buffer", name);
-        return -1;
-    }
-    uint64_t bytes = (uint64_t)r->width * r->height * _vrg_format_bytes(r->format);
-    if (!(*data = malloc(bytes))) {
-        _vrg_error(&g->diag, VRG_E_VULKAN_FAILED, "resource '%s': out of memory for %llu bytes", name, (unsigned long long)bytes);
+    uint64_t bytes = kind == VRG_BUFFER ? r->size : (uint64_t)r->width * r->height * _vrg_format_bytes(r->format);
+    if (!(*data = malloc(bytes ? bytes : 1))) {
+        _vrg_error(&g->diag, VRG_E_OUT_OF_MEMORY, "resource '%s': out of memory for %llu bytes", name, (unsigned long long)bytes);
         return -1;
     }
     memcpy(*data, last_readback(g) + g->readback_offset[i], bytes);
     *size = bytes;
     return 0;
+}
+
+int vrg_graph_read_buffer(vrg_graph *g, const char *name, void **data, uint64_t *size)
+{
+    return copy_readback(g, name, VRG_BUFFER, "vrg_graph_read", data, size);
+}
+
+int vrg_graph_read_texels(vrg_graph *g, const char *name, void **data, uint64_t *size)
+{
+    return copy_readback(g, name, VRG_IMAGE, "vrg_graph_read_buffer", data, size);
 }
 
 static int showable(const vrg_graph *g, int i)
