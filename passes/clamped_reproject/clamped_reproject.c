@@ -23,6 +23,14 @@
  *     `fast`'s alpha, where this pass reads it back next frame (a
  *     separate prev_length input would make 17 bindings, over a
  *     dispatch's 16).
+ *   - sun span: under a moving key light (the sun through the day) the
+ *     history length is cut to sun_span / the degrees the light moved since
+ *     the last frame, so the history averages light from at most sun_span
+ *     degrees of its path: the neighbourhood clamp and anti-lag see a
+ *     change only once it exceeds this frame's noise, and lighting that
+ *     drifts by less than that a frame (indirect light under a moving sun)
+ *     otherwise lags by the whole history (sun_span = 0: no limit; a still
+ *     light is never cut);
  * footprints > 0 adds a reprojection test: the previous point lies within
  * that many pixel steps of this one (a step at the point's distance,
  * stretched by 1 / |N.V|): far away one pixel spans blocks, and coplanar
@@ -55,6 +63,9 @@ static const vrg_param_desc params[] = {
     {"footprints", VRG_PARAM_FLOAT, 0, 0, 100, "most distance of the previous point, in pixel steps on the surface (0: no limit)"},
     {"max_length", VRG_PARAM_INT, 32, 1, 1000, "cap on the history length (frames)"},
     {"clamp_k", VRG_PARAM_FLOAT, 1.5, 0, 100, "clamp the slow history to the 3x3 mean +- clamp_k sigma (0: no clamp)"},
+    {"sun_span", VRG_PARAM_FLOAT, 0, 0, 360,
+     "most degrees the key light may move within the slow history: its length is cut to sun_span / the degrees it moved since the last "
+     "frame (0: no limit)"},
     {"antilag", VRG_PARAM_FLOAT, 1, 0, 100, "how strongly a slow/fast disagreement shortens the history (0: off)"},
     {"antilag_threshold", VRG_PARAM_FLOAT, 2, 0, 100, "disagreement (in the fast history's noise sigmas) that noise may explain"},
     {"normal_threshold", VRG_PARAM_FLOAT, 0.9, -1, 1, "least dot(normal, previous normal) of the same surface"},

@@ -32,7 +32,7 @@ layout(binding = 13, rgba32f) uniform writeonly image2D out_reprojection;
 layout(binding = 14, rg16f) uniform writeonly image2D out_clamp;
 #endif
 layout(push_constant) uniform Params {
-    float alpha, fast_alpha, clamp_k, antilag, antilag_threshold, normal_threshold, plane_distance, footprints;
+    float alpha, fast_alpha, clamp_k, antilag, antilag_threshold, normal_threshold, plane_distance, footprints, sun_span;
     int max_length, cubic, nearest, fallback, history_valid;
 #ifdef DEBUG
     int debug_outputs; // 1: disocclusion, 2: reprojection, 4: clamp
@@ -269,7 +269,7 @@ void shade(ivec2 p)
 #endif
         slow = from_ycocg(clamp(to_ycocg(slow), mean - box, mean + box));
     }
-    float len = min(floor(h.frames + 0.5) + 1.0, float(params.max_length));
+    float len = min(floor(h.frames + 0.5) + 1.0, min(float(params.max_length), floor(frame_sun_history_frames(params.sun_span))));
     vec3 fast = mix(h.fast, c, max(params.fast_alpha, 1.0 / (len + 1.0)));
     if (params.antilag > 0.0) {
         float noise = sigma.w * sqrt(params.fast_alpha / (2.0 - params.fast_alpha)) + 1e-4;

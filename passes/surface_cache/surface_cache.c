@@ -33,7 +33,11 @@
  *            sample) blends their mean into its own with weight count / n,
  *            n = min(n_before, (max_frames - 1) * count) + count, so the
  *            history is worth at most max_frames frames of this frame's
- *            samples;
+ *            samples; under a moving key light, at most sun_span / (the
+ *            degrees it moved since the last frame) frames, so that a
+ *            cell averages light from at most sun_span degrees of the
+ *            sun's path (the cache otherwise lags a moving sun by up to
+ *            max_frames frames; sun_span 0: no limit);
  *   gather:  each pixel blends the 2x2 cells around its point (bilinear,
  *            over the cells that exist), or with bilinear = 0 reads its
  *            point's own cell. With coarse_levels = k, samples also go to
@@ -68,6 +72,9 @@
 static const vrg_param_desc params[] = {
     {"cell_pixels", VRG_PARAM_FLOAT, 2, 0.25, 64, "least side of a cell, in pixels at the point's distance"},
     {"max_frames", VRG_PARAM_INT, 32, 1, 4096, "frames of samples a cell's history is worth at most"},
+    {"sun_span", VRG_PARAM_FLOAT, 0, 0, 360,
+     "most degrees the key light may move within a cell's history: max_frames is cut to sun_span / the degrees it moved since the last "
+     "frame (0: no limit)"},
     {"evict_frames", VRG_PARAM_INT, 8, 1, 1 << 20, "frames without samples after which a cell expires (its slot is freed within 4 more)"},
     {"cells", VRG_PARAM_INT, 1 << 21, 1 << 10, 1 << 26, "hash table slots (a power of two)"},
     {"coarse_levels", VRG_PARAM_INT, 0, 0, 4, "also keep the cells 2, 4, ... 2^coarse_levels times wider, a chain for young cells to lean on (0: none)"},

@@ -31,7 +31,7 @@ layout(binding = 7, rgba32f) uniform writeonly image2D out_occupancy;
 #endif
 #endif
 layout(push_constant) uniform Params {
-    float cell_pixels;
+    float cell_pixels, sun_span;
     uint max_frames, evict_frames, mask, frame_index, channels;
     uint evict_first, evict_slots; // this frame's share of the table to look at for eviction
     int coarse_levels;             // 0: no coarse cells
@@ -234,7 +234,9 @@ void resolve(uint slot)
     uint e = entry_word(slot);
     uint count = table.words[count_word(e)];
     float n_before = expired(e) ? 0.0 : uintBitsToFloat(table.words[n_word(e)]);
-    float n = min(n_before, float(params.max_frames - 1u) * float(count)) + float(count);
+    // frames of samples the history may be worth: max_frames, fewer under a moving sun
+    float frames = max(min(float(params.max_frames), floor(frame_sun_history_frames(params.sun_span))), 1.0);
+    float n = min(n_before, (frames - 1.0) * float(count)) + float(count);
     for (uint i = 0u; i < params.channels; i++) {
         float sum = float(table.words[sum_word(e, i)]) + 4294967296.0 * float(table.words[sum_word(e, i) + 1u]);
         float frame_mean = sum / (FIXED * float(count));

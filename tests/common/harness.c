@@ -1,5 +1,6 @@
 #define _POSIX_C_SOURCE 200809L
 #include "harness.h"
+#include "voxrg/sky.h"
 
 #include <errno.h>
 
@@ -22,6 +23,22 @@ vrg_graph *load_with(const char *name, const char *const *sets, uint32_t nsets, 
 }
 
 vrg_graph *load(const char *name) { return load_with(name, NULL, 0, NULL, 0); }
+
+double sun_moved_degrees(double time_of_day, double day_length, double frame_s, uint64_t frame)
+{
+    vrg_sky_desc d;
+    vrg_sky_default(&d);
+    d.time_of_day = (float)time_of_day;
+    d.day_length = (float)day_length;
+    float dir[2][3], elevation, radiance[3];
+    for (int i = 0; i < 2; i++) {
+        vrg_sky sky;
+        vrg_sky_eval(&d, (double)(frame - (uint64_t)i) * frame_s, &sky);
+        vrg_sky_key_light(&sky, dir[i], &elevation, radiance);
+    }
+    double c = (double)dir[0][0] * dir[1][0] + (double)dir[0][1] * dir[1][1] + (double)dir[0][2] * dir[1][2];
+    return acos(c > 1 ? 1 : c < -1 ? -1 : c) * 180.0 / 3.14159265358979323846;
+}
 
 float px(const vrg_image_data *img, uint32_t x, uint32_t y, int c) { return img->pixels[((size_t)y * img->width + x) * 4 + c]; }
 

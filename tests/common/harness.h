@@ -36,6 +36,10 @@ vrg_graph *load(const char *name);
 vrg_graph *load_text(const char *text, const char *const *reads, uint32_t nreads);
 
 float px(const vrg_image_data *img, uint32_t x, uint32_t y, int c);
+/* Degrees the key light (the frame uniforms' sun_dir) moves from frame - 1
+ * to frame, frame_s seconds apart, in the default sky with this start time
+ * and day length: what a history's sun_span is measured against. */
+double sun_moved_degrees(double time_of_day, double day_length, double frame_s, uint64_t frame);
 double max_diff(const vrg_image_data *img, const float *want, int channels);
 
 /* printf onto a growing heap string */

@@ -86,6 +86,46 @@ static void test_denoise_antilag(void)
     CHECK(on.length < 3 && off.length > 8.5, "history length %g with anti-lag, %g without", on.length, off.length);
 }
 
+/* The history length after 10 frames of a still light under a sun that
+ * moves (day_length seconds a day; 0: still) with the given sun_span, no
+ * clamp or anti-lag (the light itself does not change: only the stage can
+ * cut the history). */
+static double length_under_sun(double day_length, double sun_span)
+{
+    static const char *reads[] = {"reproject.color", "reproject.length", "gbuffer.position"};
+    char day[64], span[64];
+    snprintf(day, sizeof day, "scene.day_length=%.17g", day_length);
+    snprintf(span, sizeof span, "reproject.sun_span=%.17g", sun_span);
+    const char *sets[] = {"reproject.clamp_k=0", "reproject.antilag=0", day, span};
+    vrg_graph *g = load_with("denoise_light.ini", sets, 4, reads, 3);
+    if (!g)
+        return -1;
+    for (int i = 0; i < 10; i++)
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    light_state s = read_light(g);
+    vrg_graph_destroy(g);
+    return s.length;
+}
+
+/* sun_span: under a moving sun the history is cut to sun_span / the
+ * degrees the sun moved since the last frame (here 3.5 frames' worth: 3
+ * frames); a still sun, or sun_span 0, leaves it to grow (9 frames). */
+static void test_denoise_sun_span(void)
+{
+    const double day = 20; /* seconds: about 0.3 degrees a frame at 60 fps */
+    vrg_graph *g = load("denoise_light.ini");
+    double frame_s = g ? vrg_graph_frame_seconds(g) : 1.0 / 60;
+    vrg_graph_destroy(g);
+    double moved = sun_moved_degrees(10, day, frame_s, 9);
+    CHECK(moved > 0.05, "the sun moves only %g degrees a frame: the case shows nothing", moved);
+    double still = length_under_sun(0, 3.5 * moved), off = length_under_sun(day, 0), on = length_under_sun(day, 3.5 * moved);
+    printf("denoise_sun_span: sun %.4f degrees a frame; history length %.3f (sun_span %.4f), %.3f (sun_span 0), %.3f (still sun)\n", moved, on,
+           3.5 * moved, off, still);
+    CHECK(still > 8.99 && still < 9.01, "a still sun cut the history to %g frames (want 9)", still);
+    CHECK(off > 8.99 && off < 9.01, "sun_span 0 cut the history to %g frames (want 9)", off);
+    CHECK(on > 2.99 && on < 3.01, "under a moving sun the history is %g frames long, want 3 (3.5 frames of its motion)", on);
+}
+
 /* mean_variance on a still noisy scene: equal to (m2 - m1^2) / N (N the
  * effective sample count in reproject.color's alpha) once history is
  * old, and falling as the history grows: the variance of the mean, not of
@@ -242,6 +282,7 @@ int main(int argc, char **argv)
     static const test_case cases[] = {
         {"denoise_clamp", test_denoise_clamp, 1},
         {"denoise_antilag", test_denoise_antilag, 1},
+        {"denoise_sun_span", test_denoise_sun_span, 1},
         {"denoise_variance", test_denoise_variance, 1},
         {"denoise_atrous", test_denoise_atrous, 1},
         {"denoise_settings", test_denoise_settings, 1},

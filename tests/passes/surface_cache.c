@@ -77,6 +77,46 @@ static void test_cache_history(void)
     vrg_graph_destroy(g);
 }
 
+/* sun_span: under a moving sun a cell's history is worth at most sun_span
+ * / (the degrees the sun moved since the last frame) frames (here 2.5: 2),
+ * so the counter's cells follow the recursion with max_frames 2, not the
+ * 1000 the pass is given; a still sun leaves max_frames in force. */
+static void test_cache_sun_span(void)
+{
+    const double day = 20; /* seconds: about 0.3 degrees a frame at 60 fps */
+    vrg_graph *g = load("surface_cache.ini");
+    double frame_s = g ? vrg_graph_frame_seconds(g) : 1.0 / 60;
+    vrg_graph_destroy(g);
+    double moved = sun_moved_degrees(10, day, frame_s, 8);
+    CHECK(moved > 0.05, "the sun moves only %g degrees a frame: the case shows nothing", moved);
+    for (int moving = 0; moving <= 1; moving++) {
+        char daylen[64], span[64];
+        snprintf(daylen, sizeof daylen, "scene.day_length=%.17g", moving ? day : 0.0);
+        snprintf(span, sizeof span, "ticks.sun_span=%.17g", 2.5 * moved);
+        const char *sets[] = {"ticks.max_frames=1000", daylen, span};
+        if (!(g = load_with("surface_cache.ini", sets, 3, reads, COUNT)))
+            return;
+        for (int i = 0; i < 9; i++)
+            CHECK(vrg_graph_frame(g) == 0, "frame failed");
+        vrg_image_data img[COUNT];
+        if (read_all(g, img) != 0) {
+            vrg_graph_destroy(g);
+            return;
+        }
+        double want = expected_mean(9, moving ? 2 : 1000, 0.0625), worst = 0;
+        for (uint32_t y = 0; y < img[POS].height; y++)
+            for (uint32_t x = 0; x < img[POS].width; x++)
+                if (px(&img[POS], x, y, 3) != 0)
+                    worst = fmax(worst, fabs(px(&img[TICKS], x, y, 0) - want));
+        printf("cache_sun_span: %s sun (%.4f degrees a frame, sun_span %.4f): cells within %g of %g\n", moving ? "moving" : "still", moved,
+               2.5 * moved, worst, want);
+        CHECK(worst < 2e-3, "%s sun: a cell holds up to %g away from %g (the recursion with max_frames %d)", moving ? "moving" : "still", worst,
+              want, moving ? 2 : 1000);
+        free_all(img);
+        vrg_graph_destroy(g);
+    }
+}
+
 /* the floor covers the (2r+1)^2 pixels around (x, y): cells there are whole */
 static int floor_around(const vrg_image_data *pos, uint32_t x, uint32_t y, uint32_t r)
 {
@@ -688,7 +728,7 @@ static int test_cache_too_large(void)
 int main(int argc, char **argv)
 {
     static const test_case cases[] = {
-        {"cache_history", test_cache_history, 1, NULL}, {"cache_evict", test_cache_evict, 1, NULL}, {"cache_gather", test_cache_gather, 1, NULL},
+        {"cache_history", test_cache_history, 1, NULL}, {"cache_sun_span", test_cache_sun_span, 1, NULL}, {"cache_evict", test_cache_evict, 1, NULL}, {"cache_gather", test_cache_gather, 1, NULL},
         {"cache_own_cells", test_cache_own_cells, 1, NULL}, {"cache_coarse", test_cache_coarse, 1, NULL}, {"cache_chain", test_cache_chain, 1, NULL}, {"cache_chain_levels", test_cache_chain_levels, 1, NULL}, {"cache_reset", test_cache_reset, 1, NULL},
         {"cache_nearest", test_cache_nearest, 1, NULL}, {"cache_freed_runs", test_cache_freed_runs, 1, NULL}, {"cache_full", test_cache_full, 1, NULL}, {"cache_slot_invocations", test_cache_slot_invocations, 1, NULL}, {"cache_too_large", NULL, 1, test_cache_too_large},
     };

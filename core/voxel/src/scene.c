@@ -65,6 +65,22 @@ void vrg_frame_uniforms_world(const vrg_world *world, vrg_frame_uniforms *u)
     u->world_lo[3] = u->world_hi[3] = 0;
 }
 
+/* Last frame's key light: the sky at the last frame's time (time_s is
+ * frame_index / fps, so that time is time_s (frame_index - 1) /
+ * frame_index); unknown (w 0, the direction of now) without history. */
+static void frame_uniforms_prev_sun(const vrg_frame_info *f, const vrg_sky_desc *desc, vrg_frame_uniforms *u)
+{
+    memcpy(u->prev_sun_dir, u->sun_dir, 3 * sizeof(float));
+    u->prev_sun_dir[3] = 0;
+    if (!f->history_valid || f->frame_index == 0)
+        return;
+    vrg_sky prev;
+    vrg_sky_eval(desc, f->time_s * (double)(f->frame_index - 1) / (double)f->frame_index, &prev);
+    float elevation, radiance[3];
+    vrg_sky_key_light(&prev, u->prev_sun_dir, &elevation, radiance);
+    u->prev_sun_dir[3] = 1;
+}
+
 void vrg_scene_write_frame(vrg_pass *pass, VkCommandBuffer cmd, const char *slot, const vrg_sky_desc *desc, const vrg_world *world)
 {
     const vrg_frame_info *f = vrg_pass_frame(pass);
@@ -73,6 +89,7 @@ void vrg_scene_write_frame(vrg_pass *pass, VkCommandBuffer cmd, const char *slot
     vrg_frame_uniforms u;
     vrg_frame_uniforms_fill(f, &sky, &u);
     vrg_frame_uniforms_world(world, &u);
+    frame_uniforms_prev_sun(f, desc, &u);
     vkCmdUpdateBuffer(cmd, vrg_res_buffer(pass, vrg_pass_res(pass, slot)), 0, sizeof u, &u);
 }
 

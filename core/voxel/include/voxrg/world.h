@@ -216,6 +216,11 @@ typedef struct vrg_frame_uniforms {
     int32_t world_grid[4];
     float world_lo[4];
     float world_hi[4];
+    /* Last frame's key light direction, for histories that must follow a
+     * moving sun (frame.glsl: frame_sun_moved_degrees); w: 1 where known,
+     * 0 on a frame without history (then xyz = sun_dir). Added at the end:
+     * the block's earlier offsets stay as they were. */
+    float prev_sun_dir[4];
 } vrg_frame_uniforms;
 
 void vrg_frame_uniforms_fill(const vrg_frame_info *frame, const vrg_sky *sky, vrg_frame_uniforms *out);
