@@ -805,7 +805,14 @@ static int cmd_plugins(int argc, char **argv)
                 snprintf(def, sizeof def, "'%s'", pd->default_string ? pd->default_string : "");
             else
                 snprintf(def, sizeof def, "%g", pd->default_value);
-            if (pd->flags & VRG_PARAM_REPEATABLE)
+            const char *choices = d->param_choices ? d->param_choices[p] : NULL;
+            char choice_list[512] = "";
+            if (choices) /* the names it takes, as the graph writes them */
+                for (size_t c = 0, o = 0; choices[c] && o + 1 < sizeof choice_list; c++)
+                    choice_list[o++] = choices[c] == ',' ? '|' : choices[c], choice_list[o] = '\0';
+            if (choices)
+                snprintf(range, sizeof range, "%s", choice_list);
+            else if (pd->flags & VRG_PARAM_REPEATABLE)
                 snprintf(range, sizeof range, "(repeatable)");
             else if (pd->type != VRG_PARAM_STRING && (pd->min != 0 || pd->max != 0))
                 snprintf(range, sizeof range, "[%g, %g]", pd->min, pd->max);

@@ -299,7 +299,18 @@ static void row_text(vrg_panel *p, vrg_graph *g, const row *r, char *line, size_
     if (pd->type != VRG_PARAM_STRING && pd->type != VRG_PARAM_BOOL && (pd->min != 0 || pd->max != 0))
         snprintf(range, sizeof range, "[%g..%g]", pd->min, pd->max);
     /* the range, or what to do instead, after the value: no padding after it, the panel is as wide as its longest line */
-    snprintf(line, cap, " %c %-16s %10s %s%s", c ? '*' : ' ', pd->name, value, pd->type == VRG_PARAM_STRING ? "edit the file" : range,
+    /* a string with choices: the names it takes (the file holds which) */
+    const vrg_plugin_desc *d = vrg_graph_pass_plugin(g, r->pass);
+    const char *choices = d && d->param_choices ? d->param_choices[r->pd - d->params] : NULL;
+    char text[160] = "edit the file";
+    if (choices) {
+        char names[128];
+        snprintf(names, sizeof names, "%s", choices);
+        for (char *q = names; *q; q++)
+            *q = *q == ',' ? '|' : *q;
+        snprintf(text, sizeof text, "%s: edit the file", names);
+    }
+    snprintf(line, cap, " %c %-16s %10s %s%s", c ? '*' : ' ', pd->name, value, pd->type == VRG_PARAM_STRING ? text : range,
              pd->type != VRG_PARAM_STRING && needs_reload(pd) ? " reload" : "");
 }
 

@@ -31,13 +31,11 @@ static const vrg_slot_desc slots[] = {
      .help = "the scene's TLAS: trace with ray queries (traversal = rayquery)"},
 };
 
-/* every dispatch execute() records: checked by `voxrg check`; its push
- * constants are the parameters, by name */
+/* its one dispatch, checked by `voxrg check` and, with no execute, recorded
+ * by the runtime; its push constants are the parameters, by name */
 static const vrg_dispatch_desc dispatches[] = {
     {.shader = "ao.comp", .pixel_loop = 1},
 };
-
-static void execute(vrg_pass *pass, VkCommandBuffer cmd) { (void)vrg_dispatch(pass, cmd, &dispatches[0]); }
 
 static const vrg_plugin_desc desc = {
     .abi_version = VRG_ABI_VERSION,
@@ -48,7 +46,6 @@ static const vrg_plugin_desc desc = {
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
-    .execute = execute,
     .dispatches = dispatches,
     .dispatch_count = sizeof dispatches / sizeof dispatches[0],
 };

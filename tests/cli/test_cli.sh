@@ -667,8 +667,12 @@ section_new_pass() { # new-pass: names it refuses, and one it writes
         has "$out/stderr" "'$name' is a target name CMake keeps for itself" "new-pass $name says why"
         [ ! -e "$out/$name" ] && ok || bad "new-pass $name wrote $out/$name"
     done
+    # a shipped C pass (NAME.so) and a shipped one-file pass (NAME.comp): each named by its file
+    expect_rc 2 "new-pass combine (a shipped pass)" "$voxrg" new-pass combine --dir "$out/combine"
+    has "$out/stderr" "a plugin named 'combine' is on the search path already \(.*/combine\.so\)" "new-pass combine names the shipped file"
+    [ ! -e "$out/combine" ] && ok || bad "new-pass combine wrote $out/combine"
     expect_rc 2 "new-pass tonemap (a shipped pass)" "$voxrg" new-pass tonemap --dir "$out/tonemap"
-    has "$out/stderr" "a plugin named 'tonemap' is on the search path already \(.*/tonemap\.so\)" "new-pass tonemap names the shipped file"
+    has "$out/stderr" "a plugin named 'tonemap' is on the search path already \(.*/tonemap\.comp\)" "new-pass tonemap names the shipped file"
     [ ! -e "$out/tonemap" ] && ok || bad "new-pass tonemap wrote $out/tonemap"
     expect_rc 0 "new-pass tint" "$voxrg" new-pass tint --dir "$out/tint"
     [ -s "$out/tint/tint.c" ] && [ -s "$out/tint/CMakeLists.txt" ] && ok || bad "new-pass tint wrote no tint.c or CMakeLists.txt"

@@ -10,7 +10,9 @@
                 exactly the flags of `voxrg COMMAND --help`'s usage, and every
                 flag a doc's example command line gives exists there
   pass_readmes  every passes/NAME/ has README.md in the one form (its
-                headings) naming each parameter `voxrg plugins NAME` lists
+                headings) naming each parameter `voxrg plugins NAME` lists,
+                and its Slots and Parameters tables list exactly the slots
+                and parameters `voxrg plugins NAME` lists
   tmp_citations no doc cites a script or graph in a temporary folder, which
                 its reader does not have
   frame_uniforms plugin-abi.md's table of the frame uniforms is frame.glsl's
@@ -278,19 +280,35 @@ def part_synopses(root, voxrg):
 PASS_HEADINGS = ("What it does", "Slots", "Parameters", "Cost", "Debug outputs")
 
 
-def plugin_parameters(voxrg, name):
+def plugin_interface(voxrg, name):
+    """The slots (in.X, out.X) and parameters `voxrg plugins NAME` lists."""
     out = subprocess.run([voxrg, "plugins", name], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if out.returncode != 0:
         raise RuntimeError(f"voxrg plugins {name} exited {out.returncode}:\n{out.stdout}")
-    params, inside = [], False
+    lists, inside = {"slots": [], "parameters": []}, None
     for line in out.stdout.split("\n"):
-        if line.startswith("parameters:"):
-            inside = True
+        head = line.split(":")[0]
+        if not line.startswith(" ") and head in lists:
+            inside = head
         elif inside and line.startswith("  ") and line.split():
-            params.append(line.split()[0])
-        elif inside and line.strip():
-            inside = False
-    return params
+            lists[inside].append(line.split()[0])
+        elif line.strip():
+            inside = None
+    return lists["slots"], lists["parameters"]
+
+
+def table_names(body):
+    """The first cell of each row of a section's table, without its
+    backticks; a row of a numbered series (`in.t0` ... `in.t8`) names each."""
+    names = []
+    for row in [l for l in body.split("\n") if l.startswith("|")][2:]:
+        series = re.match(r"\|\s*`([^`]*?)(\d+)([^`\d]*)` \.\.\. `([^`]*?)(\d+)([^`\d]*)`\s*\|", row)
+        one = re.match(r"\|\s*`([^`]+)`\s*\|", row)
+        if series and series.group(1, 3) == series.group(4, 6):
+            names += [f"{series.group(1)}{i}{series.group(3)}" for i in range(int(series.group(2)), int(series.group(5)) + 1)]
+        elif one:
+            names.append(one.group(1))
+    return names
 
 
 def part_pass_readmes(root, voxrg):
@@ -310,11 +328,21 @@ def part_pass_readmes(root, voxrg):
         headings = re.findall(r"^## (.+?)\s*$", text, re.M)
         if tuple(headings) != PASS_HEADINGS:
             problems.append(f"{path}: headings {headings}, expected {list(PASS_HEADINGS)} in that order")
-        section = re.search(r"^## Parameters\n(.*?)(?=^## |\Z)", text, re.M | re.S)
-        body = section.group(1) if section else ""
-        for param in plugin_parameters(voxrg, name):
-            if f"`{param}`" not in body:
-                problems.append(f"{path}: the Parameters section does not name `{param}` (voxrg plugins {name})")
+        slots, params = plugin_interface(voxrg, name)
+        for heading, listed in (("Slots", slots), ("Parameters", params)):
+            section = re.search(r"^## %s\n(.*?)(?=^## |\\Z)" % heading, text, re.M | re.S)
+            body = section.group(1) if section else ""
+            if heading == "Parameters":
+                for param in listed:
+                    if f"`{param}`" not in body:
+                        problems.append(f"{path}: the Parameters section does not name `{param}` (voxrg plugins {name})")
+            # the table: exactly what the plugin declares, each once ("None." where it declares none)
+            rows = table_names(body)
+            if not listed and not rows and "None." not in body:
+                problems.append(f"{path}: the {heading} section has no table and does not say None. ({name} has no {heading.lower()})")
+            if sorted(rows) != sorted(listed):
+                problems.append(f"{path}: the {heading} table lists {rows}; voxrg plugins {name} lists {listed}"
+                                f" (missing {sorted(set(listed) - set(rows))}, not the plugin's {sorted(set(rows) - set(listed))})")
     return problems
 
 

@@ -61,8 +61,11 @@ pcversion=$(run PKG_CONFIG_PATH="$prefix/lib/pkgconfig" pkg-config --modversion 
 grep -q "PACKAGE_VERSION \"$pcversion\"" "$prefix/lib/cmake/voxrg/voxrgConfigVersion.cmake" || fail "voxrgConfigVersion.cmake is not $pcversion"
 
 # shipped plugins come from the moved prefix
+run "$voxrg" plugins gbuffer > plugins_gbuffer.txt 2>&1 || { cat plugins_gbuffer.txt; fail "voxrg plugins gbuffer"; }
+grep -q "file: $prefix/lib/voxrg/plugins/gbuffer.so" plugins_gbuffer.txt || { cat plugins_gbuffer.txt; fail "gbuffer not found in the prefix"; }
+# and shipped one-file passes (NAME.comp beside the plugins)
 run "$voxrg" plugins tonemap > plugins_tonemap.txt 2>&1 || { cat plugins_tonemap.txt; fail "voxrg plugins tonemap"; }
-grep -q "file: $prefix/lib/voxrg/plugins/tonemap.so" plugins_tonemap.txt || { cat plugins_tonemap.txt; fail "tonemap not found in the prefix"; }
+grep -q "file: $prefix/lib/voxrg/plugins/tonemap.comp" plugins_tonemap.txt || { cat plugins_tonemap.txt; fail "tonemap not found in the prefix"; }
 
 # a host of the render graph only: it does not need libvoxrg_voxel, the
 # terrain plugin does, and finds it in the prefix from the plugin's RUNPATH
@@ -228,16 +231,16 @@ run VOXRG_PLUGIN_PATH="$out/work" "$voxrg" plugins invert > plugins_invert.txt 2
     grep -q "strength" plugins_invert.txt || { cat plugins_invert.txt; fail "voxrg plugins invert"; }
 
 # an installed plugin's shaders are read from the prefix, not from the tree
-# it was built in: a broken installed tonemap.comp is the one reported
-printf '#version 460\nthis is not glsl\n' > "$prefix/lib/voxrg/plugins/tonemap/tonemap.comp"
+# it was built in: a broken installed gbuffer.comp is the one reported
+printf '#version 460\nthis is not glsl\n' > "$prefix/lib/voxrg/plugins/gbuffer/gbuffer.comp"
 run "$voxrg" render invert.ini --frames 1 --out invert/broken > broken.log 2>&1 && fail "a broken installed shader rendered"
-grep -q "$prefix/lib/voxrg/plugins/tonemap/tonemap.comp:2: error\[VRG-E063\]" broken.log || { cat broken.log; fail "the installed shader was not the one compiled"; }
+grep -q "$prefix/lib/voxrg/plugins/gbuffer/gbuffer.comp:2: error\[VRG-E063\]" broken.log || { cat broken.log; fail "the installed shader was not the one compiled"; }
 # an installed shader that is missing is an error naming where it was
 # looked for: never a shader read from the tree the plugin was built in
-rm "$prefix/lib/voxrg/plugins/tonemap/tonemap.comp"
-run "$voxrg" render invert.ini --frames 1 --out invert/missing > missing.log 2>&1 && fail "a graph rendered without the installed tonemap.comp"
-grep -q "shader 'tonemap.comp' not found (searched $prefix/lib/voxrg/plugins/tonemap/tonemap.comp," missing.log ||
+rm "$prefix/lib/voxrg/plugins/gbuffer/gbuffer.comp"
+run "$voxrg" render invert.ini --frames 1 --out invert/missing > missing.log 2>&1 && fail "a graph rendered without the installed gbuffer.comp"
+grep -q "shader 'gbuffer.comp' not found (searched $prefix/lib/voxrg/plugins/gbuffer/gbuffer.comp," missing.log ||
     { cat missing.log; fail "the missing installed shader is not named with its path"; }
-sed -n "s/.*shader 'tonemap.comp' not found (searched \(.*\))$/\1/p" missing.log | tr ',' '\n' | sed 's/^ //' > searched.txt
+sed -n "s/.*shader 'gbuffer.comp' not found (searched \(.*\))$/\1/p" missing.log | tr ',' '\n' | sed 's/^ //' > searched.txt
 grep -v "^$prefix/" searched.txt && { cat missing.log; fail "the missing shader was looked for outside the prefix"; }
 echo "install: ok"

@@ -178,22 +178,35 @@ SIZED = r"""#include <stddef.h>
 static void execute(vrg_pass *p, VkCommandBuffer cmd) { (void)p; (void)cmd; }
 static const vrg_slot_desc slots[] = {{.name = "color", .dir = VRG_OUT, .kind = VRG_IMAGE,
     .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT}};
+static const vrg_param_desc params[] = {{.name = "curve", .type = VRG_PARAM_STRING, .help = "a choice", .default_string = "aces"}};
+static const char *const choices[] = {LIST};
 static const struct { vrg_plugin_desc d; unsigned long long newer; } desc = {{.abi_version = VRG_ABI_VERSION, .name = "sized",
-    .kind = VRG_PLUGIN_PASS, .help = "test: descriptor size", .slots = slots, .slot_count = 1, .execute = execute}, NEWER};
+    .kind = VRG_PLUGIN_PASS, .help = "test: descriptor size", .slots = slots, .slot_count = 1, .execute = EXECUTE,
+    .params = params, .param_count = 1, .param_choices = CHOICES}, NEWER};
 VRG_EXPORT const vrg_plugin_desc *vrg_plugin_entry(uint32_t host_abi) { (void)host_abi; return &desc.d; }
 VRG_EXPORT const uint32_t vrg_plugin_desc_size = SIZE;
 """
 
 
 def desc_size_case(d):
-    for what, size, newer, want_rc, want in (
-            ("older headers (no check field)", "offsetof(vrg_plugin_desc, check)", "0", 0, "test: descriptor size"),
-            ("newer headers, new field unset", "sizeof desc", "0", 0, "test: descriptor size"),
-            ("newer headers, new field set", "sizeof desc", "1", 1, "sets fields this voxrg"),
-            ("too short for execute", "8", "0", 1, "too short to hold execute")):
+    old = ["EXECUTE=execute", "CHOICES=NULL", "LIST=NULL"]
+    for what, size, newer, want_rc, want, more in (
+            ("older headers (no check field)", "offsetof(vrg_plugin_desc, check)", "0", 0, "test: descriptor size", old),
+            ("newer headers, new field unset", "sizeof desc", "0", 0, "test: descriptor size", old),
+            ("newer headers, new field set", "sizeof desc", "1", 1, "sets fields this voxrg", old),
+            ("too short for execute", "8", "0", 1, "too short to hold execute", old),
+            # a pass without execute lists the dispatches the runtime records in its stead
+            ("no execute and no dispatches", "sizeof desc", "0", 1, "execute callback is NULL and it lists no dispatches",
+             ["EXECUTE=NULL", "CHOICES=NULL", "LIST=NULL"]),
+            # param_choices: the default among them, names a graph can write, each once
+            ("choices without the default", "sizeof desc", "0", 1, "parameter 'curve' has default 'aces', which is none of its choices linear,reinhard",
+             ["EXECUTE=execute", "CHOICES=choices", 'LIST="linear,reinhard"']),
+            ("a choice named twice", "sizeof desc", "0", 1, "parameter 'curve' names choice 'aces' twice",
+             ["EXECUTE=execute", "CHOICES=choices", 'LIST="aces,linear,aces"']),
+            ("choices listed", "sizeof desc", "0", 0, "aces|linear", ["EXECUTE=execute", "CHOICES=choices", 'LIST="aces,linear"'])):
         lib = os.path.join(d, what.replace(" ", "_").replace(",", "").replace("(", "").replace(")", ""))
         os.makedirs(lib)
-        build(SIZED, os.path.join(lib, "sized.so"), ["SIZE=" + size, "NEWER=" + newer])
+        build(SIZED, os.path.join(lib, "sized.so"), ["SIZE=" + size, "NEWER=" + newer] + more)
         rc, out, err = run(["plugins", "sized"], {"VOXRG_PLUGIN_PATH": lib})
         check(rc == want_rc and want in out + err, "descriptor size, %s: exit %d, want %d with '%s'\n%s%s" % (what, rc, want_rc, want, out, err))
 

@@ -128,6 +128,94 @@ check(re.search(r"b\s+int\s+default 3\s+\[-10, 10\]", out) and re.search(r"d\s+b
       "voxrg plugins pack: the parameters' types and ranges\n" + out)
 
 
+# optional slots, choices and variants (docs/plugin-abi.md, "A pass in one file"): opt.comp reads its
+# optional in_extra only where HAS_EXTRA says it is connected, gets mode's index among its names, and is
+# compiled once per shape (SHAPE=0, 1); src.comp, a second one-file pass, is what in.extra connects to
+OPT = """#version 460
+// opt: an optional input, a choice and a variant choice
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0, rgba8) uniform writeonly image2D out_color;
+layout(binding = 1) uniform sampler2D in_extra; // @optional help="any image: red is its red, else 0"
+layout(push_constant) uniform Params {
+    int mode;   // @param choices=zero,half,full default=half help="green: 0, 0.5 or 1"
+    uint shape; // @param choices=dark,bright default=dark variant help="blue: 0 or 1, compiled in"
+} params;
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, imageSize(out_color))))
+        return;
+#ifdef HAS_EXTRA
+    float r = texelFetch(in_extra, ivec2(0), 0).r;
+#else
+    float r = 0.0;
+#endif
+    imageStore(out_color, p, vec4(r, 0.5 * float(params.mode), float(SHAPE), 1.0));
+}
+"""
+SRC_COMP = """#version 460
+// src: white
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0, rgba8) uniform writeonly image2D out_color;
+void main() { imageStore(out_color, ivec2(gl_GlobalInvocationID.xy), vec4(1.0)); }
+"""
+opt_comp = os.path.join(OUT, "opt.comp")
+save(opt_comp, OPT)
+save(os.path.join(OUT, "src.comp"), SRC_COMP)
+OPT_GRAPH = "[graph]\noutput = color\nwidth = 16\nheight = 8\nplugin_path = .\n\n[pass opt]\nplugin = opt\nout.color = color\n"
+save(os.path.join(OUT, "opt.ini"), OPT_GRAPH)
+save(os.path.join(OUT, "opt_extra.ini"), OPT_GRAPH.replace("[pass opt]", "[pass src]\nplugin = src\nout.color = white\n\n[pass opt]") + "in.extra = white\n")
+for graph_name, sets, want in (("opt", (), (0, 128, 0)), ("opt", ("mode=full", "shape=bright"), (0, 255, 255)), ("opt", ("mode=zero",), (0, 0, 0)),
+                               ("opt_extra", (), (255, 128, 0)), ("opt_extra", ("shape=bright",), (255, 128, 255))):
+    args = [x for kv in sets for x in ("--set", "opt." + kv)]
+    rc, out = run("render", graph_name + ".ini", "--validate", "--out", "opt", *args)
+    px = png_pixels.load(os.path.join(OUT, "opt", "color.png"))[2](1, 1) if rc == 0 else None
+    check(px is not None and all(abs(x - y) <= 1 for x, y in zip(px, want)), "%s %s: exit %d, pixel %s, want %s\n%s" % (graph_name, sets, rc, px, want, out))
+rc, out = run("plugins", "opt", env={"VOXRG_PLUGIN_PATH": OUT})
+check(rc == 0 and re.search(r"in\.extra\s+image .* optional\s+any image: red is its red", out) and re.search(r"mode\s+text\s+default 'half'\s+zero\|half\|full", out)
+      and re.search(r"shape\s+text\s+default 'dark'\s+dark\|bright", out), "voxrg plugins opt: the optional slot and the choices\n" + out)
+# a name it does not take: at the graph's line, naming the parameter and the names; from --set too
+save(os.path.join(OUT, "opt_bad.ini"), OPT_GRAPH + "mode = most\n")
+rc, out = run("check", "opt_bad.ini", "--no-device")
+check(rc != 0 and "opt_bad.ini:%d: error[VRG-E047]: mode = 'most': expected zero, half or full" % (OPT_GRAPH.count("\n") + 1) in out,
+      "a choice the parameter does not take: exit %d\n%s" % (rc, out))
+rc, out = run("render", "opt.ini", "--out", "opt", "--set", "opt.shape=grey")
+check(rc != 0 and "shape = 'grey': expected dark or bright" in out, "--set a choice the parameter does not take: exit %d\n%s" % (rc, out))
+
+
+def broken_opt(what, old, new, where, pattern):
+    """opt.comp with old replaced by new: check fails at where's line of the shader."""
+    src = OPT.replace(old, new)
+    assert src != OPT, what
+    save(opt_comp, src)
+    rc, out = run("check", "opt.ini", "--no-device")
+    want = "%s:%d: error[VRG-E080]" % (opt_comp, line_of(src, where))
+    check(rc != 0 and want in out and re.search(pattern, out), "%s: exit %d, want '%s' and /%s/ in\n%s" % (what, rc, want, pattern, out))
+
+
+broken_opt("a misspelt @optional", "// @optional", "// @optinal", "in_extra;", r"binding 'in_extra': unknown annotation '@optinal'")
+broken_opt("@optional with another key", "@optional help=", "@optional why=", "in_extra;", r"expected help=")
+broken_opt("a default that is no choice", "default=half", "default=most", "int mode;", r"'mode': @param has default 'most', which is none of its choices zero,half,full")
+broken_opt("a choice named twice", "choices=zero,half,full", "choices=zero,half,zero", "int mode;", r"names choice 'zero' twice")
+broken_opt("choices on a float", "int mode;", "float mode;", "float mode;", r"'mode' has choices=, but it is a float")
+broken_opt("choices with a range", "choices=zero,half,full", "choices=zero,half,full min=0 max=2", "int mode;", r"with choices= has no min= or max=")
+broken_opt("variant on a number", "int mode;   // @param choices=zero,half,full default=half", "int mode;   // @param default=1 min=0 max=2 variant",
+           "int mode;", r"variant picks a compiled variant per choice: give choices= too")
+broken_opt("every image output optional", "image2D out_color;", "image2D out_color; // @optional", "out_color;", r"every image output is @optional")
+save(opt_comp, OPT)
+
+# a C pass with no execute: the runtime records its listed dispatches in order (listed_probe: red from the
+# first, blue from the second, which reads the first's), and packs its choice's index by name
+save(os.path.join(OUT, "listed.ini"), "[graph]\noutput = color\nwidth = 16\nheight = 8\n\n[pass probe]\nplugin = listed_probe\nout.color = color\n")
+for sets, want in (((), (128, 64, 64)), (("level=high",), (128, 128, 64)), (("level=low",), (128, 0, 64))):
+    args = [x for kv in sets for x in ("--set", "probe." + kv)]
+    rc, out = run("render", "listed.ini", "--validate", "--out", "listed", *args)
+    px = png_pixels.load(os.path.join(OUT, "listed", "color.png"))[2](1, 1) if rc == 0 else None
+    check(px is not None and all(abs(x - y) <= 1 for x, y in zip(px, want)), "listed_probe %s: exit %d, pixel %s, want %s\n%s" % (sets, rc, px, want, out))
+rc, out = run("render", "listed.ini", "--out", "listed", "--set", "probe.level=top")
+check(rc != 0 and "level = 'top': expected low, mid or high" in out, "listed_probe with a level it does not take: exit %d\n%s" % (rc, out))
+
+
 def broken(what, old, new, where, pattern, fog=FOG):
     """The page's fog with old replaced by new: check fails at where's line."""
     src = fog.replace(old, new)

@@ -93,7 +93,7 @@
     X(VRG_E_WRONG_READ, "VRG-E077", "wrong-read", "an image is read as a buffer, or a buffer as an image")                                 \
     X(VRG_E_WATCH_FAILED, "VRG-E078", "watch-failed", "hot reload cannot watch the graph's files")                                        \
     X(VRG_E_PIXEL_OUTSIDE, "VRG-E079", "pixel-outside", "a pixel is read that lies outside the graph's size")                             \
-    X(VRG_E_SHADER_INTERFACE, "VRG-E080", "shader-interface", "a shader-only pass's shader does not declare a valid interface (binding names, @param annotations)") \
+    X(VRG_E_SHADER_INTERFACE, "VRG-E080", "shader-interface", "a shader-only pass's shader does not declare a valid interface (binding names, @param and @optional annotations)") \
     X(VRG_E_NOT_FINITE, "VRG-E081", "not-finite", "a pass wrote NaN or infinity into a float image (check_finite)")                     \
     X(VRG_E_SHADER_PUSH_MEMBER, "VRG-E082", "shader-push-member", "a push-constant member packed by name has no value (no parameter or vrg_push_* of its name), another type, or a value names no member") \
     X(VRG_E_SHADER_BINDING_NAME, "VRG-E083", "shader-binding-name", "a binding named after a slot (in_X, out_X, frame) is bound to another resource: two bindings swapped") \

@@ -189,6 +189,12 @@ static int check_members(vrg_pass *p, const _vrg_push_member *members, int count
             fprintf(diag, "%s: error[%s]: push-constant member '%s' is an array, which no parameter fills, but pass '%s' (plugin %s) has a parameter '%s': "
                           "set the array with vrg_push_floats (or _ints, _uints)\n", pm->where, code, pm->name, p->name, pd->name, param->name);
             errors++;
+        } else if (param && param->type == VRG_PARAM_STRING && _vrg_param_choices(pd, (uint32_t)(param - pd->params)) && pm->scalar != VRG_PUSH_INT &&
+                   pm->scalar != VRG_PUSH_UINT) {
+            fprintf(diag, "%s: error[%s]: push-constant member '%s' is a %s, but parameter '%s' of pass '%s' (plugin %s) is a choice among %s, "
+                          "whose index an int or uint member gets\n", pm->where, code, pm->name, scalar_name(pm->scalar), param->name, p->name, pd->name,
+                    _vrg_param_choices(pd, (uint32_t)(param - pd->params)));
+            errors++;
         } else if (param && param->type != VRG_PARAM_STRING && !param_fits(param, pm)) {
             fprintf(diag, "%s: error[%s]: push-constant member '%s' is a %s, but parameter '%s' of pass '%s' (plugin %s) is a%s %s%s\n", pm->where, code, pm->name,
                     scalar_name(pm->scalar), param->name, p->name, pd->name, param->type == VRG_PARAM_INT ? "n" : "", param_type_name(param->type),
@@ -856,6 +862,17 @@ static int pack_by_name(vrg_pass *p, const _vrg_pipeline *pl, unsigned char *out
                 continue;
             }
             word = v->word;
+        } else if (param && param->type == VRG_PARAM_STRING && _vrg_param_choices(pd, (uint32_t)(param - pd->params))) {
+            if (pm->scalar != VRG_PUSH_INT && pm->scalar != VRG_PUSH_UINT)
+                continue; /* check_members said */
+            int k = _vrg_pass_choice(p, (uint32_t)(param - pd->params));
+            if (k < 0) { /* validation refused such a graph: a value set since */
+                fprintf(diag, "%s: error[%s]: push-constant member '%s': parameter '%s' of pass '%s' (plugin %s) is '%s', none of %s\n", pm->where, code,
+                        pm->name, param->name, p->name, pd->name, vrg_param_string(p, param->name), _vrg_param_choices(pd, (uint32_t)(param - pd->params)));
+                errors++;
+                continue;
+            }
+            word = (uint32_t)k;
         } else if (param && param->type == VRG_PARAM_STRING) {
             fprintf(diag, "%s: error[%s]: push-constant member '%s' has no value: parameter '%s' of pass '%s' (plugin %s) is a string, which is not pushed: "
                           "set the member with vrg_push_int (e.g. vrg_param_choice's index) before this dispatch\n", pm->where, code, pm->name, param->name, p->name,
@@ -1034,10 +1051,28 @@ static int dispatch_one(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_des
 }
 
 /* A shader-only pass (shader_pass.c) is one dispatch of its shader, its
- * push constants packed by name from its parameters (push_size 0). */
+ * push constants packed by name from its parameters (push_size 0): the
+ * variant its optional slots' connections and its variant choices pick. */
 void _vrg_shader_pass_execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    (void)vrg_dispatch(pass, cmd, &pass->plugin->shader_pass->dispatch);
+    const struct _vrg_shader_pass *sp = pass->plugin->shader_pass;
+    uint32_t k = 0, stride = 1;
+    for (int a = 0; a < sp->axis_count; a++) {
+        const struct _vrg_shader_axis *ax = &sp->axes[a];
+        int v = ax->slot >= 0 ? vrg_res_connected(vrg_pass_res(pass, sp->binding_res[ax->slot])) : _vrg_pass_choice(pass, (uint32_t)ax->param);
+        k += (uint32_t)(v < 0 ? 0 : v) * stride;
+        stride *= (uint32_t)ax->count;
+    }
+    (void)vrg_dispatch(pass, cmd, &sp->dispatches[k]);
+}
+
+/* A pass without execute: its listed dispatches, in order (loader: a pass
+ * plugin may leave execute NULL only when it lists some). */
+void _vrg_dispatch_listed(vrg_pass *pass, VkCommandBuffer cmd)
+{
+    const vrg_plugin_desc *d = pass->plugin->desc;
+    for (uint32_t i = 0; i < d->dispatch_count && !pass->failed; i++)
+        (void)vrg_dispatch(pass, cmd, &d->dispatches[i]);
 }
 
 /* ---- vrg_graph_check_shaders: every declared dispatch, before any frame ---- */

@@ -116,6 +116,14 @@ typedef struct _vrg_plugin {
 } _vrg_plugin;
 /* Why a parameter's descriptor is malformed (why: room for the reason), or NULL (param_desc.c). */
 const char *_vrg_param_problem(const vrg_param_desc *pd, char *why, size_t cap);
+/* A string parameter's choices (vrg_plugin_desc.param_choices, "a,b,c"):
+ * params[i]'s list or NULL; a value's index in it or -1; how many; "a, b
+ * or c" for a message; why a list is malformed for pd, or NULL. */
+const char *_vrg_param_choices(const vrg_plugin_desc *desc, uint32_t i);
+int _vrg_choice_index(const char *choices, const char *value);
+int _vrg_choice_count(const char *choices);
+void _vrg_choice_words(const char *choices, char *out, size_t cap);
+const char *_vrg_choices_problem(const vrg_param_desc *pd, const char *choices, char *why, size_t cap);
 /* ---- crash reports (crash.c) ---- */
 /* What plugin code this thread runs now: a fatal signal names it. */
 typedef struct _vrg_running {
@@ -290,6 +298,10 @@ void _vrg_free_retired(vrg_graph *g, int all);
 /* Forgets the figures of vrg_pass_stat (a new frame); free: also the table. */
 void _vrg_pass_clear_stats(vrg_pass *p, int free_table);
 int _vrg_pass_add_string(vrg_pass *p, int param, const char *value, int line, int replace);
+/* Every string parameter with choices holds one (else VRG-E047 at its line, -1);
+ * the index of params[param]'s value among its choices, -1 if it has none. */
+int _vrg_pass_check_choices(vrg_pass *p);
+int _vrg_pass_choice(const vrg_pass *p, uint32_t param);
 /* A slot ("in.NAME", "out.NAME" or NAME) or internal resource of the pass:
  * its resource, whether it reads @prev, its slot (-1: internal); -1 if the
  * pass has none connected. */
@@ -395,6 +407,8 @@ struct vrg_graph {
 };
 
 /* ---- the dispatch helper's pipelines (dispatch.c) ---- */
+/* Records a pass whose plugin has no execute: each listed dispatch, in order. */
+void _vrg_dispatch_listed(vrg_pass *pass, VkCommandBuffer cmd);
 void _vrg_pipelines_destroy(vrg_pass *p);
 /* The bindings dispatch.c derived from shaders' names (made with or without a device). */
 void _vrg_name_plans_free(vrg_pass *p);

@@ -1,8 +1,11 @@
 /* The rules a parameter's descriptor follows: plugin_loader.c checks a
  * plugin's table with them, shader_pass.c a shader's @param annotations
- * (at the member's line). */
+ * (at the member's line); and a string parameter's choices, which the
+ * loader checks, validation holds a value to and dispatch.c packs as an
+ * index. */
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 #include "internal.h"
 
 const char *_vrg_param_problem(const vrg_param_desc *pd, char *why, size_t cap)
@@ -29,3 +32,80 @@ const char *_vrg_param_problem(const vrg_param_desc *pd, char *why, size_t cap)
     return NULL;
 }
 
+
+/* ---- a string parameter's choices: "a,b,c" (vrg_plugin_desc.param_choices) ---- */
+
+const char *_vrg_param_choices(const vrg_plugin_desc *desc, uint32_t i)
+{
+    return desc->param_choices && i < desc->param_count ? desc->param_choices[i] : NULL;
+}
+
+int _vrg_choice_index(const char *choices, const char *value)
+{
+    size_t n = strlen(value);
+    int k = 0;
+    for (const char *c = choices; c && *c; k++) {
+        const char *comma = strchr(c, ',');
+        size_t len = comma ? (size_t)(comma - c) : strlen(c);
+        if (len == n && strncmp(c, value, n) == 0)
+            return k;
+        if (!comma)
+            break;
+        c = comma + 1;
+    }
+    return -1;
+}
+
+int _vrg_choice_count(const char *choices)
+{
+    int k = choices && *choices ? 1 : 0;
+    for (const char *c = choices; c && *c; c++)
+        k += *c == ',';
+    return k;
+}
+
+/* "a, b or c": the names for a message */
+void _vrg_choice_words(const char *choices, char *out, size_t cap)
+{
+    int count = _vrg_choice_count(choices), k = 0;
+    size_t o = 0;
+    out[0] = '\0';
+    for (const char *c = choices; c && *c && o < cap; k++) {
+        const char *comma = strchr(c, ',');
+        int len = comma ? (int)(comma - c) : (int)strlen(c);
+        int w = snprintf(out + o, cap - o, "%s%.*s", k == 0 ? "" : k == count - 1 ? " or " : ", ", len, c);
+        o += w > 0 ? (size_t)w : 0;
+        if (!comma)
+            break;
+        c = comma + 1;
+    }
+}
+
+const char *_vrg_choices_problem(const vrg_param_desc *pd, const char *choices, char *why, size_t cap)
+{
+    if (pd->type != VRG_PARAM_STRING || (pd->flags & VRG_PARAM_REPEATABLE))
+        return "has choices but is not a single string (VRG_PARAM_STRING, not repeatable)";
+    int count = _vrg_choice_count(choices);
+    if (count < 1)
+        return "has an empty list of choices";
+    int k = 0;
+    for (const char *c = choices; *c; k++) {
+        const char *comma = strchr(c, ',');
+        size_t len = comma ? (size_t)(comma - c) : strlen(c);
+        if (len == 0 || len >= VRG_NAME_MAX)
+            return snprintf(why, cap, "choice %d of '%s' is %s", k, choices, len ? "too long" : "empty"), why;
+        for (size_t j = 0; j < len; j++)
+            if ((unsigned char)c[j] <= ' ' || strchr("=;#[]\"", c[j]))
+                return snprintf(why, cap, "choice '%.*s' holds a space or one of = ; # [ ] \"", (int)len, c), why;
+        char name[VRG_NAME_MAX];
+        snprintf(name, sizeof name, "%.*s", (int)len, c);
+        if (_vrg_choice_index(choices, name) != k)
+            return snprintf(why, cap, "names choice '%s' twice", name), why;
+        if (!comma)
+            break;
+        c = comma + 1;
+    }
+    if (!pd->default_string || _vrg_choice_index(choices, pd->default_string) < 0)
+        return snprintf(why, cap, "has default '%s', which is none of its choices %s", pd->default_string ? pd->default_string : "(none)", choices), why;
+    return NULL;
+}

@@ -199,6 +199,33 @@ int vrg_param_choice(vrg_pass *p, const char *name, const char *const *choices, 
     return -1;
 }
 
+/* The descriptor's choices (param_choices): each such string parameter's
+ * value is one of them, else VRG-E047 at its line, as vrg_param_choice
+ * says it for a C pass that checks its own. */
+int _vrg_pass_check_choices(vrg_pass *p)
+{
+    const vrg_plugin_desc *d = p->plugin->desc;
+    int rc = 0;
+    for (uint32_t i = 0; i < d->param_count; i++) {
+        const char *choices = _vrg_param_choices(d, i);
+        if (!choices)
+            continue;
+        const char *v = vrg_param_string(p, d->params[i].name);
+        if (_vrg_choice_index(choices, v) >= 0)
+            continue;
+        char list[512];
+        _vrg_choice_words(choices, list, sizeof list);
+        rc = pass_fail_at(p, vrg_param_line(p, d->params[i].name), VRG_E_NOT_A_CHOICE, "%s = '%s': expected %s", d->params[i].name, v, list);
+    }
+    return rc;
+}
+
+int _vrg_pass_choice(const vrg_pass *p, uint32_t param)
+{
+    const char *choices = _vrg_param_choices(p->plugin->desc, param);
+    return choices ? _vrg_choice_index(choices, vrg_param_string(p, p->plugin->desc->params[param].name)) : -1;
+}
+
 int vrg_pass_error_at(vrg_pass *p, int line, const char *fmt, ...)
 {
     va_list ap;

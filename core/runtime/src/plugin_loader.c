@@ -791,8 +791,8 @@ static int check_desc(const vrg_plugin_desc *desc, const char *name, const char 
         why = "its descriptor's name differs from its file name";
     else if (desc->kind != VRG_PLUGIN_PASS && desc->kind != VRG_PLUGIN_SCENE)
         why = "kind is neither VRG_PLUGIN_PASS nor VRG_PLUGIN_SCENE";
-    else if (needs_execute && !desc->execute)
-        why = "execute callback is NULL";
+    else if (needs_execute && !desc->execute && (desc->kind == VRG_PLUGIN_SCENE || !desc->dispatch_count))
+        why = desc->kind == VRG_PLUGIN_SCENE ? "execute callback is NULL" : "execute callback is NULL and it lists no dispatches for the runtime to record";
     else if (desc->slot_count > VRG_MAX_SLOTS || (desc->slot_count && !desc->slots))
         why = desc->slot_count > VRG_MAX_SLOTS ? (snprintf(buf, sizeof buf, "%u slots, more than the %d a plugin may have", desc->slot_count, VRG_MAX_SLOTS), buf)
                                                : "slot_count is set but slots is NULL";
@@ -829,6 +829,11 @@ static int check_desc(const vrg_plugin_desc *desc, const char *name, const char 
                 return -1;
             }
         if ((why = _vrg_param_problem(pd, buf, sizeof buf))) {
+            fail(d, line, VRG_E_PLUGIN_BAD_DESC, NULL, "plugin '%s' (%s): parameter '%s' %s", name, path, pd->name, why);
+            return -1;
+        }
+        const char *choices = _vrg_param_choices(desc, i);
+        if (choices && (why = _vrg_choices_problem(pd, choices, buf, sizeof buf))) {
             fail(d, line, VRG_E_PLUGIN_BAD_DESC, NULL, "plugin '%s' (%s): parameter '%s' %s", name, path, pd->name, why);
             return -1;
         }

@@ -278,8 +278,10 @@ int _vrg_record_frame(vrg_graph *g)
         _vrg_running before = _vrg_running_enter("execute", p->name, p->plugin);
         if (p->plugin->shader_pass) /* a shader-only pass: its one dispatch */
             _vrg_shader_pass_execute(p, cmd);
-        else
+        else if (p->plugin->desc->execute)
             p->plugin->desc->execute(p, cmd);
+        else /* a pass whose execute would only record its list */
+            _vrg_dispatch_listed(p, cmd);
         _vrg_running_leave(before);
         /* a value pushed by name that no dispatch read: the pass's mistake */
         if (p->push_count && !p->failed)

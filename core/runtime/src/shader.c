@@ -382,6 +382,25 @@ void _vrg_shader_group_size(const vrg_context *ctx, uint32_t out[2])
     out[1] = ctx ? ctx->group_size[1] : 8;
 }
 
+char *_vrg_shader_expand(const char *path, FILE *diag)
+{
+    size_t len;
+    char *src = read_file(path, &len);
+    if (!src) {
+        fprintf(diag, "%s: error[%s]: cannot read shader\n", path, SOURCE_CODE);
+        return NULL;
+    }
+    expand_ctx e = {.diag = diag, .defines = ""};
+    expand(&e, path, src, 0);
+    free(src);
+    free(e.seen);
+    if (e.failed) {
+        free(e.out);
+        return NULL;
+    }
+    return e.out;
+}
+
 int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines, _vrg_shader_module *out, FILE *diag)
 {
     return _vrg_shader_compile_source(ctx, path, defines, out, diag, NULL);

@@ -19,6 +19,10 @@ int _vrg_shader_compile(vrg_context *ctx, const char *path, const char *defines,
 /* The same, and on success the expanded source (includes inlined, with
  * #line directives) in *expanded (free()). */
 int _vrg_shader_compile_source(vrg_context *ctx, const char *path, const char *defines, _vrg_shader_module *out, FILE *diag, char **expanded);
+/* The file with its includes inlined (#line directives), not compiled:
+ * what a shader-only pass's annotations are read from before it compiles
+ * (free()); NULL after reporting. */
+char *_vrg_shader_expand(const char *path, FILE *diag);
 /* The file of a shader a pass names (docs/plugin-abi.md, "Shader path"): 0
  * with it in out, or -1 with the places searched in `searched` (searched_cap
  * 0: not said). */

@@ -122,19 +122,66 @@ static size_t code_len(const char *s, size_t n, const char **comment)
     return n;
 }
 
+/* ---- variants ---- */
+
+/* prefix + name in upper case: a define (HAS_EMISSION, CURVE) */
+static void upper_define(char *out, size_t cap, const char *prefix, const char *name)
+{
+    size_t o = (size_t)snprintf(out, cap, "%s", prefix);
+    for (; *name && o + 1 < cap; name++)
+        out[o++] = (char)toupper((unsigned char)*name);
+    out[o < cap ? o : cap - 1] = '\0';
+}
+
 /* ---- @param annotations ---- */
 
 typedef struct annotation {
-    int has_default, has_min, has_max, has_help;
+    int has_default, has_min, has_max, has_help, has_choices, variant;
     double def, min, max;
+    char def_text[VRG_NAME_MAX];
+    char choices[VRG_SHADER_PASS_CHOICES_MAX];
     char help[VRG_SHADER_PASS_HELP_MAX];
 } annotation;
 
-/* Parses "@param key=value ..." (text of len n after "//"); NULL, or why not. */
+/* A value of key=value: up to white space, into out. NULL, or why not. */
+static const char *annotation_value(const char **sp, const char *end, const char *key, size_t klen, char *out, size_t cap, char *why, size_t wcap)
+{
+    const char *v = *sp, *s = *sp;
+    while (s < end && !isspace((unsigned char)*s))
+        s++;
+    *sp = s;
+    if (s == v)
+        return snprintf(why, wcap, "%.*s has no value", (int)klen, key), why;
+    if ((size_t)(s - v) >= cap)
+        return snprintf(why, wcap, "%.*s's value is longer than %zu characters", (int)klen, key, cap - 1), why;
+    snprintf(out, cap, "%.*s", (int)(s - v), v);
+    return NULL;
+}
+
+static const char *annotation_number(const char *key, const char *value, int is_bool, double *x, char *why, size_t cap)
+{
+    char *stop;
+    if (is_bool && strcmp(value, "true") == 0)
+        *x = 1;
+    else if (is_bool && strcmp(value, "false") == 0)
+        *x = 0;
+    else {
+        *x = strtod(value, &stop);
+        if (*stop || !isfinite(*x))
+            return snprintf(why, cap, "%s=%s is not a number", key, value), why;
+    }
+    return NULL;
+}
+
+/* Parses "@param key=value ..." (text of len n after "//"); NULL, or why
+ * not. Keys: default, min, max, help="...", choices=a,b,c (a string
+ * parameter whose index the member gets; default= is then a name) and the
+ * word variant (each choice compiles a variant: NAME=index). */
 static const char *parse_annotation(const char *s, size_t n, int is_bool, annotation *a, char *why, size_t cap)
 {
     memset(a, 0, sizeof *a);
     const char *end = s + n;
+    char min_text[64] = "", max_text[64] = "";
     while (s < end && isspace((unsigned char)*s))
         s++;
     if ((size_t)(end - s) < 6 || strncmp(s, "@param", 6) != 0 || (end - s > 6 && !isspace((unsigned char)s[6])))
@@ -149,6 +196,12 @@ static const char *parse_annotation(const char *s, size_t n, int is_bool, annota
         while (s < end && (isalnum((unsigned char)*s) || *s == '_'))
             s++;
         size_t klen = (size_t)(s - key);
+        if (klen == 7 && strncmp(key, "variant", 7) == 0 && (s >= end || isspace((unsigned char)*s))) {
+            if (a->variant)
+                return "variant is given twice";
+            a->variant = 1;
+            continue;
+        }
         if (!klen || s >= end || *s != '=')
             return snprintf(why, cap, "expected key=value at '%.*s'", (int)(end - key > 24 ? 24 : end - key), key), why;
         s++;
@@ -176,47 +229,38 @@ static const char *parse_annotation(const char *s, size_t n, int is_bool, annota
             continue;
         }
         int is_default = klen == 7 && strncmp(key, "default", 7) == 0, is_min = klen == 3 && strncmp(key, "min", 3) == 0,
-            is_max = klen == 3 && strncmp(key, "max", 3) == 0;
-        if (!is_default && !is_min && !is_max)
-            return snprintf(why, cap, "unknown key '%.*s' (default, min, max, help)", (int)klen, key), why;
-        const char *v = s;
-        while (s < end && !isspace((unsigned char)*s))
-            s++;
-        char value[64];
-        if ((size_t)(s - v) >= sizeof value || s == v)
-            return snprintf(why, cap, "%.*s has no value", (int)klen, key), why;
-        snprintf(value, sizeof value, "%.*s", (int)(s - v), v);
-        double x;
-        char *stop;
-        if (is_bool && strcmp(value, "true") == 0)
-            x = 1;
-        else if (is_bool && strcmp(value, "false") == 0)
-            x = 0;
-        else {
-            x = strtod(value, &stop);
-            if (*stop || !isfinite(x))
-                return snprintf(why, cap, "%.*s=%s is not a number", (int)klen, key, value), why;
-        }
-        int *has;
-        double *to;
-        if (is_default)
-            has = &a->has_default, to = &a->def;
-        else if (is_min)
-            has = &a->has_min, to = &a->min;
-        else
-            has = &a->has_max, to = &a->max;
+            is_max = klen == 3 && strncmp(key, "max", 3) == 0, is_choices = klen == 7 && strncmp(key, "choices", 7) == 0;
+        if (!is_default && !is_min && !is_max && !is_choices)
+            return snprintf(why, cap, "unknown key '%.*s' (default, min, max, help, choices, variant)", (int)klen, key), why;
+        int *has = is_default ? &a->has_default : is_min ? &a->has_min : is_max ? &a->has_max : &a->has_choices;
         if (*has)
             return snprintf(why, cap, "%.*s is given twice", (int)klen, key), why;
         *has = 1;
-        *to = x;
+        char *to = is_default ? a->def_text : is_min ? min_text : is_max ? max_text : a->choices;
+        size_t to_cap = is_default ? sizeof a->def_text : is_min ? sizeof min_text : is_max ? sizeof max_text : sizeof a->choices;
+        const char *problem = annotation_value(&s, end, key, klen, to, to_cap, why, cap);
+        if (problem)
+            return problem;
     }
     if (!a->has_default)
-        return "it has no default=";
+        return a->has_choices ? "it has no default= (one of its choices)" : "it has no default=";
     if (!a->has_help)
         return "it has no help=\"...\"";
+    if (a->variant && !a->has_choices)
+        return "variant picks a compiled variant per choice: give choices= too";
+    if (a->has_choices) {
+        if (a->has_min || a->has_max)
+            return "a parameter with choices= has no min= or max=: its values are the names";
+        return NULL; /* default= is a name, checked against the list by the caller */
+    }
     if (a->has_min != a->has_max)
         return "give both min= and max=, or neither";
-    return NULL;
+    const char *problem = annotation_number("default", a->def_text, is_bool, &a->def, why, cap);
+    if (!problem && a->has_min)
+        problem = annotation_number("min", min_text, is_bool, &a->min, why, cap);
+    if (!problem && a->has_max)
+        problem = annotation_number("max", max_text, is_bool, &a->max, why, cap);
+    return problem;
 }
 
 /* The push-constant block's lines: from the line with `push_constant` to
@@ -382,6 +426,37 @@ static int parse_params(struct _vrg_shader_pass *sp, vrg_plugin_desc *desc, cons
             shader_error(d, ml.file, ml.line, form, "push-constant member '%s': malformed @param annotation: %s", pm->name, problem);
             continue;
         }
+        if (a.has_choices) { /* a string parameter: the member gets its index */
+            static const char *choice_form = "`int curve; // @param choices=aces,reinhard,linear default=aces help=\"...\"` (docs/plugin-abi.md)";
+            if (is_bool || (pm->scalar != VRG_PUSH_INT && pm->scalar != VRG_PUSH_UINT)) {
+                shader_error(d, ml.file, ml.line, choice_form, "push-constant member '%s' has choices=, but it is a %s: the index of the choice goes into an int or uint",
+                             pm->name, is_bool ? "bool" : "float");
+                continue;
+            }
+            snprintf(sp->choice_text[m], sizeof sp->choice_text[m], "%s", a.choices);
+            snprintf(sp->param_default[m], sizeof sp->param_default[m], "%s", a.def_text);
+            snprintf(sp->param_names[m], sizeof sp->param_names[m], "%s", pm->name);
+            snprintf(sp->param_help[m], sizeof sp->param_help[m], "%s", a.help);
+            vrg_param_desc *pd = &sp->params[m];
+            *pd = (vrg_param_desc){.name = sp->param_names[m], .type = VRG_PARAM_STRING, .help = sp->param_help[m], .default_string = sp->param_default[m]};
+            if ((problem = _vrg_choices_problem(pd, sp->choice_text[m], why, sizeof why))) {
+                shader_error(d, ml.file, ml.line, choice_form, "push-constant member '%s': @param %s", pm->name, problem);
+                continue;
+            }
+            sp->choices[m] = sp->choice_text[m];
+            if (a.variant) {
+                if (sp->axis_count == (int)(sizeof sp->axes / sizeof sp->axes[0])) {
+                    shader_error(d, ml.file, ml.line, NULL, "push-constant member '%s': more than %d optional slots and variant choices", pm->name,
+                                 (int)(sizeof sp->axes / sizeof sp->axes[0]));
+                    continue;
+                }
+                struct _vrg_shader_axis *ax = &sp->axes[sp->axis_count++];
+                *ax = (struct _vrg_shader_axis){.slot = -1, .param = m, .count = _vrg_choice_count(sp->choice_text[m])};
+                upper_define(ax->define, sizeof ax->define, "", pm->name);
+                snprintf(sp->axis_where[sp->axis_count - 1], sizeof sp->axis_where[0], "%s:%d", ml.file, ml.line);
+            }
+            continue;
+        }
         /* what the member's type holds: the value is cast to it when packed */
         if (!is_bool) {
             double lo = pm->scalar == VRG_PUSH_INT ? -2147483648.0 : pm->scalar == VRG_PUSH_UINT ? 0 : -FLT_MAX;
@@ -424,6 +499,9 @@ static int parse_params(struct _vrg_shader_pass *sp, vrg_plugin_desc *desc, cons
     free(code);
     desc->params = sp->params;
     desc->param_count = (uint32_t)r->push_member_count;
+    for (int m = 0; m < r->push_member_count; m++)
+        if (sp->choices[m])
+            desc->param_choices = sp->choices;
     return d->errors > errors ? -1 : 0;
 }
 
@@ -435,7 +513,66 @@ static int by_binding(const void *a, const void *b)
     return x->binding < y->binding ? -1 : x->binding > y->binding;
 }
 
-static int parse_slots(struct _vrg_shader_pass *sp, vrg_plugin_desc *desc, const _vrg_reflection *r, _vrg_diag *d)
+/* The text of FILE:LINE in the expanded source, 0 if it is not there. */
+static int line_text(const char *src, const char *file, int line, const char **text, size_t *len)
+{
+    src_reader rd = {.p = src};
+    src_line l;
+    while (next_line(&rd, &l))
+        if (l.line == line && strcmp(l.file, file) == 0) {
+            *text = l.text, *len = l.len;
+            return 1;
+        }
+    return 0;
+}
+
+/* A binding line's annotation: `// @optional [help="..."]`; a comment not
+ * starting with @ is no annotation. NULL, or why it cannot be read. */
+static const char *parse_slot_annotation(const char *text, size_t len, int *optional, char *help, size_t help_cap, char *why, size_t cap)
+{
+    const char *comment;
+    code_len(text, len, &comment);
+    *optional = 0;
+    help[0] = '\0';
+    if (!comment)
+        return NULL;
+    const char *s = comment, *end = text + len;
+    while (s < end && isspace((unsigned char)*s))
+        s++;
+    if (s >= end || *s != '@')
+        return NULL;
+    const char *word = s;
+    while (s < end && !isspace((unsigned char)*s))
+        s++;
+    if ((size_t)(s - word) != 9 || strncmp(word, "@optional", 9) != 0)
+        return snprintf(why, cap, "unknown annotation '%.*s' on a binding (a binding takes @optional [help=\"...\"])", (int)(s - word > 32 ? 32 : s - word), word), why;
+    *optional = 1;
+    while (s < end && isspace((unsigned char)*s))
+        s++;
+    if (s < end && *s != '\r') {
+        if ((size_t)(end - s) < 6 || strncmp(s, "help=\"", 6) != 0)
+            return snprintf(why, cap, "expected help=\"...\" after @optional at '%.*s'", (int)(end - s > 24 ? 24 : end - s), s), why;
+        s += 6;
+        size_t o = 0;
+        while (s < end && *s != '"') {
+            if (*s == '\\' && s + 1 < end)
+                s++;
+            if (o + 1 < help_cap)
+                help[o++] = *s;
+            s++;
+        }
+        if (s >= end)
+            return "help's quoted text has no closing '\"'";
+        help[o] = '\0';
+        for (s++; s < end && isspace((unsigned char)*s); s++)
+            ;
+        if (s < end)
+            return snprintf(why, cap, "unexpected '%.*s' after help=\"...\"", (int)(end - s > 24 ? 24 : end - s), s), why;
+    }
+    return NULL;
+}
+
+static int parse_slots(struct _vrg_shader_pass *sp, vrg_plugin_desc *desc, const char *src, const _vrg_reflection *r, _vrg_diag *d)
 {
     static const char *naming = "a shader-only pass's bindings are its slots by name: in_X (input X), out_X (output X), or frame.glsl's `frame` block";
     int errors = d->errors;
@@ -529,7 +666,29 @@ static int parse_slots(struct _vrg_shader_pass *sp, vrg_plugin_desc *desc, const
         }
         if (s->kind == VRG_IMAGE && b->image_dim != 1 /* SpvDim2D */)
             shader_error(d, file, line, NULL, "binding '%s' is not a 2D image: slots hold 2D images", name);
-        snprintf(sp->slot_help[i], sizeof sp->slot_help[i], "%s %s (%s)", what ? what : "binding", name, b->where);
+        const char *text;
+        size_t len;
+        int optional = 0;
+        char help[VRG_SHADER_PASS_HELP_MAX] = "", why[256];
+        const char *problem = line_text(src, file, line, &text, &len) ? parse_slot_annotation(text, len, &optional, help, sizeof help, why, sizeof why) : NULL;
+        if (problem)
+            shader_error(d, file, line, "`layout(binding = 3) uniform sampler2D in_emission; // @optional help=\"...\"` (docs/plugin-abi.md)", "binding '%s': %s", name,
+                         problem);
+        if (optional) {
+            s->flags |= VRG_SLOT_OPTIONAL;
+            if (sp->axis_count == (int)(sizeof sp->axes / sizeof sp->axes[0]))
+                shader_error(d, file, line, NULL, "binding '%s': more than %d optional slots and variant choices", name, (int)(sizeof sp->axes / sizeof sp->axes[0]));
+            else {
+                struct _vrg_shader_axis *ax = &sp->axes[sp->axis_count];
+                *ax = (struct _vrg_shader_axis){.slot = i, .param = -1, .count = 2};
+                upper_define(ax->define, sizeof ax->define, "HAS_", slot);
+                snprintf(sp->axis_where[sp->axis_count++], sizeof sp->axis_where[0], "%s", b->where);
+            }
+        }
+        if (help[0])
+            snprintf(sp->slot_help[i], sizeof sp->slot_help[i], "%s", help);
+        else
+            snprintf(sp->slot_help[i], sizeof sp->slot_help[i], "%s %s (%s)", what ? what : "binding", name, b->where);
         snprintf(sp->slot_where[i], sizeof sp->slot_where[i], "%s", b->where);
         for (int j = 0; j < i; j++)
             if (strcmp(sp->slot_names[j], slot) == 0 && sp->slots[j].dir == s->dir)
@@ -539,7 +698,102 @@ static int parse_slots(struct _vrg_shader_pass *sp, vrg_plugin_desc *desc, const
     }
     desc->slots = sp->slots;
     desc->slot_count = (uint32_t)r->count;
+    /* the dispatch covers the first image output always written: an
+     * optional one unread is a 1x1 stand-in */
+    for (int i = 0; i < r->count && !sp->domain[0]; i++)
+        if (sp->slots[i].dir == VRG_OUT && sp->slots[i].kind == VRG_IMAGE && !(sp->slots[i].flags & VRG_SLOT_OPTIONAL))
+            snprintf(sp->domain, sizeof sp->domain, "out.%s", sp->slot_names[i]);
+    for (int i = 0; i < r->count && !sp->domain[0]; i++)
+        if (sp->slots[i].dir == VRG_OUT && sp->slots[i].kind == VRG_IMAGE) {
+            int line = split_where(sp->slot_where[i], file, sizeof file);
+            shader_error(d, file, line, "leave one image output required: it sets the dispatch size",
+                         "binding 'out_%s': every image output is @optional, and an unread one is 1x1: none sets the dispatch size", sp->slot_names[i]);
+            break;
+        }
     return d->errors > errors ? -1 : 0;
+}
+
+/* One listed dispatch per variant: the product of the axes' values, the
+ * first axis varying fastest (_vrg_shader_pass_execute picks by that). */
+static int make_variants(struct _vrg_shader_pass *sp, vrg_plugin_desc *desc, _vrg_diag *d)
+{
+    char file[VRG_PATH_MAX];
+    int total = 1;
+    for (int a = 0; a < sp->axis_count; a++) {
+        for (int b = 0; b < a; b++)
+            if (strcmp(sp->axes[a].define, sp->axes[b].define) == 0) {
+                int line = split_where(sp->axis_where[a], file, sizeof file);
+                shader_error(d, file, line, NULL, "its variant's define %s is also that of %s: rename one", sp->axes[a].define, sp->axis_where[b]);
+                return -1;
+            }
+        total *= sp->axes[a].count;
+        if (total > VRG_SHADER_PASS_VARIANTS) {
+            int line = split_where(sp->axis_where[a], file, sizeof file);
+            shader_error(d, file, line, "read an optional slot's or a choice's value at run time instead (a push member, not #ifdef)",
+                         "the optional slots and variant choices up to here make %d variants, more than the %d a shader-only pass compiles", total,
+                         VRG_SHADER_PASS_VARIANTS);
+            return -1;
+        }
+    }
+    for (int k = 0; k < total; k++) {
+        vrg_dispatch_desc *v = &sp->dispatches[k];
+        *v = sp->dispatch;
+        char *defs = sp->defines[k];
+        size_t o = 0;
+        defs[0] = '\0';
+        for (int a = 0, rest = k; a < sp->axis_count; rest /= sp->axes[a].count, a++) {
+            int value = rest % sp->axes[a].count;
+            if (sp->axes[a].slot >= 0 && !value)
+                continue; /* HAS_X only when X is connected */
+            int w = snprintf(defs + o, sizeof sp->defines[k] - o, "%s%s=%d", o ? " " : "", sp->axes[a].define, sp->axes[a].slot >= 0 ? 1 : value);
+            o += w > 0 ? (size_t)w : 0;
+            if (o >= sizeof sp->defines[k]) {
+                int line = split_where(sp->axis_where[a], file, sizeof file);
+                shader_error(d, file, line, NULL, "the variants' defines take more than %zu characters", sizeof sp->defines[k] - 1);
+                return -1;
+            }
+        }
+        v->defines = o ? defs : NULL;
+    }
+    desc->dispatches = sp->dispatches;
+    desc->dispatch_count = (uint32_t)total;
+    return 0;
+}
+
+/* "NAME=0 ..." for each push member annotated `variant` (read before the
+ * shader compiles, which needs them): the first variant's defines. A
+ * member is the last word before the `;` of the annotated line's code. */
+static void variant_defines(const char *expanded, char *out, size_t cap)
+{
+    src_reader rd = {.p = expanded};
+    src_line l;
+    size_t o = 0;
+    out[0] = '\0';
+    while (next_line(&rd, &l)) {
+        const char *comment;
+        size_t n = code_len(l.text, l.len, &comment);
+        annotation a;
+        char why[256];
+        if (!comment || parse_annotation(comment, l.len - (size_t)(comment - l.text), 0, &a, why, sizeof why) || !a.variant)
+            continue;
+        const char *semi = memchr(l.text, ';', n), *e = semi;
+        while (e && e > l.text && isspace((unsigned char)e[-1]))
+            e--;
+        const char *b = e;
+        while (b && b > l.text && word_char(b[-1]))
+            b--;
+        if (!b || b == e || (size_t)(e - b) >= VRG_NAME_MAX)
+            continue; /* not a member: parse_params says so at its line */
+        char name[VRG_NAME_MAX], define[VRG_NAME_MAX + 8];
+        snprintf(name, sizeof name, "%.*s", (int)(e - b), b);
+        upper_define(define, sizeof define, "", name);
+        int w = snprintf(out + o, cap - o, "%s%s=0", o ? " " : "", define);
+        if (w < 0 || (size_t)w >= cap - o) {
+            out[o] = '\0';
+            return; /* make_variants reports defines past their room */
+        }
+        o += (size_t)w;
+    }
 }
 
 /* ---- the pass ---- */
@@ -579,8 +833,16 @@ int _vrg_shader_pass_load(_vrg_plugin *p, _vrg_diag *d, int line)
     FILE *out = d->out ? d->out : stderr;
     _vrg_shader_module sm;
     char *src = NULL;
+    /* the interface is read from the first variant: each variant choice at
+     * index 0 (its define must exist to compile), no optional slot
+     * connected (HAS_X undefined) */
+    char first_variant[224] = "";
+    char *expanded = _vrg_shader_expand(p->source, mem ? mem : out);
+    if (expanded)
+        variant_defines(expanded, first_variant, sizeof first_variant);
+    free(expanded);
     /* without a device: what the shader declares does not depend on it */
-    int rc = _vrg_shader_compile_source(NULL, p->source, NULL, &sm, mem ? mem : out, &src);
+    int rc = expanded ? _vrg_shader_compile_source(NULL, p->source, first_variant, &sm, mem ? mem : out, &src) : -1;
     if (mem) {
         fclose(mem);
         fputs(text ? text : "", out);
@@ -612,7 +874,7 @@ int _vrg_shader_pass_load(_vrg_plugin *p, _vrg_diag *d, int line)
     int errors = d->errors;
     if (strlen(p->source) >= sizeof sp->shader)
         _vrg_error(d, VRG_E_SHADER_INTERFACE, "plugin '%s': its path %s is longer than %zu characters", p->name, p->source, sizeof sp->shader - 1);
-    parse_slots(sp, desc, &sm.refl, d);
+    parse_slots(sp, desc, src, &sm.refl, d);
     parse_params(sp, desc, src, &sm.refl, d);
     /* pixel.glsl's loop when the shader includes it, else one invocation per pixel */
     int pixel_loop = 0;
@@ -625,8 +887,9 @@ int _vrg_shader_pass_load(_vrg_plugin *p, _vrg_diag *d, int line)
     sp->dispatch.shader = sp->shader;
     sp->dispatch.push_size = 0; /* packed by name (dispatch.c), as a C pass's */
     sp->dispatch.pixel_loop = pixel_loop;
-    desc->dispatches = &sp->dispatch;
-    desc->dispatch_count = 1;
+    sp->dispatch.domain = sp->domain[0] ? sp->domain : NULL;
+    if (d->errors == errors)
+        make_variants(sp, desc, d);
     free(src);
     free(sm.deps);
     _vrg_reflection_free(&sm.refl);

@@ -988,6 +988,8 @@ int _vrg_validate(vrg_graph *g, const _vrg_ast *ast, const vrg_graph_desc *desc)
     apply_overrides(g, desc);
     for (int i = 0; i < g->pass_count; i++) {
         vrg_pass *p = &g->passes[i];
+        if (p->plugin && p->plugin->desc->param_choices && _vrg_pass_check_choices(p) != 0)
+            continue; /* its check() would read a value it does not take */
         if (!p->plugin || !p->plugin->desc->check)
             continue;
         _vrg_running before = _vrg_running_enter("check", p->name, p->plugin);

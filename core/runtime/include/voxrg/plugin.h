@@ -164,7 +164,10 @@ typedef struct vrg_plugin_desc {
      * Resource handles and extents are valid from here on. May be NULL. */
     int (*resize)(vrg_pass *pass);
     /* Record the pass. Every slot is already in the layout and access its
-     * declaration names. Required. */
+     * declaration names. NULL in a pass that lists dispatches: the runtime
+     * records each listed dispatch, in order, as vrg_dispatch would (its
+     * push constants packed by name from the parameters). Required in a
+     * scene and in a pass that lists none. */
     void (*execute)(vrg_pass *pass, VkCommandBuffer cmd);
     /* Free what create() made. May be NULL. */
     void (*destroy)(vrg_pass *pass);
@@ -186,6 +189,15 @@ typedef struct vrg_plugin_desc {
      * checked at their first dispatch only. */
     const struct vrg_dispatch_desc *dispatches;
     uint32_t dispatch_count; /* at most VRG_MAX_DISPATCHES */
+    /* The names a string parameter takes: param_choices[i], for params[i],
+     * is NULL or a comma-separated list ("aces,reinhard,linear") whose
+     * entries include the parameter's default_string. NULL: no parameter
+     * has choices. The runtime checks the graph's value against the list
+     * (VRG-E047 at its line) and packs its index into an int or uint
+     * push-constant member of the parameter's name; hosts show the list
+     * (from vrg_find_plugin's descriptor). A string parameter, not
+     * repeatable. */
+    const char *const *param_choices;
 } vrg_plugin_desc;
 
 #define VRG_MAX_DISPATCHES 256
