@@ -23,7 +23,7 @@ layout(std140, binding = FRAME_BINDING) uniform FrameUniforms {
     ivec4 world_grid;      // the world's slot grid, chunks (world.glsl: world_grid()); w: view radius, blocks (0: not streamed)
     vec4 world_lo;         // the box of the non-air blocks the world buffer holds,
     vec4 world_hi;         //   blocks, hi exclusive; empty when lo >= hi (trace.glsl clips rays to it)
-    vec4 prev_sun_dir;     // last frame's key light direction; w: 1 where known (0: a frame without history)
+    vec4 prev_sun_dir;     // last frame's key light direction; w: the degrees it moved since (-1: unknown, no history)
 } frame;
 
 // World-space direction of the primary ray through pixel centre p + 0.5
@@ -34,13 +34,10 @@ vec3 frame_ray_dir(vec2 pixel, vec2 size)
     return normalize(frame.camera_forward.xyz + ndc.x * frame.camera_right.xyz - ndc.y * frame.camera_up.xyz);
 }
 
-// Degrees the key light moved since the last frame (0 where unknown)
-float frame_sun_moved_degrees()
-{
-    if (frame.prev_sun_dir.w == 0.0)
-        return 0.0;
-    return degrees(acos(clamp(dot(frame.sun_dir.xyz, frame.prev_sun_dir.xyz), -1.0, 1.0)));
-}
+// Degrees the key light moved since the last frame (0 where unknown).
+// Computed on the host in double: from 32-bit directions a slow sun's
+// angle rounds to 0 or 0.02 degrees.
+float frame_sun_moved_degrees() { return max(frame.prev_sun_dir.w, 0.0); }
 
 // The most frames a history may span while the key light moves at most
 // `span` degrees in them (the history's lag under a moving sun): 1e30 with

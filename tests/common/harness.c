@@ -36,8 +36,12 @@ double sun_moved_degrees(double time_of_day, double day_length, double frame_s, 
         vrg_sky_eval(&d, (double)(frame - (uint64_t)i) * frame_s, &sky);
         vrg_sky_key_light(&sky, dir[i], &elevation, radiance);
     }
-    double c = (double)dir[0][0] * dir[1][0] + (double)dir[0][1] * dir[1][1] + (double)dir[0][2] * dir[1][2];
-    return acos(c > 1 ? 1 : c < -1 ? -1 : c) * 180.0 / 3.14159265358979323846;
+    /* atan2 of |a x b| and a.b: acos of the dot of two float directions a
+     * thousandth of a degree apart is mostly their rounding */
+    const float *a = dir[0], *b = dir[1];
+    double c[3] = {(double)a[1] * b[2] - (double)a[2] * b[1], (double)a[2] * b[0] - (double)a[0] * b[2], (double)a[0] * b[1] - (double)a[1] * b[0]};
+    double dot = (double)a[0] * b[0] + (double)a[1] * b[1] + (double)a[2] * b[2];
+    return atan2(sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]), dot) * 180.0 / 3.14159265358979323846;
 }
 
 float px(const vrg_image_data *img, uint32_t x, uint32_t y, int c) { return img->pixels[((size_t)y * img->width + x) * 4 + c]; }

@@ -86,11 +86,11 @@ static void test_denoise_antilag(void)
     CHECK(on.length < 3 && off.length > 8.5, "history length %g with anti-lag, %g without", on.length, off.length);
 }
 
-/* The history length after 10 frames of a still light under a sun that
- * moves (day_length seconds a day; 0: still) with the given sun_span, no
- * clamp or anti-lag (the light itself does not change: only the stage can
- * cut the history). */
-static double length_under_sun(double day_length, double sun_span)
+/* The history length after `frames` frames of a still light under a sun
+ * that moves (day_length seconds a day; 0: still) with the given sun_span,
+ * no clamp or anti-lag (the light itself does not change: only the stage
+ * can cut the history). */
+static double length_under_sun(double day_length, double sun_span, int frames)
 {
     static const char *reads[] = {"reproject.color", "reproject.length", "gbuffer.position"};
     char day[64], span[64];
@@ -100,7 +100,7 @@ static double length_under_sun(double day_length, double sun_span)
     vrg_graph *g = load_with("denoise_light.ini", sets, 4, reads, 3);
     if (!g)
         return -1;
-    for (int i = 0; i < 10; i++)
+    for (int i = 0; i < frames; i++)
         CHECK(vrg_graph_frame(g) == 0, "frame failed");
     light_state s = read_light(g);
     vrg_graph_destroy(g);
@@ -109,21 +109,28 @@ static double length_under_sun(double day_length, double sun_span)
 
 /* sun_span: under a moving sun the history is cut to sun_span / the
  * degrees the sun moved since the last frame (here 3.5 frames' worth: 3
- * frames); a still sun, or sun_span 0, leaves it to grow (9 frames). */
+ * frames), for a fast day and a slow one (an hour: a few thousandths of a
+ * degree a frame, which a 32-bit angle would round to 0); a still sun,
+ * even with a tiny sun_span, or sun_span 0 leaves it to grow (to 9 frames
+ * after 10, to max_length 32 after 40). */
 static void test_denoise_sun_span(void)
 {
-    const double day = 20; /* seconds: about 0.3 degrees a frame at 60 fps */
     vrg_graph *g = load("denoise_light.ini");
     double frame_s = g ? vrg_graph_frame_seconds(g) : 1.0 / 60;
     vrg_graph_destroy(g);
-    double moved = sun_moved_degrees(10, day, frame_s, 9);
-    CHECK(moved > 0.05, "the sun moves only %g degrees a frame: the case shows nothing", moved);
-    double still = length_under_sun(0, 3.5 * moved), off = length_under_sun(day, 0), on = length_under_sun(day, 3.5 * moved);
-    printf("denoise_sun_span: sun %.4f degrees a frame; history length %.3f (sun_span %.4f), %.3f (sun_span 0), %.3f (still sun)\n", moved, on,
-           3.5 * moved, off, still);
-    CHECK(still > 8.99 && still < 9.01, "a still sun cut the history to %g frames (want 9)", still);
-    CHECK(off > 8.99 && off < 9.01, "sun_span 0 cut the history to %g frames (want 9)", off);
-    CHECK(on > 2.99 && on < 3.01, "under a moving sun the history is %g frames long, want 3 (3.5 frames of its motion)", on);
+    const double days[] = {20, 3600}; /* seconds: about 0.3 and 0.0017 degrees a frame at 60 fps */
+    for (int d = 0; d < 2; d++) {
+        double moved = sun_moved_degrees(10, days[d], frame_s, 9);
+        CHECK(moved > 1e-3, "the sun moves only %g degrees a frame: the case shows nothing", moved);
+        double off = length_under_sun(days[d], 0, 10), on = length_under_sun(days[d], 3.5 * moved, 10);
+        printf("denoise_sun_span: a %g s day, sun %.6f degrees a frame; history length %.3f (sun_span %.6f), %.3f (sun_span 0)\n", days[d],
+               moved, on, 3.5 * moved, off);
+        CHECK(off > 8.99 && off < 9.01, "sun_span 0 cut the history to %g frames (want 9)", off);
+        CHECK(on > 2.99 && on < 3.01, "a %g s day: the history is %g frames long, want 3 (3.5 frames of its motion)", days[d], on);
+    }
+    double still = length_under_sun(0, 0.01, 40);
+    printf("denoise_sun_span: a still sun with sun_span 0.01: history length %.3f\n", still);
+    CHECK(still > 31.99 && still < 32.01, "a still sun cut the history to %g frames (want max_length 32)", still);
 }
 
 /* mean_variance on a still noisy scene: equal to (m2 - m1^2) / N (N the

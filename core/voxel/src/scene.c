@@ -47,6 +47,9 @@ void vrg_frame_uniforms_fill(const vrg_frame_info *f, const vrg_sky *sky, vrg_fr
     u->seed = f->seed;
     u->time_s = (float)f->time_s;
     u->hours = sky->hours;
+    /* unknown until vrg_frame_uniforms_prev_sun: the light of now */
+    memcpy(u->prev_sun_dir, u->sun_dir, 3 * sizeof(float));
+    u->prev_sun_dir[3] = -1;
 }
 
 void vrg_frame_uniforms_world(const vrg_world *world, vrg_frame_uniforms *u)
@@ -65,20 +68,29 @@ void vrg_frame_uniforms_world(const vrg_world *world, vrg_frame_uniforms *u)
     u->world_lo[3] = u->world_hi[3] = 0;
 }
 
-/* Last frame's key light: the sky at the last frame's time (time_s is
- * frame_index / fps, so that time is time_s (frame_index - 1) /
- * frame_index); unknown (w 0, the direction of now) without history. */
-static void frame_uniforms_prev_sun(const vrg_frame_info *f, const vrg_sky_desc *desc, vrg_frame_uniforms *u)
+/* The degrees between two unit directions, in double: a 32-bit dot
+ * product near 1 rounds a sun that moves a hundredth of a degree a frame
+ * (a 7-minute day at 60 fps) to 0 or to 0.02 degrees. */
+static double degrees_between(const float a[3], const float b[3])
+{
+    double c[3] = {(double)a[1] * b[2] - (double)a[2] * b[1], (double)a[2] * b[0] - (double)a[0] * b[2], (double)a[0] * b[1] - (double)a[1] * b[0]};
+    double d = (double)a[0] * b[0] + (double)a[1] * b[1] + (double)a[2] * b[2];
+    return atan2(sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]), d) * 180.0 / M_PI;
+}
+
+void vrg_frame_uniforms_prev_sun(const vrg_frame_info *f, const vrg_sky_desc *desc, vrg_frame_uniforms *u)
 {
     memcpy(u->prev_sun_dir, u->sun_dir, 3 * sizeof(float));
-    u->prev_sun_dir[3] = 0;
+    u->prev_sun_dir[3] = -1;
     if (!f->history_valid || f->frame_index == 0)
         return;
+    /* time_s is frame_index / fps, so the last frame's time is
+     * time_s (frame_index - 1) / frame_index */
     vrg_sky prev;
     vrg_sky_eval(desc, f->time_s * (double)(f->frame_index - 1) / (double)f->frame_index, &prev);
     float elevation, radiance[3];
     vrg_sky_key_light(&prev, u->prev_sun_dir, &elevation, radiance);
-    u->prev_sun_dir[3] = 1;
+    u->prev_sun_dir[3] = (float)degrees_between(u->sun_dir, u->prev_sun_dir);
 }
 
 void vrg_scene_write_frame(vrg_pass *pass, VkCommandBuffer cmd, const char *slot, const vrg_sky_desc *desc, const vrg_world *world)
@@ -89,8 +101,16 @@ void vrg_scene_write_frame(vrg_pass *pass, VkCommandBuffer cmd, const char *slot
     vrg_frame_uniforms u;
     vrg_frame_uniforms_fill(f, &sky, &u);
     vrg_frame_uniforms_world(world, &u);
-    frame_uniforms_prev_sun(f, desc, &u);
-    vkCmdUpdateBuffer(cmd, vrg_res_buffer(pass, vrg_pass_res(pass, slot)), 0, sizeof u, &u);
+    vrg_frame_uniforms_prev_sun(f, desc, &u);
+    vrg_res res = vrg_pass_res(pass, slot);
+    /* a scene plugin built against older headers sized its buffer for an
+     * older, shorter block (VRG_SCENE_SLOTS: sizeof at its build) */
+    if (vrg_res_size(pass, res) < sizeof u) {
+        vrg_pass_error(pass, "slot '%s' is %llu bytes, the frame uniforms of this voxrg %zu: rebuild the scene plugin against this voxrg's headers",
+                       slot, (unsigned long long)vrg_res_size(pass, res), sizeof u);
+        return;
+    }
+    vkCmdUpdateBuffer(cmd, vrg_res_buffer(pass, res), 0, sizeof u, &u);
 }
 
 static const char *const traversals[] = {"dda", "rayquery"};

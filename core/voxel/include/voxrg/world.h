@@ -217,13 +217,18 @@ typedef struct vrg_frame_uniforms {
     float world_lo[4];
     float world_hi[4];
     /* Last frame's key light direction, for histories that must follow a
-     * moving sun (frame.glsl: frame_sun_moved_degrees); w: 1 where known,
-     * 0 on a frame without history (then xyz = sun_dir). Added at the end:
-     * the block's earlier offsets stay as they were. */
+     * moving sun; w: the degrees between it and sun_dir (computed in
+     * double: frame.glsl's frame_sun_moved_degrees), -1 where unknown (a
+     * frame without history; then xyz = sun_dir). Added at the end: the
+     * block's earlier offsets stay as they were. */
     float prev_sun_dir[4];
 } vrg_frame_uniforms;
 
+/* prev_sun_dir is left unknown (w -1): vrg_frame_uniforms_prev_sun fills it. */
 void vrg_frame_uniforms_fill(const vrg_frame_info *frame, const vrg_sky *sky, vrg_frame_uniforms *out);
+/* prev_sun_dir: the key light of the sky `desc` at the last frame's time and
+ * the degrees it moved since (unknown, w -1, without history). */
+void vrg_frame_uniforms_prev_sun(const vrg_frame_info *frame, const vrg_sky_desc *desc, vrg_frame_uniforms *out);
 /* The world part of the uniforms (world may be NULL: an empty box). */
 void vrg_frame_uniforms_world(const vrg_world *world, vrg_frame_uniforms *out);
 /* What a scene plugin does each frame for its `frame` output (a buffer with
