@@ -269,7 +269,7 @@ void shade(ivec2 p)
 #endif
         slow = from_ycocg(clamp(to_ycocg(slow), mean - box, mean + box));
     }
-    float len = min(floor(h.frames + 0.5) + 1.0, min(float(params.max_length), floor(frame_sun_history_frames(params.sun_span))));
+    float len = min(floor(h.frames + 0.5) + 1.0, min(float(params.max_length), frame_sun_history_frames(params.sun_span)));
     vec3 fast = mix(h.fast, c, max(params.fast_alpha, 1.0 / (len + 1.0)));
     if (params.antilag > 0.0) {
         float noise = sigma.w * sqrt(params.fast_alpha / (2.0 - params.fast_alpha)) + 1e-4;

@@ -234,8 +234,10 @@ void resolve(uint slot)
     uint e = entry_word(slot);
     uint count = table.words[count_word(e)];
     float n_before = expired(e) ? 0.0 : uintBitsToFloat(table.words[n_word(e)]);
-    // frames of samples the history may be worth: max_frames, fewer under a moving sun
-    float frames = max(min(float(params.max_frames), floor(frame_sun_history_frames(params.sun_span))), 1.0);
+    // frames of samples the history may be worth: max_frames, fewer under a
+    // moving sun (not rounded: a sun at a whole number of degrees a frame
+    // and a whole sun_span would sit on floor()'s step)
+    float frames = max(min(float(params.max_frames), frame_sun_history_frames(params.sun_span)), 1.0);
     float n = min(n_before, (frames - 1.0) * float(count)) + float(count);
     for (uint i = 0u; i < params.channels; i++) {
         float sum = float(table.words[sum_word(e, i)]) + 4294967296.0 * float(table.words[sum_word(e, i) + 1u]);

@@ -108,8 +108,8 @@ static double length_under_sun(double day_length, double sun_span, int frames)
 }
 
 /* sun_span: under a moving sun the history is cut to sun_span / the
- * degrees the sun moved since the last frame (here 3.5 frames' worth: 3
- * frames), for a fast day and a slow one (an hour: a few thousandths of a
+ * degrees the sun moved since the last frame (here 3.5 frames' worth, not
+ * rounded), for a fast day and a slow one (an hour: a few thousandths of a
  * degree a frame, which a 32-bit angle would round to 0); a still sun,
  * even with a tiny sun_span, or sun_span 0 leaves it to grow (to 9 frames
  * after 10, to max_length 32 after 40). */
@@ -126,7 +126,7 @@ static void test_denoise_sun_span(void)
         printf("denoise_sun_span: a %g s day, sun %.6f degrees a frame; history length %.3f (sun_span %.6f), %.3f (sun_span 0)\n", days[d],
                moved, on, 3.5 * moved, off);
         CHECK(off > 8.99 && off < 9.01, "sun_span 0 cut the history to %g frames (want 9)", off);
-        CHECK(on > 2.99 && on < 3.01, "a %g s day: the history is %g frames long, want 3 (3.5 frames of its motion)", days[d], on);
+        CHECK(fabs(on - 3.5) < 0.01, "a %g s day: the history is %g frames long, want 3.5 (sun_span: 3.5 frames of its motion)", days[d], on);
     }
     double still = length_under_sun(0, 0.01, 40);
     printf("denoise_sun_span: a still sun with sun_span 0.01: history length %.3f\n", still);

@@ -30,7 +30,7 @@ static void free_all(vrg_image_data img[COUNT])
 /* What a cell holds after `frames` frames of the counter (frame k gives
  * k * step to every sample): the resolve's recursion with n samples per
  * frame, n = min(n, (max_frames - 1) * count) + count, weight count / n. */
-static double expected_mean(int frames, int max_frames, double step)
+static double expected_mean(int frames, double max_frames, double step)
 {
     double mean = 0, n = 0;
     for (int k = 1; k <= frames; k++) {
@@ -78,8 +78,9 @@ static void test_cache_history(void)
 }
 
 /* sun_span: under a moving sun a cell's history is worth at most sun_span
- * / (the degrees the sun moved since the last frame) frames (here 2.5: 2),
- * so the counter's cells follow the recursion with max_frames 2, not the
+ * / (the degrees the sun moved since the last frame) frames (here 2.5, not
+ * rounded), so the counter's cells follow the recursion with max_frames
+ * 2.5, not the
  * 1000 the pass is given; a still sun leaves max_frames in force. */
 static void test_cache_sun_span(void)
 {
@@ -103,15 +104,15 @@ static void test_cache_sun_span(void)
             vrg_graph_destroy(g);
             return;
         }
-        double want = expected_mean(9, moving ? 2 : 1000, 0.0625), worst = 0;
+        double want = expected_mean(9, moving ? 2.5 : 1000, 0.0625), worst = 0;
         for (uint32_t y = 0; y < img[POS].height; y++)
             for (uint32_t x = 0; x < img[POS].width; x++)
                 if (px(&img[POS], x, y, 3) != 0)
                     worst = fmax(worst, fabs(px(&img[TICKS], x, y, 0) - want));
         printf("cache_sun_span: %s sun (%.4f degrees a frame, sun_span %.4f): cells within %g of %g\n", moving ? "moving" : "still", moved,
                2.5 * moved, worst, want);
-        CHECK(worst < 2e-3, "%s sun: a cell holds up to %g away from %g (the recursion with max_frames %d)", moving ? "moving" : "still", worst,
-              want, moving ? 2 : 1000);
+        CHECK(worst < 2e-3, "%s sun: a cell holds up to %g away from %g (the recursion with max_frames %g)", moving ? "moving" : "still", worst,
+              want, moving ? 2.5 : 1000.0);
         free_all(img);
         vrg_graph_destroy(g);
     }
