@@ -838,11 +838,12 @@ int _vrg_shader_pass_load(_vrg_plugin *p, _vrg_diag *d, int line)
      * connected (HAS_X undefined) */
     char first_variant[224] = "";
     char *expanded = _vrg_shader_expand(p->source, mem ? mem : out);
+    int expands = expanded != NULL;
     if (expanded)
         variant_defines(expanded, first_variant, sizeof first_variant);
     free(expanded);
     /* without a device: what the shader declares does not depend on it */
-    int rc = expanded ? _vrg_shader_compile_source(NULL, p->source, first_variant, &sm, mem ? mem : out, &src) : -1;
+    int rc = expands ? _vrg_shader_compile_source(NULL, p->source, first_variant, &sm, mem ? mem : out, &src) : -1;
     if (mem) {
         fclose(mem);
         fputs(text ? text : "", out);
