@@ -349,6 +349,14 @@ files = sorted(os.listdir(os.path.join(OUT, "scaffold"))) if rc == 0 else []
 check(files == ["README.md", "tinted.comp", "tinted.ini"], "new-pass --shader: exit %d, files %s\n%s" % (rc, files, out))
 rc, out = run("render", os.path.join("scaffold", "tinted.ini"), "--size", "160x90", "--validate", "--out", "scaffold/out")
 check(rc == 0, "the scaffold's graph: exit %d\n%s" % (rc, out))
+# its commented examples of an @optional binding and a choices= member, uncommented, are what they say
+scaffold = open(os.path.join(OUT, "scaffold", "tinted.comp")).read()
+examples = re.sub(r"^(\s*)// (layout\(binding = 3\)|int look;)", r"\1\2", scaffold, flags=re.M)
+check(examples.count("\n") == scaffold.count("\n") and examples != scaffold, "the scaffold has no commented @optional or choices= example:\n" + scaffold)
+save(os.path.join(OUT, "scaffold", "tinted.comp"), examples)
+rc, out = run("plugins", "tinted", env={"VOXRG_PLUGIN_PATH": os.path.join(OUT, "scaffold")})
+check(rc == 0 and re.search(r"in\.mask\s+image .* optional\s+read it under #ifdef HAS_MASK", out) and re.search(r"look\s+text\s+default 'plain'\s+plain\|warm", out),
+      "the scaffold's examples uncommented: exit %d\n%s" % (rc, out))
 
 
 # hot reload under render --watch
