@@ -800,23 +800,24 @@ static int cmd_plugins(int argc, char **argv)
         for (uint32_t p = 0; p < d->param_count; p++) {
             const vrg_param_desc *pd = &d->params[p];
             const char *t = pd->type == VRG_PARAM_INT ? "int" : pd->type == VRG_PARAM_BOOL ? "bool" : pd->type == VRG_PARAM_STRING ? "text" : "float";
-            char range[64] = "", def[64];
+            char numbers[64] = "", def[64];
             if (pd->type == VRG_PARAM_STRING)
                 snprintf(def, sizeof def, "'%s'", pd->default_string ? pd->default_string : "");
             else
                 snprintf(def, sizeof def, "%g", pd->default_value);
-            const char *choices = d->param_choices ? d->param_choices[p] : NULL;
-            char choice_list[512] = "";
-            if (choices) /* the names it takes, as the graph writes them */
-                for (size_t c = 0, o = 0; choices[c] && o + 1 < sizeof choice_list; c++)
-                    choice_list[o++] = choices[c] == ',' ? '|' : choices[c], choice_list[o] = '\0';
+            const char *choices = d->param_choices ? d->param_choices[p] : NULL, *range = numbers;
+            /* the names it takes, a|b|c, each one whole however many */
+            char *choice_list = choices ? strdup(choices) : NULL;
+            for (char *c = choice_list; c && *c; c++)
+                *c = *c == ',' ? '|' : *c;
             if (choices)
-                snprintf(range, sizeof range, "%s", choice_list);
+                range = choice_list ? choice_list : choices; /* no memory: as the plugin wrote them */
             else if (pd->flags & VRG_PARAM_REPEATABLE)
-                snprintf(range, sizeof range, "(repeatable)");
+                snprintf(numbers, sizeof numbers, "(repeatable)");
             else if (pd->type != VRG_PARAM_STRING && (pd->min != 0 || pd->max != 0))
-                snprintf(range, sizeof range, "[%g, %g]", pd->min, pd->max);
+                snprintf(numbers, sizeof numbers, "[%g, %g]", pd->min, pd->max);
             printf("  %-16s %-5s default %-8s %-16s %s\n", pd->name, t, def, range, pd->help ? pd->help : "");
+            free(choice_list);
         }
     }
     if (failed) { /* the rest is listed; the status says not all of it loaded */

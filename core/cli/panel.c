@@ -286,6 +286,27 @@ void vrg_panel_drag(vrg_panel *p, vrg_graph *g, double x, int fine)
         apply(p, g, r, v);
 }
 
+/* "a|b|c: edit the file" into out: the names a choice takes, cut after the
+ * last whole name that fits the panel's line and marked "..." when they
+ * do not all fit. */
+static void choices_text(const char *choices, char *out, size_t cap)
+{
+    static const char tail[] = ": edit the file", cut[] = "...";
+    size_t len = strlen(choices), keep = len;
+    if (cap < sizeof tail + sizeof cut) {
+        snprintf(out, cap, "%s", cap > sizeof cut ? cut : "");
+        return;
+    }
+    if (len + sizeof tail > cap) { /* up to and with the last '|' that leaves room for the mark */
+        keep = cap - sizeof tail - (sizeof cut - 1);
+        while (keep > 0 && choices[keep - 1] != ',')
+            keep--;
+    }
+    for (size_t i = 0; i < keep; i++)
+        out[i] = choices[i] == ',' ? '|' : choices[i];
+    snprintf(out + keep, cap - keep, "%s%s", keep < len ? cut : "", tail);
+}
+
 static void row_text(vrg_panel *p, vrg_graph *g, const row *r, char *line, size_t cap)
 {
     char key[160], value[32], range[48] = "";
@@ -299,19 +320,19 @@ static void row_text(vrg_panel *p, vrg_graph *g, const row *r, char *line, size_
     if (pd->type != VRG_PARAM_STRING && pd->type != VRG_PARAM_BOOL && (pd->min != 0 || pd->max != 0))
         snprintf(range, sizeof range, "[%g..%g]", pd->min, pd->max);
     /* the range, or what to do instead, after the value: no padding after it, the panel is as wide as its longest line */
+    int n = snprintf(line, cap, " %c %-16s %10s ", c ? '*' : ' ', pd->name, value);
+    size_t o = n < 0 ? 0 : (size_t)n < cap ? (size_t)n : cap - 1;
+    if (pd->type != VRG_PARAM_STRING) {
+        snprintf(line + o, cap - o, "%s%s", range, needs_reload(pd) ? " reload" : "");
+        return;
+    }
     /* a string with choices: the names it takes (the file holds which) */
     const vrg_plugin_desc *d = vrg_graph_pass_plugin(g, r->pass);
     const char *choices = d && d->param_choices ? d->param_choices[r->pd - d->params] : NULL;
-    char text[160] = "edit the file";
-    if (choices) {
-        char names[128];
-        snprintf(names, sizeof names, "%s", choices);
-        for (char *q = names; *q; q++)
-            *q = *q == ',' ? '|' : *q;
-        snprintf(text, sizeof text, "%s: edit the file", names);
-    }
-    snprintf(line, cap, " %c %-16s %10s %s%s", c ? '*' : ' ', pd->name, value, pd->type == VRG_PARAM_STRING ? text : range,
-             pd->type != VRG_PARAM_STRING && needs_reload(pd) ? " reload" : "");
+    if (choices)
+        choices_text(choices, line + o, cap - o);
+    else
+        snprintf(line + o, cap - o, "edit the file");
 }
 
 void vrg_panel_draw(vrg_panel *p, vrg_graph *g, const char *file, vrg_overlay_layer *l)

@@ -668,9 +668,9 @@ section_new_pass() { # new-pass: names it refuses, and one it writes
         [ ! -e "$out/$name" ] && ok || bad "new-pass $name wrote $out/$name"
     done
     # a shipped C pass (NAME.so) and a shipped one-file pass (NAME.comp): each named by its file
-    expect_rc 2 "new-pass combine (a shipped pass)" "$voxrg" new-pass combine --dir "$out/combine"
-    has "$out/stderr" "a plugin named 'combine' is on the search path already \(.*/combine\.so\)" "new-pass combine names the shipped file"
-    [ ! -e "$out/combine" ] && ok || bad "new-pass combine wrote $out/combine"
+    expect_rc 2 "new-pass gbuffer (a shipped pass)" "$voxrg" new-pass gbuffer --dir "$out/gbuffer"
+    has "$out/stderr" "a plugin named 'gbuffer' is on the search path already \(.*/gbuffer\.so\)" "new-pass gbuffer names the shipped file"
+    [ ! -e "$out/gbuffer" ] && ok || bad "new-pass gbuffer wrote $out/gbuffer"
     expect_rc 2 "new-pass tonemap (a shipped pass)" "$voxrg" new-pass tonemap --dir "$out/tonemap"
     has "$out/stderr" "a plugin named 'tonemap' is on the search path already \(.*/tonemap\.comp\)" "new-pass tonemap names the shipped file"
     [ ! -e "$out/tonemap" ] && ok || bad "new-pass tonemap wrote $out/tonemap"

@@ -330,7 +330,7 @@ def part_pass_readmes(root, voxrg):
             problems.append(f"{path}: headings {headings}, expected {list(PASS_HEADINGS)} in that order")
         slots, params = plugin_interface(voxrg, name)
         for heading, listed in (("Slots", slots), ("Parameters", params)):
-            section = re.search(r"^## %s\n(.*?)(?=^## |\\Z)" % heading, text, re.M | re.S)
+            section = re.search(r"^## %s\n(.*?)(?=^## |\Z)" % heading, text, re.M | re.S)
             body = section.group(1) if section else ""
             if heading == "Parameters":
                 for param in listed:

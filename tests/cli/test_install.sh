@@ -8,7 +8,8 @@
 # is compiled with pkg-config; both load in graphs beside shipped passes and
 # render under --validate, and `voxrg plugins NAME` finds each. No installed
 # binary names the build or source tree, and an installed shader removed is
-# an error naming it.
+# an error naming it. Installed over an earlier install, the C version of
+# a pass that is one file now (its NAME.so and NAME/) is removed.
 # A host program linked with libvoxrg only (not libvoxrg_voxel) renders a
 # graph whose scene plugin needs libvoxrg_voxel: the loader finds it from
 # the installed plugin's RUNPATH, not the copy it loads.
@@ -19,7 +20,16 @@ set -u
 build=$1 src=$2 out=$3 cc=$4 host_cflags=${5:-}
 rm -rf "$out" && mkdir -p "$out/work"
 fail() { echo "FAIL: $*"; exit 1; }
+# installed over an earlier voxrg whose tonemap was a C pass: its
+# tonemap.so and shader folder tonemap/ would be the pass (beside a
+# NAME.comp, NAME.so wins); the install removes them
+mkdir -p "$out/installed/lib/voxrg/plugins/tonemap" || fail "cannot make the earlier install"
+echo "an earlier install's C tonemap" > "$out/installed/lib/voxrg/plugins/tonemap.so"
+echo "void main() {}" > "$out/installed/lib/voxrg/plugins/tonemap/tonemap.comp"
 cmake --install "$build" --prefix "$out/installed" > "$out/install.log" 2>&1 || { cat "$out/install.log"; fail "cmake --install"; }
+for stale in tonemap.so tonemap; do
+    [ ! -e "$out/installed/lib/voxrg/plugins/$stale" ] || fail "the earlier install's lib/voxrg/plugins/$stale is still there (tonemap is tonemap.comp now)"
+done
 mv "$out/installed" "$out/prefix" || fail "cannot move the prefix"
 prefix=$out/prefix
 

@@ -17,8 +17,11 @@ folder with NAME.so and NAME.comp loads the .so; `new-pass
 --shader` writes a pass that renders; and under `render --watch` an edit
 of the file shows within BOUND frames, an interface change re-validates
 the graph (one it no longer fits is an error at the graph's line), and a
-broken edit keeps the last good version, said with FILE:LINE; a change to
-the include holding the push block re-reads the members' offsets.
+broken edit keeps the last good version, said with FILE:LINE (an emptied
+file, said with its name); a change to the include holding the push
+block re-reads the members' offsets. A choices= list with an empty name
+(leading, trailing or doubled comma) is an error at its line; a long list
+is listed and quoted whole.
 Usage: test_shader_pass.py VOXRG SOURCE_DIR OUT_DIR"""
 import os
 import re
@@ -197,12 +200,31 @@ broken_opt("a misspelt @optional", "// @optional", "// @optinal", "in_extra;", r
 broken_opt("@optional with another key", "@optional help=", "@optional why=", "in_extra;", r"expected help=")
 broken_opt("a default that is no choice", "default=half", "default=most", "int mode;", r"'mode': @param has default 'most', which is none of its choices zero,half,full")
 broken_opt("a choice named twice", "choices=zero,half,full", "choices=zero,half,zero", "int mode;", r"names choice 'zero' twice")
+# an empty name, wherever it is, is no choice (a trailing comma would have made a fourth, compiled as a variant)
+broken_opt("a trailing comma in choices", "choices=zero,half,full", "choices=zero,half,full,", "int mode;", r"choice 3 of 'zero,half,full,' is empty")
+broken_opt("a leading comma in choices", "choices=zero,half,full", "choices=,zero,half,full", "int mode;", r"choice 0 of ',zero,half,full' is empty")
+broken_opt("two commas in choices", "choices=zero,half,full", "choices=zero,,half,full", "int mode;", r"choice 1 of 'zero,,half,full' is empty")
+broken_opt("a trailing comma in variant choices", "choices=dark,bright", "choices=dark,bright,", "uint shape;", r"choice 2 of 'dark,bright,' is empty")
 broken_opt("choices on a float", "int mode;", "float mode;", "float mode;", r"'mode' has choices=, but it is a float")
 broken_opt("choices with a range", "choices=zero,half,full", "choices=zero,half,full min=0 max=2", "int mode;", r"with choices= has no min= or max=")
 broken_opt("variant on a number", "int mode;   // @param choices=zero,half,full default=half", "int mode;   // @param default=1 min=0 max=2 variant",
            "int mode;", r"variant picks a compiled variant per choice: give choices= too")
 broken_opt("every image output optional", "image2D out_color;", "image2D out_color; // @optional", "out_color;", r"every image output is @optional")
 save(opt_comp, OPT)
+# an empty file (an editor truncates it before writing): an error naming it, not a silent failure
+save(opt_comp, "")
+rc, out = run("check", "opt.ini", "--no-device")
+check(rc != 0 and "%s: error[VRG-E063]: the shader is empty" % opt_comp in out, "an empty shader-only pass: exit %d\n%s" % (rc, out))
+save(opt_comp, OPT)
+
+# a long list of choices: listed whole by `voxrg plugins`, and whole in the message of a value it does not take
+NAMES = ["c%03d" % i for i in range(100)]
+save(os.path.join(OUT, "many.comp"), OPT.replace("choices=zero,half,full default=half", "choices=%s default=c001" % ",".join(NAMES)))
+save(os.path.join(OUT, "many.ini"), OPT_GRAPH.replace("plugin = opt", "plugin = many") + "mode = c100\n")
+rc, out = run("plugins", "many", env={"VOXRG_PLUGIN_PATH": OUT})
+check(rc == 0 and re.search(r"mode\s+text\s+default 'c001'\s+%s\s" % re.escape("|".join(NAMES)), out), "voxrg plugins many: the 100 choices whole\n" + out)
+rc, out = run("check", "many.ini", "--no-device")
+check(rc != 0 and "mode = 'c100': expected %s or c099\n" % ", ".join(NAMES[:-1]) in out, "a value none of 100 choices: the message lists them whole: exit %d\n%s" % (rc, out))
 
 # a C pass with no execute: the runtime records its listed dispatches in order (listed_probe: red from the
 # first, blue from the second, which reads the first's), and packs its choice's index by name
@@ -327,6 +349,14 @@ files = sorted(os.listdir(os.path.join(OUT, "scaffold"))) if rc == 0 else []
 check(files == ["README.md", "tinted.comp", "tinted.ini"], "new-pass --shader: exit %d, files %s\n%s" % (rc, files, out))
 rc, out = run("render", os.path.join("scaffold", "tinted.ini"), "--size", "160x90", "--validate", "--out", "scaffold/out")
 check(rc == 0, "the scaffold's graph: exit %d\n%s" % (rc, out))
+# its commented examples of an @optional binding and a choices= member, uncommented, are what they say
+scaffold = open(os.path.join(OUT, "scaffold", "tinted.comp")).read()
+examples = re.sub(r"^(\s*)// (layout\(binding = 3\)|int look;)", r"\1\2", scaffold, flags=re.M)
+check(examples.count("\n") == scaffold.count("\n") and examples != scaffold, "the scaffold has no commented @optional or choices= example:\n" + scaffold)
+save(os.path.join(OUT, "scaffold", "tinted.comp"), examples)
+rc, out = run("plugins", "tinted", env={"VOXRG_PLUGIN_PATH": os.path.join(OUT, "scaffold")})
+check(rc == 0 and re.search(r"in\.mask\s+image .* optional\s+read it under #ifdef HAS_MASK", out) and re.search(r"look\s+text\s+default 'plain'\s+plain\|warm", out),
+      "the scaffold's examples uncommented: exit %d\n%s" % (rc, out))
 
 
 # hot reload under render --watch
@@ -387,6 +417,12 @@ try:
         grown = FOG.replace(density, density + "\n    float unused; // @param default=1 min=0 max=2 help=\"nothing yet\"")
         save(comp, grown)
         check(r.stderr_has(r"reloaded", count=2), "the interface change was not reloaded:\n" + open(r.err_path).read())
+        # emptied, as an editor does before writing: said, naming the file; the last good version keeps running
+        save(comp, "")
+        check(r.stderr_has(re.escape("%s: error[VRG-E063]: the shader is empty" % comp)), "an emptied shader is not reported:\n" + open(r.err_path).read())
+        k2 = r.latest()
+        r.frame(k2 + 3)
+        check(r.proc.poll() is None, "render --watch died on an emptied shader-only pass")
         # broken: reported at the member's line, the last good version keeps running
         bad = grown.replace("    float unused; // @param default=1", "    float unused; // default=1")
         save(comp, bad)

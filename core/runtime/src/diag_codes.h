@@ -76,7 +76,7 @@
     X(VRG_E_SHADER_FAILED, "VRG-E060", "shader-failed", "a pass's shader is not found, does not compile or makes no pipeline")             \
     X(VRG_E_BAD_DISPATCH, "VRG-E061", "bad-dispatch", "a pass's dispatch cannot be recorded (bindings, push constants, domain)")            \
     X(VRG_E_PASS_API_MISUSE, "VRG-E062", "pass-api-misuse", "a plugin called the pass API at the wrong time or with wrong names")           \
-    X(VRG_E_SHADER_SOURCE, "VRG-E063", "shader-source", "a shader or a file it #includes has a GLSL error, a bad #include or cannot be read") \
+    X(VRG_E_SHADER_SOURCE, "VRG-E063", "shader-source", "a shader or a file it #includes has a GLSL error, a bad #include, cannot be read or is empty") \
     X(VRG_E_SHADER_BINDING_UNBOUND, "VRG-E064", "shader-binding-unbound", "a shader declares a binding its dispatch does not bind (no slot or resource there, or a set other than 0)") \
     X(VRG_E_SHADER_BINDING_TYPE, "VRG-E065", "shader-binding-type", "a shader's binding has another descriptor type than the bound slot's access gives") \
     X(VRG_E_SHADER_IMAGE_FORMAT, "VRG-E066", "shader-image-format", "a shader's storage image format qualifier is not the bound image's format") \

@@ -118,11 +118,12 @@ typedef struct _vrg_plugin {
 const char *_vrg_param_problem(const vrg_param_desc *pd, char *why, size_t cap);
 /* A string parameter's choices (vrg_plugin_desc.param_choices, "a,b,c"):
  * params[i]'s list or NULL; a value's index in it or -1; how many; "a, b
- * or c" for a message; why a list is malformed for pd, or NULL. */
+ * or c" for a message, each name whole (to free; NULL when out of
+ * memory); why a list is malformed for pd, or NULL. */
 const char *_vrg_param_choices(const vrg_plugin_desc *desc, uint32_t i);
 int _vrg_choice_index(const char *choices, const char *value);
 int _vrg_choice_count(const char *choices);
-void _vrg_choice_words(const char *choices, char *out, size_t cap);
+char *_vrg_choice_words(const char *choices);
 const char *_vrg_choices_problem(const vrg_param_desc *pd, const char *choices, char *why, size_t cap);
 /* ---- crash reports (crash.c) ---- */
 /* What plugin code this thread runs now: a fatal signal names it. */

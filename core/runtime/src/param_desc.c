@@ -5,6 +5,7 @@
  * index. */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include "internal.h"
 
@@ -64,11 +65,14 @@ int _vrg_choice_count(const char *choices)
     return k;
 }
 
-/* "a, b or c": the names for a message */
-void _vrg_choice_words(const char *choices, char *out, size_t cap)
+/* "a, b or c": the names for a message; each comma becomes at most " or " */
+char *_vrg_choice_words(const char *choices)
 {
     int count = _vrg_choice_count(choices), k = 0;
-    size_t o = 0;
+    size_t o = 0, cap = (choices ? strlen(choices) : 0) + 3 * (size_t)(count > 0 ? count - 1 : 0) + 1;
+    char *out = malloc(cap);
+    if (!out)
+        return NULL;
     out[0] = '\0';
     for (const char *c = choices; c && *c && o < cap; k++) {
         const char *comma = strchr(c, ',');
@@ -79,6 +83,7 @@ void _vrg_choice_words(const char *choices, char *out, size_t cap)
             break;
         c = comma + 1;
     }
+    return out;
 }
 
 const char *_vrg_choices_problem(const vrg_param_desc *pd, const char *choices, char *why, size_t cap)
@@ -88,8 +93,10 @@ const char *_vrg_choices_problem(const vrg_param_desc *pd, const char *choices, 
     int count = _vrg_choice_count(choices);
     if (count < 1)
         return "has an empty list of choices";
+    /* every entry, the one after a trailing comma too: an empty one would
+     * be a choice of its own (_vrg_choice_count counts the commas) */
     int k = 0;
-    for (const char *c = choices; *c; k++) {
+    for (const char *c = choices;; k++) {
         const char *comma = strchr(c, ',');
         size_t len = comma ? (size_t)(comma - c) : strlen(c);
         if (len == 0 || len >= VRG_NAME_MAX)

@@ -19,14 +19,23 @@ static int pass_vfail(vrg_pass *p, _vrg_diag_code code, const char *fmt, va_list
     return -1;
 }
 
+/* The message as long as it is (a list of choices, say), as the graph's
+ * diagnostics keep it (diag.c). */
 static int pass_vfail_at(vrg_pass *p, int line, _vrg_diag_code code, const char *fmt, va_list ap)
 {
-    char msg[1536];
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_list aq;
+    va_copy(aq, ap);
+    int n = vsnprintf(NULL, 0, fmt, aq);
+    va_end(aq);
+    char *msg = n >= 0 ? malloc((size_t)n + 1) : NULL;
+    if (msg)
+        vsnprintf(msg, (size_t)n + 1, fmt, ap);
+    const char *text = msg ? msg : "(out of memory formatting the pass's message)";
     if (line > 0)
-        _vrg_error_at(&p->graph->diag, line, code, NULL, "%s", msg);
+        _vrg_error_at(&p->graph->diag, line, code, NULL, "%s", text);
     else
-        _vrg_error(&p->graph->diag, code, "pass '%s': %s", p->name, msg);
+        _vrg_error(&p->graph->diag, code, "pass '%s': %s", p->name, text);
+    free(msg);
     p->failed = 1;
     return -1;
 }
@@ -192,10 +201,17 @@ int vrg_param_choice(vrg_pass *p, const char *name, const char *const *choices, 
     for (int i = 0; i < count; i++)
         if (strcmp(v, choices[i]) == 0)
             return i;
-    char list[256] = "";
+    /* "a, b or c", each name whole however many */
+    size_t cap = 1;
     for (int i = 0; i < count; i++)
-        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i == 0 ? "" : i == count - 1 ? " or " : ", ", choices[i]);
-    pass_fail_at(p, vrg_param_line(p, name), VRG_E_NOT_A_CHOICE, "%s = '%s': expected %s", name, v, list);
+        cap += strlen(choices[i]) + 4;
+    char *list = malloc(cap);
+    if (list)
+        list[0] = '\0';
+    for (int i = 0, o = 0; list && i < count; i++)
+        o += snprintf(list + o, cap - (size_t)o, "%s%s", i == 0 ? "" : i == count - 1 ? " or " : ", ", choices[i]);
+    pass_fail_at(p, vrg_param_line(p, name), VRG_E_NOT_A_CHOICE, "%s = '%s': expected %s", name, v, list ? list : "one of its choices (out of memory listing them)");
+    free(list);
     return -1;
 }
 
@@ -213,9 +229,10 @@ int _vrg_pass_check_choices(vrg_pass *p)
         const char *v = vrg_param_string(p, d->params[i].name);
         if (_vrg_choice_index(choices, v) >= 0)
             continue;
-        char list[512];
-        _vrg_choice_words(choices, list, sizeof list);
-        rc = pass_fail_at(p, vrg_param_line(p, d->params[i].name), VRG_E_NOT_A_CHOICE, "%s = '%s': expected %s", d->params[i].name, v, list);
+        char *list = _vrg_choice_words(choices);
+        rc = pass_fail_at(p, vrg_param_line(p, d->params[i].name), VRG_E_NOT_A_CHOICE, "%s = '%s': expected %s", d->params[i].name, v,
+                          list ? list : choices); /* no memory for the words: the list as written */
+        free(list);
     }
     return rc;
 }

@@ -276,7 +276,7 @@ int _vrg_record_frame(vrg_graph *g)
         p->cmd = cmd;
         double t0 = now_ms();
         _vrg_running before = _vrg_running_enter("execute", p->name, p->plugin);
-        if (p->plugin->shader_pass) /* a shader-only pass: its one dispatch */
+        if (p->plugin->shader_pass) /* a shader-only pass: one dispatch, of the variant its connections and choices pick */
             _vrg_shader_pass_execute(p, cmd);
         else if (p->plugin->desc->execute)
             p->plugin->desc->execute(p, cmd);

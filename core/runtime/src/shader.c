@@ -22,25 +22,48 @@
 static pthread_once_t glslang_once = PTHREAD_ONCE_INIT;
 static void glslang_init(void) { glslang_initialize_process(); }
 
-static char *read_file(const char *path, size_t *len)
+/* A file's text, NUL-terminated; NULL, said on diag with the path, when it
+ * cannot be read or there is no memory for it. */
+static char *read_file(const char *path, size_t *len, FILE *diag)
 {
     FILE *f = vrg_fopen_regular(path, "rb");
-    if (!f)
+    if (!f) {
+        fprintf(diag, "%s: error[%s]: cannot read shader\n", path, SOURCE_CODE);
         return NULL;
+    }
     fseek(f, 0, SEEK_END);
     long n = ftell(f);
     fseek(f, 0, SEEK_SET);
-    if (n < 0) {
+    char *buf = n >= 0 ? malloc((size_t)n + 1) : NULL;
+    if (!buf) {
         fclose(f);
+        if (n < 0)
+            fprintf(diag, "%s: error[%s]: cannot read shader\n", path, SOURCE_CODE);
+        else
+            fprintf(diag, "%s: error[%s]: out of memory reading %ld bytes\n", path, _vrg_diag_info_of(VRG_E_OUT_OF_MEMORY)->code, n);
         return NULL;
     }
-    char *buf = malloc((size_t)n + 1);
     size_t got = fread(buf, 1, (size_t)n, f);
     buf[got] = '\0';
     fclose(f);
     if (len)
         *len = got;
     return buf;
+}
+
+/* A pass's own shader file: read_file's text, and an empty file an error
+ * naming it (an editor truncates the file before writing it: hot reload
+ * then keeps the last good version rather than compiling nothing). */
+static char *read_shader(const char *path, FILE *diag)
+{
+    size_t len = 0;
+    char *src = read_file(path, &len, diag);
+    if (src && len == 0) {
+        fprintf(diag, "%s: error[%s]: the shader is empty\n", path, SOURCE_CODE);
+        free(src);
+        return NULL;
+    }
+    return src;
 }
 
 static int exists(const char *p) { return access(p, R_OK) == 0; }
@@ -161,14 +184,24 @@ typedef struct expand_ctx {
     char (*seen)[VRG_PATH_MAX]; /* every file included, grown as needed */
     int seen_count, seen_cap;
     FILE *diag;
-    int failed;
+    const char *path; /* the shader expanded, for an out-of-memory message */
+    int failed, out_of_memory;
 } expand_ctx;
 
 static void emit(expand_ctx *e, const char *s, size_t n)
 {
+    if (e->out_of_memory)
+        return;
     if (e->len + n + 1 > e->cap) {
-        e->cap = (e->len + n + 1) * 2;
-        e->out = realloc(e->out, e->cap);
+        size_t cap = (e->len + n + 1) * 2;
+        char *grown = realloc(e->out, cap);
+        if (!grown) { /* said once; the expansion fails */
+            fprintf(e->diag, "%s: error[%s]: out of memory expanding the shader\n", e->path, _vrg_diag_info_of(VRG_E_OUT_OF_MEMORY)->code);
+            e->failed = e->out_of_memory = 1;
+            return;
+        }
+        e->out = grown;
+        e->cap = cap;
     }
     memcpy(e->out + e->len, s, n);
     e->len += n;
@@ -259,13 +292,14 @@ static void expand(expand_ctx *e, const char *path, const char *text, int depth)
                         for (int i = 0; i < e->seen_count; i++)
                             seen |= strcmp(e->seen[i], resolved) == 0;
                         if (!seen && remember_include(e, resolved) == 0) {
-                            char *inc = read_file(resolved, NULL);
+                            char *inc = read_file(resolved, NULL, e->diag);
                             if (inc) {
                                 emitf(e, "#line %d \"%s\"\n", resolved, 1);
                                 expand(e, resolved, inc, depth + 1);
                                 free(inc);
                                 emitf(e, "#line %d \"%s\"\n", path, line + 1);
-                            }
+                            } else
+                                e->failed = 1;
                         } else
                             emit(e, "\n", 1);
                     }
@@ -384,13 +418,10 @@ void _vrg_shader_group_size(const vrg_context *ctx, uint32_t out[2])
 
 char *_vrg_shader_expand(const char *path, FILE *diag)
 {
-    size_t len;
-    char *src = read_file(path, &len);
-    if (!src) {
-        fprintf(diag, "%s: error[%s]: cannot read shader\n", path, SOURCE_CODE);
+    char *src = read_shader(path, diag);
+    if (!src)
         return NULL;
-    }
-    expand_ctx e = {.diag = diag, .defines = ""};
+    expand_ctx e = {.diag = diag, .path = path, .defines = ""};
     expand(&e, path, src, 0);
     free(src);
     free(e.seen);
@@ -412,12 +443,9 @@ int _vrg_shader_compile_source(vrg_context *ctx, const char *path, const char *d
         *expanded = NULL;
     pthread_once(&glslang_once, glslang_init);
     memset(&out->refl, 0, sizeof out->refl);
-    size_t len;
-    char *src = read_file(path, &len);
-    if (!src) {
-        fprintf(diag, "%s: error[%s]: cannot read shader\n", path, SOURCE_CODE);
+    char *src = read_shader(path, diag);
+    if (!src)
         return -1;
-    }
     /* Every shader sees the device's preferred workgroup shape and pixel
      * loop (pixel.glsl). On a CPU device: one SIMD row per group shading a
      * 4x2 tile, 32 tiles per invocation. lavapipe runs every 8 invocations
@@ -432,7 +460,7 @@ int _vrg_shader_compile_source(vrg_context *ctx, const char *path, const char *d
     char all_defines[1200];
     snprintf(all_defines, sizeof all_defines, "VRG_GROUP_X=%u VRG_GROUP_Y=%u VRG_TILE_W=%uu VRG_TILE_H=%uu VRG_PIXEL_ROWS=%uu %s", group[0], group[1], tile[0],
              tile[1], ctx ? ctx->pixel_rows : 1, defines ? defines : "");
-    expand_ctx e = {.diag = diag, .defines = all_defines};
+    expand_ctx e = {.diag = diag, .path = path, .defines = all_defines};
     expand(&e, path, src, 0);
     free(src);
     src = e.out;

@@ -9,8 +9,13 @@
  *     range and help from the `// @param ...` annotation on its line; the
  *     runtime packs the values by name at the members' reflected offsets,
  *     as it does for a C pass's dispatch with push_size 0 (dispatch.c);
- *   - the first image output (lowest binding) sets the dispatch size; a
- *     shader that includes pixel.glsl runs its pixel loop.
+ *   - a binding marked `// @optional` is an optional slot, and a
+ *     member's `choices=a,b` makes it a string parameter whose index the
+ *     member gets; each connection of the optional slots and
+ *     each value of a `variant` choice compiles a variant (HAS_X, NAME=k);
+ *   - the first image output that is not optional (lowest binding) sets
+ *     the dispatch size; a shader that includes pixel.glsl runs its pixel
+ *     loop.
  * Reflection is by name, so nothing is stated twice: the same member and
  * binding names are what a C pass would bind by (reflect.h). */
 #define _GNU_SOURCE
@@ -838,11 +843,12 @@ int _vrg_shader_pass_load(_vrg_plugin *p, _vrg_diag *d, int line)
      * connected (HAS_X undefined) */
     char first_variant[224] = "";
     char *expanded = _vrg_shader_expand(p->source, mem ? mem : out);
+    int expands = expanded != NULL;
     if (expanded)
         variant_defines(expanded, first_variant, sizeof first_variant);
     free(expanded);
     /* without a device: what the shader declares does not depend on it */
-    int rc = expanded ? _vrg_shader_compile_source(NULL, p->source, first_variant, &sm, mem ? mem : out, &src) : -1;
+    int rc = expands ? _vrg_shader_compile_source(NULL, p->source, first_variant, &sm, mem ? mem : out, &src) : -1;
     if (mem) {
         fclose(mem);
         fputs(text ? text : "", out);
@@ -870,7 +876,8 @@ int _vrg_shader_pass_load(_vrg_plugin *p, _vrg_diag *d, int line)
     snprintf(sp->shader, sizeof sp->shader, "%s", p->source);
     first_comment(src, p->source, sp->help, sizeof sp->help);
     *desc = (vrg_plugin_desc){.abi_version = VRG_ABI_VERSION, .name = p->name, .kind = VRG_PLUGIN_PASS, .help = sp->help};
-    /* no execute: the runtime records the one dispatch (record.c, _vrg_shader_pass_execute) */
+    /* no execute: each frame the runtime records one dispatch, of the variant the pass's
+     * connections and choices pick (record.c, _vrg_shader_pass_execute) */
     int errors = d->errors;
     if (strlen(p->source) >= sizeof sp->shader)
         _vrg_error(d, VRG_E_SHADER_INTERFACE, "plugin '%s': its path %s is longer than %zu characters", p->name, p->source, sizeof sp->shader - 1);
