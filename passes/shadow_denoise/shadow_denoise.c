@@ -57,27 +57,26 @@ static int create(vrg_pass *pass)
     return 0;
 }
 
-/* Every dispatch execute() records, which `voxrg check` compiles: the pack
- * with and without the radius output, and the blurs. These run pong -> ping
- * -> pong ... -> out.visibility, so iteration i reads pong when i is even
- * and ping when odd: a pair's entry i & 1 is the one for iteration i.
- * Push constants: the parameters by name, the sun's radius in radians and
- * the iteration. */
+/* Every dispatch execute() records, which `voxrg check` compiles: the
+ * pack with and without the radius output, and the blurs. These run pong
+ * -> ping -> pong ... -> out.visibility, so iteration i reads pong when i
+ * is even and ping when odd: a pair's entry i & 1 is the one for iteration
+ * i. Which image a blur reads (in_src) and writes (out_dst) is what its
+ * bindings[] say, frame between them in the shader's order; each binding's
+ * access is the shader's (readonly, writeonly). The packs bind by the
+ * shader's names (out_pong is the internal pong). Push constants: the
+ * parameters by name, the sun's radius in radians and the iteration. */
 enum {
     PACK,
     PACK_RADIUS, /* radius is read: write it */
     BLUR_PACKED, /* + (i & 1): pong -> ping, ping -> pong */
     BLUR_LAST = BLUR_PACKED + 2, /* + (i & 1): pong, ping -> out.visibility */
 };
-#define PACK_INTO_PONG(defs)                                                                                                                     \
-    {.shader = "shadow_denoise.comp", .defines = defs, .pixel_loop = 1, .domain = "pong",                                                       \
-     .bindings = {{"in.visibility"}, {"occluder"}, {"position"}, {"normal"}, {"frame"}, {"pong", VRG_ACCESS_STORAGE_WRITE}, {"radius"}}}
 #define BLUR(defs, src, dst)                                                                                                                     \
-    {.shader = "shadow_denoise.comp", .defines = defs, .pixel_loop = 1, .domain = dst,                                                          \
-     .bindings = {{src, VRG_ACCESS_STORAGE_READ}, {"frame"}, {dst, VRG_ACCESS_STORAGE_WRITE}}}
+    {.shader = "shadow_denoise.comp", .defines = defs, .pixel_loop = 1, .domain = dst, .bindings = {{src}, {"frame"}, {dst}}}
 static const vrg_dispatch_desc dispatches[] = {
-    [PACK] = PACK_INTO_PONG("PACK"),
-    [PACK_RADIUS] = PACK_INTO_PONG("PACK RADIUS_OUT"),
+    [PACK] = {.shader = "shadow_denoise.comp", .defines = "PACK", .pixel_loop = 1, .domain = "pong"},
+    [PACK_RADIUS] = {.shader = "shadow_denoise.comp", .defines = "PACK RADIUS_OUT", .pixel_loop = 1, .domain = "pong"},
     [BLUR_PACKED] = BLUR("BLUR TO_PACKED", "pong", "ping"),
     [BLUR_PACKED + 1] = BLUR("BLUR TO_PACKED", "ping", "pong"),
     [BLUR_LAST] = BLUR("BLUR", "pong", "out.visibility"),

@@ -32,7 +32,7 @@ layout(binding = 0) uniform sampler2D in_visibility;
 layout(binding = 1) uniform sampler2D in_occluder;
 layout(binding = 2) uniform sampler2D in_position;
 layout(binding = 3) uniform sampler2D in_normal;
-layout(binding = 5, rgba32ui) uniform writeonly uimage2D out_dst;
+layout(binding = 5, rgba32ui) uniform writeonly uimage2D out_pong;
 layout(binding = 6, r16f) uniform writeonly image2D out_radius;
 
 uint axis_of(vec3 n)
@@ -64,7 +64,7 @@ float occluder_near(ivec2 p, ivec2 size, vec3 n, float plane)
 
 void shade(ivec2 p)
 {
-    ivec2 size = imageSize(out_dst);
+    ivec2 size = imageSize(out_pong);
     if (any(greaterThanEqual(p, size)))
         return;
     float v = texelFetch(in_visibility, p, 0).r;
@@ -81,7 +81,7 @@ void shade(ivec2 p)
         if (d >= 0.0)
             radius = min(params.radius_scale * d * tan(params.sun_radians) / max(footprint, 1e-6), params.max_radius);
     }
-    imageStore(out_dst, p, uvec4(floatBitsToUint(v), packHalf2x16(vec2(radius, footprint)), floatBitsToUint(plane), x.w == 0.0 ? SKY : axis_of(n)));
+    imageStore(out_pong, p, uvec4(floatBitsToUint(v), packHalf2x16(vec2(radius, footprint)), floatBitsToUint(plane), x.w == 0.0 ? SKY : axis_of(n)));
 #ifdef RADIUS_OUT
     imageStore(out_radius, p, vec4(radius));
 #endif

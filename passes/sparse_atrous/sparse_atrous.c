@@ -70,9 +70,13 @@ static int create(vrg_pass *pass)
  * iterations run pong -> ping -> pong ... -> color, so iteration i reads
  * pong when i is even and ping when odd: a pair's entry i & 1 is the one
  * for iteration i, and its copy to feedback reads that iteration's
- * destination. The iterations' push constants: sigma_z, sigma_l and
- * skip_variance by name, step and long_history (which turns on per
- * iteration). */
+ * destination. Which image an iteration or copy reads (in_src) and writes
+ * (out_dst) is what their bindings[] say, the rest of each list is the
+ * shader's order; each binding's access is the shader's (readonly,
+ * writeonly, a sampler). The packs bind by the shader's names
+ * (out_pong is the internal pong). The iterations' push constants:
+ * sigma_z, sigma_l and skip_variance by name, step and long_history
+ * (which turns on per iteration). */
 enum {
     COPY_INPUT,
     COPY_COLOR,
@@ -82,21 +86,17 @@ enum {
     FILTER_PACKED, /* + (i & 1): pong -> ping, ping -> pong */
     FILTER_LAST = FILTER_PACKED + 2, /* + (i & 1): pong, ping -> color */
 };
-#define COPY_FROM(defs, src, access)                                                                                                             \
-    {.shader = "sparse_atrous.comp", .defines = defs, .pixel_loop = 1, .domain = "feedback",                                                    \
-     .bindings = {{src, access}, {"feedback", VRG_ACCESS_STORAGE_WRITE}}}
+#define COPY_FROM(defs, src)                                                                                                                     \
+    {.shader = "sparse_atrous.comp", .defines = defs, .pixel_loop = 1, .domain = "feedback", .bindings = {{src}, {"feedback"}}}
 #define ITERATION(defs, src, dst)                                                                                                                \
-    {.shader = "sparse_atrous.comp", .defines = defs, .pixel_loop = 1, .domain = dst,                                                         \
-     .bindings = {{src, VRG_ACCESS_STORAGE_READ}, {"position"}, {"frame"}, {dst, VRG_ACCESS_STORAGE_WRITE}}}
+    {.shader = "sparse_atrous.comp", .defines = defs, .pixel_loop = 1, .domain = dst, .bindings = {{src}, {"position"}, {"frame"}, {dst}}}
 static const vrg_dispatch_desc dispatches[] = {
-    [COPY_INPUT] = COPY_FROM("COPY", "illumination", VRG_ACCESS_SAMPLED),
-    [COPY_COLOR] = COPY_FROM("COPY", "color", VRG_ACCESS_SAMPLED),
-    [COPY_PACKED] = COPY_FROM("COPY FROM_PACKED", "ping", VRG_ACCESS_STORAGE_READ),
-    [COPY_PACKED + 1] = COPY_FROM("COPY FROM_PACKED", "pong", VRG_ACCESS_STORAGE_READ),
-    [PACK] = {.shader = "sparse_atrous.comp", .defines = "PACK", .pixel_loop = 1, .domain = "pong",
-              .bindings = {{"illumination"}, {"position"}, {"normal"}, {"pong", VRG_ACCESS_STORAGE_WRITE}}},
-    [PACK_LENGTH] = {.shader = "sparse_atrous.comp", .defines = "PACK WITH_LENGTH", .pixel_loop = 1, .domain = "pong",
-                     .bindings = {{"illumination"}, {"position"}, {"normal"}, {"pong", VRG_ACCESS_STORAGE_WRITE}, {"length"}}},
+    [COPY_INPUT] = COPY_FROM("COPY", "illumination"),
+    [COPY_COLOR] = COPY_FROM("COPY", "color"),
+    [COPY_PACKED] = COPY_FROM("COPY FROM_PACKED", "ping"),
+    [COPY_PACKED + 1] = COPY_FROM("COPY FROM_PACKED", "pong"),
+    [PACK] = {.shader = "sparse_atrous.comp", .defines = "PACK", .pixel_loop = 1, .domain = "pong"},
+    [PACK_LENGTH] = {.shader = "sparse_atrous.comp", .defines = "PACK WITH_LENGTH", .pixel_loop = 1, .domain = "pong"},
     [FILTER_PACKED] = ITERATION("FILTER TO_PACKED", "pong", "ping"),
     [FILTER_PACKED + 1] = ITERATION("FILTER TO_PACKED", "ping", "pong"),
     [FILTER_LAST] = ITERATION("FILTER", "pong", "color"),

@@ -18,17 +18,17 @@ vec4 packed_color(uvec4 t) { return vec4(unpackHalf2x16(t.x), unpackHalf2x16(t.y
 uvec4 pack_texel(vec4 c, float plane, uint surface) { return uvec4(packHalf2x16(c.rg), packHalf2x16(c.ba), floatBitsToUint(plane), surface); }
 
 #if defined(PACK)
-layout(binding = 0) uniform sampler2D in_src;
+layout(binding = 0) uniform sampler2D in_illumination;
 layout(binding = 1) uniform sampler2D in_position;
 layout(binding = 2) uniform sampler2D in_normal;
-layout(binding = 3, rgba32ui) uniform writeonly uimage2D out_dst;
+layout(binding = 3, rgba32ui) uniform writeonly uimage2D out_pong;
 #if defined(WITH_LENGTH)
 layout(binding = 4) uniform sampler2D in_length;
 #endif
 
 void shade(ivec2 p)
 {
-    if (any(greaterThanEqual(p, imageSize(out_dst))))
+    if (any(greaterThanEqual(p, imageSize(out_pong))))
         return;
     vec4 x = texelFetch(in_position, p, 0);
     vec3 n = texelFetch(in_normal, p, 0).xyz;
@@ -38,7 +38,7 @@ void shade(ivec2 p)
 #if defined(WITH_LENGTH)
     len = uint(clamp(texelFetch(in_length, p, 0).r, 0.0, 255.0));
 #endif
-    imageStore(out_dst, p, pack_texel(texelFetch(in_src, p, 0), dot(n, x.xyz), (x.w == 0.0 ? SKY : axis) | (len << 8)));
+    imageStore(out_pong, p, pack_texel(texelFetch(in_illumination, p, 0), dot(n, x.xyz), (x.w == 0.0 ? SKY : axis) | (len << 8)));
 }
 #elif defined(COPY)
 #if defined(FROM_PACKED)
@@ -46,16 +46,16 @@ layout(binding = 0, rgba32ui) uniform readonly uimage2D in_src;
 #else
 layout(binding = 0) uniform sampler2D in_src;
 #endif
-layout(binding = 1, rgba16f) uniform writeonly image2D out_dst;
+layout(binding = 1, rgba16f) uniform writeonly image2D out_feedback;
 
 void shade(ivec2 p)
 {
-    if (any(greaterThanEqual(p, imageSize(out_dst))))
+    if (any(greaterThanEqual(p, imageSize(out_feedback))))
         return;
 #if defined(FROM_PACKED)
-    imageStore(out_dst, p, packed_color(imageLoad(in_src, p)));
+    imageStore(out_feedback, p, packed_color(imageLoad(in_src, p)));
 #else
-    imageStore(out_dst, p, texelFetch(in_src, p, 0));
+    imageStore(out_feedback, p, texelFetch(in_src, p, 0));
 #endif
 }
 #else // FILTER

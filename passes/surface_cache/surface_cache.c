@@ -176,23 +176,22 @@ enum { EVICT, INSERT, RESOLVE, GATHER, EVICT_PER_SLOT, GATHER_OCCUPANCY }; /* EV
 #define EVICT_SHARES 4u              /* each frame looks at one share of the table for cells to free */
 #define CPU_RESOLVE_GROUPS 256u      /* invocations striding through the listed cells, on a CPU */
 /* Push constants: the parameters by name, and what the pass computes each
- * frame (set before each dispatch). */
-#define TABLE_BINDINGS {"signal"}, {"position"}, {"normal"}, {"frame"}, {"table"}
+ * frame (set before each dispatch). Bindings: by the shader's names; the
+ * table (out_table) is a storage buffer, which GATHER reads as a texel
+ * buffer (its access is the shader's declaration). */
 static const vrg_dispatch_desc dispatches[] = {
     [EVICT] = {.shader = "surface_cache.comp", .defines = "EVICT", .groups_x = 1, .groups_y = 1,
-               .groups_z = 1, .bindings = {TABLE_BINDINGS}},
+               .groups_z = 1},
     [INSERT] = {.shader = "surface_cache.comp", .defines = "INSERT", .pixel_loop = 1,
-                .domain = "color", .bindings = {TABLE_BINDINGS}},
+                .domain = "color"},
     [RESOLVE] = {.shader = "surface_cache.comp", .defines = "RESOLVE", .groups_x = CPU_RESOLVE_GROUPS,
-                 .groups_y = 1, .groups_z = 1, .bindings = {TABLE_BINDINGS}},
+                 .groups_y = 1, .groups_z = 1},
     [GATHER] = {.shader = "surface_cache.comp", .defines = "GATHER", .pixel_loop = 1,
-                .domain = "color", .bindings = {{"signal"}, {"position"}, {"normal"}, {"frame"}, {"table", VRG_ACCESS_TEXEL_READ}, {"color"}, {"fallback"}}},
+                .domain = "color"},
     [EVICT_PER_SLOT] = {.shader = "surface_cache.comp", .defines = "EVICT SLOTS_PER_INVOCATION=1u",
-                        .groups_x = 1, .groups_y = 1, .groups_z = 1, .bindings = {TABLE_BINDINGS}},
+                        .groups_x = 1, .groups_y = 1, .groups_z = 1},
     [GATHER_OCCUPANCY] = {.shader = "surface_cache.comp", .defines = "GATHER OCCUPANCY", .pixel_loop = 1,
-                          .domain = "color",
-                          .bindings = {{"signal"}, {"position"}, {"normal"}, {"frame"}, {"table", VRG_ACCESS_TEXEL_READ}, {"color"}, {"fallback"},
-                                       {"occupancy"}}},
+                          .domain = "color"},
 };
 
 /* the count the GPU wrote into this ring slice when it last ran this frame

@@ -19,9 +19,9 @@ layout(binding = 2) uniform sampler2D in_normal;
 // lavapipe fetches texels with SIMD gathers but loads storage-buffer words
 // at per-lane addresses one lane at a time.
 #ifdef GATHER
-layout(binding = 4) uniform usamplerBuffer table_texels; // rgba32ui: 4 words a fetch
+layout(binding = 4) uniform usamplerBuffer out_table; // rgba32ui: 4 words a fetch
 #else
-layout(std430, binding = 4) buffer Table { uint words[]; } table;
+layout(std430, binding = 4) buffer Table { uint words[]; } out_table;
 #endif
 #ifdef GATHER
 layout(binding = 5, rgba16f) uniform writeonly image2D out_color;
@@ -76,7 +76,7 @@ uint list_word(uint i) { return HEADER + cells() * entry_size() + i; }
 // (from the last frame with samples; the gather reads it with the check word)
 bool expired_since(uint last) { return params.frame_index - last > params.evict_frames; }
 #ifndef GATHER
-bool expired(uint e) { return expired_since(table.words[last_word(e)]); }
+bool expired(uint e) { return expired_since(out_table.words[last_word(e)]); }
 #endif
 
 // A point's cell: its level, face and the cell's integer coordinates, with
@@ -134,22 +134,22 @@ void main()
     // EVICT only ever moves a check word toward EMPTY (cell, FREED, EMPTY),
     // so an EMPTY seen past the last slot, while another invocation may be
     // changing it, stays EMPTY; a FREED one seen there waits for a later visit
-    bool next_empty = table.words[check_word((first + SLOTS_PER_INVOCATION) & params.mask)] == EMPTY;
+    bool next_empty = out_table.words[check_word((first + SLOTS_PER_INVOCATION) & params.mask)] == EMPTY;
     for (uint k = SLOTS_PER_INVOCATION; k-- > 0u;) {
         uint slot = first + k;
         if (slot >= params.evict_first + params.evict_slots || slot > params.mask)
             continue;
-        uint was = table.words[check_word(slot)], c = was;
+        uint was = out_table.words[check_word(slot)], c = was;
         uint e = entry_word(slot);
         if (c >= 2u && expired(e)) {
             for (uint i = 1u; i < entry_size(); i++) // all but the check word
-                table.words[e + i] = 0u;
+                out_table.words[e + i] = 0u;
             c = FREED;
         }
         if (c == FREED && next_empty)
             c = EMPTY;
         if (c != was)
-            table.words[check_word(slot)] = c;
+            out_table.words[check_word(slot)] = c;
         next_empty = c == EMPTY;
     }
 }
@@ -162,7 +162,7 @@ uint find(uvec2 h)
 {
     for (uint i = 0u; i < PROBES; i++) {
         uint slot = (h.x + i) & params.mask;
-        uint c = table.words[check_word(slot)];
+        uint c = out_table.words[check_word(slot)];
         if (c == h.y)
             return slot;
         if (c == EMPTY)
@@ -181,12 +181,12 @@ uint find_or_claim(uvec2 h)
     // cell try the same slots in the same order, so they agree on one
     for (uint i = 0u; i < PROBES; i++) {
         slot = (h.x + i) & params.mask;
-        uint c = table.words[check_word(slot)];
+        uint c = out_table.words[check_word(slot)];
         if (c == h.y)
             return slot;
         if (c != EMPTY && c != FREED)
             continue;
-        uint was = atomicCompSwap(table.words[check_word(slot)], c, h.y);
+        uint was = atomicCompSwap(out_table.words[check_word(slot)], c, h.y);
         if (was == c || was == h.y)
             return slot;
     }
@@ -197,19 +197,19 @@ void add_sample(Cell c, uvec4 q)
 {
     uint slot = find_or_claim(hash_of(c, ifloor(c.plane)));
     if (slot == ~0u) {
-        atomicAdd(table.words[UNCACHED], 1u);
+        atomicAdd(out_table.words[UNCACHED], 1u);
         return;
     }
     uint e = entry_word(slot);
     for (uint i = 0u; i < params.channels; i++) {
         // the high word counts the low word's wraps: the same sum in any order
-        uint was = atomicAdd(table.words[sum_word(e, i)], q[i]);
+        uint was = atomicAdd(out_table.words[sum_word(e, i)], q[i]);
         if (was + q[i] < was)
-            atomicAdd(table.words[sum_word(e, i) + 1u], 1u);
+            atomicAdd(out_table.words[sum_word(e, i) + 1u], 1u);
     }
     // the cell's first sample this frame lists it for the resolve
-    if (atomicAdd(table.words[count_word(e)], 1u) == 0u)
-        table.words[list_word(atomicAdd(table.words[LISTED], 1u))] = slot;
+    if (atomicAdd(out_table.words[count_word(e)], 1u) == 0u)
+        out_table.words[list_word(atomicAdd(out_table.words[LISTED], 1u))] = slot;
 }
 
 void shade(ivec2 p)
@@ -232,33 +232,33 @@ void shade(ivec2 p)
 void resolve(uint slot)
 {
     uint e = entry_word(slot);
-    uint count = table.words[count_word(e)];
-    float n_before = expired(e) ? 0.0 : uintBitsToFloat(table.words[n_word(e)]);
+    uint count = out_table.words[count_word(e)];
+    float n_before = expired(e) ? 0.0 : uintBitsToFloat(out_table.words[n_word(e)]);
     // frames of samples the history may be worth: max_frames, fewer under a
     // moving sun (not rounded: a sun at a whole number of degrees a frame
     // and a whole sun_span would sit on floor()'s step)
     float frames = max(min(float(params.max_frames), frame_sun_history_frames(params.sun_span)), 1.0);
     float n = min(n_before, (frames - 1.0) * float(count)) + float(count);
     for (uint i = 0u; i < params.channels; i++) {
-        float sum = float(table.words[sum_word(e, i)]) + 4294967296.0 * float(table.words[sum_word(e, i) + 1u]);
+        float sum = float(out_table.words[sum_word(e, i)]) + 4294967296.0 * float(out_table.words[sum_word(e, i) + 1u]);
         float frame_mean = sum / (FIXED * float(count));
-        float mean = uintBitsToFloat(table.words[mean_word(e) + i]);
-        table.words[mean_word(e) + i] = floatBitsToUint(mix(mean, frame_mean, float(count) / n));
-        table.words[sum_word(e, i)] = 0u;
-        table.words[sum_word(e, i) + 1u] = 0u;
+        float mean = uintBitsToFloat(out_table.words[mean_word(e) + i]);
+        out_table.words[mean_word(e) + i] = floatBitsToUint(mix(mean, frame_mean, float(count) / n));
+        out_table.words[sum_word(e, i)] = 0u;
+        out_table.words[sum_word(e, i) + 1u] = 0u;
     }
-    table.words[count_word(e)] = 0u;
-    table.words[last_word(e)] = params.frame_index;
-    table.words[n_word(e)] = floatBitsToUint(n);
+    out_table.words[count_word(e)] = 0u;
+    out_table.words[last_word(e)] = params.frame_index;
+    out_table.words[n_word(e)] = floatBitsToUint(n);
 }
 
 // over the listed slots, a fixed number of invocations striding through them
 void main()
 {
     // the list holds at most one entry per slot: never read or write past it
-    uint listed = min(table.words[LISTED], cells()), stride = gl_NumWorkGroups.x * 64u;
+    uint listed = min(out_table.words[LISTED], cells()), stride = gl_NumWorkGroups.x * 64u;
     for (uint i = gl_GlobalInvocationID.x; i < listed; i += stride)
-        resolve(min(table.words[list_word(i)], params.mask));
+        resolve(min(out_table.words[list_word(i)], params.mask));
 }
 #endif
 
@@ -272,7 +272,7 @@ uvec4 find_entry(uvec2 h, out uint e)
 {
     for (uint i = 0u; i < PROBES; i++) {
         e = entry_word((h.x + i) & params.mask);
-        uvec4 t = texelFetch(table_texels, int(e >> 2u));
+        uvec4 t = texelFetch(out_table, int(e >> 2u));
         if (t.x == h.y)
             return t;
         if (t.x == EMPTY)
@@ -307,7 +307,7 @@ vec4 gather(Cell c, out float n_blend, out float weight)
         if (first.x == EMPTY || n == 0.0 || expired_since(first.y))
             continue;
         // the other means: the next texel (mean_word(e) is e + 3)
-        vec4 m = vec4(uintBitsToFloat(first.w), params.channels > 1u ? uintBitsToFloat(texelFetch(table_texels, int(e >> 2u) + 1).xyz) : vec3(0.0));
+        vec4 m = vec4(uintBitsToFloat(first.w), params.channels > 1u ? uintBitsToFloat(texelFetch(out_table, int(e >> 2u) + 1).xyz) : vec3(0.0));
         float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
         for (uint i = 0u; i < params.channels; i++)
             sum[i] += w * m[i];

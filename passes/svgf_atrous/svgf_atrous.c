@@ -23,7 +23,6 @@
  * unfiltered, as are sky pixels. feedback = k writes iteration k's output
  * (0: the unfiltered input) to `feedback`, the history svgf_reproject reads
  * next frame (the paper: 1). */
-#include <stdio.h>
 #include "voxrg/plugin.h"
 
 static const vrg_param_desc params[] = {
@@ -70,36 +69,41 @@ static int create(vrg_pass *pass)
 
 /* Every dispatch execute() records, which `voxrg check` compiles: the
  * feedback copies, the pack, and the iterations by kernel radius, source
- * and destination (the last one unpacks into color). The iterations' push
- * constants: the sigmas and skip_variance by name, and step. */
-#define COPY_FROM(defs, src, access)                                                                                                             \
-    {.shader = "svgf_atrous.comp", .defines = defs, .pixel_loop = 1, .bindings = {{src, access}, {"feedback", VRG_ACCESS_STORAGE_WRITE}}}
-#define ITERATION(defs, src, dst)                                                                                                                \
-    {.shader = "svgf_atrous.comp", .defines = defs, .pixel_loop = 1,                                                                          \
-     .bindings = {{src, VRG_ACCESS_STORAGE_READ}, {"position"}, {"frame"}, {dst, VRG_ACCESS_STORAGE_WRITE}}}
-static const vrg_dispatch_desc dispatches[] = {
-    COPY_FROM("COPY", "illumination", VRG_ACCESS_SAMPLED),
-    COPY_FROM("COPY", "color", VRG_ACCESS_SAMPLED),
-    COPY_FROM("COPY FROM_PACKED", "ping", VRG_ACCESS_STORAGE_READ),
-    COPY_FROM("COPY FROM_PACKED", "pong", VRG_ACCESS_STORAGE_READ),
-    {.shader = "svgf_atrous.comp", .defines = "PACK", .pixel_loop = 1, .bindings = {{"illumination"}, {"position"}, {"normal"}, {"pong", VRG_ACCESS_STORAGE_WRITE}}},
-    ITERATION("KERNEL_RADIUS=1 TO_PACKED", "pong", "ping"),
-    ITERATION("KERNEL_RADIUS=1 TO_PACKED", "ping", "pong"),
-    ITERATION("KERNEL_RADIUS=1", "pong", "color"),
-    ITERATION("KERNEL_RADIUS=1", "ping", "color"),
-    ITERATION("KERNEL_RADIUS=2 TO_PACKED", "pong", "ping"),
-    ITERATION("KERNEL_RADIUS=2 TO_PACKED", "ping", "pong"),
-    ITERATION("KERNEL_RADIUS=2", "pong", "color"),
-    ITERATION("KERNEL_RADIUS=2", "ping", "color"),
+ * and destination (the last one unpacks into color). The iterations run
+ * pong -> ping -> pong ... -> color, so iteration i reads pong when i is
+ * even and ping when odd: a pair's entry i & 1 is the one for iteration i,
+ * and its copy to feedback reads that iteration's destination. Which image
+ * an iteration or copy reads (in_src) and writes (out_dst) is what their
+ * bindings[] say, the rest of each list is the shader's order; each
+ * binding's access is the shader's (readonly, writeonly, a sampler). The
+ * pack binds by the shader's names (out_pong is the internal pong). The
+ * iterations' push constants: the sigmas and skip_variance by name, and
+ * step. */
+enum {
+    COPY_INPUT,
+    COPY_COLOR,
+    COPY_PACKED, /* + (i & 1): after iteration i wrote ping, pong */
+    PACK = COPY_PACKED + 2,
+    ITERATIONS, /* + 4 (radius - 1): the kernel's four below */
+    TO_PACKED = 0, /* + (i & 1): pong -> ping, ping -> pong */
+    LAST = 2,      /* + (i & 1): pong, ping -> color */
 };
-
-/* feedback from the input, the (unpacked) output or a packed iteration */
-static int copy(vrg_pass *pass, VkCommandBuffer cmd, const char *from, int packed)
-{
-    vrg_dispatch_desc d = {.shader = "svgf_atrous.comp", .defines = packed ? "COPY FROM_PACKED" : "COPY", .pixel_loop = 1, .domain = "feedback",
-                           .bindings = {{from, packed ? VRG_ACCESS_STORAGE_READ : VRG_ACCESS_SAMPLED}, {"feedback", VRG_ACCESS_STORAGE_WRITE}}};
-    return vrg_dispatch(pass, cmd, &d);
-}
+#define COPY_FROM(defs, src)                                                                                                                     \
+    {.shader = "svgf_atrous.comp", .defines = defs, .pixel_loop = 1, .domain = "feedback", .bindings = {{src}, {"feedback"}}}
+#define ITERATION(defs, src, dst)                                                                                                                \
+    {.shader = "svgf_atrous.comp", .defines = defs, .pixel_loop = 1, .domain = dst, .bindings = {{src}, {"position"}, {"frame"}, {dst}}}
+#define KERNEL(radius)                                                                                                                           \
+    ITERATION("KERNEL_RADIUS=" #radius " TO_PACKED", "pong", "ping"), ITERATION("KERNEL_RADIUS=" #radius " TO_PACKED", "ping", "pong"),        \
+        ITERATION("KERNEL_RADIUS=" #radius, "pong", "color"), ITERATION("KERNEL_RADIUS=" #radius, "ping", "color")
+static const vrg_dispatch_desc dispatches[] = {
+    [COPY_INPUT] = COPY_FROM("COPY", "illumination"),
+    [COPY_COLOR] = COPY_FROM("COPY", "color"),
+    [COPY_PACKED] = COPY_FROM("COPY FROM_PACKED", "ping"),
+    [COPY_PACKED + 1] = COPY_FROM("COPY FROM_PACKED", "pong"),
+    [PACK] = {.shader = "svgf_atrous.comp", .defines = "PACK", .pixel_loop = 1, .domain = "pong"},
+    [ITERATIONS] = KERNEL(1),
+    KERNEL(2),
+};
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
@@ -108,28 +112,18 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         return;
     int n = vrg_param_int(pass, "iterations"), fb = vrg_param_int(pass, "feedback");
     int radius = vrg_param_int(pass, "kernel") / 2; /* a define: the taps unroll */
-    if (fb == 0 && copy(pass, cmd, "illumination", 0) != 0)
+    const vrg_dispatch_desc *kernel = &dispatches[ITERATIONS + 4 * (radius - 1)];
+    if (fb == 0 && vrg_dispatch(pass, cmd, &dispatches[COPY_INPUT]) != 0)
         return;
-    vrg_dispatch_desc pack = {.shader = "svgf_atrous.comp", .defines = "PACK", .pixel_loop = 1, .domain = "pong",
-                              .bindings = {{"illumination"}, {"position"}, {"normal"}, {"pong", VRG_ACCESS_STORAGE_WRITE}}};
-    if (vrg_dispatch(pass, cmd, &pack) != 0)
+    if (vrg_dispatch(pass, cmd, &dispatches[PACK]) != 0)
         return;
-    char defines[2][64]; /* [last iteration] */
-    snprintf(defines[0], sizeof defines[0], "KERNEL_RADIUS=%d TO_PACKED", radius);
-    snprintf(defines[1], sizeof defines[1], "KERNEL_RADIUS=%d", radius);
-    /* pong -> ping -> pong ... -> color */
-    const char *src = "pong", *spare[2] = {"ping", "pong"};
     for (int i = 0; i < n; i++) {
         int last = i == n - 1;
-        const char *dst = last ? "color" : spare[i & 1];
         vrg_push_int(pass, "step", 1 << i);
-        vrg_dispatch_desc d = {.shader = "svgf_atrous.comp", .defines = defines[last], .pixel_loop = 1, .domain = dst,
-                               .bindings = {{src, VRG_ACCESS_STORAGE_READ}, {"position"}, {"frame"}, {dst, VRG_ACCESS_STORAGE_WRITE}}};
-        if (vrg_dispatch(pass, cmd, &d) != 0)
+        if (vrg_dispatch(pass, cmd, &kernel[(last ? LAST : TO_PACKED) + (i & 1)]) != 0)
             return;
-        if (i + 1 == fb && copy(pass, cmd, dst, !last) != 0)
+        if (i + 1 == fb && vrg_dispatch(pass, cmd, &dispatches[last ? COPY_COLOR : COPY_PACKED + (i & 1)]) != 0)
             return;
-        src = dst;
     }
 }
 

@@ -17,20 +17,20 @@ uvec4 pack_texel(vec4 c, float plane, uint axis) { return uvec4(packHalf2x16(c.r
 
 #if defined(PACK)
 // the input with each pixel's surface: the first iteration's source
-layout(binding = 0) uniform sampler2D in_src;
+layout(binding = 0) uniform sampler2D in_illumination;
 layout(binding = 1) uniform sampler2D in_position;
 layout(binding = 2) uniform sampler2D in_normal;
-layout(binding = 3, rgba32ui) uniform writeonly uimage2D out_dst;
+layout(binding = 3, rgba32ui) uniform writeonly uimage2D out_pong;
 
 void shade(ivec2 p)
 {
-    if (any(greaterThanEqual(p, imageSize(out_dst))))
+    if (any(greaterThanEqual(p, imageSize(out_pong))))
         return;
     vec4 x = texelFetch(in_position, p, 0);
     vec3 n = texelFetch(in_normal, p, 0).xyz;
     vec3 a = abs(n);
     uint axis = a.x > 0.5 ? (n.x > 0.0 ? 0u : 1u) : a.y > 0.5 ? (n.y > 0.0 ? 2u : 3u) : (n.z > 0.0 ? 4u : 5u);
-    imageStore(out_dst, p, pack_texel(texelFetch(in_src, p, 0), dot(n, x.xyz), x.w == 0.0 ? SKY : axis));
+    imageStore(out_pong, p, pack_texel(texelFetch(in_illumination, p, 0), dot(n, x.xyz), x.w == 0.0 ? SKY : axis));
 }
 #elif defined(COPY)
 // feedback: the input, or an iteration's packed output
@@ -39,16 +39,16 @@ layout(binding = 0, rgba32ui) uniform readonly uimage2D in_src;
 #else
 layout(binding = 0) uniform sampler2D in_src;
 #endif
-layout(binding = 1, rgba16f) uniform writeonly image2D out_dst;
+layout(binding = 1, rgba16f) uniform writeonly image2D out_feedback;
 
 void shade(ivec2 p)
 {
-    if (any(greaterThanEqual(p, imageSize(out_dst))))
+    if (any(greaterThanEqual(p, imageSize(out_feedback))))
         return;
 #if defined(FROM_PACKED)
-    imageStore(out_dst, p, packed_color(imageLoad(in_src, p)));
+    imageStore(out_feedback, p, packed_color(imageLoad(in_src, p)));
 #else
-    imageStore(out_dst, p, texelFetch(in_src, p, 0));
+    imageStore(out_feedback, p, texelFetch(in_src, p, 0));
 #endif
 }
 #else

@@ -62,19 +62,16 @@ static int create(vrg_pass *pass)
 /* every dispatch execute() records, which `voxrg check` compiles: temporal
  * mode's one, spatial mode's rows and columns, and the two that write
  * color, again with the variance output (when it is read). Their push
- * constants: min_history by name and the window's radius. The temporal
- * ones bind by the shader's binding names; the spatial ones name theirs,
- * the internal rows among them. */
+ * constants: min_history by name and the window's radius. Each binds by
+ * the shader's binding names: out_rows and in_rows are the internal rows,
+ * written, then read (their access is the shader's writeonly, readonly). */
 enum { TEMPORAL, ROWS, COLUMNS, TEMPORAL_VARIANCE, COLUMNS_VARIANCE };
 static const vrg_dispatch_desc dispatches[] = {
     [TEMPORAL] = {.shader = "svgf_variance.comp", .defines = "TEMPORAL", .pixel_loop = 1},
-    [ROWS] = {.shader = "svgf_variance.comp", .defines = "ROWS", .pixel_loop = 1, .domain = "rows",
-              .bindings = {{"illumination"}, {"position"}, {"rows", VRG_ACCESS_STORAGE_WRITE}}},
-    [COLUMNS] = {.shader = "svgf_variance.comp", .defines = "COLUMNS", .pixel_loop = 1,
-                 .bindings = {{"illumination"}, {"position"}, {"rows", VRG_ACCESS_STORAGE_READ}, {"color"}}},
+    [ROWS] = {.shader = "svgf_variance.comp", .defines = "ROWS", .pixel_loop = 1, .domain = "rows"},
+    [COLUMNS] = {.shader = "svgf_variance.comp", .defines = "COLUMNS", .pixel_loop = 1},
     [TEMPORAL_VARIANCE] = {.shader = "svgf_variance.comp", .defines = "TEMPORAL VARIANCE", .pixel_loop = 1},
-    [COLUMNS_VARIANCE] = {.shader = "svgf_variance.comp", .defines = "COLUMNS VARIANCE", .pixel_loop = 1,
-                          .bindings = {{"illumination"}, {"position"}, {"rows", VRG_ACCESS_STORAGE_READ}, {"color"}, {"variance"}}},
+    [COLUMNS_VARIANCE] = {.shader = "svgf_variance.comp", .defines = "COLUMNS VARIANCE", .pixel_loop = 1},
 };
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)

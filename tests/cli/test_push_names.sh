@@ -164,5 +164,71 @@ sed -i 's/imageStore(out_color,/imageStore(out_other,/' "$pos"
 render 1 "a binding named after a slot bound elsewhere"
 has stderr "^$pos:3: error\[VRG-E083\]: binding 0 'out_mask' is named after slot 'out.mask', but pass 'probe' \(plugin push_probe\) binds slot 'out.color' there$" "the misnamed binding"
 
+# An internal resource (vrg_pass_request_image) bound by name, its access
+# the shader's: scratch = 1 dispatches push.comp with FIRST, which writes
+# the internal image 'scratch' through out_scratch, then with SECOND, which
+# reads it through in_scratch (a readonly storage image, then a sampler:
+# the pass says neither) and copies it to color. The shaders name no list.
+# write_scratch READ FETCH: SECOND's declaration of in_scratch and its read
+write_scratch() {
+    cat >"$pos" <<GLSL
+#version 450
+layout(local_size_x = 8, local_size_y = 8) in;
+#if defined(FIRST)
+layout(binding = 0, rgba16f) uniform writeonly image2D out_${3:-scratch};
+#elif defined(SECOND)
+$1
+layout(binding = 1, rgba16f) uniform writeonly image2D out_color;
+layout(binding = 2, rgba16f) uniform writeonly image2D out_mask;
+layout(std430, binding = 3) writeonly buffer Values { uint words[4]; } out_values;
+#else // the plugin's other dispatches, which check compiles too
+layout(binding = 0, rgba16f) uniform writeonly image2D out_color;
+layout(binding = 1, rgba16f) uniform writeonly image2D out_mask;
+layout(std430, binding = 2) writeonly buffer Values { uint words[4]; } out_values;
+#endif
+layout(push_constant) uniform Push { uint frame_index; float gain; int steps; } push;
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+#if defined(FIRST)
+    imageStore(out_${3:-scratch}, p, vec4(0.0, 0.0, push.gain, 1.0));
+#else
+#if defined(SECOND)
+    imageStore(out_color, p, $2);
+#else
+    imageStore(out_color, p, vec4(0.0));
+#endif
+    imageStore(out_mask, p, vec4(1.0));
+    if (p == ivec2(0))
+        out_values.words[0] = floatBitsToUint(push.gain) + uint(push.steps) + push.frame_index;
+#endif
+}
+GLSL
+}
+blue() { # description: color is (0, 0, 255): the scratch image went through
+    python3 - "$out/img/color.png" "$(dirname "$0")" <<'PY' && ok || bad "$1: color is not blue"
+import sys
+sys.path.insert(0, sys.argv[2])
+import png_pixels
+_, _, pixel = png_pixels.load(sys.argv[1])
+sys.exit(0 if tuple(pixel(5, 5))[:3] == (0, 0, 255) else 1)
+PY
+}
+write_scratch 'layout(binding = 0, rgba16f) uniform readonly image2D in_scratch;' 'imageLoad(in_scratch, p)'
+rm -f "$out/img/color.png"
+render 0 "an internal image written and read by name" --set probe.scratch=1 --set probe.gain=1
+blue "an internal image read as a readonly storage image"
+check 0 "an internal image bound by name"
+has check_stdout "probe +push_probe +4 dispatches compiled and reflected; 2 bindings to internal resources checked with a device only" "check leaves the internal image to a device"
+write_scratch 'layout(binding = 0) uniform sampler2D in_scratch;' 'texelFetch(in_scratch, p, 0)'
+rm -f "$out/img/color.png"
+render 0 "an internal image read through a sampler, its access the shader's" --set probe.scratch=1 --set probe.gain=1
+blue "an internal image read as a sampler"
+# in_/out_ names that match no slot and no internal resource: an error at
+# the binding's line naming the pass's internal resources
+write_scratch 'layout(binding = 0, rgba16f) uniform readonly image2D in_scratch;' 'imageLoad(in_scratch, p)' scratchy
+render 1 "a binding named after nothing" --set probe.scratch=1
+has stderr "^$pos:4: error\[VRG-E083\]: binding 0 'out_scratchy' is named after no slot or internal resource of pass 'probe' \(plugin push_probe\): it has no output slot 'scratchy', and its internal resources are scratch$" "the binding named after nothing, at its line"
+
 echo "test_push_names: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

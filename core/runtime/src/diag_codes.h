@@ -96,7 +96,7 @@
     X(VRG_E_SHADER_INTERFACE, "VRG-E080", "shader-interface", "a shader-only pass's shader does not declare a valid interface (binding names, @param and @optional annotations)") \
     X(VRG_E_NOT_FINITE, "VRG-E081", "not-finite", "a pass wrote NaN or infinity into a float image (check_finite)")                     \
     X(VRG_E_SHADER_PUSH_MEMBER, "VRG-E082", "shader-push-member", "a push-constant member packed by name has no value (no parameter or vrg_push_* of its name), another type, or a value names no member") \
-    X(VRG_E_SHADER_BINDING_NAME, "VRG-E083", "shader-binding-name", "a binding named after a slot (in_X, out_X, frame) is bound to another resource: two bindings swapped") \
+    X(VRG_E_SHADER_BINDING_NAME, "VRG-E083", "shader-binding-name", "a binding named after a slot or internal resource (in_X, out_X, frame) is bound to another resource (two bindings swapped), or names neither") \
     /* warnings */                                                                                                                          \
     X(VRG_W_UNUSED_RESOURCE, "VRG-W001", "unused-resource", "a [resource] section configures a resource no pass uses")                    \
     X(VRG_W_PLUGIN_SHADOWED, "VRG-W002", "plugin-shadowed", "a plugin of the same name earlier on the search path is used instead")     \

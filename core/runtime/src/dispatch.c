@@ -24,6 +24,8 @@ typedef struct bound_set {
     unsigned char unknown[VRG_MAX_BINDINGS];
     char labels[VRG_MAX_BINDINGS][2 * VRG_NAME_MAX + 32]; /* "slot 'out.color'" */
     int slot[VRG_MAX_BINDINGS]; /* the bound slot, -1: an internal resource */
+    char internal[VRG_MAX_BINDINGS][VRG_NAME_MAX]; /* the internal resource bound (its name in the pass), else "" */
+    int listed;         /* the dispatch's bindings[] chose them */
     uint32_t count;
     uint32_t push_size; /* the dispatch's */
 } bound_set;
@@ -102,6 +104,31 @@ static int named_slot(const vrg_plugin_desc *pd, const _vrg_reflected_binding *b
     return -1;
 }
 
+/* The X of a binding named in_X or out_X that is not a slot of that
+ * direction: an internal resource of the pass (vrg_pass_request_image or
+ * _buffer), which only create() makes, so which one is known only with a
+ * device. NULL for any other name. */
+static const char *internal_name(const vrg_plugin_desc *pd, const _vrg_reflected_binding *b)
+{
+    const char *x = strncmp(b->name, "in_", 3) == 0 ? b->name + 3 : strncmp(b->name, "out_", 4) == 0 ? b->name + 4 : NULL;
+    if (!x || !*x || strlen(x) >= VRG_NAME_MAX || named_slot(pd, b) >= 0)
+        return NULL;
+    return x;
+}
+
+/* "ping, pong": the pass's internal resources, for a message. */
+static void internal_names(const vrg_pass *p, char *out, size_t cap)
+{
+    const vrg_graph *g = p->graph;
+    size_t n = strlen(p->name);
+    out[0] = 0;
+    for (int i = 0; i < g->res_count; i++)
+        if (g->res[i].internal_owner == (int)(p - g->passes) && strncmp(g->res[i].name, p->name, n) == 0 && g->res[i].name[n] == '.') {
+            size_t len = strlen(out);
+            snprintf(out + len, cap - len, "%s%s", len ? ", " : "", g->res[i].name + n + 1);
+        }
+}
+
 /* A binding named after a slot is bound to that slot: a pair of bindings of
  * the same type swapped in the shader (or in the pass's bindings[]) passes
  * every other check and renders wrong. -1 after the error at its line. */
@@ -110,9 +137,30 @@ static int check_name(vrg_pass *p, const bound_set *bs, const _vrg_reflection *r
     const vrg_plugin_desc *pd = p->plugin->desc;
     uint32_t i = b->binding;
     int want = named_slot(pd, b);
+    const char *code = _vrg_diag_info_of(VRG_E_SHADER_BINDING_NAME)->code;
+    const char *x = want < 0 ? internal_name(pd, b) : NULL;
+    if (x && p->graph->ctx && strcmp(bs->internal[i], x) != 0) {
+        /* in_X / out_X for an internal resource X: bound to X, in either
+         * mode; one that names nothing is an error where the shader's
+         * names bind (bindings[] gives other names, in_src, their image) */
+        int res, prev, slot;
+        if (_vrg_pass_lookup(p, x, &res, &prev, &slot) == 0 && slot < 0) {
+            fprintf(diag, "%s: error[%s]: binding %u '%s' is named after internal resource '%s', but pass '%s' (plugin %s) binds %s there\n", b->where,
+                    code, i, b->name, x, p->name, pd->name, bs->labels[i]);
+            return -1;
+        }
+        if (!bs->listed) {
+            char internal[512];
+            internal_names(p, internal, sizeof internal);
+            fprintf(diag, "%s: error[%s]: binding %u '%s' is named after no slot or internal resource of pass '%s' (plugin %s): it has no %s slot '%s', "
+                          "and its internal resources are %s\n",
+                    b->where, code, i, b->name, p->name, pd->name, b->name[0] == 'i' ? "input" : "output", x,
+                    internal[0] ? internal : "none (vrg_pass_request_image makes one)");
+            return -1;
+        }
+    }
     if (want < 0 || bs->slot[i] == want)
         return 0;
-    const char *code = _vrg_diag_info_of(VRG_E_SHADER_BINDING_NAME)->code;
     /* the binding named after the slot bound here, if it holds this one's */
     for (int k = 0; bs->slot[i] >= 0 && k < r->count; k++) {
         const _vrg_reflected_binding *o = &r->bindings[k];
@@ -424,11 +472,22 @@ static _vrg_pipeline *get_pipeline(vrg_pass *p, const char *shader, const char *
     return pl;
 }
 
+/* What a shader declares at set 0 (these defines), and how its names bind
+ * it: read once per shader and defines, for a dispatch without bindings[]
+ * (by name) and for a bindings[] entry that leaves its access to the
+ * shader. */
 typedef struct _vrg_name_plan {
     char shader[256], defines[256];
-    int by_name;  /* 1: binding i is slot slot[i], from the shader's names */
+    char path[VRG_PATH_MAX];
+    int by_name;  /* 1: binding i is slot slot[i], or the internal resource internal[i] */
     uint32_t count;
-    int slot[VRG_MAX_BINDINGS];
+    int slot[VRG_MAX_BINDINGS]; /* -1: internal[i] */
+    char internal[VRG_MAX_BINDINGS][VRG_NAME_MAX];
+    /* binding i of set 0 as the shader declares it */
+    unsigned char declared[VRG_MAX_BINDINGS], readonly[VRG_MAX_BINDINGS], writeonly[VRG_MAX_BINDINGS];
+    VkDescriptorType type[VRG_MAX_BINDINGS];
+    char name[VRG_MAX_BINDINGS][64];
+    char *where[VRG_MAX_BINDINGS]; /* FILE:LINE, of the bindings named after an internal resource */
     struct _vrg_name_plan *next;
 } _vrg_name_plan;
 
@@ -437,6 +496,8 @@ void _vrg_name_plans_free(vrg_pass *p)
     while (p->name_plans) {
         _vrg_name_plan *n = p->name_plans;
         p->name_plans = n->next;
+        for (int i = 0; i < VRG_MAX_BINDINGS; i++)
+            free(n->where[i]);
         free(n);
     }
 }
@@ -523,7 +584,8 @@ void _vrg_pipelines_destroy(vrg_pass *p)
 typedef struct bound {
     int res, prev;
     vrg_access access;
-    int slot; /* -1: an internal resource */
+    int slot;          /* -1: an internal resource */
+    const char *named; /* the name it was bound by, for messages */
 } bound;
 
 /* Whether an acceleration structure exists to be bound: one was made
@@ -547,18 +609,20 @@ static int names_slot(const vrg_plugin_desc *pd, const char *name)
 
 /* A dispatch without bindings[] binds by the shader's names when every
  * binding it declares (this variant, these defines) is named after a
- * connected slot (in_X, out_X, frame), in set 0, numbered 0 to n-1: each
- * slot where the shader says, and the slots it does not declare not at
- * all. Else (a binding of another name, an acceleration structure, which
- * is numbered by VRG_ACCEL_BINDING) every slot in declaration order. The
- * plan is cached per shader and defines; a shader that does not compile
- * has none (its pipeline reports the error). NULL: declaration order. */
-static const _vrg_name_plan *name_plan(vrg_pass *p, const vrg_dispatch_desc *d)
+ * connected slot (in_X, out_X, frame) or an internal resource (in_X,
+ * out_X for the resource X), in set 0, numbered 0 to n-1: each where the
+ * shader says, and the slots it does not declare not at all. Else (a
+ * binding of another name, an acceleration structure, which is numbered by
+ * VRG_ACCEL_BINDING) every slot in declaration order. The plan is cached
+ * per shader and defines, with what the shader declares at each binding
+ * (its access, when the pass does not give it); a shader that does not
+ * compile has none (its pipeline reports the error). */
+static const _vrg_name_plan *shader_plan(vrg_pass *p, const vrg_dispatch_desc *d)
 {
     const char *defines = d->defines ? d->defines : "";
     for (_vrg_name_plan *n = p->name_plans; n; n = n->next)
         if (strcmp(n->shader, d->shader) == 0 && strcmp(n->defines, defines) == 0)
-            return n->by_name ? n : NULL;
+            return n;
     char path[VRG_PATH_MAX];
     if (strlen(d->shader) >= sizeof((_vrg_name_plan *)0)->shader || strlen(defines) >= sizeof((_vrg_name_plan *)0)->defines ||
         _vrg_shader_resolve(p, d->shader, path, sizeof path, NULL, 0) != 0)
@@ -583,7 +647,18 @@ static const _vrg_name_plan *name_plan(vrg_pass *p, const vrg_dispatch_desc *d)
     }
     snprintf(n->shader, sizeof n->shader, "%s", d->shader);
     snprintf(n->defines, sizeof n->defines, "%s", defines);
+    snprintf(n->path, sizeof n->path, "%s", path);
     const vrg_plugin_desc *pd = p->plugin->desc;
+    for (int k = 0; k < sm.refl.count; k++) {
+        const _vrg_reflected_binding *b = &sm.refl.bindings[k];
+        if (b->set != 0 || b->binding >= VRG_MAX_BINDINGS || n->declared[b->binding])
+            continue;
+        n->declared[b->binding] = 1;
+        n->type[b->binding] = b->type;
+        n->readonly[b->binding] = (unsigned char)b->readonly;
+        n->writeonly[b->binding] = (unsigned char)b->writeonly;
+        snprintf(n->name[b->binding], sizeof n->name[b->binding], "%s", b->name);
+    }
     n->by_name = sm.refl.count > 0 && sm.refl.count <= VRG_MAX_BINDINGS;
     n->count = (uint32_t)sm.refl.count;
     for (int i = 0; i < VRG_MAX_BINDINGS; i++)
@@ -591,16 +666,56 @@ static const _vrg_name_plan *name_plan(vrg_pass *p, const vrg_dispatch_desc *d)
     for (int k = 0; k < sm.refl.count && n->by_name; k++) {
         const _vrg_reflected_binding *b = &sm.refl.bindings[k];
         int s = named_slot(pd, b);
-        n->by_name = b->set == 0 && b->binding < n->count && n->slot[b->binding] < 0 && s >= 0 && p->slots[s].res >= 0 &&
-                     pd->slots[s].kind != VRG_ACCEL;
-        if (n->by_name)
+        const char *internal = s < 0 ? internal_name(pd, b) : NULL;
+        n->by_name = b->set == 0 && b->binding < n->count && n->slot[b->binding] < 0 && !n->internal[b->binding][0] &&
+                     ((s >= 0 && p->slots[s].res >= 0 && pd->slots[s].kind != VRG_ACCEL) || internal);
+        if (n->by_name && s >= 0)
             n->slot[b->binding] = s;
+        else if (n->by_name) {
+            snprintf(n->internal[b->binding], sizeof n->internal[b->binding], "%s", internal);
+            n->where[b->binding] = strdup(b->where);
+        }
     }
     free(sm.deps);
     _vrg_reflection_free(&sm.refl);
     n->next = p->name_plans;
     p->name_plans = n;
-    return n->by_name ? n : NULL;
+    return n;
+}
+
+/* The access of a binding whose dispatch does not give it (bound by name,
+ * or a bindings[] entry with access 0), from the shader's declaration at
+ * binding i: a slot keeps its declared access where the shader declares
+ * the descriptor type that access gives (so that readonly and writeonly
+ * are checked against it, VRG-E068); otherwise, and for an internal
+ * resource (sd NULL), a sampler is sampled, a uniform block uniform, a
+ * texel buffer texel-read, a storage image or buffer declared readonly
+ * storage-read, writeonly storage-write, neither: an input slot read, an
+ * output slot written (VRG-W005 then asks for the qualifier), an internal
+ * resource read and written. A slot the shader declares as another kind
+ * of resource (a sampler for a buffer) keeps its access, and reflection
+ * reports the mismatch (VRG-E065). */
+static vrg_access declared_access(const vrg_slot_desc *sd, const _vrg_name_plan *n, int i)
+{
+    vrg_access fallback = sd ? sd->access : VRG_ACCESS_STORAGE_READ_WRITE;
+    if (!n || i < 0 || i >= VRG_MAX_BINDINGS || !n->declared[i] || (sd && descriptor_type(sd->kind, sd->access) == n->type[i]))
+        return fallback;
+    vrg_resource_kind kind = sd ? sd->kind : VRG_IMAGE;
+    switch (n->type[i]) {
+    case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER: return sd && kind != VRG_IMAGE ? fallback : VRG_ACCESS_SAMPLED;
+    case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER: return sd && kind != VRG_BUFFER ? fallback : VRG_ACCESS_UNIFORM;
+    case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER: return sd && kind != VRG_BUFFER ? fallback : VRG_ACCESS_TEXEL_READ;
+    case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE:
+    case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER:
+        if (sd && kind != (n->type[i] == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE ? VRG_IMAGE : VRG_BUFFER))
+            return fallback;
+        return n->readonly[i]    ? VRG_ACCESS_STORAGE_READ
+               : n->writeonly[i] ? VRG_ACCESS_STORAGE_WRITE
+               : !sd             ? VRG_ACCESS_STORAGE_READ_WRITE
+               : sd->dir == VRG_IN ? VRG_ACCESS_STORAGE_READ
+                                   : VRG_ACCESS_STORAGE_WRITE;
+    default: return fallback;
+    }
 }
 
 /* n, or -1 after reporting; unknown[i]: an internal resource not made yet. */
@@ -608,14 +723,32 @@ static int resolve_bindings(vrg_pass *p, const vrg_dispatch_desc *d, bound *out,
 {
     const vrg_plugin_desc *pd = p->plugin->desc;
     int n = 0;
-    const _vrg_name_plan *plan = !d->bindings[0].res && d->shader ? name_plan(p, d) : NULL;
-    if (plan) {
-        for (uint32_t i = 0; i < plan->count; i++) {
+    int derived = !d->bindings[0].res; /* some access left to the shader */
+    for (int i = 0; i < VRG_MAX_BINDINGS && d->bindings[i].res && !derived; i++)
+        derived = !d->bindings[i].access;
+    const _vrg_name_plan *plan = derived && d->shader ? shader_plan(p, d) : NULL;
+    int fallback = 0;
+    if (plan && plan->by_name && !d->bindings[0].res) {
+        for (uint32_t i = 0; i < plan->count && !fallback; i++) {
             int s = plan->slot[i];
             unknown[i] = 0;
-            out[i] = (bound){p->slots[s].res, p->slots[s].prev, pd->slots[s].access, s};
+            if (s >= 0) {
+                out[i] = (bound){p->slots[s].res, p->slots[s].prev, declared_access(&pd->slots[s], plan, (int)i), s, NULL};
+                continue;
+            }
+            int res, prev, slot;
+            vrg_access a = declared_access(NULL, plan, (int)i);
+            if (_vrg_pass_lookup(p, plan->internal[i], &res, &prev, &slot) == 0 && slot < 0) {
+                out[i] = (bound){res, 0, a, -1, plan->internal[i]};
+            } else if (!p->graph->ctx) { /* create() did not run: checked with a device */
+                unknown[i] = 1;
+                out[i] = (bound){-1, -1, a, -1, plan->internal[i]};
+            } else { /* no such resource: declaration order, whose check names the binding */
+                fallback = 1;
+            }
         }
-        return (int)plan->count;
+        if (!fallback)
+            return (int)plan->count;
     }
     if (!d->bindings[0].res) {
         for (uint32_t s = 0; s < pd->slot_count; s++) {
@@ -628,7 +761,7 @@ static int resolve_bindings(vrg_pass *p, const vrg_dispatch_desc *d, bound *out,
                 return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "its slots need more than the %d bindings of a dispatch: name the ones the shader uses in bindings[]",
                                       VRG_MAX_BINDINGS);
             unknown[n] = 0;
-            out[n++] = (bound){r, p->slots[s].prev, pd->slots[s].access, (int)s};
+            out[n++] = (bound){r, p->slots[s].prev, pd->slots[s].access, (int)s, NULL};
         }
         return n;
     }
@@ -641,15 +774,15 @@ static int resolve_bindings(vrg_pass *p, const vrg_dispatch_desc *d, bound *out,
              * are not there to look up */
             if (!p->graph->ctx && !names_slot(pd, d->bindings[n].res)) {
                 unknown[n] = 1;
-                out[n] = (bound){-1, -1, a ? a : VRG_ACCESS_STORAGE_READ_WRITE, -1};
+                out[n] = (bound){-1, -1, a ? a : declared_access(NULL, plan, n), -1, d->bindings[n].res};
                 continue;
             }
             return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "binding %d names '%s', which is neither a slot nor an internal resource of this pass", n,
                                   d->bindings[n].res);
         }
         if (!a)
-            a = slot >= 0 ? pd->slots[slot].access : VRG_ACCESS_STORAGE_READ_WRITE;
-        out[n] = (bound){res, prev, a, slot};
+            a = declared_access(slot >= 0 ? &pd->slots[slot] : NULL, plan, n);
+        out[n] = (bound){res, prev, a, slot, d->bindings[n].res};
     }
     return n;
 }
@@ -675,11 +808,17 @@ static int describe_dispatch(vrg_pass *p, const vrg_dispatch_desc *d, bound *b, 
     if (n < 0)
         return -1;
     bs->count = (uint32_t)n;
+    bs->listed = d->bindings[0].res != NULL;
     bs->push_size = d->push_size;
     for (int i = 0; i < n; i++) {
         bs->access[i] = b[i].access;
         bs->slot[i] = b[i].slot;
-        label_binding(p, &b[i], d->bindings[i].res, bs->labels[i], sizeof bs->labels[i]);
+        if (b[i].slot < 0 && b[i].res >= 0) {
+            const char *full = g->res[b[i].res].name;
+            size_t len = strlen(p->name);
+            snprintf(bs->internal[i], sizeof bs->internal[i], "%s", strncmp(full, p->name, len) == 0 && full[len] == '.' ? full + len + 1 : full);
+        }
+        label_binding(p, &b[i], b[i].named, bs->labels[i], sizeof bs->labels[i]);
         if (b[i].access == VRG_ACCESS_TRANSFER_SRC || b[i].access == VRG_ACCESS_TRANSFER_DST || b[i].access == VRG_ACCESS_AS_BUILD)
             return _vrg_pass_fail(p, VRG_E_BAD_DISPATCH, "binding %d: %s access cannot be bound to a shader", i, _vrg_access_name(b[i].access));
         if (bs->unknown[i])

@@ -9,7 +9,11 @@
  * out_values), or with listed = 1 by a list, color, mask and values at
  * bindings 0, 1 and 2, against which the names are checked (color and mask
  * both rgba16f, so that a swapped pair passes every check of type and
- * format). */
+ * format). With scratch = 1 it dispatches push.comp twice, with FIRST and
+ * then SECOND defined, both bound by the shader's names: the test's shader
+ * writes the internal image 'scratch' (create() requests it) in the first
+ * and reads it in the second, as the shader declares it (readonly storage
+ * image or sampler). */
 #include "voxrg/plugin.h"
 
 static const vrg_slot_desc slots[] = {
@@ -30,11 +34,20 @@ static const vrg_param_desc params[] = {
      .help = "sets 'weights' to that many floats (0.25, 0.75, 1; 0: not at all) with vrg_push_floats"},
     {.name = "listed", .type = VRG_PARAM_BOOL, .default_value = 0, .min = 0, .max = 1,
      .help = "the dispatch that lists its bindings (color, mask, values), not the one bound by the shader's names"},
+    {.name = "scratch", .type = VRG_PARAM_BOOL, .default_value = 0, .min = 0, .max = 1,
+     .help = "two dispatches by name, FIRST then SECOND defined, through the internal image 'scratch'"},
 };
+
+static int create(vrg_pass *pass)
+{
+    return vrg_res_connected(vrg_pass_request_image(pass, "scratch", VK_FORMAT_R16G16B16A16_SFLOAT, 1.0f, VRG_ACCESS_STORAGE_WRITE)) ? 0 : -1;
+}
 
 static const vrg_dispatch_desc dispatches[] = {
     {.shader = "push.comp"},
     {.shader = "push.comp", .bindings = {{"color"}, {"mask"}, {"values"}}},
+    {.shader = "push.comp", .defines = "FIRST"},
+    {.shader = "push.comp", .defines = "SECOND"},
 };
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
@@ -45,6 +58,13 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         vrg_push_floats(pass, "weights", weights, (uint32_t)vrg_param_int(pass, "set_array"));
     if (vrg_param_int(pass, "set_extra"))
         vrg_push_float(pass, "extra", 1.0f);
+    if (vrg_param_int(pass, "scratch")) {
+        if (vrg_dispatch(pass, cmd, &dispatches[2]) != 0)
+            return;
+        vrg_push_uint(pass, "frame_index", (uint32_t)vrg_pass_frame(pass)->frame_index);
+        (void)vrg_dispatch(pass, cmd, &dispatches[3]);
+        return;
+    }
     (void)vrg_dispatch(pass, cmd, &dispatches[vrg_param_int(pass, "listed")]);
     if (vrg_param_int(pass, "set_late"))
         vrg_push_uint(pass, "frame_index", 0);
@@ -59,6 +79,7 @@ static const vrg_plugin_desc desc = {
     .slot_count = sizeof slots / sizeof slots[0],
     .params = params,
     .param_count = sizeof params / sizeof params[0],
+    .create = create,
     .execute = execute,
     .dispatches = dispatches,
     .dispatch_count = sizeof dispatches / sizeof dispatches[0],

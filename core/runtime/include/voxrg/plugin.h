@@ -488,7 +488,8 @@ void vrg_pass_use(vrg_pass *pass, VkCommandBuffer cmd, const vrg_use *uses, uint
 
 typedef struct vrg_binding {
     const char *res;   /* slot ("src", or "in.color"/"out.color") or internal resource name */
-    vrg_access access; /* 0: the slot's declared access (internal: storage read/write) */
+    vrg_access access; /* 0: the shader's declaration's (readonly, writeonly, sampler, ...;
+                          a slot whose descriptor type it agrees with: the slot's declared access) */
 } vrg_binding;
 
 typedef struct vrg_dispatch_desc {
@@ -497,19 +498,24 @@ typedef struct vrg_dispatch_desc {
      * $VOXRG_SHADER_PATH, then the data folder's shaders/ (docs/plugin-abi.md,
      * "The dispatch helper"). */
     const char *shader;
-    /* Set 0, binding i = bindings[i]. When none are given and every
-     * binding the shader declares is named after a connected slot (in_X:
-     * input X, out_X: output X, a uniform block `frame`: input frame),
-     * numbered 0 to n-1, each is bound to its slot (the slots it does not
-     * declare are not bound). Otherwise, with none given, every slot of
+    /* Set 0, binding i = bindings[i]: list them only for what the shader
+     * cannot say, e.g. which of two internal images an iteration reads.
+     * When none are given and every binding the shader declares is named
+     * after a connected slot (in_X: input X, out_X: output X, a uniform
+     * block `frame`: input frame) or an internal resource (in_X, out_X:
+     * the resource X), numbered 0 to n-1, each is bound to it, with the
+     * access its declaration gives (the slots it does not declare are not
+     * bound). Otherwise, with none given, every slot of
      * the pass is bound in declaration order (unconnected optional inputs
      * through their 1x1 stand-ins), except acceleration structures that do
      * not exist, which is why they are declared last. Whenever one is bound
      * at binding i, the shader is compiled with VRG_ACCEL_BINDING=i (the
      * voxel layer's trace.glsl then uses its ray-query backend on it).
      * Either way a shader binding named after a slot (in_X: input X,
-     * out_X: output X, a uniform block `frame`: input frame) must be bound
-     * to that slot: a swapped pair is an error naming both (VRG-E083). */
+     * out_X: output X, a uniform block `frame`: input frame) or an
+     * internal resource must be bound to it: a swapped pair is an error
+     * naming both (VRG-E083), as is, bound by name, an in_X or out_X
+     * that names neither. */
     vrg_binding bindings[VRG_MAX_BINDINGS];
     /* Preprocessor definitions for this variant, "NAME" or "NAME=VALUE",
      * separated by spaces or ';' (each set is its own cached pipeline). */
