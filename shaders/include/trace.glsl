@@ -7,7 +7,9 @@
 // stepped only where such a layer holds something. Backend 2 (#define
 // TRACE_RAYQUERY, TLAS_BINDING; world.glsl defines them when the runtime
 // says VRG_ACCEL_BINDING): VK_KHR_ray_query against the scene's per-chunk
-// BLASes. Include world.glsl and frame.glsl first.
+// BLASes; a pass that declares the TLAS binding itself (a one-file pass's
+// `in_tlas`, with its annotation) defines TRACE_TLAS to its name instead of
+// TLAS_BINDING. Include world.glsl and frame.glsl first.
 //
 // What the DDA is shaped by (measured on lavapipe, docs/benchmarks.md): a
 // buffer load with a per-invocation address is a scalar loop over the SIMD
@@ -40,7 +42,10 @@ ivec3 trace_step_mask(vec3 tnext)
 }
 
 #ifdef TRACE_RAYQUERY
+#ifndef TRACE_TLAS
 layout(binding = TLAS_BINDING) uniform accelerationStructureEXT trace_tlas;
+#define TRACE_TLAS trace_tlas
+#endif
 
 // The face a ray hit: the axis whose block boundary the hit point lies on
 // (the BLAS holds no per-face data), facing against the ray.
@@ -54,7 +59,7 @@ Hit trace_closest(vec3 o, vec3 d, float tmax)
     h.block = 0u;
     h.chunk = -1;
     rayQueryEXT q;
-    rayQueryInitializeEXT(q, trace_tlas, gl_RayFlagsOpaqueEXT, 0xff, o, 0.0, d, tmax);
+    rayQueryInitializeEXT(q, TRACE_TLAS, gl_RayFlagsOpaqueEXT, 0xff, o, 0.0, d, tmax);
     while (rayQueryProceedEXT(q)) {
     }
     if (rayQueryGetIntersectionTypeEXT(q, true) != gl_RayQueryCommittedIntersectionTriangleEXT)
@@ -77,7 +82,7 @@ Hit trace_closest(vec3 o, vec3 d, float tmax)
 bool trace_any(vec3 o, vec3 d, float tmax)
 {
     rayQueryEXT q;
-    rayQueryInitializeEXT(q, trace_tlas, gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT, 0xff, o, 0.0, d, tmax);
+    rayQueryInitializeEXT(q, TRACE_TLAS, gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT, 0xff, o, 0.0, d, tmax);
     while (rayQueryProceedEXT(q)) {
     }
     return rayQueryGetIntersectionTypeEXT(q, true) == gl_RayQueryCommittedIntersectionTriangleEXT;

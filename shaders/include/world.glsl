@@ -1,6 +1,7 @@
 // The voxel world buffer a scene plugin writes (layout: core/voxel/src/world.c).
 // Before including, define WORLD_BINDING to the binding of the pass's
-// `world` slot (a storage buffer).
+// `world` slot (a texel buffer, below), or declare that binding yourself
+// and define WORLD_TEXELS to its name (a one-file pass's `in_world`).
 #ifndef VOXRG_WORLD_GLSL
 #define VOXRG_WORLD_GLSL
 #include "ifloor.glsl"
@@ -21,8 +22,11 @@
 // per-invocation addresses a scalar loop per lane; and lavapipe fetches
 // four words for about the price of one (a call per fetch), so a chunk's
 // header is one fetch, not three (docs/benchmarks.md has the gain).
+#ifndef WORLD_TEXELS
 layout(binding = WORLD_BINDING) uniform usamplerBuffer world_texels;
-uvec4 world_texel(uint t) { return texelFetch(world_texels, int(t)); }
+#define WORLD_TEXELS world_texels
+#endif
+uvec4 world_texel(uint t) { return texelFetch(WORLD_TEXELS, int(t)); }
 // Word c of a texel: selects, because a dynamically indexed vector spills
 // to memory on a CPU device.
 uint world_pick(uvec4 w, uint c) { return c == 0u ? w.x : c == 1u ? w.y : c == 2u ? w.z : w.w; }

@@ -209,6 +209,10 @@ broken_opt("choices on a float", "int mode;", "float mode;", "float mode;", r"'m
 broken_opt("choices with a range", "choices=zero,half,full", "choices=zero,half,full min=0 max=2", "int mode;", r"with choices= has no min= or max=")
 broken_opt("variant on a number", "int mode;   // @param choices=zero,half,full default=half", "int mode;   // @param default=1 min=0 max=2 variant",
            "int mode;", r"variant picks a compiled variant per choice: give choices= too")
+broken_opt("an optional acceleration structure before another binding", "layout(binding = 1) uniform sampler2D in_extra;",
+           "layout(binding = 2) uniform sampler2D in_extra;\n#extension GL_EXT_ray_query : require\n"
+           "layout(binding = 1) uniform accelerationStructureEXT in_tlas; // @optional", "in_tlas;",
+           r"binding 'in_tlas': an optional acceleration structure is the last binding")
 broken_opt("every image output optional", "image2D out_color;", "image2D out_color; // @optional", "out_color;", r"every image output is @optional")
 save(opt_comp, OPT)
 # an empty file (an editor truncates it before writing): an error naming it, not a silent failure

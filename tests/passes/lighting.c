@@ -417,6 +417,39 @@ static void test_light_stratified(void)
     }
 }
 
+/* ao's ray-query variant (the one-file pass's in_tlas, declared where the
+ * scene built a TLAS): the corner's AO ordering, and the same AO as the DDA
+ * variant's (light_corner.ini connects the tlas, empty on the DDA) but on
+ * at most 0.5% of the pixels (a ray grazing an edge may decide either way). */
+static int test_ao_rayquery(void)
+{
+    if (!vrg_context_device(ctx)->features.ray_query) {
+        printf("ao_rayquery: skipped: device '%s' has no VK_KHR_ray_query\n", vrg_context_device(ctx)->name);
+        return SKIP;
+    }
+    static const char *reads[] = {"gbuffer.position", "ao.ao"};
+    static const char *rq[] = {"scene.traversal=rayquery"};
+    vrg_image_data pos, ao[2];
+    for (int k = 0; k < 2; k++) {
+        vrg_graph *g = load_with("light_corner.ini", k ? rq : NULL, (uint32_t)k, reads, 2);
+        if (!g)
+            return 0;
+        CHECK(vrg_graph_frame(g) == 0, "%s: frame failed", k ? "rayquery" : "dda");
+        CHECK((k || vrg_graph_read(g, "gbuffer.position", &pos) == 0) && vrg_graph_read(g, "ao.ao", &ao[k]) == 0, "readback failed");
+        vrg_graph_destroy(g);
+    }
+    float corner = floor_mean(&pos, &ao[1], 0, 1.5f, 1.5f, 0.5f, NULL), edge = floor_mean(&pos, &ao[1], 0, 16.0f, 1.5f, 0.5f, NULL),
+          open = floor_mean(&pos, &ao[1], 0, 16.0f, 16.0f, 0.5f, NULL);
+    CHECK(corner >= 0 && corner < edge && edge < open && open > 0.97f, "rayquery AO corner %.3f, edge %.3f, open %.3f: want corner < edge < open", corner,
+          edge, open);
+    uint32_t n = ao[0].width * ao[0].height, differ = 0;
+    for (uint32_t i = 0; i < n; i++)
+        differ += ao[0].pixels[4 * i] != ao[1].pixels[4 * i];
+    CHECK(ao[1].width == ao[0].width && differ <= n / 200, "%u of %u pixels' AO differ between the DDA and ray queries", differ, n);
+    free(pos.pixels), free(ao[0].pixels), free(ao[1].pixels);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     static const test_case cases[] = {
@@ -428,6 +461,7 @@ int main(int argc, char **argv)
         {"light_corner", test_light_corner, 1},
         {"light_chain", test_light_chain, 1},
         {"light_stratified", test_light_stratified, 1},
+        {"ao_rayquery", NULL, 1, test_ao_rayquery},
     };
     return run_case(argc, argv, cases, sizeof cases / sizeof cases[0]);
 }

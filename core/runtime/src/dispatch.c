@@ -1189,20 +1189,52 @@ static int dispatch_one(vrg_pass *p, VkCommandBuffer cmd, const vrg_dispatch_des
     return 0;
 }
 
-/* A shader-only pass (shader_pass.c) is one dispatch of its shader, its
- * push constants packed by name from its parameters (push_size 0): the
- * variant its optional slots' connections and its variant choices pick. */
-void _vrg_shader_pass_execute(vrg_pass *pass, VkCommandBuffer cmd)
+/* Whether a shader-only pass's optional slot counts as connected for its
+ * variant: an acceleration structure only where it exists (a scene of
+ * size 0 builds none, and nothing stands in for it). */
+static int shader_slot_present(const vrg_pass *pass, int slot)
+{
+    vrg_res h = vrg_pass_res(pass, pass->plugin->shader_pass->binding_res[slot]);
+    if (!vrg_res_connected(h))
+        return 0;
+    return pass->plugin->desc->slots[slot].kind != VRG_ACCEL || accel_exists(pass->graph, h.id >> 1);
+}
+
+/* The variant a shader-only pass records: the index into its dispatches. */
+static uint32_t shader_variant(vrg_pass *pass)
 {
     const struct _vrg_shader_pass *sp = pass->plugin->shader_pass;
     uint32_t k = 0, stride = 1;
     for (int a = 0; a < sp->axis_count; a++) {
         const struct _vrg_shader_axis *ax = &sp->axes[a];
-        int v = ax->slot >= 0 ? vrg_res_connected(vrg_pass_res(pass, sp->binding_res[ax->slot])) : _vrg_pass_choice(pass, (uint32_t)ax->param);
+        int v = ax->slot >= 0 ? shader_slot_present(pass, ax->slot) : _vrg_pass_choice(pass, (uint32_t)ax->param);
         k += (uint32_t)(v < 0 ? 0 : v) * stride;
         stride *= (uint32_t)ax->count;
     }
-    (void)vrg_dispatch(pass, cmd, &sp->dispatches[k]);
+    return k;
+}
+
+/* A shader-only pass (shader_pass.c) is one dispatch of its shader, its
+ * push constants packed by name from its parameters (push_size 0): the
+ * variant its optional slots' connections and its variant choices pick. */
+void _vrg_shader_pass_execute(vrg_pass *pass, VkCommandBuffer cmd)
+{
+    (void)vrg_dispatch(pass, cmd, &pass->plugin->shader_pass->dispatches[shader_variant(pass)]);
+}
+
+/* Whether variant k of a shader-only pass can be recorded in this graph:
+ * its optional acceleration structures connected exactly where they exist
+ * (the variants that bind an absent one, or leave out a present one, are
+ * never picked). Every other axis's values can be. */
+static int shader_variant_possible(const vrg_pass *pass, uint32_t k)
+{
+    const struct _vrg_shader_pass *sp = pass->plugin->shader_pass;
+    for (int a = 0; sp && a < sp->axis_count; k /= (uint32_t)sp->axes[a].count, a++) {
+        const struct _vrg_shader_axis *ax = &sp->axes[a];
+        if (ax->slot >= 0 && sp->slots[ax->slot].kind == VRG_ACCEL && (int)(k % (uint32_t)ax->count) != shader_slot_present(pass, ax->slot))
+            return 0;
+    }
+    return 1;
 }
 
 /* A pass without execute: its listed dispatches, in order (loader: a pass
@@ -1260,6 +1292,8 @@ int vrg_graph_check_shaders(vrg_graph *g, FILE *report)
         shader_check_count count = {0};
         int was_failed = p->failed;
         for (uint32_t i = 0; i < pd->dispatch_count; i++) {
+            if (!shader_variant_possible(p, i))
+                continue;
             count.dispatches++;
             if (check_declared(p, &pd->dispatches[i], &count) != 0)
                 count.failed++;

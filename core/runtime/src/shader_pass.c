@@ -13,6 +13,10 @@
  *     member's `choices=a,b` makes it a string parameter whose index the
  *     member gets; each connection of the optional slots and
  *     each value of a `variant` choice compiles a variant (HAS_X, NAME=k);
+ *     the interface is read with every optional slot connected, so an
+ *     optional acceleration structure (no stand-in exists for one) is
+ *     declared only under its HAS_X, as the last binding, and its variant
+ *     is the one recorded where the structure exists (dispatch.c);
  *   - the first image output that is not optional (lowest binding) sets
  *     the dispatch size; a shader that includes pixel.glsl runs its pixel
  *     loop.
@@ -679,6 +683,9 @@ static int parse_slots(struct _vrg_shader_pass *sp, vrg_plugin_desc *desc, const
         if (problem)
             shader_error(d, file, line, "`layout(binding = 3) uniform sampler2D in_emission; // @optional help=\"...\"` (docs/plugin-abi.md)", "binding '%s': %s", name,
                          problem);
+        if (optional && s->kind == VRG_ACCEL && i != r->count - 1)
+            shader_error(d, file, line, "declare it last: where it is not bound, its variant does not declare it",
+                         "binding '%s': an optional acceleration structure is the last binding (binding %d here)", name, r->count - 1);
         if (optional) {
             s->flags |= VRG_SLOT_OPTIONAL;
             if (sp->axis_count == (int)(sizeof sp->axes / sizeof sp->axes[0]))
@@ -759,6 +766,12 @@ static int make_variants(struct _vrg_shader_pass *sp, vrg_plugin_desc *desc, _vr
             }
         }
         v->defines = o ? defs : NULL;
+        /* an optional acceleration structure has no stand-in: where it is
+         * absent its binding (the last, parse_slots) is not bound, and the
+         * variant does not declare it */
+        for (int a = 0, rest = k; a < sp->axis_count; rest /= sp->axes[a].count, a++)
+            if (sp->axes[a].slot >= 0 && !(rest % sp->axes[a].count) && sp->slots[sp->axes[a].slot].kind == VRG_ACCEL)
+                v->bindings[sp->axes[a].slot].res = NULL;
     }
     desc->dispatches = sp->dispatches;
     desc->dispatch_count = (uint32_t)total;
@@ -793,6 +806,45 @@ static void variant_defines(const char *expanded, char *out, size_t cap)
         snprintf(name, sizeof name, "%.*s", (int)(e - b), b);
         upper_define(define, sizeof define, "", name);
         int w = snprintf(out + o, cap - o, "%s%s=0", o ? " " : "", define);
+        if (w < 0 || (size_t)w >= cap - o) {
+            out[o] = '\0';
+            return; /* make_variants reports defines past their room */
+        }
+        o += (size_t)w;
+    }
+}
+
+/* "HAS_X=1 ..." for each binding annotated @optional (read before the
+ * shader compiles): the interface is read with every optional slot
+ * connected, so that a binding its variant declares only where it is
+ * bound (an acceleration structure, which has no stand-in) is seen. The
+ * binding is the last word before the `;` of the annotated line's code. */
+static void optional_defines(const char *expanded, char *out, size_t cap)
+{
+    src_reader rd = {.p = expanded};
+    src_line l;
+    size_t o = strlen(out);
+    while (next_line(&rd, &l)) {
+        int optional;
+        char help[8], why[256];
+        if (parse_slot_annotation(l.text, l.len, &optional, help, sizeof help, why, sizeof why) || !optional)
+            continue;
+        const char *comment;
+        size_t n = code_len(l.text, l.len, &comment);
+        const char *semi = memchr(l.text, ';', n), *e = semi;
+        while (e && e > l.text && isspace((unsigned char)e[-1]))
+            e--;
+        const char *b = e;
+        while (b && b > l.text && word_char(b[-1]))
+            b--;
+        if (!b || b == e || (size_t)(e - b) >= VRG_NAME_MAX)
+            continue; /* not a binding: parse_slots says so at its line */
+        char name[VRG_NAME_MAX], define[VRG_NAME_MAX + 8];
+        snprintf(name, sizeof name, "%.*s", (int)(e - b), b);
+        if (strncmp(name, "in_", 3) != 0 && strncmp(name, "out_", 4) != 0)
+            continue;
+        upper_define(define, sizeof define, "HAS_", name + (name[0] == 'i' ? 3 : 4));
+        int w = snprintf(out + o, cap - o, "%s%s=1", o ? " " : "", define);
         if (w < 0 || (size_t)w >= cap - o) {
             out[o] = '\0';
             return; /* make_variants reports defines past their room */
@@ -838,14 +890,17 @@ int _vrg_shader_pass_load(_vrg_plugin *p, _vrg_diag *d, int line)
     FILE *out = d->out ? d->out : stderr;
     _vrg_shader_module sm;
     char *src = NULL;
-    /* the interface is read from the first variant: each variant choice at
-     * index 0 (its define must exist to compile), no optional slot
-     * connected (HAS_X undefined) */
-    char first_variant[224] = "";
+    /* the interface is read from the first variant of the choices (each
+     * variant choice at index 0: its define must exist to compile) with
+     * every optional slot connected (HAS_X=1), where every binding is
+     * declared */
+    char first_variant[448] = "";
     char *expanded = _vrg_shader_expand(p->source, mem ? mem : out);
     int expands = expanded != NULL;
-    if (expanded)
+    if (expanded) {
         variant_defines(expanded, first_variant, sizeof first_variant);
+        optional_defines(expanded, first_variant, sizeof first_variant);
+    }
     free(expanded);
     /* without a device: what the shader declares does not depend on it */
     int rc = expands ? _vrg_shader_compile_source(NULL, p->source, first_variant, &sm, mem ? mem : out, &src) : -1;
