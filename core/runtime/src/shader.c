@@ -71,7 +71,7 @@ static int exists(const char *p) { return access(p, R_OK) == 0; }
 /* $VOXRG_SHADER_OVERRIDE: a folder searched before everything else, for
  * shaders and included files alike: try a changed copy of a shipped
  * pass's shader without touching the tree. */
-static int override(const char *name, char *out, size_t cap)
+int _vrg_shader_override(const char *name, char *out, size_t cap)
 {
     const char *dir = getenv("VOXRG_SHADER_OVERRIDE");
     if (!dir || !*dir)
@@ -125,13 +125,18 @@ int _vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t c
     if (searched_cap)
         searched[0] = '\0';
     if (name[0] == '/') {
+        /* a one-file pass's own file (its plugin): a changed copy in
+         * $VOXRG_SHADER_OVERRIDE comes first, as for a C pass's shaders */
+        const char *base = strrchr(name, '/') + 1;
+        if (p && p->plugin && strcmp(p->plugin->source, name) == 0 && _vrg_shader_override(base, out, cap) == 0)
+            return 0;
         snprintf(out, cap, "%s", name);
         if (exists(out))
             return 0;
         searched_add(searched, searched_cap, out);
         return -1;
     }
-    if (override(name, out, cap) == 0)
+    if (_vrg_shader_override(name, out, cap) == 0)
         return 0;
     if (getenv("VOXRG_SHADER_OVERRIDE"))
         searched_add(searched, searched_cap, "$VOXRG_SHADER_OVERRIDE");
@@ -217,7 +222,7 @@ static void emitf(expand_ctx *e, const char *fmt, const char *file, int line)
 
 static int resolve_include(const char *includer, const char *name, char *out, size_t cap)
 {
-    if (override(name, out, cap) == 0)
+    if (_vrg_shader_override(name, out, cap) == 0)
         return 0;
     const char *slash = strrchr(includer, '/');
     snprintf(out, cap, "%.*s/%s", slash ? (int)(slash - includer) : 1, slash ? includer : ".", name);

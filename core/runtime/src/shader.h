@@ -27,4 +27,8 @@ char *_vrg_shader_expand(const char *path, FILE *diag);
  * with it in out, or -1 with the places searched in `searched` (searched_cap
  * 0: not said). */
 int _vrg_shader_resolve(const vrg_pass *p, const char *name, char *out, size_t cap, char *searched, size_t searched_cap);
+/* $VOXRG_SHADER_OVERRIDE/name where that file exists (0, the path in out);
+ * -1 where it does not or the variable is unset. */
+int _vrg_shader_override(const char *name, char *out, size_t cap);
+
 #endif

@@ -895,7 +895,12 @@ int _vrg_shader_pass_load(_vrg_plugin *p, _vrg_diag *d, int line)
      * every optional slot connected (HAS_X=1), where every binding is
      * declared */
     char first_variant[448] = "";
-    char *expanded = _vrg_shader_expand(p->source, mem ? mem : out);
+    /* the shader: the plugin's file, or a changed copy of it in
+     * $VOXRG_SHADER_OVERRIDE, as for a C pass's shaders */
+    char overridden[VRG_PATH_MAX];
+    const char *base = strrchr(p->source, '/');
+    const char *path = _vrg_shader_override(base ? base + 1 : p->source, overridden, sizeof overridden) == 0 ? overridden : p->source;
+    char *expanded = _vrg_shader_expand(path, mem ? mem : out);
     int expands = expanded != NULL;
     if (expanded) {
         variant_defines(expanded, first_variant, sizeof first_variant);
@@ -903,7 +908,7 @@ int _vrg_shader_pass_load(_vrg_plugin *p, _vrg_diag *d, int line)
     }
     free(expanded);
     /* without a device: what the shader declares does not depend on it */
-    int rc = expands ? _vrg_shader_compile_source(NULL, p->source, first_variant, &sm, mem ? mem : out, &src) : -1;
+    int rc = expands ? _vrg_shader_compile_source(NULL, path, first_variant, &sm, mem ? mem : out, &src) : -1;
     if (mem) {
         fclose(mem);
         fputs(text ? text : "", out);
@@ -912,9 +917,9 @@ int _vrg_shader_pass_load(_vrg_plugin *p, _vrg_diag *d, int line)
     if (rc != 0) {
         _vrg_diag_code code = VRG_E_SHADER_FAILED;
         if (line > 0)
-            _vrg_error_at(d, line, code, NULL, "plugin '%s' (%s): the shader does not compile (above)", p->name, p->source);
+            _vrg_error_at(d, line, code, NULL, "plugin '%s' (%s): the shader does not compile (above)", p->name, path);
         else
-            _vrg_error(d, code, "plugin '%s' (%s): the shader does not compile (above)", p->name, p->source);
+            _vrg_error(d, code, "plugin '%s' (%s): the shader does not compile (above)", p->name, path);
         return -1;
     }
     struct _vrg_shader_pass *sp = calloc(1, sizeof *sp);
@@ -928,8 +933,9 @@ int _vrg_shader_pass_load(_vrg_plugin *p, _vrg_diag *d, int line)
     vrg_plugin_desc *desc = &p->desc_copy;
     memset(desc, 0, sizeof *desc);
     desc->abi_version = VRG_ABI_VERSION;
+    /* the plugin's file: each compile looks for an override again */
     snprintf(sp->shader, sizeof sp->shader, "%s", p->source);
-    first_comment(src, p->source, sp->help, sizeof sp->help);
+    first_comment(src, path, sp->help, sizeof sp->help);
     *desc = (vrg_plugin_desc){.abi_version = VRG_ABI_VERSION, .name = p->name, .kind = VRG_PLUGIN_PASS, .help = sp->help};
     /* no execute: each frame the runtime records one dispatch, of the variant the pass's
      * connections and choices pick (record.c, _vrg_shader_pass_execute) */
