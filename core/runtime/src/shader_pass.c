@@ -109,6 +109,36 @@ static int next_line(src_reader *r, src_line *out)
 
 static int word_char(char c) { return isalnum((unsigned char)c) || c == '_'; }
 
+/* The name a line of code declares: the last word before its `;` (n:
+ * the code's length, without its comment). -1 where there is none or it
+ * does not fit in VRG_NAME_MAX. */
+static int declared_name(const char *text, size_t n, char name[VRG_NAME_MAX])
+{
+    const char *e = memchr(text, ';', n);
+    while (e && e > text && isspace((unsigned char)e[-1]))
+        e--;
+    const char *b = e;
+    while (b && b > text && word_char(b[-1]))
+        b--;
+    if (!b || b == e || (size_t)(e - b) >= VRG_NAME_MAX)
+        return -1;
+    snprintf(name, VRG_NAME_MAX, "%.*s", (int)(e - b), b);
+    return 0;
+}
+
+/* " DEFINE=value" appended to the list out[0..*o); -1 (out cut back to
+ * *o) where it does not fit. */
+static int append_define(char *out, size_t cap, size_t *o, const char *define, const char *value)
+{
+    int w = snprintf(out + *o, cap - *o, "%s%s=%s", *o ? " " : "", define, value);
+    if (w < 0 || (size_t)w >= cap - *o) {
+        out[*o] = '\0';
+        return -1;
+    }
+    *o += (size_t)w;
+    return 0;
+}
+
 /* Whether `word` occurs as a whole word in s[0..n). */
 static int has_word(const char *s, size_t n, const char *word)
 {
@@ -757,9 +787,9 @@ static int make_variants(struct _vrg_shader_pass *sp, vrg_plugin_desc *desc, _vr
             int value = rest % sp->axes[a].count;
             if (sp->axes[a].slot >= 0 && !value)
                 continue; /* HAS_X only when X is connected */
-            int w = snprintf(defs + o, sizeof sp->defines[k] - o, "%s%s=%d", o ? " " : "", sp->axes[a].define, sp->axes[a].slot >= 0 ? 1 : value);
-            o += w > 0 ? (size_t)w : 0;
-            if (o >= sizeof sp->defines[k]) {
+            char text[16];
+            snprintf(text, sizeof text, "%d", sp->axes[a].slot >= 0 ? 1 : value);
+            if (append_define(defs, sizeof sp->defines[k], &o, sp->axes[a].define, text) != 0) {
                 int line = split_where(sp->axis_where[a], file, sizeof file);
                 shader_error(d, file, line, NULL, "the variants' defines take more than %zu characters", sizeof sp->defines[k] - 1);
                 return -1;
@@ -794,23 +824,12 @@ static void variant_defines(const char *expanded, char *out, size_t cap)
         char why[256];
         if (!comment || parse_annotation(comment, l.len - (size_t)(comment - l.text), 0, &a, why, sizeof why) || !a.variant)
             continue;
-        const char *semi = memchr(l.text, ';', n), *e = semi;
-        while (e && e > l.text && isspace((unsigned char)e[-1]))
-            e--;
-        const char *b = e;
-        while (b && b > l.text && word_char(b[-1]))
-            b--;
-        if (!b || b == e || (size_t)(e - b) >= VRG_NAME_MAX)
-            continue; /* not a member: parse_params says so at its line */
         char name[VRG_NAME_MAX], define[VRG_NAME_MAX + 8];
-        snprintf(name, sizeof name, "%.*s", (int)(e - b), b);
+        if (declared_name(l.text, n, name) != 0)
+            continue; /* not a member: parse_params says so at its line */
         upper_define(define, sizeof define, "", name);
-        int w = snprintf(out + o, cap - o, "%s%s=0", o ? " " : "", define);
-        if (w < 0 || (size_t)w >= cap - o) {
-            out[o] = '\0';
+        if (append_define(out, cap, &o, define, "0") != 0)
             return; /* make_variants reports defines past their room */
-        }
-        o += (size_t)w;
     }
 }
 
@@ -831,25 +850,14 @@ static void optional_defines(const char *expanded, char *out, size_t cap)
             continue;
         const char *comment;
         size_t n = code_len(l.text, l.len, &comment);
-        const char *semi = memchr(l.text, ';', n), *e = semi;
-        while (e && e > l.text && isspace((unsigned char)e[-1]))
-            e--;
-        const char *b = e;
-        while (b && b > l.text && word_char(b[-1]))
-            b--;
-        if (!b || b == e || (size_t)(e - b) >= VRG_NAME_MAX)
-            continue; /* not a binding: parse_slots says so at its line */
         char name[VRG_NAME_MAX], define[VRG_NAME_MAX + 8];
-        snprintf(name, sizeof name, "%.*s", (int)(e - b), b);
+        if (declared_name(l.text, n, name) != 0)
+            continue; /* not a binding: parse_slots says so at its line */
         if (strncmp(name, "in_", 3) != 0 && strncmp(name, "out_", 4) != 0)
             continue;
         upper_define(define, sizeof define, "HAS_", name + (name[0] == 'i' ? 3 : 4));
-        int w = snprintf(out + o, cap - o, "%s%s=1", o ? " " : "", define);
-        if (w < 0 || (size_t)w >= cap - o) {
-            out[o] = '\0';
+        if (append_define(out, cap, &o, define, "1") != 0)
             return; /* make_variants reports defines past their room */
-        }
-        o += (size_t)w;
     }
 }
 
