@@ -22,11 +22,14 @@
  *              * [|N.X_q - N.X_p| <= sigma_z * |q - p| * s]
  *          (the plane test of svgf_atrous: a tap on another plane, a step or
  *          a wall, does not count). Pixels with r < 0.5 are copied.
- * Sky pixels pass through. sun_radius must be sun_shadow's. */
+ * Sky pixels pass through. sun_radius is the disc sun_shadow sampled, or,
+ * given a hard shadow (sun_shadow's sun_radius 0: one exact ray, its
+ * blocker's distance), the disc to spread its edge for: the penumbra's
+ * width from that distance, as PCSS estimates it. */
 #include "voxrg/plugin.h"
 
 static const vrg_param_desc params[] = {
-    {"sun_radius", VRG_PARAM_FLOAT, 0.27, 0, 45, "angular radius of the sun's disc, degrees: sun_shadow's sun_radius"},
+    {"sun_radius", VRG_PARAM_FLOAT, 0.27, 0, 45, "angular radius of the sun's disc, degrees: sun_shadow's sun_radius, or the light's when sun_shadow traces a hard shadow"},
     {"radius_scale", VRG_PARAM_FLOAT, 1, 0, 16, "filter radius in penumbra half-widths (0: no filtering)"},
     {"max_radius", VRG_PARAM_FLOAT, 16, 1, 64, "largest filter radius, pixels"},
     {"taps", VRG_PARAM_INT, 12, 4, 32, "taps per iteration"},
