@@ -198,12 +198,16 @@ static void denoise_case(const char *const *sets, uint32_t nsets, const char *wh
     vrg_graph *g = load_with("shadow_denoise.ini", sets, nsets, reads, 5);
     if (!g)
         return;
-    CHECK(vrg_graph_frame(g) == 0, "%s: frame failed", what);
-    vrg_image_data pos, nrm, raw, ref, den;
-    CHECK(vrg_graph_read(g, "gbuffer.position", &pos) == 0 && vrg_graph_read(g, "gbuffer.normal", &nrm) == 0 &&
-              vrg_graph_read(g, "shadow.visibility", &raw) == 0 && vrg_graph_read(g, "ref.visibility", &ref) == 0 &&
-              vrg_graph_read(g, "denoise.visibility", &den) == 0,
-          "%s: readback failed", what);
+    vrg_image_data pos = {0}, nrm = {0}, raw = {0}, ref = {0}, den = {0};
+    if (!CHECK(vrg_graph_frame(g) == 0, "%s: frame failed", what) ||
+        !CHECK(vrg_graph_read(g, "gbuffer.position", &pos) == 0 && vrg_graph_read(g, "gbuffer.normal", &nrm) == 0 &&
+                   vrg_graph_read(g, "shadow.visibility", &raw) == 0 && vrg_graph_read(g, "ref.visibility", &ref) == 0 &&
+                   vrg_graph_read(g, "denoise.visibility", &den) == 0,
+               "%s: readback failed", what)) {
+        free(pos.pixels), free(nrm.pixels), free(raw.pixels), free(ref.pixels), free(den.pixels);
+        vrg_graph_destroy(g);
+        return;
+    }
     /* the contact shadow: the wall's middle, in front of it (z < 30) */
     float ref_w = edge_width(&pos, &nrm, &ref, &ref, 8, 16, 24, 30), den_w = edge_width(&pos, &nrm, &ref, &den, 8, 16, 24, 30);
     CHECK(ref_w >= 0 && den_w >= 0, "%s: contact shadow edge not in view (widths %.2f, %.2f)", what, ref_w, den_w);
