@@ -14,7 +14,9 @@
  * (the normal's dominant axis and sign) and one layer along that axis,
  * where L makes s the smallest power of two of at least cell_pixels
  * pixels at the point's distance: near the camera cells are small, far
- * away large, so a cell covers about cell_pixels^2 pixels wherever it is.
+ * away large, so a cell covers about cell_pixels^2 pixels wherever it is;
+ * and at least min_cell blocks, so that near the camera a cell of a
+ * fraction of a pixel far away still gathers the samples of a few.
  * Cells sit in a hash table of `cells` slots (a power of two) found by
  * linear probing over at most 32 slots; a 32-bit check value tells cells
  * in one slot apart. A slot is one entry of 8 or 16 words (the check value
@@ -71,6 +73,8 @@
 
 static const vrg_param_desc params[] = {
     {"cell_pixels", VRG_PARAM_FLOAT, 2, 0.25, 64, "least side of a cell, in pixels at the point's distance"},
+    {"min_cell", VRG_PARAM_FLOAT, 1.0 / 256, 1.0 / 256, 256,
+     "least side of a cell, in blocks (the power of two at or above it), whatever cell_pixels gives near the camera (1/256: no floor)"},
     {"max_frames", VRG_PARAM_INT, 32, 1, 4096, "frames of samples a cell's history is worth at most"},
     {"sun_span", VRG_PARAM_FLOAT, 0, 0, 360,
      "most degrees the key light may move within a cell's history: max_frames is cut to sun_span / the degrees it moved since the last "

@@ -31,7 +31,7 @@ layout(binding = 7, rgba32f) uniform writeonly image2D out_occupancy;
 #endif
 #endif
 layout(push_constant) uniform Params {
-    float cell_pixels, sun_span;
+    float cell_pixels, min_cell, sun_span;
     uint max_frames, evict_frames, mask, frame_index, channels;
     uint evict_first, evict_slots; // this frame's share of the table to look at for eviction
     int coarse_levels;             // 0: no coarse cells
@@ -87,12 +87,12 @@ struct Cell {
     vec2 plane; // in the plane, in cells
 };
 
-// the level whose cells are at least cell_pixels pixels wide at x
+// the level whose cells are at least cell_pixels pixels wide at x, and min_cell blocks
 int level_of(vec3 x)
 {
     float depth = max(dot(x - frame.camera_pos.xyz, frame.camera_forward.xyz), 1e-3);
     float pixel = depth * 2.0 * length(frame.camera_up.xyz) / float(frame.frame_info.z);
-    return clamp(int(ceil(log2(params.cell_pixels * pixel))), -8, 8);
+    return clamp(int(ceil(log2(max(params.cell_pixels * pixel, params.min_cell)))), -8, 8);
 }
 
 Cell cell_of(vec3 x, vec3 n, int level)

@@ -627,6 +627,21 @@ static void test_cache_nearest(void)
     CHECK(blended >= 0 && blended < 0.2, "bilinear: %.3f of neighbouring pixels show the same red", blended);
 }
 
+/* min_cell: cells a quarter of a pixel wide (here a quarter of a block,
+ * each pixel nearly its own cell) become 8 blocks wide (about 11 pixels)
+ * with min_cell 8, so that with bilinear = 0 most neighbouring pixels show
+ * their shared cell's one mean, where without it few do. */
+static void test_cache_min_cell(void)
+{
+    static const char *small[] = {"cache.cell_pixels=0.25", "cache.bilinear=0"};
+    static const char *floored[] = {"cache.cell_pixels=0.25", "cache.bilinear=0", "cache.min_cell=8"};
+    double small_error = 0, floored_error = 0;
+    double free_cells = same_red(small, 2, &small_error), wide = same_red(floored, 3, &floored_error);
+    printf("neighbours with the same red: cells a quarter of a pixel %.3f, min_cell 8 %.3f\n", free_cells, wide);
+    CHECK(free_cells >= 0 && free_cells < 0.3, "quarter-pixel cells: %.3f of neighbouring pixels show the same red", free_cells);
+    CHECK(wide > 0.75, "min_cell 8: only %.3f of neighbouring pixels show the same red", wide);
+}
+
 /* New parameter values empty the table: after the light goes from 1 to 0
  * the cache shows 0 at once, not an average with the frames before. */
 static void test_cache_reset(void)
@@ -731,7 +746,7 @@ int main(int argc, char **argv)
     static const test_case cases[] = {
         {"cache_history", test_cache_history, 1, NULL}, {"cache_sun_span", test_cache_sun_span, 1, NULL}, {"cache_evict", test_cache_evict, 1, NULL}, {"cache_gather", test_cache_gather, 1, NULL},
         {"cache_own_cells", test_cache_own_cells, 1, NULL}, {"cache_coarse", test_cache_coarse, 1, NULL}, {"cache_chain", test_cache_chain, 1, NULL}, {"cache_chain_levels", test_cache_chain_levels, 1, NULL}, {"cache_reset", test_cache_reset, 1, NULL},
-        {"cache_nearest", test_cache_nearest, 1, NULL}, {"cache_freed_runs", test_cache_freed_runs, 1, NULL}, {"cache_full", test_cache_full, 1, NULL}, {"cache_slot_invocations", test_cache_slot_invocations, 1, NULL}, {"cache_too_large", NULL, 1, test_cache_too_large},
+        {"cache_nearest", test_cache_nearest, 1, NULL}, {"cache_min_cell", test_cache_min_cell, 1, NULL}, {"cache_freed_runs", test_cache_freed_runs, 1, NULL}, {"cache_full", test_cache_full, 1, NULL}, {"cache_slot_invocations", test_cache_slot_invocations, 1, NULL}, {"cache_too_large", NULL, 1, test_cache_too_large},
     };
     return run_case(argc, argv, cases, sizeof cases / sizeof cases[0]);
 }
