@@ -15,8 +15,8 @@
  * where L makes s the smallest power of two of at least cell_pixels
  * pixels at the point's distance: near the camera cells are small, far
  * away large, so a cell covers about cell_pixels^2 pixels wherever it is;
- * and at least min_cell blocks, so that near the camera a cell of a
- * fraction of a pixel far away still gathers the samples of a few.
+ * and at least min_cell blocks: near the camera, where a fraction of a
+ * pixel is a sliver of a block, a cell still gathers a few pixels' samples.
  * Cells sit in a hash table of `cells` slots (a power of two) found by
  * linear probing over at most 32 slots; a 32-bit check value tells cells
  * in one slot apart. A slot is one entry of 8 or 16 words (the check value
