@@ -9,9 +9,15 @@
  * full-resolution pixel vrg_pixel_in() picks, a quarter texel past q's
  * centre at half size. Where none of the four qualifies (a thin feature no
  * low-resolution pixel hit) it takes the nearest of them in space that is
- * a hit, else the nearest hit of the 4x4 around them, else 1. Sky pixels
- * get 1, the illumination combine writes for sky (modulate passes the sky
- * through).
+ * a hit, else the nearest hit of the 4x4 around them, else 1. With
+ * surface_ring it first blends the texels of the 4x4's ring that are on
+ * the pixel's surface, weighted 1 / (1 + t^2) by their offset t in texels
+ * from the pixel: the same face a texel or two further off says more of
+ * the pixel's light than the nearest texel of another face (in foliage
+ * and at steps, where this happens most). Off by default so that a graph
+ * keeps its images; the sweep that turned it on in interactive.ini is in
+ * docs/denoisers.md. Sky pixels get 1, the illumination combine writes
+ * for sky (modulate passes the sky through).
  * mode = bilinear or nearest turn the surface test off, for comparison. */
 #include "voxrg/plugin.h"
 
@@ -22,6 +28,8 @@ static const vrg_param_desc params[] = {
      .help = "bilateral (only texels on the pixel's surface), bilinear or nearest"},
     {.name = "plane_tolerance", .type = VRG_PARAM_FLOAT, .default_value = 0.1, .min = 0, .max = 1,
      .help = "a texel is on the pixel's plane when its offset from it is at most this per block of distance"},
+    {.name = "surface_ring", .type = VRG_PARAM_INT, .default_value = 0, .min = 0, .max = 1,
+     .help = "1: where none of the 2x2 is on the pixel's surface, blend the texels of the 4x4's ring that are, before the nearest hit"},
 };
 
 static const vrg_slot_desc slots[] = {

@@ -16,6 +16,7 @@ layout(push_constant) uniform Params
 {
     int mode; // 0 bilateral, 1 bilinear, 2 nearest
     float plane_tolerance;
+    int surface_ring;
 } params;
 
 void shade(ivec2 p)
@@ -39,36 +40,59 @@ void shade(ivec2 p)
     vec2 c = (vec2(p) + 0.5) * vec2(low) / vec2(size) - 0.5 - vrg_pixel_in_offset(low, size);
     ivec2 base = ivec2(floor(c));
     vec2 f = c - vec2(base);
-    vec4 sum = vec4(0.0);
-    float wsum = 0.0, nearest_d = 1e30;
+    vec4 sum = vec4(0.0), ring_sum = vec4(0.0);
+    float wsum = 0.0, ring_wsum = 0.0, nearest_d = 1e30;
     vec4 nearest = vec4(1.0);
-    // the 2x2 texels, then (for the fallback only, when none of them is a
-    // hit) the ring of the 4x4 around them
+    bool inner_hit = false;
+    // the 2x2 texels, then, when none of them is on the pixel's surface,
+    // the ring of the 4x4 around them: with surface_ring, its texels on
+    // the surface weighted by their distance in texels; the nearest hit
+    // otherwise (of the 2x2 if one is a hit, else of the ring)
     for (int j = 0; j < 20; j++) {
         bool inner = j < 4;
         ivec2 o = inner ? ivec2(j & 1, j >> 1) : ivec2((j - 4) % 4 - 1, (j - 4) / 4 - 1);
-        if (j == 4 && (wsum > 1e-6 || nearest_d < 1e30))
-            break; // a texel of the 2x2 was a hit: no need to look further
+        if (j == 4) {
+            inner_hit = nearest_d < 1e30;
+            if (wsum > 1e-6 || (params.surface_ring == 0 && inner_hit))
+                break; // a texel of the 2x2 is on the surface (without surface_ring: is a hit)
+        }
         if (!inner && o.x >= 0 && o.x <= 1 && o.y >= 0 && o.y <= 1)
             continue;
         ivec2 q = clamp(base + o, ivec2(0), low - 1);
         vec4 xq = texelFetch(in_low_position, q, 0);
+        if (!inner) {
+            // the ring: its illumination is read only where it is used
+            if (xq.w == 0.0)
+                continue;
+            vec3 d = xq.xyz - x.xyz;
+            float dist = length(d);
+            if (params.surface_ring != 0 && dot(texelFetch(in_low_normal, q, 0).xyz, n) >= 0.9 &&
+                abs(dot(d, n)) <= params.plane_tolerance * dist + 1e-3) {
+                vec2 t = vec2(o) - f; // texel offset from the pixel's centre
+                float wr = 1.0 / (1.0 + dot(t, t));
+                ring_wsum += wr;
+                ring_sum += wr * texelFetch(in_illumination, q, 0);
+            }
+            else if (dist < nearest_d && !inner_hit) // the nearest hit of the 2x2 is kept over any of the ring's
+                nearest_d = dist, nearest = texelFetch(in_illumination, q, 0);
+            continue;
+        }
         vec4 l = texelFetch(in_illumination, q, 0);
-        float w = inner ? (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y) : 0.0;
-        if (params.mode == 0 || !inner) {
+        float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+        if (params.mode == 0) {
             if (xq.w == 0.0)
                 continue;
             vec3 d = xq.xyz - x.xyz;
             float dist = length(d);
             if (dist < nearest_d)
                 nearest_d = dist, nearest = l;
-            if (!inner || dot(texelFetch(in_low_normal, q, 0).xyz, n) < 0.9 || abs(dot(d, n)) > params.plane_tolerance * dist + 1e-3)
+            if (dot(texelFetch(in_low_normal, q, 0).xyz, n) < 0.9 || abs(dot(d, n)) > params.plane_tolerance * dist + 1e-3)
                 continue;
         }
         sum += w * l;
         wsum += w;
     }
-    imageStore(out_illumination, p, wsum > 1e-6 ? sum / wsum : nearest);
+    imageStore(out_illumination, p, wsum > 1e-6 ? sum / wsum : ring_wsum > 0.0 ? ring_sum / ring_wsum : nearest);
 }
 
 void main()

@@ -57,6 +57,16 @@
  * a few frames later and reported as the stat `uncached` and a warning
  * naming `cells`.
  * A reload with new parameters or a reset empties the table.
+ * Edits: the frame uniforms carry the box of the blocks an edit changed,
+ * in the frame that first shows it. The insert marks the cells of the
+ * points within edit_radius blocks of that box and, with edit_shadows,
+ * of those whose ray to the key light passes through it (the count
+ * word's top bit, set after the count so that the cell is still listed
+ * once), and the resolve starts those cells over from the frame's own
+ * samples: the light an edit changed shows at once instead of fading in
+ * over max_frames frames. Cells out of view in that frame, and points
+ * farther than edit_radius whose indirect light the edit changed, keep
+ * their history.
  * Debug output (optional, computed only when something reads it: the
  * gather's OCCUPANCY variant): `occupancy`, per pixel, of the point's fine
  * cells (those the gather blends): r the samples they hold (n, blended),
@@ -86,6 +96,9 @@ static const vrg_param_desc params[] = {
     {"bilinear", VRG_PARAM_BOOL, 1, 0, 1,
      "read the bilinear blend of the 2x2 cells around each point (0: the point's own cell, a quarter of the reads: for cells under a pixel wide)"},
     {"channels", VRG_PARAM_INT, 4, 1, 4, "the signal's channels that are cached (the first ones; the rest pass through)"},
+    {"edit_radius", VRG_PARAM_FLOAT, 0, 0, 256,
+     "blocks around the blocks edited this frame whose cells start over (their light changed; 0: edits do not cut histories)"},
+    {"edit_shadows", VRG_PARAM_BOOL, 0, 0, 1, "also start over the cells whose ray to the key light passes through the blocks edited this frame"},
     {"slot_invocations", VRG_PARAM_INT, -1, -1, 1,
      "evict and resolve: one invocation per slot (1, for GPUs) or few long ones (0, for CPUs); -1: by device type. The same image either way "
      "(a change empties the table, as any parameter's)"},

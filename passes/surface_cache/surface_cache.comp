@@ -38,6 +38,8 @@ layout(push_constant) uniform Params {
     float young_samples;
     int use_fallback;              // in_fallback is connected
     int bilinear;                  // gather the 2x2 cells around a point, else its own cell
+    float edit_radius;             // blocks around this frame's edits whose cells start over (0: none)
+    int edit_shadows;              // also the cells whose ray to the key light crosses the edits
 } params;
 
 // header words
@@ -45,6 +47,9 @@ const uint UNCACHED = 0u, LISTED = 1u, HEADER = 16u;
 // check words: a free slot, a freed one (lookups go on past it), else a cell's check value
 const uint EMPTY = 0u, FREED = 1u;
 const uint PROBES = 32u;
+// the count word's top bit: a sample this frame lay where an edit changed
+// the light (INSERT sets it, RESOLVE drops the cell's history)
+const uint CUT = 0x80000000u;
 #ifndef SLOTS_PER_INVOCATION // EVICT's: 16 on a CPU, 1 on a GPU (surface_cache.c says why)
 #define SLOTS_PER_INVOCATION 16u
 #endif
@@ -193,7 +198,28 @@ uint find_or_claim(uvec2 h)
     return ~0u;
 }
 
-void add_sample(Cell c, uvec4 q)
+// Whether this frame's edits (the frame's edit box) changed the light at
+// point x: within edit_radius blocks of the box, or (edit_shadows) its ray
+// toward the key light passes through the box (a block built there shades
+// it now, or a block taken away no longer does).
+bool edit_cuts(vec3 x, vec3 n)
+{
+    vec3 lo = frame.edit_lo.xyz, hi = frame.edit_hi.xyz;
+    if (any(greaterThanEqual(lo, hi)))
+        return false;
+    vec3 d = max(max(lo - x, x - hi), 0.0);
+    if (params.edit_radius > 0.0 && dot(d, d) <= params.edit_radius * params.edit_radius)
+        return true;
+    if (params.edit_shadows == 0)
+        return false;
+    vec3 o = x + n * 1e-3, dir = frame.sun_dir.xyz;
+    vec3 inv = vec3(dir.x != 0.0 ? 1.0 / dir.x : 1e30, dir.y != 0.0 ? 1.0 / dir.y : 1e30, dir.z != 0.0 ? 1.0 / dir.z : 1e30);
+    vec3 t0 = (lo - o) * inv, t1 = (hi - o) * inv;
+    vec3 tn = min(t0, t1), tf = max(t0, t1);
+    return min(min(tf.x, tf.y), tf.z) >= max(max(max(tn.x, tn.y), tn.z), 0.0);
+}
+
+void add_sample(Cell c, uvec4 q, bool cut)
 {
     uint slot = find_or_claim(hash_of(c, ifloor(c.plane)));
     if (slot == ~0u) {
@@ -208,8 +234,10 @@ void add_sample(Cell c, uvec4 q)
             atomicAdd(out_table.words[sum_word(e, i) + 1u], 1u);
     }
     // the cell's first sample this frame lists it for the resolve
-    if (atomicAdd(out_table.words[count_word(e)], 1u) == 0u)
+    if ((atomicAdd(out_table.words[count_word(e)], 1u) & ~CUT) == 0u)
         out_table.words[list_word(atomicAdd(out_table.words[LISTED], 1u))] = slot;
+    if (cut)
+        atomicOr(out_table.words[count_word(e)], CUT);
 }
 
 void shade(ivec2 p)
@@ -222,9 +250,10 @@ void shade(ivec2 p)
     vec3 n = texelFetch(in_normal, p, 0).xyz;
     uvec4 q = uvec4(clamp(texelFetch(in_signal, p, 0), 0.0, MAX_SAMPLE) * FIXED + 0.5);
     int level = level_of(x.xyz);
-    add_sample(cell_of(x.xyz, n, level), q);
+    bool cut = edit_cuts(x.xyz, n);
+    add_sample(cell_of(x.xyz, n, level), q, cut);
     for (int k = 1; k <= params.coarse_levels; k++)
-        add_sample(cell_of(x.xyz, n, level + k), q);
+        add_sample(cell_of(x.xyz, n, level + k), q, cut);
 }
 #endif
 
@@ -232,8 +261,9 @@ void shade(ivec2 p)
 void resolve(uint slot)
 {
     uint e = entry_word(slot);
-    uint count = out_table.words[count_word(e)];
-    float n_before = expired(e) ? 0.0 : uintBitsToFloat(out_table.words[n_word(e)]);
+    uint counted = out_table.words[count_word(e)], count = counted & ~CUT;
+    // an edit changed the light here this frame: the cell starts over
+    float n_before = expired(e) || (counted & CUT) != 0u ? 0.0 : uintBitsToFloat(out_table.words[n_word(e)]);
     // frames of samples the history may be worth: max_frames, fewer under a
     // moving sun (not rounded: a sun at a whole number of degrees a frame
     // and a whole sun_span would sit on floor()'s step)

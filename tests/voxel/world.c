@@ -204,6 +204,42 @@ static void test_terrain_trace(void)
     vrg_graph_destroy(g);
 }
 
+/* The edit box the frame uniforms carry (vrg_world_uploaded_edits): the
+ * blocks vrg_world_set_block changed, in the frame whose upload brings
+ * them to the GPU; empty on the next frame, for a block set to what it
+ * was, and for chunks streamed in. */
+static void test_edit_box(void)
+{
+    vrg_graph *g = load("blocks_probe.ini");
+    vrg_world *w = g ? vrg_graph_world(g) : NULL;
+    CHECK(!g || w != NULL, "the blocks scene set no world");
+    if (!w) {
+        vrg_graph_destroy(g);
+        return;
+    }
+    int lo[3], hi[3];
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_world_uploaded_edits(w, lo, hi);
+    CHECK(lo[0] >= hi[0], "the first frame (chunks streamed in, no edit) has an edit box %d..%d", lo[0], hi[0]);
+    /* two blocks in two chunks changed (stone for air, air for anything
+     * else), and one set to what it is */
+    vrg_block b1 = vrg_world_block(w, 3, 5, -7) == VRG_BLOCK_AIR ? VRG_BLOCK_STONE : VRG_BLOCK_AIR,
+              b2 = vrg_world_block(w, 20, 2, 9) == VRG_BLOCK_AIR ? VRG_BLOCK_STONE : VRG_BLOCK_AIR;
+    CHECK(vrg_world_set_block(w, 3, 5, -7, b1) == 0 && vrg_world_set_block(w, 20, 2, 9, b2) == 0 &&
+              vrg_world_set_block(w, 30, 30, 30, vrg_world_block(w, 30, 30, 30)) == 0,
+          "set_block failed");
+    vrg_world_uploaded_edits(w, lo, hi);
+    CHECK(lo[0] >= hi[0], "edits not yet uploaded are in the box %d..%d", lo[0], hi[0]);
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_world_uploaded_edits(w, lo, hi);
+    CHECK(lo[0] == 3 && lo[1] == 2 && lo[2] == -7 && hi[0] == 21 && hi[1] == 6 && hi[2] == 10, "edit box %d %d %d..%d %d %d, want 3 2 -7..21 6 10",
+          lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_world_uploaded_edits(w, lo, hi);
+    CHECK(lo[0] >= hi[0], "the frame after the edits still has an edit box %d..%d", lo[0], hi[0]);
+    vrg_graph_destroy(g);
+}
+
 /* Probes (as in blocks_world) against the CPU store: 0 on agreement. */
 static int probe_mismatches(vrg_graph *g, const int lo[3], const int extent[3], int *solid)
 {
@@ -514,6 +550,7 @@ int main(int argc, char **argv)
     static const test_case cases[] = {
         {"terrain_reload_keeps_world", test_terrain_reload_keeps_world, 1, NULL},
         {"blocks_world", test_blocks_world, 1},
+        {"edit_box", test_edit_box, 1},
         {"blocks_trace", test_blocks_trace, 1},
         {"terrain_world", test_terrain_world, 1},
         {"terrain_trace", test_terrain_trace, 1},

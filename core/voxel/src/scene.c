@@ -66,6 +66,14 @@ void vrg_frame_uniforms_world(const vrg_world *world, vrg_frame_uniforms *u)
     }
     u->world_grid[3] = world ? vrg_world_view_radius(world) : 0;
     u->world_lo[3] = u->world_hi[3] = 0;
+    int elo[3] = {0, 0, 0}, ehi[3] = {0, 0, 0};
+    if (world)
+        vrg_world_uploaded_edits(world, elo, ehi);
+    for (int a = 0; a < 3; a++) {
+        u->edit_lo[a] = (float)elo[a];
+        u->edit_hi[a] = (float)ehi[a];
+    }
+    u->edit_lo[3] = u->edit_hi[3] = 0;
 }
 
 /* The degrees between two unit directions, in double: a 32-bit dot
@@ -211,6 +219,7 @@ void vrg_scene_record(vrg_pass *pass, vrg_scene_gpu *s, VkCommandBuffer cmd)
         return;
     vrg_pass_stat(pass, "gpu_world_kept", vrg_pass_frame(pass)->resources_new && !world_fresh);
     int uploaded = 0;
+    vrg_world_clear_uploaded_edits(s->world); /* the frame uniforms' edit box: this frame's upload */
     if (vrg_world_dirty_count(s->world)) {
         /* this frame's slice: earlier frames may still copy from theirs */
         vrg_ring_slice slice = vrg_pass_ring_slice(pass, s->staging, s->staging_bytes);

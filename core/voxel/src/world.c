@@ -50,6 +50,7 @@ typedef struct slot {
     int gpu_valid;   /* what the GPU copy holds: valid and coords when last packed, */
     int gpu_c[3];
     int gpu_lo[3], gpu_hi[3]; /* and the box of its non-air blocks (world blocks, hi exclusive; lo >= hi: none) */
+    int edit_lo[3], edit_hi[3]; /* the blocks vrg_world_set_block changed since it was last packed (lo >= hi: none) */
     vrg_block blocks[VRG_CHUNK_VOXELS];
 } slot;
 
@@ -66,6 +67,9 @@ struct vrg_world {
      * touches one cache line of every (4 KiB) slot */
     int box_lo[3], box_hi[3];
     int box_stale;
+    /* vrg_world_uploaded_edits: the edit boxes of the slots packed since
+     * vrg_world_clear_uploaded_edits */
+    int edits_lo[3], edits_hi[3];
     int view_radius; /* blocks; 0: the whole scene is loaded */
     /* the block table: the built-in blocks, then the scene's own (a vox
      * model's palette colours), each with its own atlas tile */
@@ -254,6 +258,8 @@ void vrg_world_put_chunk(vrg_world *w, int cx, int cy, int cz, const vrg_block *
     sl->cz = cz;
     sl->valid = 1;
     memcpy(sl->blocks, blocks, VRG_CHUNK_VOXELS);
+    for (int a = 0; a < 3; a++) /* another chunk's edits, or a chunk streamed in: not an edit to show */
+        sl->edit_lo[a] = sl->edit_hi[a] = 0;
     mark_dirty(w, s);
     mark_mesh(w, cx, cy, cz);
 }
@@ -269,6 +275,11 @@ int vrg_world_set_block(vrg_world *w, int x, int y, int z, vrg_block b)
     if (*at == b)
         return 0;
     *at = b;
+    int p[3] = {x, y, z}, none = sl->edit_lo[0] >= sl->edit_hi[0];
+    for (int a = 0; a < 3; a++) {
+        sl->edit_lo[a] = none || p[a] < sl->edit_lo[a] ? p[a] : sl->edit_lo[a];
+        sl->edit_hi[a] = none || p[a] + 1 > sl->edit_hi[a] ? p[a] + 1 : sl->edit_hi[a];
+    }
     mark_dirty(w, s);
     mark_mesh(w, cx, cy, cz);
     return 0;
@@ -307,6 +318,18 @@ void vrg_world_invalidate_gpu(vrg_world *w)
 }
 
 int vrg_world_dirty_count(const vrg_world *w) { return w->dirty_count + w->header_dirty; }
+
+void vrg_world_uploaded_edits(const vrg_world *w, int lo[3], int hi[3])
+{
+    memcpy(lo, w->edits_lo, sizeof w->edits_lo);
+    memcpy(hi, w->edits_hi, sizeof w->edits_hi);
+}
+
+void vrg_world_clear_uploaded_edits(vrg_world *w)
+{
+    for (int a = 0; a < 3; a++)
+        w->edits_lo[a] = w->edits_hi[a] = 0;
+}
 
 vrg_block vrg_world_block(const vrg_world *w, int x, int y, int z)
 {
@@ -466,6 +489,14 @@ int vrg_world_upload(vrg_world *w, VkCommandBuffer cmd, VkBuffer dst, void *stag
         sl->gpu_valid = sl->valid; /* what vrg_world_gpu_box reports */
         w->box_stale = 1;
         sl->gpu_c[0] = sl->cx, sl->gpu_c[1] = sl->cy, sl->gpu_c[2] = sl->cz;
+        if (sl->edit_lo[0] < sl->edit_hi[0]) {
+            int none = w->edits_lo[0] >= w->edits_hi[0];
+            for (int a = 0; a < 3; a++) {
+                w->edits_lo[a] = none || sl->edit_lo[a] < w->edits_lo[a] ? sl->edit_lo[a] : w->edits_lo[a];
+                w->edits_hi[a] = none || sl->edit_hi[a] > w->edits_hi[a] ? sl->edit_hi[a] : w->edits_hi[a];
+                sl->edit_lo[a] = sl->edit_hi[a] = 0;
+            }
+        }
         pack_slot(w, sl, (uint32_t *)((char *)staging + used));
         regions[nr++] = (VkBufferCopy){.srcOffset = used, .dstOffset = 4 * (SLOTS_OFFSET + (uint64_t)s * SLOT_UINTS), .size = SLOT_UINTS * 4};
         used += SLOT_UINTS * 4;

@@ -136,6 +136,13 @@ void vrg_world_gpu_box(const vrg_world *w, int lo[3], int hi[3]);
 void vrg_world_invalidate_gpu(vrg_world *w);
 /* Slots still waiting for upload. */
 int vrg_world_dirty_count(const vrg_world *w);
+/* The box of the blocks vrg_world_set_block changed whose chunks the
+ * uploads since vrg_world_clear_uploaded_edits brought to the GPU copy,
+ * in blocks (lo inclusive, hi exclusive; lo >= hi: none). A scene clears
+ * it before each frame's upload, so that the frame uniforms' edit box
+ * holds the edits that frame shows first (caches cut their history there). */
+void vrg_world_uploaded_edits(const vrg_world *w, int lo[3], int hi[3]);
+void vrg_world_clear_uploaded_edits(vrg_world *w);
 
 /* A new ray-query backend on a world that holds chunks (a world shared
  * across a hot reload from an instance without one): every slot's faces
@@ -222,6 +229,13 @@ typedef struct vrg_frame_uniforms {
      * frame without history; then xyz = sun_dir). Added at the end: the
      * block's earlier offsets stay as they were. */
     float prev_sun_dir[4];
+    /* The box of the blocks edited since the last frame that this frame's
+     * upload brought to the GPU (vrg_world_uploaded_edits; blocks, hi
+     * exclusive; empty: lo >= hi), for histories kept in world space that
+     * must forget the light an edit changed (surface_cache's edit_radius).
+     * Added at the end, as prev_sun_dir. */
+    float edit_lo[4];
+    float edit_hi[4];
 } vrg_frame_uniforms;
 
 /* prev_sun_dir is left unknown (w -1): vrg_frame_uniforms_prev_sun fills it. */
