@@ -28,7 +28,7 @@ static const vrg_param_desc params[] = {
      .help = "bilateral (only texels on the pixel's surface), bilinear or nearest"},
     {.name = "plane_tolerance", .type = VRG_PARAM_FLOAT, .default_value = 0.1, .min = 0, .max = 1,
      .help = "a texel is on the pixel's plane when its offset from it is at most this per block of distance"},
-    {.name = "surface_ring", .type = VRG_PARAM_INT, .default_value = 0, .min = 0, .max = 1,
+    {.name = "surface_ring", .type = VRG_PARAM_BOOL, .default_value = 0, .min = 0, .max = 1,
      .help = "1: where none of the 2x2 is on the pixel's surface, blend the texels of the 4x4's ring that are, before the nearest hit"},
 };
 
@@ -45,8 +45,8 @@ static const vrg_slot_desc slots[] = {
 };
 
 /* the one dispatch execute() records (every slot, in order): checked by
- * `voxrg check`; its push constants are plane_tolerance by name and the
- * mode's index */
+ * `voxrg check`; its push constants are plane_tolerance and surface_ring
+ * by name and the mode's index */
 static const vrg_dispatch_desc dispatches[] = {
     {.shader = "bilateral_upsample.comp", .pixel_loop = 1},
 };

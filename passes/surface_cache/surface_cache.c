@@ -5,7 +5,8 @@
  * it was given; every pixel reads back the bilinear blend of the 2x2 cells
  * around its point (or its point's own cell). For lighting that depends on
  * the point alone (diffuse irradiance, sun visibility: not on the view)
- * and a static scene this is the whole denoiser: nothing is reprojected,
+ * and a scene that changes only by edits it is told of (below) this is
+ * the whole denoiser: nothing is reprojected,
  * so nothing is resampled and blurred frame after frame, a surface seen
  * again finds its history, and a cell averages the samples of all the
  * pixels it covers.

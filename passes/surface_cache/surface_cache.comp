@@ -198,10 +198,12 @@ uint find_or_claim(uvec2 h)
     return ~0u;
 }
 
-// Whether this frame's edits (the frame's edit box) changed the light at
+// Whether this frame's edits (the frame's edit box: one box around all of
+// them, so two edits far apart cut what lies between) changed the light at
 // point x: within edit_radius blocks of the box, or (edit_shadows) its ray
 // toward the key light passes through the box (a block built there shades
-// it now, or a block taken away no longer does).
+// it now, or a block taken away no longer does) from a face that faces
+// the light (one facing away is in its own shadow either way).
 bool edit_cuts(vec3 x, vec3 n)
 {
     vec3 lo = frame.edit_lo.xyz, hi = frame.edit_hi.xyz;
@@ -210,9 +212,10 @@ bool edit_cuts(vec3 x, vec3 n)
     vec3 d = max(max(lo - x, x - hi), 0.0);
     if (params.edit_radius > 0.0 && dot(d, d) <= params.edit_radius * params.edit_radius)
         return true;
-    if (params.edit_shadows == 0)
+    vec3 dir = frame.sun_dir.xyz;
+    if (params.edit_shadows == 0 || dot(n, dir) <= 0.0)
         return false;
-    vec3 o = x + n * 1e-3, dir = frame.sun_dir.xyz;
+    vec3 o = x + n * 1e-3;
     vec3 inv = vec3(dir.x != 0.0 ? 1.0 / dir.x : 1e30, dir.y != 0.0 ? 1.0 / dir.y : 1e30, dir.z != 0.0 ? 1.0 / dir.z : 1e30);
     vec3 t0 = (lo - o) * inv, t1 = (hi - o) * inv;
     vec3 tn = min(t0, t1), tf = max(t0, t1);
@@ -250,7 +253,7 @@ void shade(ivec2 p)
     vec3 n = texelFetch(in_normal, p, 0).xyz;
     uvec4 q = uvec4(clamp(texelFetch(in_signal, p, 0), 0.0, MAX_SAMPLE) * FIXED + 0.5);
     int level = level_of(x.xyz);
-    bool cut = edit_cuts(x.xyz, n);
+    bool cut = (params.edit_radius > 0.0 || params.edit_shadows != 0) && edit_cuts(x.xyz, n);
     add_sample(cell_of(x.xyz, n, level), q, cut);
     for (int k = 1; k <= params.coarse_levels; k++)
         add_sample(cell_of(x.xyz, n, level + k), q, cut);

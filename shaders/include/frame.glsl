@@ -24,7 +24,7 @@ layout(std140, binding = FRAME_BINDING) uniform FrameUniforms {
     vec4 world_lo;         // the box of the non-air blocks the world buffer holds,
     vec4 world_hi;         //   blocks, hi exclusive; empty when lo >= hi (trace.glsl clips rays to it)
     vec4 prev_sun_dir;     // last frame's key light direction; w: the degrees it moved since (-1: unknown, no history)
-    vec4 edit_lo;          // the box of the blocks edited since the last frame that this frame shows first,
+    vec4 edit_lo;          // the box around the edited blocks whose chunks this frame's upload brought to the GPU,
     vec4 edit_hi;          //   blocks, hi exclusive; empty when lo >= hi (surface_cache's edit_radius)
 } frame;
 

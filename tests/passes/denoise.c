@@ -298,6 +298,7 @@ static void test_denoise_settings(void)
 #define EDIT_FRAMES 32
 typedef struct {
     double before, settled, after[EDIT_FRAMES];
+    vrg_image_data last, last_position; /* the last frame's indirect light and positions (freed by the caller) */
 } edit_response;
 
 /* The graph measured: its file under graphs/, the image of its indirect
@@ -434,6 +435,8 @@ static void edit_response_of(const edit_graph *eg, const float p[3], edit_respon
             CHECK(vrg_graph_frame(g) == 0, "frame failed");
             r->after[k] = front_of_wall(g, eg->indirect, p, &n);
         }
+        CHECK(vrg_graph_read(g, eg->indirect, &r->last) == 0 && vrg_graph_read(g, "gbuffer.position", &r->last_position) == 0,
+              "readback failed");
     }
     if (e)
         vrg_edits_close(e);
@@ -441,6 +444,35 @@ static void edit_response_of(const edit_graph *eg, const float p[3], edit_respon
     vrg_graph_destroy(g);
     unlink(path);
     rmdir(dir);
+}
+
+/* The pixels whose point lies farther than `margin` blocks from the box
+ * lo..hi (blocks) and whose value differs between a and b (two runs of one
+ * view); *far: how many lie that far. A cell cut by an edit changes only
+ * what reads it, so beyond the cut radius plus the widest cell the two
+ * runs of a graph with and without the cut are the same image. */
+static int far_differ(const vrg_image_data *a, const vrg_image_data *b, const vrg_image_data *pos, const float lo[3], const float hi[3],
+                      float margin, int *far)
+{
+    int differ = 0;
+    *far = 0;
+    for (uint32_t y = 0; a->pixels && b->pixels && pos->pixels && y < pos->height; y++)
+        for (uint32_t x = 0; x < pos->width; x++) {
+            float d2 = 0;
+            for (int c = 0; c < 3; c++) {
+                float v = px(pos, x, y, c), d = v < lo[c] ? lo[c] - v : v > hi[c] ? v - hi[c] : 0;
+                d2 += d * d;
+            }
+            if (px(pos, x, y, 3) == 0 || d2 <= margin * margin)
+                continue;
+            (*far)++;
+            for (int c = 0; c < 4; c++)
+                if (px(a, x, y, c) != px(b, x, y, c)) {
+                    differ++;
+                    break;
+                }
+        }
+    return differ;
 }
 
 /* interactive.ini as shipped (no neighbourhood clamp, anti-lag on): most
@@ -476,6 +508,9 @@ static void test_denoise_edit_light(void)
     CHECK(s > 0.7 && s > l + 0.2, "as shipped only %g of the change showed by frames 8 to 12 (without anti-lag %g)", s, l);
     CHECK(c > 0.7 && fabs(c - s) < 0.15, "with clamp_k 1.5 %g of the change showed by frames 8 to 12, as shipped %g: the clamp answers the edit", c,
           s);
+    edit_response *all[] = {&shipped, &clamped, &lagging};
+    for (int i = 0; i < 3; i++)
+        free(all[i]->last.pixels), free(all[i]->last_position.pixels);
 }
 
 /* The world-space caches of surface-cache-4ray.ini and surface-cache-1ray.ini
@@ -508,6 +543,13 @@ static void test_cache_edit_light(void)
         CHECK(l < 0.6, "%s: with edit_radius 0 %g of the change showed by frames 8 to 12: the case shows no lag", graphs[i][0].graph, l);
         CHECK(s > 0.7 && s > l + 0.2, "%s: as shipped only %g of the change showed by frames 8 to 12 (with edit_radius 0 %g)", graphs[i][0].graph, s,
               l);
+        /* far from the wall (beyond edit_radius 8 and the widest cells'
+         * reach) nothing is cut: the same image as without the cut */
+        const float lo[3] = {floorf(p[0]) - 12, floorf(p[1]) + 1, floorf(p[2]) - 3}, hi[3] = {floorf(p[0]) + 13, floorf(p[1]) + 17, floorf(p[2]) - 2};
+        int far, differ = far_differ(&r.last, &lagging.last, &r.last_position, lo, hi, 24, &far);
+        CHECK(far >= 500 && differ == 0, "%s: %d of %d pixels more than 24 blocks from the wall differ from the run without the cut: it cuts too "
+              "much", graphs[i][0].graph, differ, far);
+        free(r.last.pixels), free(r.last_position.pixels), free(lagging.last.pixels), free(lagging.last_position.pixels);
     }
 }
 
@@ -532,7 +574,7 @@ static int build_roof(vrg_graph *g, vrg_edits *e, const float p[3], const float 
  * visibility above 0.7 before it, below 0.3 in a graph given it 40 frames
  * before), the share of the change shown over frames 8 to 12 after it was
  * built: sum(mean - before) / sum(settled - before). */
-static double shadow_share(const edit_graph *eg, const float p[3], const float dir[3], int *region)
+static double shadow_share(const edit_graph *eg, const float p[3], const float dir[3], int *region, vrg_image_data *last, vrg_image_data *last_position)
 {
     char dirname[] = "/tmp/vrg_edit_shadow_XXXXXX", path[64], err[512] = "no graph";
     CHECK(mkdtemp(dirname) != NULL, "mkdtemp failed");
@@ -565,7 +607,7 @@ static double shadow_share(const edit_graph *eg, const float p[3], const float d
             free(now.pixels);
             now.pixels = NULL;
         }
-        CHECK(vrg_graph_read(g, "gbuffer.position", &pos) == 0, "readback failed");
+        CHECK(vrg_graph_read(g, "gbuffer.position", &pos) == 0 && vrg_graph_read(g, eg->indirect, last) == 0, "readback failed");
     }
     for (uint32_t y = 0; mean && settled.pixels && pos.pixels && y < pos.height; y++)
         for (uint32_t x = 0; x < pos.width; x++) {
@@ -577,7 +619,8 @@ static double shadow_share(const edit_graph *eg, const float p[3], const float d
             change += s - b;
             (*region)++;
         }
-    free(mean), free(before.pixels), free(settled.pixels), free(pos.pixels);
+    free(mean), free(before.pixels), free(settled.pixels);
+    *last_position = pos; /* the caller's */
     if (e)
         vrg_edits_close(e);
     vrg_graph_destroy(fresh);
@@ -606,13 +649,22 @@ static void test_cache_edit_shadow(void)
     vrg_sky_eval(&desc, 0, &sky);
     vrg_sky_key_light(&sky, dir, &elevation, radiance);
     int region = 0, lag_region = 0;
-    double s = shadow_share(&shipped, p, dir, &region), l = shadow_share(&lagging, p, dir, &lag_region);
+    vrg_image_data last = {0}, last_pos = {0}, lag_last = {0}, lag_pos = {0};
+    double s = shadow_share(&shipped, p, dir, &region, &last, &last_pos), l = shadow_share(&lagging, p, dir, &lag_region, &lag_last, &lag_pos);
     printf("cache_edit_shadow: %d ground pixels the roof shades; share of the change over frames 8 to 12 after it: %.2f, with edit_shadows 0 "
            "%.2f\n",
            region, s, l);
     CHECK(region >= 40, "the roof shades only %d ground pixels in view: the case shows nothing", region);
     CHECK(l < 0.6, "with edit_shadows 0 %g of the change showed by frames 8 to 12: the case shows no lag", l);
     CHECK(s > 0.8 && s > l + 0.2, "as shipped only %g of the change showed by frames 8 to 12 (with edit_shadows 0 %g)", s, l);
+    /* far from the roof (its shadow falls within 8 blocks of it here)
+     * nothing is cut: the same image as without the cut */
+    float reach = 5.0f / dir[1], cx = floorf(p[0] + dir[0] * reach), cz = floorf(p[2] + dir[2] * reach);
+    const float lo[3] = {cx - 2, floorf(p[1]) + 5, cz - 2}, hi[3] = {cx + 3, floorf(p[1]) + 6, cz + 3};
+    int far, differ = far_differ(&last, &lag_last, &last_pos, lo, hi, 24, &far);
+    CHECK(far >= 500 && differ == 0, "%d of %d pixels more than 24 blocks from the roof differ from the run without the cut: it cuts too much",
+          differ, far);
+    free(last.pixels), free(last_pos.pixels), free(lag_last.pixels), free(lag_pos.pixels);
 }
 
 int main(int argc, char **argv)

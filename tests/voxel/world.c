@@ -237,6 +237,21 @@ static void test_edit_box(void)
     CHECK(vrg_graph_frame(g) == 0, "frame failed");
     vrg_world_uploaded_edits(w, lo, hi);
     CHECK(lo[0] >= hi[0], "the frame after the edits still has an edit box %d..%d", lo[0], hi[0]);
+    /* an edited chunk replaced (streamed in again) or dropped before its
+     * upload takes its edit box with it */
+    const vrg_block *chunk = vrg_world_chunk(w, 0, 0, -1);
+    static vrg_block copy[VRG_CHUNK_VOXELS];
+    if (chunk)
+        memcpy(copy, chunk, sizeof copy);
+    CHECK(chunk && vrg_world_set_block(w, 3, 5, -7, b1 == VRG_BLOCK_AIR ? VRG_BLOCK_STONE : VRG_BLOCK_AIR) == 0 &&
+              vrg_world_set_block(w, 20, 2, 9, b2 == VRG_BLOCK_AIR ? VRG_BLOCK_STONE : VRG_BLOCK_AIR) == 0,
+          "set_block failed");
+    vrg_world_put_chunk(w, 0, 0, -1, copy);
+    vrg_world_drop_chunk(w, 1, 0, 0);
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_world_uploaded_edits(w, lo, hi);
+    CHECK(lo[0] >= hi[0], "edits of a chunk replaced or dropped before its upload are in the box %d %d %d..%d %d %d", lo[0], lo[1], lo[2], hi[0],
+          hi[1], hi[2]);
     vrg_graph_destroy(g);
 }
 

@@ -2,6 +2,7 @@
 /* Helpers every scene plugin shares: the per-frame uniform block. */
 #include <math.h>
 #include <stdlib.h>
+#include <stddef.h>
 #include <string.h>
 #include "voxel_internal.h"
 
@@ -27,6 +28,13 @@ static void ray_basis(const vrg_camera *c, float aspect, float right[4], float u
     }
     right[3] = up[3] = forward[3] = 0;
 }
+
+/* std140 as frame.glsl declares it: 3 mat4, then vec4s only */
+_Static_assert(offsetof(vrg_frame_uniforms, camera_pos) == 192 && offsetof(vrg_frame_uniforms, frame_index) == 352 &&
+                   offsetof(vrg_frame_uniforms, world_grid) == 384 && offsetof(vrg_frame_uniforms, prev_sun_dir) == 432 &&
+                   offsetof(vrg_frame_uniforms, edit_lo) == 448 && offsetof(vrg_frame_uniforms, edit_hi) == 464 &&
+                   sizeof(vrg_frame_uniforms) == 480,
+               "vrg_frame_uniforms must keep frame.glsl's std140 offsets");
 
 void vrg_frame_uniforms_fill(const vrg_frame_info *f, const vrg_sky *sky, vrg_frame_uniforms *u)
 {

@@ -191,6 +191,25 @@ void vrg_world_grid(const vrg_world *w, int dims[3])
     dims[2] = w->gz;
 }
 
+/* Boxes of blocks (lo inclusive, hi exclusive; lo >= hi: none), for the
+ * edit boxes: grown by another (none leaves it), or emptied. */
+static void box_add(int lo[3], int hi[3], const int add_lo[3], const int add_hi[3])
+{
+    if (add_lo[0] >= add_hi[0])
+        return;
+    int none = lo[0] >= hi[0];
+    for (int a = 0; a < 3; a++) {
+        lo[a] = none || add_lo[a] < lo[a] ? add_lo[a] : lo[a];
+        hi[a] = none || add_hi[a] > hi[a] ? add_hi[a] : hi[a];
+    }
+}
+
+static void box_clear(int lo[3], int hi[3])
+{
+    for (int a = 0; a < 3; a++)
+        lo[a] = hi[a] = 0;
+}
+
 static void mark_dirty(vrg_world *w, int s)
 {
     if (!w->slots[s].dirty) {
@@ -258,8 +277,7 @@ void vrg_world_put_chunk(vrg_world *w, int cx, int cy, int cz, const vrg_block *
     sl->cz = cz;
     sl->valid = 1;
     memcpy(sl->blocks, blocks, VRG_CHUNK_VOXELS);
-    for (int a = 0; a < 3; a++) /* another chunk's edits, or a chunk streamed in: not an edit to show */
-        sl->edit_lo[a] = sl->edit_hi[a] = 0;
+    box_clear(sl->edit_lo, sl->edit_hi); /* another chunk's edits, or a chunk streamed in: not an edit to show */
     mark_dirty(w, s);
     mark_mesh(w, cx, cy, cz);
 }
@@ -275,11 +293,8 @@ int vrg_world_set_block(vrg_world *w, int x, int y, int z, vrg_block b)
     if (*at == b)
         return 0;
     *at = b;
-    int p[3] = {x, y, z}, none = sl->edit_lo[0] >= sl->edit_hi[0];
-    for (int a = 0; a < 3; a++) {
-        sl->edit_lo[a] = none || p[a] < sl->edit_lo[a] ? p[a] : sl->edit_lo[a];
-        sl->edit_hi[a] = none || p[a] + 1 > sl->edit_hi[a] ? p[a] + 1 : sl->edit_hi[a];
-    }
+    const int lo[3] = {x, y, z}, hi[3] = {x + 1, y + 1, z + 1};
+    box_add(sl->edit_lo, sl->edit_hi, lo, hi);
     mark_dirty(w, s);
     mark_mesh(w, cx, cy, cz);
     return 0;
@@ -291,6 +306,7 @@ void vrg_world_drop_chunk(vrg_world *w, int cx, int cy, int cz)
     if (s < 0 || !w->slots[s].valid || w->slots[s].cx != cx || w->slots[s].cz != cz)
         return;
     w->slots[s].valid = 0;
+    box_clear(w->slots[s].edit_lo, w->slots[s].edit_hi); /* its edits leave with it: no light to forget */
     w->loaded--;
     mark_dirty(w, s);
     mark_mesh(w, cx, cy, cz);
@@ -325,11 +341,7 @@ void vrg_world_uploaded_edits(const vrg_world *w, int lo[3], int hi[3])
     memcpy(hi, w->edits_hi, sizeof w->edits_hi);
 }
 
-void vrg_world_clear_uploaded_edits(vrg_world *w)
-{
-    for (int a = 0; a < 3; a++)
-        w->edits_lo[a] = w->edits_hi[a] = 0;
-}
+void vrg_world_clear_uploaded_edits(vrg_world *w) { box_clear(w->edits_lo, w->edits_hi); }
 
 vrg_block vrg_world_block(const vrg_world *w, int x, int y, int z)
 {
@@ -489,14 +501,8 @@ int vrg_world_upload(vrg_world *w, VkCommandBuffer cmd, VkBuffer dst, void *stag
         sl->gpu_valid = sl->valid; /* what vrg_world_gpu_box reports */
         w->box_stale = 1;
         sl->gpu_c[0] = sl->cx, sl->gpu_c[1] = sl->cy, sl->gpu_c[2] = sl->cz;
-        if (sl->edit_lo[0] < sl->edit_hi[0]) {
-            int none = w->edits_lo[0] >= w->edits_hi[0];
-            for (int a = 0; a < 3; a++) {
-                w->edits_lo[a] = none || sl->edit_lo[a] < w->edits_lo[a] ? sl->edit_lo[a] : w->edits_lo[a];
-                w->edits_hi[a] = none || sl->edit_hi[a] > w->edits_hi[a] ? sl->edit_hi[a] : w->edits_hi[a];
-                sl->edit_lo[a] = sl->edit_hi[a] = 0;
-            }
-        }
+        box_add(w->edits_lo, w->edits_hi, sl->edit_lo, sl->edit_hi);
+        box_clear(sl->edit_lo, sl->edit_hi);
         pack_slot(w, sl, (uint32_t *)((char *)staging + used));
         regions[nr++] = (VkBufferCopy){.srcOffset = used, .dstOffset = 4 * (SLOTS_OFFSET + (uint64_t)s * SLOT_UINTS), .size = SLOT_UINTS * 4};
         used += SLOT_UINTS * 4;

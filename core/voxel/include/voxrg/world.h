@@ -229,11 +229,11 @@ typedef struct vrg_frame_uniforms {
      * frame without history; then xyz = sun_dir). Added at the end: the
      * block's earlier offsets stay as they were. */
     float prev_sun_dir[4];
-    /* The box of the blocks edited since the last frame that this frame's
-     * upload brought to the GPU (vrg_world_uploaded_edits; blocks, hi
-     * exclusive; empty: lo >= hi), for histories kept in world space that
-     * must forget the light an edit changed (surface_cache's edit_radius).
-     * Added at the end, as prev_sun_dir. */
+    /* The box of the blocks edited whose chunks this frame's upload brought
+     * to the GPU (vrg_world_uploaded_edits; blocks, hi exclusive; empty:
+     * lo >= hi): one box around all of them, for histories kept in world
+     * space that must forget the light an edit changed (surface_cache's
+     * edit_radius). Added at the end, as prev_sun_dir. */
     float edit_lo[4];
     float edit_hi[4];
 } vrg_frame_uniforms;
