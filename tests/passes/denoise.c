@@ -408,17 +408,46 @@ static int edit_point(const edit_graph *eg, float p[3])
     return ok ? 0 : -1;
 }
 
+/* Two graphs of eg at p (g, edited after its first frames, and fresh,
+ * given the same edit early on: the light it settles to) and an edit
+ * journal in a folder of its own. */
+typedef struct {
+    char dir[32], path[64];
+    vrg_graph *g, *fresh;
+    vrg_edits *e;
+} edit_session;
+
+static int edit_session_open(edit_session *s, const edit_graph *eg, const float p[3])
+{
+    char err[512] = "no graph";
+    memset(s, 0, sizeof *s);
+    snprintf(s->dir, sizeof s->dir, "/tmp/vrg_edit_XXXXXX");
+    CHECK(mkdtemp(s->dir) != NULL, "mkdtemp failed");
+    snprintf(s->path, sizeof s->path, "%s/test.edits", s->dir);
+    s->g = graph_at(eg, p), s->fresh = graph_at(eg, p);
+    s->e = s->g ? vrg_edits_open(s->path, "edit-test", vrg_graph_world(s->g), err, sizeof err) : NULL;
+    CHECK(s->e != NULL, "%s", err);
+    return s->g && s->fresh && s->e ? 0 : -1;
+}
+
+static void edit_session_close(edit_session *s)
+{
+    if (s->e)
+        vrg_edits_close(s->e);
+    vrg_graph_destroy(s->fresh);
+    vrg_graph_destroy(s->g);
+    unlink(s->path);
+    rmdir(s->dir);
+}
+
 static void edit_response_of(const edit_graph *eg, const float p[3], edit_response *r)
 {
-    char dir[] = "/tmp/vrg_edit_light_XXXXXX", path[64], err[512] = "no graph";
-    CHECK(mkdtemp(dir) != NULL, "mkdtemp failed");
-    snprintf(path, sizeof path, "%s/wall.edits", dir);
-    vrg_graph *g = graph_at(eg, p), *fresh = graph_at(eg, p);
-    vrg_edits *e = g ? vrg_edits_open(path, "edit-light", vrg_graph_world(g), err, sizeof err) : NULL;
-    CHECK(e != NULL, "%s", err);
+    edit_session es;
     int n = 0;
     memset(r, 0, sizeof *r);
-    if (g && fresh && e) {
+    if (edit_session_open(&es, eg, p) == 0) {
+        vrg_graph *g = es.g, *fresh = es.fresh;
+        vrg_edits *e = es.e;
         for (int i = 0; i < 40; i++)
             CHECK(vrg_graph_frame(g) == 0, "frame failed");
         r->before = front_of_wall(g, eg->indirect, p, &n);
@@ -438,12 +467,7 @@ static void edit_response_of(const edit_graph *eg, const float p[3], edit_respon
         CHECK(vrg_graph_read(g, eg->indirect, &r->last) == 0 && vrg_graph_read(g, "gbuffer.position", &r->last_position) == 0,
               "readback failed");
     }
-    if (e)
-        vrg_edits_close(e);
-    vrg_graph_destroy(fresh);
-    vrg_graph_destroy(g);
-    unlink(path);
-    rmdir(dir);
+    edit_session_close(&es);
 }
 
 /* The pixels whose point lies farther than `margin` blocks from the box
@@ -576,17 +600,14 @@ static int build_roof(vrg_graph *g, vrg_edits *e, const float p[3], const float 
  * built: sum(mean - before) / sum(settled - before). */
 static double shadow_share(const edit_graph *eg, const float p[3], const float dir[3], int *region, vrg_image_data *last, vrg_image_data *last_position)
 {
-    char dirname[] = "/tmp/vrg_edit_shadow_XXXXXX", path[64], err[512] = "no graph";
-    CHECK(mkdtemp(dirname) != NULL, "mkdtemp failed");
-    snprintf(path, sizeof path, "%s/roof.edits", dirname);
-    vrg_graph *g = graph_at(eg, p), *fresh = graph_at(eg, p);
-    vrg_edits *e = g ? vrg_edits_open(path, "edit-shadow", vrg_graph_world(g), err, sizeof err) : NULL;
-    CHECK(e != NULL, "%s", err);
+    edit_session es;
     vrg_image_data before = {0}, settled = {0}, now = {0}, pos = {0};
     double moved = 0, change = 0;
     float *mean = NULL;
     *region = 0;
-    if (g && fresh && e) {
+    if (edit_session_open(&es, eg, p) == 0) {
+        vrg_graph *g = es.g, *fresh = es.fresh;
+        vrg_edits *e = es.e;
         for (int i = 0; i < 40; i++)
             CHECK(vrg_graph_frame(g) == 0, "frame failed");
         CHECK(vrg_graph_read(g, eg->indirect, &before) == 0, "readback failed");
@@ -621,12 +642,7 @@ static double shadow_share(const edit_graph *eg, const float p[3], const float d
         }
     free(mean), free(before.pixels), free(settled.pixels);
     *last_position = pos; /* the caller's */
-    if (e)
-        vrg_edits_close(e);
-    vrg_graph_destroy(fresh);
-    vrg_graph_destroy(g);
-    unlink(path);
-    rmdir(dirname);
+    edit_session_close(&es);
     return change != 0 ? moved / change : 0;
 }
 
