@@ -62,7 +62,8 @@ mungekey --create --keyfile="$tmp/munge/munge.key" || fail "mungekey could not m
 munged --foreground --force --socket="$tmp/munge/socket" --key-file="$tmp/munge/munge.key" --pid-file="$tmp/munge/munged.pid" \
     --seed-file="$tmp/munge/seed" --log-file="$tmp/munged.log" 2>"$tmp/munged.stderr.log" &
 pids+=($!)
-wait_for 10 test -S "$tmp/munge/socket" || fail "munged did not start"
+# (30 s: on a loaded 2-core machine, beside the browser test, 10 were once too few)
+wait_for 30 test -S "$tmp/munge/socket" || fail "munged did not start in 30 s"
 
 # two free ports for the daemons: tests may run side by side
 read -r ctld_port slurmd_port < <(python3 -c '
