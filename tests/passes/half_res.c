@@ -132,6 +132,18 @@ static float dist3(const vrg_image_data *a, uint32_t ax, uint32_t ay, const vrg_
     return sqrtf(d);
 }
 
+/* Full pixel x lies between half texels b = floor((x - 1) / 2) and b + 1
+ * (half texel q holds full pixel 2q+1), at fraction f past b. */
+static int texel_below(uint32_t x, float *f)
+{
+    int b = (int)floorf(((float)x - 1.0f) / 2.0f);
+    *f = ((float)x - 1.0f) / 2.0f - (float)b;
+    return b;
+}
+
+/* Texel q clamped into the half image, as the shader's texelFetch of clamp(). */
+static int clamp_texel(int q, uint32_t size) { return q < 0 ? 0 : q >= (int)size ? (int)size - 1 : q; }
+
 /* Upsampling the half G-buffer's own normals and positions, where each
  * pixel's answer is known. Half texel q holds full pixel 2q+1 (checked by
  * gbuffer_downsample), so full pixel x lies between texels (x - 1) / 2
@@ -160,9 +172,9 @@ static void test_upsample_edges(void)
                 continue;
             }
             hits++;
-            int bx = (int)floorf(((float)x - 1.0f) / 2.0f), by = (int)floorf(((float)y - 1.0f) / 2.0f);
             /* bilinear weights: an odd pixel sits on a texel's sample (weight 1 there) */
-            float fx = ((float)x - 1.0f) / 2.0f - (float)bx, fy = ((float)y - 1.0f) / 2.0f - (float)by;
+            float fx, fy;
+            int bx = texel_below(x, &fx), by = texel_below(y, &fy);
             int qualified = 0, weighted = 0, nx = -1, ny = -1, ring = 0;
             float nearest = 1e30f;
             for (int j = 0; j < 20; j++) {
@@ -171,9 +183,7 @@ static void test_upsample_edges(void)
                     break; /* a hit among the 2x2 */
                 if (!inner && ox >= 0 && ox <= 1 && oy >= 0 && oy <= 1)
                     continue;
-                int qx = bx + ox, qy = by + oy;
-                qx = qx < 0 ? 0 : qx >= (int)low->width ? (int)low->width - 1 : qx;
-                qy = qy < 0 ? 0 : qy >= (int)low->height ? (int)low->height - 1 : qy;
+                int qx = clamp_texel(bx + ox, low->width), qy = clamp_texel(by + oy, low->height);
                 float dist = 1e30f;
                 int hit = px(low, (uint32_t)qx, (uint32_t)qy, 3) != 0.0f;
                 if (inner) {
@@ -245,15 +255,13 @@ static void test_upsample_ring(void)
         for (uint32_t x = 0; x < pos->width; x++) {
             if (px(pos, x, y, 3) == 0.0f)
                 continue;
-            int bx = (int)floorf(((float)x - 1.0f) / 2.0f), by = (int)floorf(((float)y - 1.0f) / 2.0f);
-            float fx = ((float)x - 1.0f) / 2.0f - (float)bx, fy = ((float)y - 1.0f) / 2.0f - (float)by;
+            float fx, fy;
+            int bx = texel_below(x, &fx), by = texel_below(y, &fy);
             int qualified = 0;
             double want[3] = {0, 0, 0}, wsum = 0;
             for (int j = 0; j < 16; j++) {
                 int ox = j % 4 - 1, oy = j / 4 - 1, inner = ox >= 0 && ox <= 1 && oy >= 0 && oy <= 1;
-                int qx = bx + ox, qy = by + oy;
-                qx = qx < 0 ? 0 : qx >= (int)low->width ? (int)low->width - 1 : qx;
-                qy = qy < 0 ? 0 : qy >= (int)low->height ? (int)low->height - 1 : qy;
+                int qx = clamp_texel(bx + ox, low->width), qy = clamp_texel(by + oy, low->height);
                 float dist;
                 if (!on_surface(img, x, y, qx, qy, &dist))
                     continue;
