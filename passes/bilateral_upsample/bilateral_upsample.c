@@ -21,8 +21,6 @@
  * mode = bilinear or nearest turn the surface test off, for comparison. */
 #include "voxrg/plugin.h"
 
-static const char *const modes[] = {"bilateral", "bilinear", "nearest"};
-
 static const vrg_param_desc params[] = {
     {.name = "mode", .type = VRG_PARAM_STRING, .default_string = "bilateral",
      .help = "bilateral (only texels on the pixel's surface), bilinear or nearest"},
@@ -31,6 +29,11 @@ static const vrg_param_desc params[] = {
     {.name = "surface_ring", .type = VRG_PARAM_BOOL, .default_value = 0, .min = 0, .max = 1,
      .help = "1: where none of the 2x2 is on the pixel's surface, blend the texels of the 4x4's ring that are, before the nearest hit"},
 };
+
+/* the names mode takes: the runtime checks the graph's value and pushes
+ * its index as the shader's `mode` */
+static const char *const param_choices[] = {"bilateral,bilinear,nearest", NULL, NULL};
+_Static_assert(sizeof param_choices / sizeof param_choices[0] == sizeof params / sizeof params[0], "a choice list (or NULL) per parameter");
 
 static const vrg_slot_desc slots[] = {
     {.name = "illumination", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED,
@@ -45,20 +48,17 @@ static const vrg_slot_desc slots[] = {
 };
 
 /* the one dispatch execute() records (every slot, in order): checked by
- * `voxrg check`; its push constants are plane_tolerance and surface_ring
- * by name and the mode's index */
+ * `voxrg check`; its push constants are the parameters by name (mode as
+ * its index in param_choices) */
 static const vrg_dispatch_desc dispatches[] = {
     {.shader = "bilateral_upsample.comp", .pixel_loop = 1},
 };
-
-static int check(vrg_pass *pass) { return vrg_param_choice(pass, "mode", modes, 3) < 0 ? -1 : 0; }
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     static const char *low[] = {"low_position", "low_normal"}, *full[] = {"in.normal", "out.illumination"};
     if (vrg_pass_require_same_size(pass, "in.illumination", low, 2) != 0 || vrg_pass_require_same_size(pass, "in.position", full, 2) != 0)
         return;
-    vrg_push_int(pass, "mode", vrg_param_choice(pass, "mode", modes, 3));
     (void)vrg_dispatch(pass, cmd, &dispatches[0]);
 }
 
@@ -71,10 +71,10 @@ static const vrg_plugin_desc desc = {
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
-    .check = check,
     .execute = execute,
     .dispatches = dispatches,
     .dispatch_count = sizeof dispatches / sizeof dispatches[0],
+    .param_choices = param_choices,
 };
 
 VRG_PLUGIN(desc)

@@ -23,6 +23,9 @@ static const vrg_param_desc params[] = {
     {"size", VRG_PARAM_INT, 7, 3, 15, "window width (odd)"},
     {"min_history", VRG_PARAM_INT, 4, 1, 100, "temporal: frames of history before the moments are trusted"},
 };
+/* the names mode takes (the runtime checks the graph's value): as modes[] */
+static const char *const param_choices[] = {"spatial,temporal", NULL, NULL};
+_Static_assert(sizeof param_choices / sizeof param_choices[0] == sizeof params / sizeof params[0], "a choice list (or NULL) per parameter");
 
 static const vrg_slot_desc slots[] = {
     {.name = "illumination", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .help = "accumulated illumination (svgf_reproject color)"},
@@ -44,8 +47,6 @@ static const char *const modes[] = {"spatial", "temporal"};
 static int check(vrg_pass *pass)
 {
     int mode = vrg_param_choice(pass, "mode", modes, 2);
-    if (mode < 0)
-        return -1;
     if (vrg_param_int(pass, "size") % 2 == 0)
         return vrg_pass_error(pass, "size = %d: the window needs a centre, give an odd size", vrg_param_int(pass, "size"));
     if (mode == 1 && (!vrg_res_connected(vrg_pass_res(pass, "moments")) || !vrg_res_connected(vrg_pass_res(pass, "length"))))
@@ -106,6 +107,7 @@ static const vrg_plugin_desc desc = {
     .execute = execute,
     .dispatches = dispatches,
     .dispatch_count = sizeof dispatches / sizeof dispatches[0],
+    .param_choices = param_choices,
 };
 
 VRG_PLUGIN(desc)

@@ -37,6 +37,14 @@ static const vrg_param_desc params[] = {
     TILE_PARAMS(5), TILE_PARAMS(6), TILE_PARAMS(7), TILE_PARAMS(8),
 };
 
+/* the names each t<i>_channel takes (the runtime checks the graph's
+ * values): as channels[] below, in the order of TILE_PARAMS */
+#define TILE_CHOICES "rgb,r,g,b,a,luma", NULL, NULL, NULL
+static const char *const param_choices[] = {
+    NULL, TILE_CHOICES, TILE_CHOICES, TILE_CHOICES, TILE_CHOICES, TILE_CHOICES, TILE_CHOICES, TILE_CHOICES, TILE_CHOICES, TILE_CHOICES,
+};
+_Static_assert(sizeof param_choices / sizeof param_choices[0] == sizeof params / sizeof params[0], "a choice list (or NULL) per parameter");
+
 #define TILE_SLOT(i)                                                                                                                             \
     {.name = "t" #i, .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .flags = VRG_SLOT_OPTIONAL,                                \
      .help = "tile " #i "'s image: any float or UNORM format, any size"}
@@ -157,6 +165,7 @@ static const vrg_plugin_desc desc = {
     .execute = execute,
     .dispatches = dispatches,
     .dispatch_count = sizeof dispatches / sizeof dispatches[0],
+    .param_choices = param_choices,
 };
 
 VRG_PLUGIN(desc)

@@ -17,6 +17,11 @@
 #include "stream.h"
 #include "terrain_gen.h"
 
+/* the parameter with a list of names (param_choices): placed at its index
+ * in both lists, so that the two cannot drift apart (-Woverride-init says
+ * so if the entries before it change count) */
+enum { STREAM_PARAM = 13 };
+
 static const vrg_param_desc params[] = {
     {"seed", VRG_PARAM_INT, 1337, 0, 4294967295.0, "world seed", VRG_PARAM_RELOAD},
     {"radius", VRG_PARAM_INT, 13, 0, 64, "chunks generated around the camera (|dx|, |dz| <= radius)", VRG_PARAM_RELOAD},
@@ -31,7 +36,7 @@ static const vrg_param_desc params[] = {
     {"tree_density", VRG_PARAM_FLOAT, 0.02, 0, 1, "fraction of forest columns holding a tree", VRG_PARAM_RELOAD},
     {"sea_level", VRG_PARAM_INT, 12, 0, 256, "water fills air below this height", VRG_PARAM_RELOAD},
     {"threads", VRG_PARAM_INT, 0, 0, 64, "generator threads; 0: one per CPU", VRG_PARAM_RELOAD},
-    {"stream", VRG_PARAM_STRING, 0, 0, 0, "wait (deterministic: each frame waits for its chunks) or budget", 0, "wait"},
+    [STREAM_PARAM] = {"stream", VRG_PARAM_STRING, 0, 0, 0, "wait (deterministic: each frame waits for its chunks) or budget", 0, "wait"},
     {"budget_ms", VRG_PARAM_FLOAT, 2, 0, 1000, "stream = budget: main-thread integration time per frame"},
     {.name = "edits", .type = VRG_PARAM_STRING, .default_string = "",
      .help = "edit journal; empty: the graph file's path + .edits; none: no edits"},
@@ -41,6 +46,8 @@ static const vrg_param_desc params[] = {
 static const vrg_slot_desc slots[] = {VRG_SCENE_SLOTS};
 
 static const char *const stream_modes[] = {"wait", "budget"};
+/* the runtime checks stream's value against these: as stream_modes */
+static const char *const param_choices[sizeof params / sizeof params[0]] = {[STREAM_PARAM] = "wait,budget"};
 
 /* The generated world and what generates it. A hot reload of a graph whose
  * world parameters are unchanged shares it with the new instance
@@ -91,8 +98,6 @@ static void journal_path(vrg_pass *pass, char *path, size_t cap);
 
 static int check(vrg_pass *pass)
 {
-    if (vrg_param_choice(pass, "stream", stream_modes, 2) < 0)
-        return -1;
     char journal[4096];
     journal_path(pass, journal, sizeof journal);
     if (journal[0] && vrg_pass_input_file(pass, journal) != 0) /* its edits are part of the world */
@@ -301,6 +306,7 @@ static const vrg_plugin_desc desc = {
     .create = create,
     .execute = execute,
     .destroy = destroy,
+    .param_choices = param_choices,
 };
 
 VRG_PLUGIN(desc)

@@ -652,6 +652,17 @@ section_plugins() { # voxrg plugins
     expect_rc 0 "plugins pingpong" "$voxrg" plugins pingpong
     has "$out/stdout" "iterations +int +default 3" "plugin parameters"
     expect_rc 1 "plugins unknown" "$voxrg" plugins nonesuch
+    # a C pass's string parameters with a list of names (param_choices):
+    # listed, and a value not among them is an error at its line
+    expect_rc 0 "plugins bilateral_upsample" "$voxrg" plugins bilateral_upsample
+    has "$out/stdout" "^  mode +text +default 'bilateral' +bilateral\|bilinear\|nearest " "a C pass's choices listed"
+    expect_rc 0 "plugins tiles" "$voxrg" plugins tiles
+    has "$out/stdout" "^  t8_channel +text +default 'rgb' +rgb\|r\|g\|b\|a\|luma " "the last tile's choices listed"
+    sed 's/^mode             = bilinear/mode             = bicubic/' "$tests/graphs/half_res.ini" >"$out/bad_choice.ini"
+    expect_rc 1 "a C pass's value not among its choices" "$voxrg" check --no-device "$out/bad_choice.ini"
+    has "$out/stderr" "bad_choice\.ini:114: error\[VRG-E047\]: mode = 'bicubic': expected bilateral, bilinear or nearest" "the bad choice at its line"
+    expect_rc 1 "svgf_variance mode not a choice" "$voxrg" check --no-device "$tests/../graphs/thesis.ini" --set variance.mode=both
+    has "$out/stderr" "mode = 'both': expected spatial or temporal" "svgf_variance's choices checked"
     # a file on the path that does not load: reported, the rest listed, exit 1
     mkdir -p "$out/broken" && echo "not an ELF file" >"$out/broken/garbage.so"
     VOXRG_PLUGIN_PATH="$out/broken" "$voxrg" plugins >"$out/stdout" 2>"$out/stderr"

@@ -299,7 +299,9 @@ static const char *reloadme_source =
     "static const vrg_slot_desc slots[] = {{.name = \"color\", .dir = VRG_OUT, .kind = VRG_IMAGE,\n"
     "    .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT}};\n"
     "typedef struct { int frames; } state;\n"
-    "static int create(vrg_pass *p) { vrg_pass_set_user(p, calloc(1, sizeof(state))); return 0; }\n"
+    "static int create(vrg_pass *p) {\n    vrg_pass_set_user(p, calloc(1, sizeof(state)));\n"
+    "#ifdef LONG_MESSAGES\n    char m[3001];\n    memset(m, 'm', 3000);\n    memcpy(m + 2990, \"end_of_it\", 10);\n"
+    "    vrg_pass_warn_at(p, 0, \"warned %s\", m);\n    return vrg_pass_error(p, \"failed %s\", m);\n#endif\n    return 0;\n}\n"
     "static void destroy(vrg_pass *p) { free(vrg_pass_user(p)); }\n"
     "static void execute(vrg_pass *p, VkCommandBuffer cmd) {\n"
     "    state *s = vrg_pass_user(p);\n    s->frames++;\n"
@@ -552,6 +554,45 @@ static void test_hot_reload_state_too_big(void)
     remove(so), remove(src), remove(shader), remove(path), rmdir(dir);
 }
 
+/* A plugin's warning and error reach the diagnostics whole, however long
+ * (they were once cut at 1536 bytes). */
+static void test_long_plugin_messages(void)
+{
+    char dir[] = "/tmp/voxrg-long-XXXXXX";
+    if (!mkdtemp(dir)) {
+        CHECK(0, "mkdtemp failed");
+        return;
+    }
+    char path[1100], shader[1100], so[1100], src[1100];
+    snprintf(path, sizeof path, "%s/long.ini", dir);
+    snprintf(shader, sizeof shader, "%s/reloadme.comp", dir);
+    snprintf(so, sizeof so, "%s/longmsg.so", dir);
+    snprintf(src, sizeof src, "%s/longmsg.c", dir);
+    save_file(path, "[graph]\noutput = color\nwidth = 8\nheight = 8\n[pass r]\nplugin = longmsg\nout.color = color\n");
+    save_file(shader, "#version 450\nlayout(local_size_x = 8, local_size_y = 8) in;\n"
+                      "layout(binding = 0, rgba16f) uniform writeonly image2D dst;\n"
+                      "layout(push_constant) uniform P { vec4 c; } pc;\n"
+                      "void main() { imageStore(dst, ivec2(gl_GlobalInvocationID.xy), pc.c); }\n");
+    CHECK(build_plugin_flags(dir, "longmsg", 1, "VRG_ABI_VERSION", "-DLONG_MESSAGES") == 0, "cannot build the test plugin with cc");
+    setenv("VOXRG_PLUGIN_PATH", dir, 1);
+    char *log = NULL;
+    size_t len = 0;
+    FILE *diag = open_memstream(&log, &len);
+    vrg_graph_desc d = {.path = path, .diag = diag};
+    vrg_graph *g = NULL;
+    int rc = vrg_graph_load(ctx, &d, &g);
+    CHECK(rc != 0, "a graph whose pass fails in create() loaded");
+    if (rc == 0)
+        vrg_graph_destroy(g);
+    fclose(diag);
+    const char *warned = log ? strstr(log, "warned mmm") : NULL, *failed = log ? strstr(log, "failed mmm") : NULL;
+    CHECK(warned && strncmp(warned + 7 + 2990, "end_of_it", 9) == 0, "the warning is cut: %.80s...", warned ? warned : "(none)");
+    CHECK(failed && strncmp(failed + 7 + 2990, "end_of_it", 9) == 0, "the error is cut: %.80s...", failed ? failed : "(none)");
+    free(log);
+    unsetenv("VOXRG_PLUGIN_PATH");
+    remove(so), remove(src), remove(shader), remove(path), rmdir(dir);
+}
+
 /* Hot reload of a rebuilt plugin: the new build runs from the next graph
  * instance on, with the old instance's state handed over (save_state ->
  * restore_state: its frame count goes on); a rebuild with another ABI
@@ -685,6 +726,7 @@ int main(int argc, char **argv)
         {"hot_reload_many_plugins", test_hot_reload_many_plugins, 1},
         {"hot_reload_many_files", test_hot_reload_many_files, 1},
         {"hot_reload_state_too_big", test_hot_reload_state_too_big, 1},
+        {"long_plugin_messages", test_long_plugin_messages, 1},
         {"save_file_errors", test_save_file_errors, 0},
     };
     return run_case(argc, argv, cases, sizeof cases / sizeof cases[0]);

@@ -10,18 +10,9 @@ const char *vrg_pass_name(const vrg_pass *p) { return p->name; }
 void *vrg_pass_user(const vrg_pass *p) { return p->user; }
 void vrg_pass_set_user(vrg_pass *p, void *user) { p->user = user; }
 
-static int pass_vfail(vrg_pass *p, _vrg_diag_code code, const char *fmt, va_list ap)
-{
-    char msg[1536];
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    _vrg_error_at(&p->graph->diag, p->line, code, NULL, "pass '%s' (plugin %s): %s", p->name, p->plugin ? p->plugin->path : "?", msg);
-    p->failed = 1;
-    return -1;
-}
-
-/* The message as long as it is (a list of choices, say), as the graph's
- * diagnostics keep it (diag.c). */
-static int pass_vfail_at(vrg_pass *p, int line, _vrg_diag_code code, const char *fmt, va_list ap)
+/* A plugin's message as long as it is (a list of choices, a path), as the
+ * graph's diagnostics keep it (diag.c); NULL without memory. Free it. */
+static char *format_message(const char *fmt, va_list ap)
 {
     va_list aq;
     va_copy(aq, ap);
@@ -30,7 +21,24 @@ static int pass_vfail_at(vrg_pass *p, int line, _vrg_diag_code code, const char 
     char *msg = n >= 0 ? malloc((size_t)n + 1) : NULL;
     if (msg)
         vsnprintf(msg, (size_t)n + 1, fmt, ap);
-    const char *text = msg ? msg : "(out of memory formatting the pass's message)";
+    return msg;
+}
+static const char *const no_memory_for_message = "(out of memory formatting the pass's message)";
+
+static int pass_vfail(vrg_pass *p, _vrg_diag_code code, const char *fmt, va_list ap)
+{
+    char *msg = format_message(fmt, ap);
+    _vrg_error_at(&p->graph->diag, p->line, code, NULL, "pass '%s' (plugin %s): %s", p->name, p->plugin ? p->plugin->path : "?",
+                  msg ? msg : no_memory_for_message);
+    free(msg);
+    p->failed = 1;
+    return -1;
+}
+
+static int pass_vfail_at(vrg_pass *p, int line, _vrg_diag_code code, const char *fmt, va_list ap)
+{
+    char *msg = format_message(fmt, ap);
+    const char *text = msg ? msg : no_memory_for_message;
     if (line > 0)
         _vrg_error_at(&p->graph->diag, line, code, NULL, "%s", text);
     else
@@ -254,15 +262,16 @@ int vrg_pass_error_at(vrg_pass *p, int line, const char *fmt, ...)
 
 void vrg_pass_warn_at(vrg_pass *p, int line, const char *fmt, ...)
 {
-    char msg[1536];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    char *msg = format_message(fmt, ap);
     va_end(ap);
+    const char *text = msg ? msg : no_memory_for_message;
     if (line > 0)
-        _vrg_warning_at(&p->graph->diag, line, VRG_W_PASS_WARNING, "%s", msg);
+        _vrg_warning_at(&p->graph->diag, line, VRG_W_PASS_WARNING, "%s", text);
     else
-        _vrg_warning_at(&p->graph->diag, p->line, VRG_W_PASS_WARNING, "pass '%s': %s", p->name, msg);
+        _vrg_warning_at(&p->graph->diag, p->line, VRG_W_PASS_WARNING, "pass '%s': %s", p->name, text);
+    free(msg);
 }
 
 const char *vrg_pass_graph_path(const vrg_pass *p) { return p->graph->loaded_from_file ? p->graph->path : ""; }
