@@ -4,8 +4,19 @@
  * result back to the full G-buffer. Each low-resolution pixel copies one
  * full-resolution pixel, the one vrg_pixel_in() maps it to (a point sample,
  * not an average: an averaged position or normal lies on no surface), and
- * scales its motion vector to the new size. */
+ * scales its motion vector to the new size. With jitter, each frame copies
+ * another pixel of the footprint, so that over the cycle every pixel is
+ * sampled: for a pass that places each texel by the position it holds
+ * (surface_cache's signal_position), not for bilateral_upsample, which
+ * places a texel where vrg_pixel_in's pixel lies, or for the screen-space
+ * temporal filters, whose history would then hold another point each
+ * frame. */
 #include "voxrg/plugin.h"
+
+static const vrg_param_desc params[] = {
+    {.name = "jitter", .type = VRG_PARAM_BOOL, .default_value = 0, .min = 0, .max = 1,
+     .help = "1: each frame takes another pixel of each footprint (at half size a 4-frame cycle over the 2x2), so that every pixel is sampled in turn"},
+};
 
 static const vrg_slot_desc slots[] = {
     {.name = "position", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_READ, .format = VK_FORMAT_R32G32B32A32_SFLOAT,
@@ -33,11 +44,26 @@ static const vrg_dispatch_desc dispatches[] = {
     {.shader = "gbuffer_downsample.comp", .pixel_loop = 1},
 };
 
+static uint32_t gcd(uint32_t a, uint32_t b) { return b ? gcd(b, a % b) : a; }
+
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     static const char *low[] = {"out.normal", "out.ids", "out.motion"}, *full[] = {"in.normal", "in.ids", "in.motion"};
     if (vrg_pass_require_same_size(pass, "out.position", low, 3) != 0 || vrg_pass_require_same_size(pass, "in.position", full, 3) != 0)
         return;
+    vrg_push_ints(pass, "offset", (int32_t[2]){0, 0}, 2);
+    if (vrg_param_int(pass, "jitter")) {
+        /* the footprint's n pixels in turn, the k-th of frame f at (f * step)
+         * mod n in raster order: step = its width + 1 (the next one on it
+         * that shares no factor with n), which at 2x2 alternates the
+         * diagonals: (0,0) (1,1) (0,1) (1,0) */
+        VkExtent2D full = vrg_res_extent(pass, vrg_pass_res(pass, "in.position")), low = vrg_res_extent(pass, vrg_pass_res(pass, "out.position"));
+        uint32_t w = (full.width + low.width - 1) / low.width, h = (full.height + low.height - 1) / low.height, n = w * h, step = w + 1;
+        while (gcd(step, n) != 1)
+            step++;
+        uint32_t k = (uint32_t)((vrg_pass_frame(pass)->frame_index * step) % n);
+        vrg_push_ints(pass, "offset", (int32_t[2]){(int32_t)(k % w), (int32_t)(k / w)}, 2);
+    }
     vrg_dispatch_desc d = dispatches[0];
     (void)vrg_dispatch(pass, cmd, &d);
 }
@@ -47,6 +73,8 @@ static const vrg_plugin_desc desc = {
     .name = "gbuffer_downsample",
     .kind = VRG_PLUGIN_PASS,
     .help = "the G-buffer at half resolution (position, normal, ids, motion), one full-resolution pixel per pixel",
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .execute = execute,

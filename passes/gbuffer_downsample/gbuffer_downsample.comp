@@ -14,13 +14,17 @@ layout(binding = 4, rgba32f) uniform writeonly image2D out_position;
 layout(binding = 5, rgba16f) uniform writeonly image2D out_normal;
 layout(binding = 6, rg32ui) uniform writeonly uimage2D out_ids;
 layout(binding = 7, rg16f) uniform writeonly image2D out_motion;
+layout(push_constant) uniform Params {
+    int jitter;    // pick this frame's pixel of each footprint (offset)
+    int offset[2]; // this frame's pixel within the footprint, from its top left
+} params;
 
 void shade(ivec2 p)
 {
     ivec2 size = imageSize(out_position), full = imageSize(in_position);
     if (any(greaterThanEqual(p, size)))
         return;
-    ivec2 g = vrg_pixel_in(p, size, full);
+    ivec2 g = params.jitter != 0 ? min(ifloor(vec2(p) * vec2(full) / vec2(size)) + ivec2(params.offset[0], params.offset[1]), full - 1) : vrg_pixel_in(p, size, full);
     imageStore(out_position, p, imageLoad(in_position, g));
     imageStore(out_normal, p, imageLoad(in_normal, g));
     imageStore(out_ids, p, imageLoad(in_ids, g));

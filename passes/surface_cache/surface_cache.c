@@ -113,6 +113,9 @@ static const vrg_slot_desc slots[] = {
     {.name = "frame", .dir = VRG_IN, .kind = VRG_BUFFER, .access = VRG_ACCESS_UNIFORM, .help = "the scene's per-frame uniforms (camera)"},
     {.name = "fallback", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .flags = VRG_SLOT_OPTIONAL,
      .help = "what the widest level's young cells lean on (e.g. a spatial filter of the signal)"},
+    {.name = "signal_position", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .flags = VRG_SLOT_OPTIONAL,
+     .help = "optional: a signal smaller than position comes with the positions its texels were sampled at (gbuffer_downsample's); "
+             "the pixel at each such position takes that texel's sample"},
     {.name = "color", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
      .help = "the cached signal; sky pixels, and pixels with no cell around them: the signal itself"},
     {.name = "table", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_STORAGE_READ_WRITE, .flags = VRG_SLOT_PERSISTENT,
@@ -179,7 +182,7 @@ static int create(vrg_pass *pass)
     return s->readback ? 0 : -1;
 }
 
-enum { EVICT, INSERT, RESOLVE, GATHER, EVICT_PER_SLOT, GATHER_OCCUPANCY }; /* EVICT on a GPU; GATHER when occupancy is read */
+enum { EVICT, INSERT, RESOLVE, GATHER, EVICT_PER_SLOT, GATHER_OCCUPANCY, INSERT_SPARSE }; /* EVICT on a GPU; GATHER when occupancy is read */
 /* How evict and resolve split their slots among invocations. A CPU device
  * (lavapipe) runs every invocation with its own set-up, so few long ones
  * win: 16 slots each for evict, 256 groups striding through the listed
@@ -202,6 +205,8 @@ static const vrg_dispatch_desc dispatches[] = {
                .groups_z = 1},
     [INSERT] = {.shader = "surface_cache.comp", .defines = "INSERT", .pixel_loop = 1,
                 .domain = "color"},
+    [INSERT_SPARSE] = {.shader = "surface_cache.comp", .defines = "INSERT SPARSE", .pixel_loop = 1,
+                       .domain = "color"},
     [RESOLVE] = {.shader = "surface_cache.comp", .defines = "RESOLVE", .groups_x = CPU_RESOLVE_GROUPS,
                  .groups_y = 1, .groups_z = 1},
     [GATHER] = {.shader = "surface_cache.comp", .defines = "GATHER", .pixel_loop = 1,
@@ -231,8 +236,10 @@ static void report_uncached(vrg_pass *pass, surface_cache_state *s, const vrg_ri
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
-    static const char *const same[] = {"signal", "position", "normal", "fallback"};
-    if (vrg_pass_require_same_size(pass, "color", same, vrg_res_connected(vrg_pass_res(pass, "fallback")) ? 4 : 3) != 0)
+    int sparse = vrg_res_connected(vrg_pass_res(pass, "signal_position"));
+    static const char *const same[] = {"position", "normal", "fallback"}, *sampled[] = {"signal_position"}, *signal[] = {"signal"};
+    if (vrg_pass_require_same_size(pass, "color", same, vrg_res_connected(vrg_pass_res(pass, "fallback")) ? 3 : 2) != 0 ||
+        vrg_pass_require_same_size(pass, sparse ? "signal" : "color", sparse ? sampled : signal, 1) != 0)
         return;
     surface_cache_state *s = vrg_pass_user(pass);
     vrg_ring_slice slice = vrg_pass_ring_slice(pass, s->readback, 4 * HEADER_WORDS);
@@ -273,7 +280,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     /* the unread debug output is a 1x1 stand-in: the gather leaves it out */
     int occupancy = vrg_res_connected(vrg_pass_res(pass, "occupancy"));
     for (int i = EVICT; i <= GATHER; i++) {
-        vrg_dispatch_desc d = dispatches[i == EVICT && evict_per_slot ? EVICT_PER_SLOT : i == GATHER && occupancy ? GATHER_OCCUPANCY : i];
+        vrg_dispatch_desc d = dispatches[i == EVICT && evict_per_slot ? EVICT_PER_SLOT : i == GATHER && occupancy ? GATHER_OCCUPANCY : i == INSERT && sparse ? INSERT_SPARSE : i];
         vrg_push_uint(pass, "mask", cells - 1);
         vrg_push_uint(pass, "frame_index", (uint32_t)f->frame_index);
         vrg_push_uint(pass, "evict_first", (uint32_t)(f->frame_index % EVICT_SHARES) * share);

@@ -14,6 +14,11 @@ layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
 layout(binding = 0) uniform sampler2D in_signal;
 layout(binding = 1) uniform sampler2D in_position;
 layout(binding = 2) uniform sampler2D in_normal;
+#if defined(INSERT) && defined(SPARSE)
+// where each texel of a smaller signal was sampled: the full-size pixel
+// whose position it holds takes its sample
+layout(binding = 5) uniform sampler2D in_signal_position;
+#endif
 // the header, the slots' entries, the list of the slots given samples
 // this frame. GATHER only reads it, as a texel buffer:
 // lavapipe fetches texels with SIMD gathers but loads storage-buffer words
@@ -245,13 +250,20 @@ void add_sample(Cell c, uvec4 q, bool cut)
 
 void shade(ivec2 p)
 {
-    if (any(greaterThanEqual(p, textureSize(in_signal, 0))))
+    if (any(greaterThanEqual(p, textureSize(in_position, 0))))
         return;
     vec4 x = texelFetch(in_position, p, 0);
     if (x.w == 0.0)
         return;
+#ifdef SPARSE
+    ivec2 s = vrg_pixel_in(p, textureSize(in_position, 0), textureSize(in_signal, 0));
+    if (texelFetch(in_signal_position, s, 0) != x)
+        return; // this texel sampled another pixel of its footprint
+#else
+    ivec2 s = p;
+#endif
     vec3 n = texelFetch(in_normal, p, 0).xyz;
-    uvec4 q = uvec4(clamp(texelFetch(in_signal, p, 0), 0.0, MAX_SAMPLE) * FIXED + 0.5);
+    uvec4 q = uvec4(clamp(texelFetch(in_signal, s, 0), 0.0, MAX_SAMPLE) * FIXED + 0.5);
     int level = level_of(x.xyz);
     bool cut = (params.edit_radius > 0.0 || params.edit_shadows != 0) && edit_cuts(x.xyz, n);
     add_sample(cell_of(x.xyz, n, level), q, cut);
@@ -363,7 +375,7 @@ void shade(ivec2 p)
     if (any(greaterThanEqual(p, size)))
         return;
     vec4 x = texelFetch(in_position, p, 0);
-    vec4 own = texelFetch(in_signal, p, 0);
+    vec4 own = texelFetch(in_signal, vrg_pixel_in(p, imageSize(out_color), textureSize(in_signal, 0)), 0);
     if (x.w == 0.0) {
         imageStore(out_color, p, own);
 #ifdef OCCUPANCY

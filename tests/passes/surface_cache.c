@@ -586,6 +586,60 @@ static void test_cache_own_cells(void)
     free_all(img);
 }
 
+/* The share of floor pixels whose cached value (cache_sparse.ini: the
+ * half-size position, sampled at gbuffer_downsample's pixels) is their own
+ * position after `frames` frames with sets; -1 on failure. */
+static double sparse_own_share(const char *const *sets, uint32_t nsets, int frames)
+{
+    static const char *const sparse_reads[] = {"sparse.color", "gbuffer.position"};
+    vrg_graph *g = load_with("cache_sparse.ini", sets, nsets, sparse_reads, 2);
+    if (!g)
+        return -1;
+    for (int i = 0; i < frames; i++)
+        CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    vrg_image_data cached, pos;
+    if (vrg_graph_read(g, "sparse.color", &cached) != 0 || vrg_graph_read(g, "gbuffer.position", &pos) != 0) {
+        CHECK(0, "readback failed");
+        vrg_graph_destroy(g);
+        return -1;
+    }
+    int floor = 0, own = 0;
+    for (uint32_t y = 0; y < pos.height; y++)
+        for (uint32_t x = 0; x < pos.width; x++) {
+            if (px(&pos, x, y, 3) == 0)
+                continue;
+            floor++;
+            /* a half float holds a position of up to 32 blocks to 1/64; the
+             * next pixel's point is a tenth of a block away or more */
+            int same = 1;
+            for (int c = 0; c < 3; c++)
+                same &= fabs(px(&cached, x, y, c) - px(&pos, x, y, c)) < 0.02;
+            own += same;
+        }
+    free(cached.pixels);
+    free(pos.pixels);
+    vrg_graph_destroy(g);
+    CHECK(floor > 1000, "only %d floor pixels", floor);
+    return floor > 0 ? (double)own / floor : -1;
+}
+
+/* A signal smaller than the G-buffer (signal_position connected): each
+ * half-size texel's sample goes to the cell of the one pixel it was taken
+ * at, not to its neighbours'. With gbuffer_downsample's jitter every pixel
+ * is sampled once in 4 frames, so after 4 frames every floor pixel's own
+ * cell shows its own position; without jitter only the pixel each texel
+ * always takes does (the others' cells never get a sample: they show the
+ * texel's, another pixel's position). */
+static void test_cache_sparse(void)
+{
+    static const char *const fixed[] = {"half.jitter=0"};
+    double jittered = sparse_own_share(NULL, 0, 4), one = sparse_own_share(NULL, 0, 1), still = sparse_own_share(fixed, 1, 4);
+    printf("floor pixels showing their own position: jitter, 4 frames %.3f, 1 frame %.3f; no jitter, 4 frames %.3f\n", jittered, one, still);
+    CHECK(jittered > 0.99, "with jitter, after 4 frames only %.3f of the floor's pixels show their own position", jittered);
+    CHECK(one > 0.2 && one < 0.3, "after 1 frame %.3f of the floor's pixels show their own position, not a quarter", one);
+    CHECK(still > 0.2 && still < 0.3, "without jitter %.3f of the floor's pixels show their own position, not a quarter", still);
+}
+
 /* Of the horizontally neighbouring interior floor pixels, the fraction
  * whose cached red is the same, after 3 frames with sets; -1 on failure.
  * *error: the mean |cached - signal| of red, in pixels of red. */
@@ -745,6 +799,7 @@ int main(int argc, char **argv)
 {
     static const test_case cases[] = {
         {"cache_history", test_cache_history, 1, NULL}, {"cache_sun_span", test_cache_sun_span, 1, NULL}, {"cache_evict", test_cache_evict, 1, NULL}, {"cache_gather", test_cache_gather, 1, NULL},
+        {"cache_sparse", test_cache_sparse, 1, NULL},
         {"cache_own_cells", test_cache_own_cells, 1, NULL}, {"cache_coarse", test_cache_coarse, 1, NULL}, {"cache_chain", test_cache_chain, 1, NULL}, {"cache_chain_levels", test_cache_chain_levels, 1, NULL}, {"cache_reset", test_cache_reset, 1, NULL},
         {"cache_nearest", test_cache_nearest, 1, NULL}, {"cache_min_cell", test_cache_min_cell, 1, NULL}, {"cache_freed_runs", test_cache_freed_runs, 1, NULL}, {"cache_full", test_cache_full, 1, NULL}, {"cache_slot_invocations", test_cache_slot_invocations, 1, NULL}, {"cache_too_large", NULL, 1, test_cache_too_large},
     };
