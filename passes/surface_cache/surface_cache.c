@@ -114,8 +114,9 @@ static const vrg_slot_desc slots[] = {
     {.name = "fallback", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .flags = VRG_SLOT_OPTIONAL,
      .help = "what the widest level's young cells lean on (e.g. a spatial filter of the signal)"},
     {.name = "signal_position", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .flags = VRG_SLOT_OPTIONAL,
-     .help = "optional: a signal smaller than position comes with the positions its texels were sampled at (gbuffer_downsample's); "
-             "the pixel at each such position takes that texel's sample"},
+     .format = VK_FORMAT_R32G32B32A32_SFLOAT,
+     .help = "optional: a signal smaller than position comes with the positions its texels were sampled at (gbuffer_downsample's, "
+             "exact copies of position's); the pixel at each such position takes that texel's sample"},
     {.name = "color", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
      .help = "the cached signal; sky pixels, and pixels with no cell around them: the signal itself"},
     {.name = "table", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_STORAGE_READ_WRITE, .flags = VRG_SLOT_PERSISTENT,
