@@ -487,7 +487,6 @@ typedef struct _vrg_name_plan {
     unsigned char declared[VRG_MAX_BINDINGS], readonly[VRG_MAX_BINDINGS], writeonly[VRG_MAX_BINDINGS];
     VkDescriptorType type[VRG_MAX_BINDINGS];
     char name[VRG_MAX_BINDINGS][64];
-    char *where[VRG_MAX_BINDINGS]; /* FILE:LINE, of the bindings named after an internal resource */
     struct _vrg_name_plan *next;
 } _vrg_name_plan;
 
@@ -496,8 +495,6 @@ void _vrg_name_plans_free(vrg_pass *p)
     while (p->name_plans) {
         _vrg_name_plan *n = p->name_plans;
         p->name_plans = n->next;
-        for (int i = 0; i < VRG_MAX_BINDINGS; i++)
-            free(n->where[i]);
         free(n);
     }
 }
@@ -671,10 +668,8 @@ static const _vrg_name_plan *shader_plan(vrg_pass *p, const vrg_dispatch_desc *d
                      ((s >= 0 && p->slots[s].res >= 0 && pd->slots[s].kind != VRG_ACCEL) || internal);
         if (n->by_name && s >= 0)
             n->slot[b->binding] = s;
-        else if (n->by_name) {
+        else if (n->by_name)
             snprintf(n->internal[b->binding], sizeof n->internal[b->binding], "%s", internal);
-            n->where[b->binding] = strdup(b->where);
-        }
     }
     free(sm.deps);
     _vrg_reflection_free(&sm.refl);
