@@ -118,7 +118,7 @@ static const vrg_slot_desc slots[] = {
      .help = "optional: a signal smaller than position comes with the positions its texels were sampled at (gbuffer_downsample's, "
              "exact copies of position's); the pixel at each such position takes that texel's sample"},
     {.name = "color", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
-     .help = "the cached signal; sky pixels, and pixels with no cell around them: the signal itself"},
+     .help = "the cached signal; sky pixels, and pixels with no cell around them: the signal itself (a smaller signal's texel the pixel lies in)"},
     {.name = "table", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_STORAGE_READ_WRITE, .flags = VRG_SLOT_PERSISTENT,
      .format = VK_FORMAT_R32G32B32A32_UINT,
      .help = "the hash table of cells (kept across frames)"},
