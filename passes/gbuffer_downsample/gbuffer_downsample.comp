@@ -19,12 +19,25 @@ layout(push_constant) uniform Params {
     int offset[2]; // this frame's pixel within the footprint, from its top left
 } params;
 
+// With jitter: this frame's pixel of p's footprint, the full-size pixels
+// that vrg_pixel_in maps back to p (1 to ceil(full / size) a side, as the
+// ratio falls), so that a pass finding a pixel's texel with vrg_pixel_in
+// (surface_cache's sparse insert) finds the texel that sampled it; where
+// rounding puts the pick outside, vrg_pixel_in's own pixel.
+ivec2 footprint_pixel(ivec2 p, ivec2 size, ivec2 full)
+{
+    vec2 ratio = vec2(full) / vec2(size);
+    ivec2 lo = ivec2(ceil(vec2(p) * ratio - 0.5)), hi = ivec2(ceil(vec2(p + 1) * ratio - 0.5));
+    ivec2 g = min(lo + ivec2(params.offset[0], params.offset[1]) % max(hi - lo, ivec2(1)), full - 1);
+    return vrg_pixel_in(g, full, size) == p ? g : vrg_pixel_in(p, size, full);
+}
+
 void shade(ivec2 p)
 {
     ivec2 size = imageSize(out_position), full = imageSize(in_position);
     if (any(greaterThanEqual(p, size)))
         return;
-    ivec2 g = params.jitter != 0 ? min(ifloor(vec2(p) * vec2(full) / vec2(size)) + ivec2(params.offset[0], params.offset[1]), full - 1) : vrg_pixel_in(p, size, full);
+    ivec2 g = params.jitter != 0 ? footprint_pixel(p, size, full) : vrg_pixel_in(p, size, full);
     imageStore(out_position, p, imageLoad(in_position, g));
     imageStore(out_normal, p, imageLoad(in_normal, g));
     imageStore(out_ids, p, imageLoad(in_ids, g));

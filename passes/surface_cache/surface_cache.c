@@ -80,7 +80,7 @@
 #include <string.h>
 #include "voxrg/plugin.h"
 
-#define HEADER_WORDS 16u /* [0]: samples not cached this frame, [1]: cells listed */
+#define HEADER_WORDS 16u /* [0]: samples not cached this frame, [1]: cells listed, [2], [3]: a smaller signal's hit texels and the pixels that matched one */
 
 static const vrg_param_desc params[] = {
     {"cell_pixels", VRG_PARAM_FLOAT, 2, 0.25, 64, "least side of a cell, in pixels at the point's distance"},
@@ -115,7 +115,7 @@ static const vrg_slot_desc slots[] = {
      .help = "what the widest level's young cells lean on (e.g. a spatial filter of the signal)"},
     {.name = "signal_position", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .flags = VRG_SLOT_OPTIONAL,
      .format = VK_FORMAT_R32G32B32A32_SFLOAT,
-     .help = "optional: a signal smaller than position comes with the positions its texels were sampled at (gbuffer_downsample's, "
+     .help = "a signal smaller than position comes with the positions its texels were sampled at (gbuffer_downsample's, "
              "exact copies of position's); the pixel at each such position takes that texel's sample"},
     {.name = "color", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
      .help = "the cached signal; sky pixels, and pixels with no cell around them: the signal itself (a smaller signal's texel the pixel lies in)"},
@@ -165,6 +165,7 @@ typedef struct surface_cache_state {
     vrg_ring *readback;   /* each frame slot's copy of the table's header, for `uncached` */
     uint64_t slots_read;  /* frame slots whose ring slice the GPU has written */
     int warned;
+    int warned_sparse;    /* signal_position matched no pixel (said once) */
     int cpu;              /* a CPU device: slot_invocations = -1 means 0 */
     uint32_t max_groups;  /* maxComputeWorkGroupCount[0]: 65535 on many GPUs */
 } surface_cache_state;
@@ -223,11 +224,23 @@ static const vrg_dispatch_desc dispatches[] = {
 static void report_uncached(vrg_pass *pass, surface_cache_state *s, const vrg_ring_slice *slice)
 {
     uint64_t bit = 1ull << vrg_pass_frame(pass)->frame_slot;
-    uint32_t uncached = 0;
+    uint32_t header[4] = {0};
     if (s->slots_read & bit)
-        memcpy(&uncached, slice->map, sizeof uncached);
+        memcpy(header, slice->map, sizeof header);
     s->slots_read &= ~bit; /* set again once this frame's copy is recorded */
+    uint32_t uncached = header[0];
     vrg_pass_stat(pass, "uncached", uncached);
+    if (vrg_res_connected(vrg_pass_res(pass, "signal_position"))) {
+        vrg_pass_stat(pass, "sparse_texels", header[2]);
+        vrg_pass_stat(pass, "sparse_matched", header[3]);
+        if (header[2] > 0 && header[3] == 0 && !s->warned_sparse) {
+            s->warned_sparse = 1;
+            vrg_pass_warn_at(pass, vrg_pass_slot_line(pass, "signal_position"),
+                             "none of the %u hit texels of signal_position holds the position of a pixel of position: nothing reaches the "
+                             "cache (signal_position must be the copy of position the signal was sampled at, as gbuffer_downsample's)",
+                             header[2]);
+        }
+    }
     if (uncached > 0 && !s->warned) {
         s->warned = 1;
         vrg_pass_warn_at(pass, 0, "%u samples of a frame found no free cell in 32 probes of the hash table (cells = %d): raise cells", uncached,

@@ -49,6 +49,9 @@ layout(push_constant) uniform Params {
 
 // header words
 const uint UNCACHED = 0u, LISTED = 1u, HEADER = 16u;
+// with a smaller signal (SPARSE): its hit texels this frame, and the
+// pixels that matched one (the host warns when none did)
+const uint SPARSE_TEXELS = 2u, SPARSE_MATCHED = 3u;
 // check words: a free slot, a freed one (lookups go on past it), else a cell's check value
 const uint EMPTY = 0u, FREED = 1u;
 const uint PROBES = 32u;
@@ -257,8 +260,13 @@ void shade(ivec2 p)
         return;
 #ifdef SPARSE
     ivec2 s = vrg_pixel_in(p, textureSize(in_position, 0), textureSize(in_signal, 0));
-    if (texelFetch(in_signal_position, s, 0) != x)
+    vec4 sampled = texelFetch(in_signal_position, s, 0);
+    // each hit texel counted once, by the pixel vrg_pixel_in picks for it
+    if (sampled.w != 0.0 && vrg_pixel_in(s, textureSize(in_signal, 0), textureSize(in_position, 0)) == p)
+        atomicAdd(out_table.words[SPARSE_TEXELS], 1u);
+    if (sampled != x)
         return; // this texel sampled another pixel of its footprint
+    atomicAdd(out_table.words[SPARSE_MATCHED], 1u);
 #else
     ivec2 s = p;
 #endif

@@ -18,8 +18,9 @@
 #include "terrain_gen.h"
 
 /* the parameter with a list of names (param_choices): placed at its index
- * in both lists, so that the two cannot drift apart (-Woverride-init says
- * so if the entries before it change count) */
+ * in both lists, so that the two cannot drift apart: an entry added before
+ * it makes -Woverride-init warn, one removed leaves an entry with no name,
+ * which the loader refuses */
 enum { STREAM_PARAM = 13 };
 
 static const vrg_param_desc params[] = {

@@ -588,13 +588,20 @@ static void test_cache_own_cells(void)
 
 /* The share of floor pixels whose cached value (cache_sparse.ini: the
  * half-size position, sampled at gbuffer_downsample's pixels) is their own
- * position after `frames` frames with sets; -1 on failure. */
-static double sparse_own_share(const char *const *sets, uint32_t nsets, int frames)
+ * position after `frames` frames with sets, at width x height (0: the
+ * graph's 64x48); -1 on failure. */
+static double sparse_own_share(const char *const *sets, uint32_t nsets, int frames, uint32_t width, uint32_t height)
 {
-    static const char *const sparse_reads[] = {"sparse.color", "gbuffer.position"};
-    vrg_graph *g = load_with("cache_sparse.ini", sets, nsets, sparse_reads, 2);
+    /* wrong.color read too: the graph's other cache runs (test_cache_sparse) */
+    static const char *const sparse_reads[] = {"sparse.color", "gbuffer.position", "wrong.color"};
+    vrg_graph *g = load_with("cache_sparse.ini", sets, nsets, sparse_reads, 3);
     if (!g)
         return -1;
+    if (width && vrg_graph_resize(g, width, height) != 0) {
+        CHECK(0, "resize to %ux%u failed", width, height);
+        vrg_graph_destroy(g);
+        return -1;
+    }
     for (int i = 0; i < frames; i++)
         CHECK(vrg_graph_frame(g) == 0, "frame failed");
     vrg_image_data cached, pos;
@@ -625,17 +632,53 @@ static double sparse_own_share(const char *const *sets, uint32_t nsets, int fram
 
 /* A signal smaller than the G-buffer (signal_position connected): each
  * half-size texel's sample goes to the cell of the one pixel it was taken
- * at, not to its neighbours'. With gbuffer_downsample's jitter every pixel
- * is sampled once in 4 frames, so after 4 frames every floor pixel's own
- * cell shows its own position; without jitter only the pixel each texel
- * always takes does (the others' cells never get a sample: they show the
- * texel's, another pixel's position). */
+ * at, not to its neighbours' (a cache that gave the whole footprint's cells
+ * each sample would, after 4 frames of jitter, leave none showing its own
+ * position: their cells would hold the mean of four). With
+ * gbuffer_downsample's jitter every pixel is sampled once in 4 frames, so
+ * after 4 frames every floor pixel's own cell shows its own position, at
+ * an odd size too (65x49: half-size texels of 1 or 2 pixels a side, whose
+ * picks must be the pixels the cache maps back to them); without jitter
+ * only the pixel each texel always takes does (the others' cells never get
+ * a sample: they show the texel's, another pixel's position). */
 static void test_cache_sparse(void)
 {
     static const char *const fixed[] = {"half.jitter=0"};
-    double jittered = sparse_own_share(NULL, 0, 4), one = sparse_own_share(NULL, 0, 1), still = sparse_own_share(fixed, 1, 4);
-    printf("floor pixels showing their own position: jitter, 4 frames %.3f, 1 frame %.3f; no jitter, 4 frames %.3f\n", jittered, one, still);
+    double jittered = sparse_own_share(NULL, 0, 4, 0, 0), one = sparse_own_share(NULL, 0, 1, 0, 0), still = sparse_own_share(fixed, 1, 4, 0, 0);
+    double odd = sparse_own_share(NULL, 0, 4, 65, 49);
+    printf("floor pixels showing their own position: jitter, 4 frames %.3f, 1 frame %.3f; no jitter, 4 frames %.3f; 65x49, 4 frames %.3f\n",
+           jittered, one, still, odd);
     CHECK(jittered > 0.99, "with jitter, after 4 frames only %.3f of the floor's pixels show their own position", jittered);
+    CHECK(odd > 0.99, "at 65x49, with jitter, after 4 frames only %.3f of the floor's pixels show their own position", odd);
+    /* the counts the host reads back: every hit texel matched one pixel;
+     * a signal_position that is no copy of position (pass `wrong`)
+     * matches none, and the pass warns, once */
+    char *log = NULL;
+    size_t len = 0;
+    FILE *diag = open_memstream(&log, &len);
+    char path[1024];
+    snprintf(path, sizeof path, "%s/graphs/cache_sparse.ini", TEST_DIR);
+    static const char *const both[] = {"sparse.color", "wrong.color"};
+    vrg_graph_desc d = {.path = path, .diag = diag, .readback = both, .readback_count = 2};
+    vrg_graph *g = NULL;
+    double texels = -1, matched = -1, wrong_texels = -1, wrong_matched = -1;
+    if (vrg_graph_load(ctx, &d, &g) == 0) {
+        for (int i = 0; i < 6; i++)
+            CHECK(vrg_graph_frame(g) == 0, "frame failed");
+        CHECK(vrg_graph_stat(g, "sparse", "sparse_texels", &texels) == 0 && vrg_graph_stat(g, "sparse", "sparse_matched", &matched) == 0 &&
+                  vrg_graph_stat(g, "wrong", "sparse_texels", &wrong_texels) == 0 && vrg_graph_stat(g, "wrong", "sparse_matched", &wrong_matched) == 0,
+              "no sparse stats");
+        vrg_graph_destroy(g);
+    } else
+        CHECK(0, "cannot load %s", path);
+    fclose(diag);
+    printf("hit texels %g, matched %g; with a wrong signal_position %g and %g\n", texels, matched, wrong_texels, wrong_matched);
+    CHECK(texels > 300 && matched == texels, "%g hit texels, %g matched a pixel: each should match one", texels, matched);
+    CHECK(wrong_texels > 300 && wrong_matched == 0, "a signal_position that is no copy of position: %g of %g texels matched", wrong_matched, wrong_texels);
+    const char *warned = log ? strstr(log, "nothing reaches the cache") : NULL;
+    CHECK(warned && strstr(log, "cache_sparse.ini:") && !strstr(warned + 1, "nothing reaches the cache"), "no single warning naming the line: %s",
+          log ? log : "");
+    free(log);
     CHECK(one > 0.2 && one < 0.3, "after 1 frame %.3f of the floor's pixels show their own position, not a quarter", one);
     CHECK(still > 0.2 && still < 0.3, "without jitter %.3f of the floor's pixels show their own position, not a quarter", still);
 }
