@@ -53,10 +53,11 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         return;
     vrg_push_ints(pass, "offset", (int32_t[2]){0, 0}, 2);
     if (vrg_param_int(pass, "jitter")) {
-        /* the footprint's n pixels in turn, the k-th of frame f at (f * step)
-         * mod n in raster order: step = its width + 1 (the next one on it
-         * that shares no factor with n), which at 2x2 alternates the
-         * diagonals: (0,0) (1,1) (0,1) (1,0) */
+        /* the footprint's n pixels in turn: frame f takes the one at
+         * (f * step) mod n in raster order, step the footprint's width + 1
+         * or, where that shares a factor with n, the next number that does
+         * not (so that every pixel comes round); at 2x2 the diagonals
+         * alternate: (0,0) (1,1) (0,1) (1,0) */
         VkExtent2D full = vrg_res_extent(pass, vrg_pass_res(pass, "in.position")), low = vrg_res_extent(pass, vrg_pass_res(pass, "out.position"));
         uint32_t w = (full.width + low.width - 1) / low.width, h = (full.height + low.height - 1) / low.height, n = w * h, step = w + 1;
         while (gcd(step, n) != 1)
