@@ -23,7 +23,8 @@ static const vrg_param_desc params[] = {
     {"size", VRG_PARAM_INT, 7, 3, 15, "window width (odd)"},
     {"min_history", VRG_PARAM_INT, 4, 1, 100, "temporal: frames of history before the moments are trusted"},
 };
-/* the names mode takes (the runtime checks the graph's value): as modes[] */
+/* the names mode takes (the runtime checks the graph's value;
+ * vrg_param_choice(pass, "mode", NULL, 0) is its index) */
 static const char *const param_choices[] = {"spatial,temporal", NULL, NULL};
 _Static_assert(sizeof param_choices / sizeof param_choices[0] == sizeof params / sizeof params[0], "a choice list (or NULL) per parameter");
 
@@ -42,11 +43,10 @@ static const vrg_slot_desc slots[] = {
      .help = "r: the variance (color's alpha); g: 1 where from the pixel's own moments, 0 from a spatial window (written only when read)"},
 };
 
-static const char *const modes[] = {"spatial", "temporal"};
 
 static int check(vrg_pass *pass)
 {
-    int mode = vrg_param_choice(pass, "mode", modes, 2);
+    int mode = vrg_param_choice(pass, "mode", NULL, 0);
     if (vrg_param_int(pass, "size") % 2 == 0)
         return vrg_pass_error(pass, "size = %d: the window needs a centre, give an odd size", vrg_param_int(pass, "size"));
     if (mode == 1 && (!vrg_res_connected(vrg_pass_res(pass, "moments")) || !vrg_res_connected(vrg_pass_res(pass, "length"))))
@@ -80,7 +80,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
     static const char *scratch[] = {"rows"};
     if (vrg_pass_require_same_size(pass, "color", scratch, 1) != 0)
         return;
-    int mode = vrg_param_choice(pass, "mode", modes, 2);
+    int mode = vrg_param_choice(pass, "mode", NULL, 0);
     int radius = vrg_param_int(pass, "size") / 2;
     /* the unread debug output is a 1x1 stand-in: left out */
     int debug = vrg_res_connected(vrg_pass_res(pass, "variance"));

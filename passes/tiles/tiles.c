@@ -38,7 +38,8 @@ static const vrg_param_desc params[] = {
 };
 
 /* the names each t<i>_channel takes (the runtime checks the graph's
- * values): as channels[] below, in the order of TILE_PARAMS */
+ * values; vrg_param_choice(pass, name, NULL, 0) is the index), in the
+ * order of TILE_PARAMS; tiles.comp's modes: their indices */
 #define TILE_CHOICES "rgb,r,g,b,a,luma", NULL, NULL, NULL
 static const char *const param_choices[] = {
     NULL, TILE_CHOICES, TILE_CHOICES, TILE_CHOICES, TILE_CHOICES, TILE_CHOICES, TILE_CHOICES, TILE_CHOICES, TILE_CHOICES, TILE_CHOICES,
@@ -55,16 +56,10 @@ static const vrg_slot_desc slots[] = {
      .help = "the tiles, display values"},
 };
 
-static const char *const channels[] = {"rgb", "r", "g", "b", "a", "luma"};
-#define CHANNELS (int)(sizeof channels / sizeof channels[0])
-
 static int check(vrg_pass *pass)
 {
     int bad = 0;
     for (int i = 0; i < TILES; i++) {
-        char name[32];
-        snprintf(name, sizeof name, "t%d_channel", i);
-        bad |= vrg_param_choice(pass, name, channels, CHANNELS) < 0;
         char lo[32], hi[32];
         snprintf(lo, sizeof lo, "t%d_min", i);
         snprintf(hi, sizeof hi, "t%d_max", i);
@@ -127,7 +122,7 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
         connected |= 1u << i;
         last = i;
         snprintf(name, sizeof name, "t%d_channel", i);
-        uint32_t mode = (uint32_t)vrg_param_choice(pass, name, channels, CHANNELS);
+        uint32_t mode = (uint32_t)vrg_param_choice(pass, name, NULL, 0);
         snprintf(name, sizeof name, "t%d_heat", i);
         mode |= vrg_param_int(pass, name) ? 8u : 0u;
         modes[i / 8] |= mode << (4 * (i % 8));

@@ -46,8 +46,7 @@ static const vrg_param_desc params[] = {
 
 static const vrg_slot_desc slots[] = {VRG_SCENE_SLOTS};
 
-static const char *const stream_modes[] = {"wait", "budget"};
-/* the runtime checks stream's value against these: as stream_modes */
+/* the runtime checks stream's value against these */
 static const char *const param_choices[sizeof params / sizeof params[0]] = {[STREAM_PARAM] = "wait,budget"};
 
 /* The generated world and what generates it. A hot reload of a graph whose
@@ -232,7 +231,7 @@ static int create(vrg_pass *pass)
     if (!s)
         return vrg_pass_error(pass, "out of memory");
     vrg_pass_set_user(pass, s);
-    s->wait = vrg_param_choice(pass, "stream", stream_modes, 2) == 0;
+    s->wait = vrg_param_choice(pass, "stream", NULL, 0) == 0;
     terrain_world want = {0};
     world_params(pass, &want);
     journal_path(pass, want.journal, sizeof want.journal);

@@ -302,6 +302,7 @@ static const char *reloadme_source =
     "static int create(vrg_pass *p) {\n"
     "#ifdef LONG_MESSAGES\n    char m[3001];\n    memset(m, 'm', 3000);\n    memcpy(m + 2990, \"end_of_it\", 10);\n"
     "    vrg_pass_warn_at(p, 0, \"warned %s\", m);\n    return vrg_pass_error(p, \"failed %s\", m);\n#endif\n"
+    "#ifdef CHOICE_WITHOUT_LIST\n    if (vrg_param_choice(p, \"level\", NULL, 0) < 0)\n        return -1;\n#endif\n"
     "    vrg_pass_set_user(p, calloc(1, sizeof(state)));\n    return 0;\n}\n"
     "static void destroy(vrg_pass *p) { free(vrg_pass_user(p)); }\n"
     "static void execute(vrg_pass *p, VkCommandBuffer cmd) {\n"
@@ -314,8 +315,11 @@ static const char *reloadme_source =
     "static int restore(vrg_pass *p, const void *src, size_t n) {\n"
     "    if (n != sizeof(state)) return -1;\n    memcpy(vrg_pass_user(p), src, n);\n    return 0;\n}\n"
     "#ifndef NAME\n#define NAME \"reloadme\"\n#endif\n"
+    "#ifdef CHOICE_WITHOUT_LIST\n"
+    "static const vrg_param_desc params[] = {{.name = \"level\", .type = VRG_PARAM_STRING, .default_string = \"mid\"}};\n"
+    "#define PARAMS .params = params, .param_count = 1,\n#else\n#define PARAMS\n#endif\n"
     "static const vrg_plugin_desc desc = {.abi_version = ABI, .name = NAME, .kind = VRG_PLUGIN_PASS,\n"
-    "    .help = \"test: hot reload\", .shader_dir = DIR, .slots = slots, .slot_count = 1, .create = create,\n"
+    "    .help = \"test: hot reload\", .shader_dir = DIR, .slots = slots, .slot_count = 1, .create = create, PARAMS\n"
     "    .destroy = destroy, .execute = execute, .save_state = save, .restore_state = restore};\n"
     "VRG_PLUGIN(desc)\n";
 
@@ -555,43 +559,70 @@ static void test_hot_reload_state_too_big(void)
     remove(so), remove(src), remove(shader), remove(path), rmdir(dir);
 }
 
-/* A plugin's warning and error reach the diagnostics whole, however long
- * (they were once cut at 1536 bytes). */
-static void test_long_plugin_messages(void)
+/* Builds the test plugin with `flags` as `name` into a folder of its own,
+ * loads a graph of one pass of it and returns what the load said (NULL
+ * after a failure to build); *loaded: whether the graph loaded. */
+static char *load_log_of(const char *name, const char *flags, int *loaded)
 {
-    char dir[] = "/tmp/voxrg-long-XXXXXX";
+    char dir[] = "/tmp/voxrg-plugin-XXXXXX";
+    *loaded = 0;
     if (!mkdtemp(dir)) {
         CHECK(0, "mkdtemp failed");
-        return;
+        return NULL;
     }
-    char path[1100], shader[1100], so[1100], src[1100];
-    snprintf(path, sizeof path, "%s/long.ini", dir);
+    char path[1100], shader[1100], so[1100], src[1100], text[256];
+    snprintf(path, sizeof path, "%s/graph.ini", dir);
     snprintf(shader, sizeof shader, "%s/reloadme.comp", dir);
-    snprintf(so, sizeof so, "%s/longmsg.so", dir);
-    snprintf(src, sizeof src, "%s/longmsg.c", dir);
-    save_file(path, "[graph]\noutput = color\nwidth = 8\nheight = 8\n[pass r]\nplugin = longmsg\nout.color = color\n");
+    snprintf(so, sizeof so, "%s/%s.so", dir, name);
+    snprintf(src, sizeof src, "%s/%s.c", dir, name);
+    snprintf(text, sizeof text, "[graph]\noutput = color\nwidth = 8\nheight = 8\n[pass r]\nplugin = %s\nout.color = color\n", name);
+    save_file(path, text);
     save_file(shader, "#version 450\nlayout(local_size_x = 8, local_size_y = 8) in;\n"
                       "layout(binding = 0, rgba16f) uniform writeonly image2D dst;\n"
                       "layout(push_constant) uniform P { vec4 c; } pc;\n"
                       "void main() { imageStore(dst, ivec2(gl_GlobalInvocationID.xy), pc.c); }\n");
-    CHECK(build_plugin_flags(dir, "longmsg", 1, "VRG_ABI_VERSION", "-DLONG_MESSAGES") == 0, "cannot build the test plugin with cc");
-    setenv("VOXRG_PLUGIN_PATH", dir, 1);
     char *log = NULL;
-    size_t len = 0;
-    FILE *diag = open_memstream(&log, &len);
-    vrg_graph_desc d = {.path = path, .diag = diag};
-    vrg_graph *g = NULL;
-    int rc = vrg_graph_load(ctx, &d, &g);
-    CHECK(rc != 0, "a graph whose pass fails in create() loaded");
-    if (rc == 0)
-        vrg_graph_destroy(g);
-    fclose(diag);
+    if (build_plugin_flags(dir, name, 1, "VRG_ABI_VERSION", flags) == 0) {
+        setenv("VOXRG_PLUGIN_PATH", dir, 1);
+        size_t len = 0;
+        FILE *diag = open_memstream(&log, &len);
+        vrg_graph_desc d = {.path = path, .diag = diag};
+        vrg_graph *g = NULL;
+        *loaded = vrg_graph_load(ctx, &d, &g) == 0;
+        if (*loaded)
+            vrg_graph_destroy(g);
+        fclose(diag);
+        unsetenv("VOXRG_PLUGIN_PATH");
+    } else
+        CHECK(0, "cannot build the test plugin with cc");
+    remove(so), remove(src), remove(shader), remove(path), rmdir(dir);
+    return log;
+}
+
+/* A plugin's warning and error reach the diagnostics whole, however long
+ * (they were once cut at 1536 bytes). */
+static void test_long_plugin_messages(void)
+{
+    int loaded;
+    char *log = load_log_of("longmsg", "-DLONG_MESSAGES", &loaded);
+    CHECK(!loaded, "a graph whose pass fails in create() loaded");
     const char *warned = log ? strstr(log, "warned mmm") : NULL, *failed = log ? strstr(log, "failed mmm") : NULL;
     CHECK(warned && strncmp(warned + 7 + 2990, "end_of_it", 9) == 0, "the warning is cut: %.80s...", warned ? warned : "(none)");
     CHECK(failed && strncmp(failed + 7 + 2990, "end_of_it", 9) == 0, "the error is cut: %.80s...", failed ? failed : "(none)");
     free(log);
-    unsetenv("VOXRG_PLUGIN_PATH");
-    remove(so), remove(src), remove(shader), remove(path), rmdir(dir);
+}
+
+/* vrg_param_choice with no list of its own (NULL) for a string parameter
+ * the plugin lists no choices for (param_choices): an error naming the
+ * API's misuse. */
+static void test_param_choice_without_list(void)
+{
+    int loaded;
+    char *log = load_log_of("nochoice", "-DCHOICE_WITHOUT_LIST", &loaded);
+    CHECK(!loaded, "a graph whose pass fails in create() loaded");
+    CHECK(log && strstr(log, "VRG-E062") && strstr(log, "vrg_param_choice('level', NULL): the plugin lists no choices for it"), "no misuse error: %s",
+          log ? log : "(none)");
+    free(log);
 }
 
 /* Hot reload of a rebuilt plugin: the new build runs from the next graph
@@ -728,6 +759,7 @@ int main(int argc, char **argv)
         {"hot_reload_many_files", test_hot_reload_many_files, 1},
         {"hot_reload_state_too_big", test_hot_reload_state_too_big, 1},
         {"long_plugin_messages", test_long_plugin_messages, 1},
+        {"param_choice_without_list", test_param_choice_without_list, 1},
         {"save_file_errors", test_save_file_errors, 0},
     };
     return run_case(argc, argv, cases, sizeof cases / sizeof cases[0]);

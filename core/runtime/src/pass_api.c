@@ -206,6 +206,21 @@ int vrg_param_line(const vrg_pass *p, const char *name)
 int vrg_param_choice(vrg_pass *p, const char *name, const char *const *choices, int count)
 {
     const char *v = vrg_param_string(p, name);
+    if (!choices) { /* the descriptor's list (param_choices), which the runtime checked the value against */
+        const vrg_plugin_desc *d = p->plugin->desc;
+        for (uint32_t i = 0; i < d->param_count; i++)
+            if (strcmp(d->params[i].name, name) == 0 && _vrg_param_choices(d, i)) {
+                int k = _vrg_choice_index(_vrg_param_choices(d, i), v);
+                if (k < 0) {
+                    char *list = _vrg_choice_words(_vrg_param_choices(d, i));
+                    pass_fail_at(p, vrg_param_line(p, name), VRG_E_NOT_A_CHOICE, "%s = '%s': expected %s", name, v,
+                                 list ? list : _vrg_param_choices(d, i));
+                    free(list);
+                }
+                return k;
+            }
+        return _vrg_pass_fail(p, VRG_E_PASS_API_MISUSE, "vrg_param_choice('%s', NULL): the plugin lists no choices for it (param_choices)", name);
+    }
     for (int i = 0; i < count; i++)
         if (strcmp(v, choices[i]) == 0)
             return i;

@@ -351,7 +351,9 @@ const char *vrg_param_item(const vrg_pass *pass, const char *name, int i, int *l
 /* Graph line of the string value in effect (0: the default or an override). */
 int vrg_param_line(const vrg_pass *pass, const char *name);
 /* A string parameter that names one of `choices`: its index, or -1 after
- * reporting "NAME = 'VALUE': expected A, B or C" at the value's line. */
+ * reporting "NAME = 'VALUE': expected A, B or C" at the value's line.
+ * choices NULL (count ignored): the plugin's own list for it
+ * (param_choices), so that the names are written once. */
 int vrg_param_choice(vrg_pass *pass, const char *name, const char *const *choices, int count);
 
 /* In check() or create(): the byte size of a buffer output, when it depends
