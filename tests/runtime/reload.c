@@ -294,6 +294,12 @@ static void test_hot_reload_keep_resource(void)
     rmdir(dir);
 }
 
+/* reloadme.comp beside the test plugin: the colour its push constant says */
+static const char *const reloadme_shader = "#version 450\nlayout(local_size_x = 8, local_size_y = 8) in;\n"
+                                           "layout(binding = 0, rgba16f) uniform writeonly image2D dst;\n"
+                                           "layout(push_constant) uniform P { vec4 c; } pc;\n"
+                                           "void main() { imageStore(dst, ivec2(gl_GlobalInvocationID.xy), pc.c); }\n";
+
 static const char *reloadme_source =
     "#include <stdlib.h>\n#include <string.h>\n#include \"voxrg/plugin.h\"\n"
     "static const vrg_slot_desc slots[] = {{.name = \"color\", .dir = VRG_OUT, .kind = VRG_IMAGE,\n"
@@ -383,10 +389,7 @@ static void test_hot_reload_many_plugins(void)
     size_t tlen = 0;
     snprintf(path, sizeof path, "%s/many.ini", dir);
     snprintf(shader, sizeof shader, "%s/reloadme.comp", dir);
-    save_file(shader, "#version 450\nlayout(local_size_x = 8, local_size_y = 8) in;\n"
-                      "layout(binding = 0, rgba16f) uniform writeonly image2D dst;\n"
-                      "layout(push_constant) uniform P { vec4 c; } pc;\n"
-                      "void main() { imageStore(dst, ivec2(gl_GlobalInvocationID.xy), pc.c); }\n");
+    save_file(shader, reloadme_shader);
     append(&text, &tlen, "[graph]\noutput = c0\nwidth = 8\nheight = 8\n");
     for (int i = 0; i < PLUGINS; i++) {
         snprintf(name[i], sizeof name[i], "reloadme%d", i);
@@ -526,10 +529,7 @@ static void test_hot_reload_state_too_big(void)
     snprintf(so, sizeof so, "%s/bigstate.so", dir);
     snprintf(src, sizeof src, "%s/bigstate.c", dir);
     save_file(path, "[graph]\noutput = color\nwidth = 8\nheight = 8\n[pass r]\nplugin = bigstate\nout.color = color\n");
-    save_file(shader, "#version 450\nlayout(local_size_x = 8, local_size_y = 8) in;\n"
-                      "layout(binding = 0, rgba16f) uniform writeonly image2D dst;\n"
-                      "layout(push_constant) uniform P { vec4 c; } pc;\n"
-                      "void main() { imageStore(dst, ivec2(gl_GlobalInvocationID.xy), pc.c); }\n");
+    save_file(shader, reloadme_shader);
     CHECK(build_plugin_flags(dir, "bigstate", 1, "VRG_ABI_VERSION", "-DSAVE_TOO_MUCH") == 0, "cannot build the test plugin with cc");
     setenv("VOXRG_PLUGIN_PATH", dir, 1);
     char *log = NULL;
@@ -577,10 +577,7 @@ static char *load_log_of(const char *name, const char *flags, int *loaded)
     snprintf(src, sizeof src, "%s/%s.c", dir, name);
     snprintf(text, sizeof text, "[graph]\noutput = color\nwidth = 8\nheight = 8\n[pass r]\nplugin = %s\nout.color = color\n", name);
     save_file(path, text);
-    save_file(shader, "#version 450\nlayout(local_size_x = 8, local_size_y = 8) in;\n"
-                      "layout(binding = 0, rgba16f) uniform writeonly image2D dst;\n"
-                      "layout(push_constant) uniform P { vec4 c; } pc;\n"
-                      "void main() { imageStore(dst, ivec2(gl_GlobalInvocationID.xy), pc.c); }\n");
+    save_file(shader, reloadme_shader);
     char *log = NULL;
     if (build_plugin_flags(dir, name, 1, "VRG_ABI_VERSION", flags) == 0) {
         setenv("VOXRG_PLUGIN_PATH", dir, 1);
@@ -647,10 +644,7 @@ static void test_hot_reload_plugin(void)
     hour_ago[0].tv_sec -= 3600;
     hour_ago[1] = hour_ago[0];
     CHECK(utimensat(AT_FDCWD, path, hour_ago, 0) == 0, "cannot set the graph file's mtime");
-    save_file(shader, "#version 450\nlayout(local_size_x = 8, local_size_y = 8) in;\n"
-                      "layout(binding = 0, rgba16f) uniform writeonly image2D dst;\n"
-                      "layout(push_constant) uniform P { vec4 c; } pc;\n"
-                      "void main() { imageStore(dst, ivec2(gl_GlobalInvocationID.xy), pc.c); }\n");
+    save_file(shader, reloadme_shader);
     if (build_reloadme(dir, 1, "VRG_ABI_VERSION") != 0) {
         CHECK(0, "cannot build the test plugin with cc");
         return;

@@ -203,22 +203,30 @@ int vrg_param_line(const vrg_pass *p, const char *name)
     return line;
 }
 
+/* The index of parameter i's value in the descriptor's list for it
+ * (param_choices), or -1 after VRG-E047 at the value's line. */
+static int descriptor_choice(vrg_pass *p, uint32_t i)
+{
+    const vrg_plugin_desc *d = p->plugin->desc;
+    const char *choices = _vrg_param_choices(d, i), *v = vrg_param_string(p, d->params[i].name);
+    int k = _vrg_choice_index(choices, v);
+    if (k >= 0)
+        return k;
+    char *list = _vrg_choice_words(choices);
+    pass_fail_at(p, vrg_param_line(p, d->params[i].name), VRG_E_NOT_A_CHOICE, "%s = '%s': expected %s", d->params[i].name, v,
+                 list ? list : choices); /* no memory for the words: the list as written */
+    free(list);
+    return -1;
+}
+
 int vrg_param_choice(vrg_pass *p, const char *name, const char *const *choices, int count)
 {
     const char *v = vrg_param_string(p, name);
     if (!choices) { /* the descriptor's list (param_choices), which the runtime checked the value against */
         const vrg_plugin_desc *d = p->plugin->desc;
         for (uint32_t i = 0; i < d->param_count; i++)
-            if (strcmp(d->params[i].name, name) == 0 && _vrg_param_choices(d, i)) {
-                int k = _vrg_choice_index(_vrg_param_choices(d, i), v);
-                if (k < 0) {
-                    char *list = _vrg_choice_words(_vrg_param_choices(d, i));
-                    pass_fail_at(p, vrg_param_line(p, name), VRG_E_NOT_A_CHOICE, "%s = '%s': expected %s", name, v,
-                                 list ? list : _vrg_param_choices(d, i));
-                    free(list);
-                }
-                return k;
-            }
+            if (strcmp(d->params[i].name, name) == 0 && _vrg_param_choices(d, i))
+                return descriptor_choice(p, i);
         return _vrg_pass_fail(p, VRG_E_PASS_API_MISUSE, "vrg_param_choice('%s', NULL): the plugin lists no choices for it (param_choices)", name);
     }
     for (int i = 0; i < count; i++)
@@ -245,18 +253,9 @@ int _vrg_pass_check_choices(vrg_pass *p)
 {
     const vrg_plugin_desc *d = p->plugin->desc;
     int rc = 0;
-    for (uint32_t i = 0; i < d->param_count; i++) {
-        const char *choices = _vrg_param_choices(d, i);
-        if (!choices)
-            continue;
-        const char *v = vrg_param_string(p, d->params[i].name);
-        if (_vrg_choice_index(choices, v) >= 0)
-            continue;
-        char *list = _vrg_choice_words(choices);
-        rc = pass_fail_at(p, vrg_param_line(p, d->params[i].name), VRG_E_NOT_A_CHOICE, "%s = '%s': expected %s", d->params[i].name, v,
-                          list ? list : choices); /* no memory for the words: the list as written */
-        free(list);
-    }
+    for (uint32_t i = 0; i < d->param_count; i++)
+        if (_vrg_param_choices(d, i) && descriptor_choice(p, i) < 0)
+            rc = -1;
     return rc;
 }
 
