@@ -19,6 +19,7 @@
 #include "compare_cases.h"
 #include "compare_result.h"
 #include "compare_shard.h"
+#include "lines_once.h"
 #include "ref_cache.h"
 #include "report.h"
 #include "util.h"
@@ -86,6 +87,9 @@ typedef struct options {
     /* the case being run: its scene.PARAM=VALUE overrides, for every graph */
     char *const *scene;
     int scene_count;
+    /* where the graphs' messages go: each line once (a graph is loaded
+     * once per case, and its warnings would repeat) */
+    FILE *diag;
 } options;
 
 /* one candidate to render: a graph and its overrides */
@@ -280,7 +284,7 @@ static vrg_graph *load(vrg_context *ctx, const char *graph, const char *const *s
     for (int i = 0; i < o->scene_count; i++)
         all[n++] = o->scene[i];
     vrg_graph_desc d = {.path = graph, .overrides = all, .override_count = (uint32_t)n, .width = o->width, .height = o->height,
-                        .check_finite = o->check_finite};
+                        .check_finite = o->check_finite, .diag = o->diag};
     vrg_graph *g = NULL;
     int rc = vrg_graph_load(ctx, &d, &g);
     free(all);
@@ -1308,7 +1312,10 @@ int vrg_cli_compare(int argc, char **argv)
     FILE *sections = NULL;
     char file[VRG_CLI_PATH], cache[VRG_CLI_PATH];
     static const char *outputs[] = {"report.html", "metrics.json", "metrics.csv", VRG_CMP_SHARD_FILE};
-    if (access(o.reference, R_OK) != 0) {
+    if (!(o.diag = vrg_cli_lines_once(stderr))) {
+        fprintf(stderr, "error: out of memory\n");
+        rc = 1;
+    } else if (access(o.reference, R_OK) != 0) {
         fprintf(stderr, "error: reference graph %s: %s\n", o.reference, strerror(errno));
         rc = 1;
     } else if (expand_grids(&o) != 0)
@@ -1375,6 +1382,8 @@ int vrg_cli_compare(int argc, char **argv)
 done:
     if (sections)
         fclose(sections);
+    if (o.diag)
+        fclose(o.diag);
     for (int c = 0; setups && c < spec_count; c++)
         vrg_camera_path_free(&setups[c].path);
     free(setups);
