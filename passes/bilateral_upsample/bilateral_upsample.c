@@ -14,9 +14,13 @@
  * the pixel's surface, weighted 1 / (1 + t^2) by their offset t in texels
  * from the pixel: the same face a texel or two further off says more of
  * the pixel's light than the nearest texel of another face (in foliage
- * and at steps, where this happens most). Off by default so that a graph
- * keeps its images; the sweep that turned it on in interactive.ini is in
- * docs/denoisers.md. Sky pixels get 1, the illumination combine writes
+ * and at steps, where this happens most). With orientation_fallback a
+ * pixel none of whose texels read is on its surface then blends, alike,
+ * those that face its way on other planes: a 1-px face of a step seen
+ * from afar gets the light of the step faces beside it, which face the
+ * same sky and ground, not that of the floor in front. Both off by
+ * default so that a graph keeps its images; the sweeps that turned them
+ * on in interactive.ini are in docs/denoisers.md. Sky pixels get 1, the illumination combine writes
  * for sky (modulate passes the sky through).
  * mode = bilinear or nearest turn the surface test off, for comparison. */
 #include "voxrg/plugin.h"
@@ -28,11 +32,13 @@ static const vrg_param_desc params[] = {
      .help = "a texel is on the pixel's plane when its offset from it is at most this per block of distance"},
     {.name = "surface_ring", .type = VRG_PARAM_BOOL, .default_value = 0, .min = 0, .max = 1,
      .help = "1: where none of the 2x2 is on the pixel's surface, blend the texels of the 4x4's ring that are, before the nearest hit"},
+    {.name = "orientation_fallback", .type = VRG_PARAM_BOOL, .default_value = 0, .min = 0, .max = 1,
+     .help = "1: where no texel read is on the pixel's surface, blend those facing its way on other planes, before the nearest hit"},
 };
 
 /* the names mode takes: the runtime checks the graph's value and pushes
  * its index as the shader's `mode` */
-static const char *const param_choices[] = {"bilateral,bilinear,nearest", NULL, NULL};
+static const char *const param_choices[] = {"bilateral,bilinear,nearest", NULL, NULL, NULL};
 _Static_assert(sizeof param_choices / sizeof param_choices[0] == sizeof params / sizeof params[0], "a choice list (or NULL) per parameter");
 
 static const vrg_slot_desc slots[] = {

@@ -17,7 +17,15 @@ layout(push_constant) uniform Params
     int mode; // 0 bilateral, 1 bilinear, 2 nearest
     float plane_tolerance;
     int surface_ring;
+    int orientation_fallback;
 } params;
+
+// a fallback texel's weight by its offset t in texels from the pixel's centre
+float offset_weight(ivec2 o, vec2 f)
+{
+    vec2 t = vec2(o) - f;
+    return 1.0 / (1.0 + dot(t, t));
+}
 
 void shade(ivec2 p)
 {
@@ -40,14 +48,16 @@ void shade(ivec2 p)
     vec2 c = (vec2(p) + 0.5) * vec2(low) / vec2(size) - 0.5 - vrg_pixel_in_offset(low, size);
     ivec2 base = ivec2(floor(c));
     vec2 f = c - vec2(base);
-    vec4 sum = vec4(0.0), ring_sum = vec4(0.0);
-    float wsum = 0.0, ring_wsum = 0.0, nearest_d = 1e30;
+    vec4 sum = vec4(0.0), ring_sum = vec4(0.0), facing_sum = vec4(0.0);
+    float wsum = 0.0, ring_wsum = 0.0, facing_wsum = 0.0, nearest_d = 1e30;
     vec4 nearest = vec4(1.0);
     bool inner_hit = false;
     // the 2x2 texels, then, when none of them is on the pixel's surface,
     // the ring of the 4x4 around them: with surface_ring, its texels on
-    // the surface weighted by their distance in texels; the nearest hit
-    // otherwise (of the 2x2 if one is a hit, else of the ring)
+    // the surface weighted by their distance in texels; with
+    // orientation_fallback, the texels read that face the pixel's way on
+    // other planes, weighted alike; the nearest hit otherwise (of the 2x2
+    // if one is a hit, else of the ring)
     for (int j = 0; j < 20; j++) {
         bool inner = j < 4;
         ivec2 o = inner ? ivec2(j & 1, j >> 1) : ivec2((j - 4) % 4 - 1, (j - 4) / 4 - 1);
@@ -66,12 +76,15 @@ void shade(ivec2 p)
                 continue;
             vec3 d = xq.xyz - x.xyz;
             float dist = length(d);
-            if (params.surface_ring != 0 && dot(texelFetch(in_low_normal, q, 0).xyz, n) >= 0.9 &&
-                abs(dot(d, n)) <= params.plane_tolerance * dist + 1e-3) {
-                vec2 t = vec2(o) - f; // texel offset from the pixel's centre
-                float wr = 1.0 / (1.0 + dot(t, t));
+            bool facing = (params.surface_ring != 0 || params.orientation_fallback != 0) && dot(texelFetch(in_low_normal, q, 0).xyz, n) >= 0.9;
+            float wr = offset_weight(o, f);
+            if (params.surface_ring != 0 && facing && abs(dot(d, n)) <= params.plane_tolerance * dist + 1e-3) {
                 ring_wsum += wr;
                 ring_sum += wr * texelFetch(in_illumination, q, 0);
+            }
+            else if (params.orientation_fallback != 0 && facing) {
+                facing_wsum += wr;
+                facing_sum += wr * texelFetch(in_illumination, q, 0);
             }
             else if (dist < nearest_d && !inner_hit) // the nearest hit of the 2x2 is kept over any of the ring's
                 nearest_d = dist, nearest = texelFetch(in_illumination, q, 0);
@@ -86,13 +99,21 @@ void shade(ivec2 p)
             float dist = length(d);
             if (dist < nearest_d)
                 nearest_d = dist, nearest = l;
-            if (dot(texelFetch(in_low_normal, q, 0).xyz, n) < 0.9 || abs(dot(d, n)) > params.plane_tolerance * dist + 1e-3)
-                continue;
+            bool facing = dot(texelFetch(in_low_normal, q, 0).xyz, n) >= 0.9;
+            if (facing && abs(dot(d, n)) <= params.plane_tolerance * dist + 1e-3) {
+                sum += w * l;
+                wsum += w;
+            }
+            else if (params.orientation_fallback != 0 && facing) {
+                facing_wsum += offset_weight(o, f);
+                facing_sum += offset_weight(o, f) * l;
+            }
+            continue;
         }
         sum += w * l;
         wsum += w;
     }
-    imageStore(out_illumination, p, wsum > 1e-6 ? sum / wsum : ring_wsum > 0.0 ? ring_sum / ring_wsum : nearest);
+    imageStore(out_illumination, p, wsum > 1e-6 ? sum / wsum : ring_wsum > 0.0 ? ring_sum / ring_wsum : facing_wsum > 0.0 ? facing_sum / facing_wsum : nearest);
 }
 
 void main()

@@ -6,7 +6,7 @@
 
 static const char *const reads[] = {"gbuffer.position", "gbuffer.normal", "gbuffer.ids", "gbuffer.motion", "half.position", "half.normal",
                                     "half.ids",         "half.motion",    "up_normal",   "up_position",    "up_bilinear",  "vis_half",
-                                    "vis_quarter",      "atrous.color",   "up_ring_normal", "up_ring_position"};
+                                    "vis_quarter",      "atrous.color",   "up_ring_normal", "up_ring_position", "up_facing_normal", "up_facing_position"};
 enum {
     FULL_POS,
     FULL_N,
@@ -24,6 +24,8 @@ enum {
     ATROUS,
     UP_RING_N,
     UP_RING_POS,
+    UP_FACING_N,
+    UP_FACING_POS,
     COUNT
 };
 
@@ -236,6 +238,35 @@ static void test_upsample_edges(void)
     release(g, img);
 }
 
+/* A fallback's outputs at pixel (x, y) (normal and position upsampled:
+ * got_n, got_pos) against those without the fallback (was_n, was_pos):
+ * same_channels counts the channels that differ (where the fallback must
+ * not act). */
+static int same_channels(const vrg_image_data img[COUNT], int got_n, int got_pos, int was_n, int was_pos, uint32_t x, uint32_t y)
+{
+    int differ = 0;
+    for (int c = 0; c < 4; c++)
+        differ += px(&img[got_n], x, y, c) != px(&img[was_n], x, y, c) || px(&img[got_pos], x, y, c) != px(&img[was_pos], x, y, c);
+    return differ;
+}
+
+/* Where it acts: its own normal exactly (voxel normals are axis-aligned)
+ * and the blend want / wsum of the texels' positions, else *wrong; *fixed
+ * where the output without it (was_n) had another normal. */
+static void check_blend(const vrg_image_data img[COUNT], int got_n, int got_pos, int was_n, uint32_t x, uint32_t y, const double want[3],
+                        double wsum, int *wrong, int *fixed)
+{
+    float dn = 0, dp = 0, dold = 0;
+    for (int c = 0; c < 3; c++) {
+        dn += fabsf(px(&img[got_n], x, y, c) - px(&img[FULL_N], x, y, c));
+        dp += fabsf(px(&img[got_pos], x, y, c) - (float)(want[c] / wsum));
+        dold += fabsf(px(&img[was_n], x, y, c) - px(&img[FULL_N], x, y, c));
+    }
+    /* f16 output: positions to 0.016 at 32..64 blocks */
+    *wrong += dn > 1e-3f || dp > 0.06f;
+    *fixed += dold > 0.1f;
+}
+
 /* surface_ring = 1: a pixel none of whose 2x2 texels (of weight > 0) is
  * on its surface takes the ring's texels that are, weighted 1 / (1 + t^2)
  * by their offset t in texels from the pixel's centre: its own normal
@@ -249,7 +280,7 @@ static void test_upsample_ring(void)
     vrg_graph *g = render_two(img);
     if (!g)
         return;
-    const vrg_image_data *pos = &img[FULL_POS], *n = &img[FULL_N], *low = &img[HALF_POS];
+    const vrg_image_data *pos = &img[FULL_POS], *low = &img[HALF_POS];
     int ring_pixels = 0, fixed = 0, wrong = 0, same_wrong = 0;
     for (uint32_t y = 0; y < pos->height; y++)
         for (uint32_t x = 0; x < pos->width; x++) {
@@ -276,25 +307,74 @@ static void test_upsample_ring(void)
             }
             if (qualified || wsum == 0.0) {
                 /* the 2x2 decides, or nothing on the surface in the 4x4: as without surface_ring */
-                for (int c = 0; c < 4; c++)
-                    same_wrong += px(&img[UP_RING_N], x, y, c) != px(&img[UP_N], x, y, c) ||
-                                  px(&img[UP_RING_POS], x, y, c) != px(&img[UP_POS], x, y, c);
+                same_wrong += same_channels(img, UP_RING_N, UP_RING_POS, UP_N, UP_POS, x, y);
                 continue;
             }
             ring_pixels++;
-            float dn = 0, dp = 0, dold = 0;
-            for (int c = 0; c < 3; c++) {
-                dn += fabsf(px(&img[UP_RING_N], x, y, c) - px(n, x, y, c));
-                dp += fabsf(px(&img[UP_RING_POS], x, y, c) - (float)(want[c] / wsum));
-                dold += fabsf(px(&img[UP_N], x, y, c) - px(n, x, y, c));
-            }
-            /* f16 output: positions to 0.016 at 32..64 blocks */
-            wrong += dn > 1e-3f || dp > 0.06f;
-            fixed += dold > 0.1f;
+            check_blend(img, UP_RING_N, UP_RING_POS, UP_N, x, y, want, wsum, &wrong, &fixed);
         }
     CHECK(same_wrong == 0, "%d channels differ from the output without surface_ring where the 2x2 decides", same_wrong);
     CHECK(wrong == 0, "%d of %d pixels with their surface only in the ring did not get the ring's texels on it", wrong, ring_pixels);
     CHECK(fixed > 20, "the view does not test it: %d pixels (of %d) whose nearest texel has another normal", fixed, ring_pixels);
+    release(g, img);
+}
+
+/* orientation_fallback = 1 (with surface_ring): a pixel with no texel on
+ * its surface among the 2x2 (of weight > 0) or the ring takes the texels
+ * of the 4x4 read (the 2x2's, the ring's) whose normal is its own but
+ * which lie on other planes, weighted 1 / (1 + t^2) as the ring's: its own
+ * normal exactly and that blend of their positions. Elsewhere it is the
+ * output without the fallback. The view must hold pixels where this
+ * differs: where the nearest hit (the output without it) has another
+ * normal. */
+static void test_upsample_facing(void)
+{
+    vrg_image_data img[COUNT];
+    vrg_graph *g = render_two(img);
+    if (!g)
+        return;
+    const vrg_image_data *pos = &img[FULL_POS], *n = &img[FULL_N], *low = &img[HALF_POS];
+    int facing_pixels = 0, fixed = 0, wrong = 0, same_wrong = 0;
+    for (uint32_t y = 0; y < pos->height; y++)
+        for (uint32_t x = 0; x < pos->width; x++) {
+            if (px(pos, x, y, 3) == 0.0f)
+                continue;
+            float fx, fy;
+            int bx = texel_below(x, &fx), by = texel_below(y, &fy);
+            int qualified = 0, ring = 0;
+            double want[3] = {0, 0, 0}, wsum = 0;
+            for (int j = 0; j < 16; j++) {
+                int ox = j % 4 - 1, oy = j / 4 - 1, inner = ox >= 0 && ox <= 1 && oy >= 0 && oy <= 1;
+                int qx = clamp_texel(bx + ox, low->width), qy = clamp_texel(by + oy, low->height);
+                float dist;
+                if (on_surface(img, x, y, qx, qy, &dist)) {
+                    qualified += inner && (ox ? fx : 1.0f - fx) * (oy ? fy : 1.0f - fy) > 0.0f;
+                    ring += !inner;
+                    continue;
+                }
+                float ndot = 0;
+                for (int c = 0; c < 3; c++)
+                    ndot += px(&img[HALF_N], (uint32_t)qx, (uint32_t)qy, c) * px(n, x, y, c);
+                if (px(low, (uint32_t)qx, (uint32_t)qy, 3) == 0.0f || ndot < 0.9f)
+                    continue;
+                double tx = ox - fx, ty = oy - fy, w = 1.0 / (1.0 + tx * tx + ty * ty);
+                for (int c = 0; c < 3; c++)
+                    want[c] += w * px(low, (uint32_t)qx, (uint32_t)qy, c);
+                wsum += w;
+            }
+            if (qualified || ring || wsum == 0.0) {
+                /* a texel on the surface decides, or none faces its way: as without the fallback */
+                same_wrong += same_channels(img, UP_FACING_N, UP_FACING_POS, UP_RING_N, UP_RING_POS, x, y);
+                continue;
+            }
+            facing_pixels++;
+            check_blend(img, UP_FACING_N, UP_FACING_POS, UP_RING_N, x, y, want, wsum, &wrong, &fixed);
+        }
+    CHECK(same_wrong == 0, "%d channels differ from the output without orientation_fallback where a texel on the surface or none facing decides",
+          same_wrong);
+    CHECK(wrong == 0, "%d of %d pixels with only texels facing their way on other planes did not get those texels' blend", wrong,
+          facing_pixels);
+    CHECK(fixed >= 5, "the view does not test it: %d pixels (of %d) whose nearest texel has another normal", fixed, facing_pixels);
     release(g, img);
 }
 
@@ -304,6 +384,7 @@ int main(int argc, char **argv)
         {"gbuffer_downsample", test_gbuffer_downsample, 1},
         {"upsample_edges", test_upsample_edges, 1},
         {"upsample_ring", test_upsample_ring, 1},
+        {"upsample_facing", test_upsample_facing, 1},
     };
     return run_case(argc, argv, cases, sizeof cases / sizeof cases[0]);
 }
