@@ -19,7 +19,7 @@
 #include "compare_cases.h"
 #include "compare_result.h"
 #include "compare_shard.h"
-#include "lines_once.h"
+#include "warnings_once.h"
 #include "ref_cache.h"
 #include "report.h"
 #include "util.h"
@@ -1312,7 +1312,7 @@ int vrg_cli_compare(int argc, char **argv)
     FILE *sections = NULL;
     char file[VRG_CLI_PATH], cache[VRG_CLI_PATH];
     static const char *outputs[] = {"report.html", "metrics.json", "metrics.csv", VRG_CMP_SHARD_FILE};
-    if (!(o.diag = vrg_cli_lines_once(stderr))) {
+    if (!(o.diag = vrg_cli_warnings_once(stderr))) {
         fprintf(stderr, "error: out of memory\n");
         rc = 1;
     } else if (access(o.reference, R_OK) != 0) {

@@ -76,7 +76,10 @@ void shade(ivec2 p)
                 continue;
             vec3 d = xq.xyz - x.xyz;
             float dist = length(d);
-            bool facing = (params.surface_ring != 0 || params.orientation_fallback != 0) && dot(texelFetch(in_low_normal, q, 0).xyz, n) >= 0.9;
+            // the ring's texels count for the pixel's surface and its
+            // orientation with surface_ring only (without it the ring is
+            // read only for the nearest hit, when all the 2x2 are sky)
+            bool facing = params.surface_ring != 0 && dot(texelFetch(in_low_normal, q, 0).xyz, n) >= 0.9;
             float wr = offset_weight(o, f);
             if (params.surface_ring != 0 && facing && abs(dot(d, n)) <= params.plane_tolerance * dist + 1e-3) {
                 ring_wsum += wr;

@@ -215,6 +215,14 @@ def errors():
         check(not any(os.path.exists(os.path.join(out, f)) for f in ("report.html", "metrics.json", "metrics.csv")),
               "%s: a report was left behind" % what)
 
+    # only warnings are shown once: two errors that share a hint keep it both
+    two = os.path.join(out, "two-errors.ini")
+    open(two, "w").write("a = 1\nb = 2\n" + open(raw).read())
+    rc, _, stderr = compare(two, "--reference", ref, "--frames", "2", out=out)
+    hints = re.findall(r"(?m)^two-errors\.ini:[12]: error\[VRG-E005\].*\n  hint: put every key under a \[section\] header$",
+                       stderr.replace(out + os.sep, ""))
+    check(rc == 1 and len(hints) == 2, "two errors with one hint: exit %d, %d with their hint in:\n%s" % (rc, len(hints), stderr[-2000:]))
+
 
 def names():
     """Candidate names become file names under --out and CSV fields: a
