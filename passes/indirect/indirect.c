@@ -22,6 +22,17 @@
  * Directions: from the pixel's random stream, or with stratified = 1 from
  * random.glsl's stratified points (docs/lighting.md, "Sampling").
  *
+ * young_rays (adaptive sampling of new history): a pixel whose history is
+ * young takes young_rays rays instead of rays. Young: last frame's
+ * history length (in.history_length, a temporal pass's length@prev) at
+ * the pixel it came from (p - motion, the nearest) was below
+ * young_history frames, or it came from off screen. Where a surface
+ * newly shows through a moving edge, last frame's pixel held another
+ * surface, whose length counts: the temporal pass restarts the history
+ * there, and the pixel is young from the next frame on. A fast turn, a
+ * descent and a disocclusion are where a temporal filter has few frames
+ * to average; more rays there cost only where they are.
+ *
  * Output, rgb (a = 1): irradiance = (1/rays) * sum of L_in, the mean incoming
  * radiance over cosine-weighted directions (pdf cos/pi). That estimates
  * E / pi, E = the irradiance integral of L_in cos over the hemisphere, so a
@@ -36,6 +47,8 @@ static const vrg_param_desc params[] = {
     {"textures", VRG_PARAM_BOOL, 1, 0, 1, "with the atlas connected, use its per-face tile means instead of material albedos"},
     {"stratified", VRG_PARAM_BOOL, 0, 0, 1,
      "directions from a sequence that covers the hemisphere evenly over each 4x4 tile of pixels and over the frames (0: independent random numbers)"},
+    {"young_rays", VRG_PARAM_INT, 0, 0, 64, "rays for a pixel whose history is young (in.history_length, in.motion); 0: every pixel takes `rays`"},
+    {"young_history", VRG_PARAM_FLOAT, 4, 1, 1000, "a pixel is young when its history had fewer frames than this last frame (or it was off screen)"},
 };
 
 static const vrg_slot_desc slots[] = {
@@ -50,9 +63,24 @@ static const vrg_slot_desc slots[] = {
      .help = "block textures: per-face albedo at secondary hits (else material albedos)"},
     {.name = "irradiance", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16G16B16A16_SFLOAT,
      .help = "mean incoming radiance over cosine-weighted directions (= irradiance / pi); 0 on sky"},
+    {.name = "history_length", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .flags = VRG_SLOT_OPTIONAL,
+     .help = "with young_rays: last frame's history length in frames (clamped_reproject's length@prev), the size of irradiance"},
+    {.name = "motion", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED, .flags = VRG_SLOT_OPTIONAL,
+     .help = "with young_rays: the G-buffer's motion (pixels) at the size of irradiance"},
+    /* last: bound only when the scene built it, so the slots before it
+     * keep their bindings (indirect.comp) */
     {.name = "tlas", .dir = VRG_IN, .kind = VRG_ACCEL, .access = VRG_ACCESS_RAY_QUERY, .flags = VRG_SLOT_OPTIONAL,
      .help = "the scene's TLAS: trace with ray queries (traversal = rayquery)"},
 };
+
+static int check(vrg_pass *pass)
+{
+    if (vrg_param_int(pass, "young_rays") > 0 &&
+        (!vrg_res_connected(vrg_pass_res(pass, "history_length")) || !vrg_res_connected(vrg_pass_res(pass, "motion"))))
+        return vrg_pass_error(pass, "young_rays = %d reads last frame's history: connect in.history_length (a temporal pass's length@prev) and in.motion",
+                              vrg_param_int(pass, "young_rays"));
+    return 0;
+}
 
 /* every dispatch execute() records: checked by `voxrg check`; its push
  * constants are the parameters by name, and textured */
@@ -62,6 +90,11 @@ static const vrg_dispatch_desc dispatches[] = {
 
 static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
+    if (vrg_param_int(pass, "young_rays") > 0) {
+        static const char *same[] = {"in.history_length", "in.motion"};
+        if (vrg_pass_require_same_size(pass, "out.irradiance", same, 2) != 0)
+            return;
+    }
     vrg_push_int(pass, "textured", vrg_param_int(pass, "textures") && vrg_res_connected(vrg_pass_res(pass, "atlas")));
     (void)vrg_dispatch(pass, cmd, &dispatches[0]);
 }
@@ -75,6 +108,7 @@ static const vrg_plugin_desc desc = {
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
+    .check = check,
     .execute = execute,
     .dispatches = dispatches,
     .dispatch_count = sizeof dispatches / sizeof dispatches[0],

@@ -14,13 +14,31 @@ layout(binding = 2, rgba32f) uniform readonly image2D in_position;
 layout(binding = 3, rgba16f) uniform readonly image2D in_normal;
 layout(binding = 4) uniform sampler2D atlas;
 layout(binding = 5, rgba16f) uniform writeonly image2D out_irradiance;
+layout(binding = 6) uniform sampler2D in_history_length;
+layout(binding = 7) uniform sampler2D in_motion;
+// then the TLAS when the scene built one (trace.glsl: VRG_ACCEL_BINDING)
 layout(push_constant) uniform Params {
     int rays;
     float max_distance;
     int shadow;
     int textured;
     int stratified; // rays from stratified points (rng_pair)
+    int young_rays;
+    float young_history;
 } params;
+
+// young_rays where last frame's history at the pixel this one came from
+// was short or off screen (indirect.c), else rays
+int rays_at(ivec2 p, ivec2 size)
+{
+    if (params.young_rays <= 0)
+        return params.rays;
+    // bounds in floats: a motion of inf (half overflow) must not become an int
+    vec2 q = floor(vec2(p) - texelFetch(in_motion, p, 0).xy + 0.5);
+    if (!(all(greaterThanEqual(q, vec2(0.0))) && all(lessThan(q, vec2(size)))))
+        return params.young_rays;
+    return texelFetch(in_history_length, ivec2(q), 0).r < params.young_history ? params.young_rays : params.rays;
+}
 
 const uint SALT = 0x494e0003u;  // this pass's random stream
 
@@ -55,13 +73,14 @@ void shade(ivec2 p)
     vec3 o = pos.xyz + n * 1e-3;
     Rng r = rng_init(uvec2(p), frame.frame_info.x, frame.frame_info.w, SALT);
     vec3 sum = vec3(0.0);
-    for (int i = 0; i < params.rays; i++) {
-        vec2 u = rng_pair(r, params.stratified != 0, uint(i), uint(params.rays));
+    int rays = rays_at(p, size);
+    for (int i = 0; i < rays; i++) {
+        vec2 u = rng_pair(r, params.stratified != 0, uint(i), uint(rays));
         vec3 d = sample_cosine(n, u.x, u.y);
         Hit h = trace_closest(o, d, params.max_distance);
         sum += h.hit ? bounce(o + d * h.t, h.normal, h.block) : frame_sky(d);
     }
-    imageStore(out_irradiance, p, vec4(sum / float(params.rays), 1.0));
+    imageStore(out_irradiance, p, vec4(sum / float(rays), 1.0));
 }
 
 void main()

@@ -664,6 +664,10 @@ section_plugins() { # voxrg plugins
     has "$out/stderr" "bad_choice\.ini:$line: error\[VRG-E047\]: mode = 'bicubic': expected bilateral, bilinear or nearest" "the bad choice at its line"
     expect_rc 1 "svgf_variance mode not a choice" "$voxrg" check --no-device "$tests/../graphs/thesis.ini" --set variance.mode=both
     has "$out/stderr" "mode = 'both': expected spatial or temporal" "svgf_variance's choices checked"
+    # a parameter that needs optional slots: an error at the pass's line, not a crash
+    expect_rc 1 "young_rays without the history" "$voxrg" check --no-device "$tests/../graphs/raw.ini" --set indirect.young_rays=4
+    line=$(grep -n '^\[pass indirect\]' "$tests/../graphs/raw.ini" | cut -d: -f1)
+    has "$out/stderr" "raw\.ini:$line: error\[VRG-E058\]: pass 'indirect' .*young_rays = 4 reads last frame's history: connect in\.history_length" "young_rays names what to connect"
     # a file on the path that does not load: reported, the rest listed, exit 1
     mkdir -p "$out/broken" && echo "not an ELF file" >"$out/broken/garbage.so"
     VOXRG_PLUGIN_PATH="$out/broken" "$voxrg" plugins >"$out/stdout" 2>"$out/stderr"

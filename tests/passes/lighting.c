@@ -417,6 +417,71 @@ static void test_light_stratified(void)
     }
 }
 
+/* young_rays: each pixel's indirect light is exactly the 4-ray pass's
+ * where it is young (last frame's clamped_reproject length, at the pixel
+ * p - motion it came from, below young_history 3, or p - motion off
+ * screen) and the 1-ray pass's elsewhere (one random stream per pixel).
+ * Frame 0 (no history) is young everywhere, the held camera's frame 5 is
+ * old everywhere (anti-lag off: only geometry cuts the history), and
+ * after a step sideways the pixels that came from off screen are young,
+ * the rest old. */
+static void test_light_young(void)
+{
+    static const char *reads[] = {"indirect.irradiance", "one_ray", "four_rays", "reproject.length", "gbuffer.motion", "gbuffer.position"};
+    enum { OUT, ONE, FOUR, LENGTH, MOTION, POS, COUNT };
+    vrg_graph *g = load_with("light_young.ini", NULL, 0, reads, COUNT);
+    if (!g)
+        return;
+    vrg_image_data img[COUNT] = {{0}}, prev_length = {0};
+    int young_frame0 = -1, old_frame5 = -1, off_moved = 0, old_moved = 0;
+    for (int f = 0; f < 8; f++) {
+        if (f == 6) {
+            vrg_camera cam = *vrg_graph_camera(g);
+            cam.position[0] += 3.0f; /* the view slides: its left edge shows ground last frame did not */
+            vrg_graph_set_camera(g, &cam);
+        }
+        if (!CHECK(vrg_graph_frame(g) == 0, "frame %d failed", f))
+            break;
+        int ok = 1;
+        for (int i = 0; i < COUNT; i++) {
+            free(img[i].pixels);
+            img[i].pixels = NULL;
+            ok = ok && vrg_graph_read(g, reads[i], &img[i]) == 0;
+        }
+        if (!CHECK(ok, "frame %d: readback failed", f))
+            break;
+        int young = 0, old = 0, off_screen = 0, wrong = 0;
+        for (uint32_t y = 0; y < img[OUT].height; y++)
+            for (uint32_t x = 0; x < img[OUT].width; x++) {
+                if (px(&img[POS], x, y, 3) == 0.0f)
+                    continue;
+                float qx = floorf((float)x - px(&img[MOTION], x, y, 0) + 0.5f), qy = floorf((float)y - px(&img[MOTION], x, y, 1) + 0.5f);
+                int off = qx < 0 || qy < 0 || qx >= (float)img[OUT].width || qy >= (float)img[OUT].height;
+                int is_young = f == 0 || off || px(&prev_length, (uint32_t)qx, (uint32_t)qy, 0) < 3.0f;
+                young += is_young, old += !is_young, off_screen += off;
+                for (int c = 0; c < 3; c++)
+                    wrong += px(&img[OUT], x, y, c) != px(&img[is_young ? FOUR : ONE], x, y, c);
+            }
+        CHECK(wrong == 0, "frame %d: %d channels are not the %s pass's (%d young pixels, %d old)", f, wrong, "1- or 4-ray", young, old);
+        if (f == 0)
+            young_frame0 = old == 0 ? young : -1;
+        if (f == 5)
+            old_frame5 = young == 0 ? old : -1;
+        if (f == 6)
+            off_moved = off_screen, old_moved = old;
+        free(prev_length.pixels);
+        prev_length = img[LENGTH];
+        img[LENGTH].pixels = NULL;
+    }
+    CHECK(young_frame0 > 1000, "frame 0: %d pixels, want every surface pixel young (-1: some were not)", young_frame0);
+    CHECK(old_frame5 > 1000, "frame 5 of a held camera: %d pixels, want every surface pixel old (-1: some were not)", old_frame5);
+    CHECK(off_moved > 50 && old_moved > 1000, "after the step: %d pixels came from off screen, %d are old: want both", off_moved, old_moved);
+    for (int i = 0; i < COUNT; i++)
+        free(img[i].pixels);
+    free(prev_length.pixels);
+    vrg_graph_destroy(g);
+}
+
 /* ao's ray-query variant (the one-file pass's in_tlas, declared where the
  * scene built a TLAS): the corner's AO ordering, and the same AO as the DDA
  * variant's (light_corner.ini connects the tlas, empty on the DDA) but on
@@ -460,6 +525,7 @@ int main(int argc, char **argv)
         {"light_penumbra", test_light_penumbra, 1},
         {"light_corner", test_light_corner, 1},
         {"light_chain", test_light_chain, 1},
+        {"light_young", test_light_young, 1},
         {"light_stratified", test_light_stratified, 1},
         {"ao_rayquery", NULL, 1, test_ao_rayquery},
     };
