@@ -81,7 +81,7 @@ void shade(ivec2 p)
             // read only for the nearest hit, when all the 2x2 are sky)
             bool facing = params.surface_ring != 0 && dot(texelFetch(in_low_normal, q, 0).xyz, n) >= 0.9;
             float wr = offset_weight(o, f);
-            if (params.surface_ring != 0 && facing && abs(dot(d, n)) <= params.plane_tolerance * dist + 1e-3) {
+            if (facing && abs(dot(d, n)) <= params.plane_tolerance * dist + 1e-3) {
                 ring_wsum += wr;
                 ring_sum += wr * texelFetch(in_illumination, q, 0);
             }

@@ -31,7 +31,9 @@
  * surface, whose length counts: the temporal pass restarts the history
  * there, and the pixel is young from the next frame on. A fast turn, a
  * descent and a disocclusion are where a temporal filter has few frames
- * to average; more rays there cost only where they are.
+ * to average. The extra rays cost where histories are young: there, and
+ * everywhere for young_history frames after the history starts over and
+ * while a moving sun keeps histories short (README.md).
  *
  * Output, rgb (a = 1): irradiance = (1/rays) * sum of L_in, the mean incoming
  * radiance over cosine-weighted directions (pdf cos/pi). That estimates
