@@ -34,8 +34,9 @@ static int seen_before(const warnings_once *s)
 static int pass_on(warnings_once *s)
 {
     if (s->line[0] != ' ') { /* else a continuation: its head decided */
-        s->head_passed = !is_warning(s->line) || !seen_before(s);
-        if (s->head_passed && is_warning(s->line)) {
+        int warning = is_warning(s->line);
+        s->head_passed = !warning || !seen_before(s);
+        if (s->head_passed && warning) {
             if (s->count == s->seen_cap) {
                 size_t cap = s->seen_cap ? 2 * s->seen_cap : 16;
                 char **seen = realloc(s->seen, sizeof *seen * cap);

@@ -108,8 +108,9 @@ void shade(ivec2 p)
                 wsum += w;
             }
             else if (params.orientation_fallback != 0 && facing) {
-                facing_wsum += offset_weight(o, f);
-                facing_sum += offset_weight(o, f) * l;
+                float wr = offset_weight(o, f);
+                facing_wsum += wr;
+                facing_sum += wr * l;
             }
             continue;
         }
