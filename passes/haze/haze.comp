@@ -7,6 +7,7 @@
 #define FRAME_BINDING 2
 #include "frame.glsl"
 #include "pixel.glsl"
+#include "haze.glsl"
 
 // The device's workgroup shape and rows per invocation: pixel.glsl.
 layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
@@ -25,20 +26,7 @@ void shade(ivec2 p)
         return;
     vec3 c = texelFetch(in_color, vrg_pixel_in(p, size, textureSize(in_color, 0)), 0).rgb;
     vec4 pos = texelFetch(in_position, vrg_pixel_in(p, size, textureSize(in_position, 0)), 0);
-    vec3 dir = frame_ray_dir(vec2(p), vec2(size));
-    // the sky at the horizon in the ray's direction (its glow included)
-    vec3 flat_dir = vec3(dir.x, max(dir.y, 0.0), dir.z);
-    vec3 haze = frame_sky(length(flat_dir) > 1e-6 ? normalize(flat_dir) : vec3(0.0, 1.0, 0.0));
-    float f;
-    if (pos.w > 0.5) {
-        vec3 to = pos.xyz - frame.camera_pos.xyz;
-        f = 1.0 - exp(-params.density * length(to));
-        float radius = float(frame.world_grid.w);
-        if (radius > 0.0) // a streamed world: gone by its view radius
-            f = max(f, smoothstep(params.start * radius, radius, length(to.xz)));
-    } else
-        f = dir.y < 0.0 ? 1.0 : 0.0; // below the horizon a miss is beyond the world
-    imageStore(out_color, p, vec4(mix(c, haze, f), 1.0));
+    imageStore(out_color, p, vec4(haze_blend(c, pos, p, size, params.density, params.start), 1.0));
 }
 
 void main()

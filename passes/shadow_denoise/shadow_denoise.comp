@@ -52,9 +52,11 @@ float occluder_near(ivec2 p, ivec2 size, vec3 n, float plane)
         for (int dx = -2; dx <= 2; dx += 2) {
             ivec2 q = clamp(p + ivec2(dx, dy), ivec2(0), size - 1);
             float d = texelFetch(in_occluder, q, 0).r;
+            // most pixels saw no blocker: their surface is not read
+            if (!(d >= 0.0))
+                continue;
             vec4 x = texelFetch(in_position, q, 0);
-            bool same = x.w != 0.0 && dot(texelFetch(in_normal, q, 0).xyz, n) > 0.5 && abs(dot(n, x.xyz) - plane) < 0.5;
-            if (d >= 0.0 && same) {
+            if (x.w != 0.0 && dot(texelFetch(in_normal, q, 0).xyz, n) > 0.5 && abs(dot(n, x.xyz) - plane) < 0.5) {
                 sum += d;
                 count++;
             }

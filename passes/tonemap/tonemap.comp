@@ -5,6 +5,7 @@
 // fit of the ACES filmic curve, default), reinhard (x / (1 + x)) and linear
 // (clamped).
 #include "pixel.glsl"
+#include "tonemap.glsl"
 
 // The device's workgroup shape and rows per invocation: pixel.glsl.
 layout(local_size_x = VRG_GROUP_X, local_size_y = VRG_GROUP_Y) in;
@@ -15,29 +16,13 @@ layout(push_constant) uniform Params {
     int curve;      // @param choices=aces,reinhard,linear default=aces help="aces (Narkowicz's fit, default), reinhard or linear"
 } params;
 
-// Krzysztof Narkowicz, "ACES Filmic Tone Mapping Curve" (2016)
-vec3 aces(vec3 x)
-{
-    return clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
-}
-
-vec3 srgb_encode(vec3 c)
-{
-    c = clamp(c, 0.0, 1.0);
-    return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
-}
-
 void shade(ivec2 p)
 {
     ivec2 size = imageSize(out_ldr);
     if (any(greaterThanEqual(p, size)))
         return;
-    vec3 c = texelFetch(in_color, vrg_pixel_in(p, size, textureSize(in_color, 0)), 0).rgb * params.exposure;
-    if (any(isnan(c)))
-        c = vec3(0.0);
-    c = clamp(c, 0.0, 65504.0); // negative and infinite values would make the curves NaN
-    vec3 m = params.curve == 0 ? aces(c) : params.curve == 1 ? c / (1.0 + c) : clamp(c, 0.0, 1.0);
-    imageStore(out_ldr, p, vec4(srgb_encode(m), 1.0));
+    vec3 c = texelFetch(in_color, vrg_pixel_in(p, size, textureSize(in_color, 0)), 0).rgb;
+    imageStore(out_ldr, p, vec4(tonemap_encode(c, params.exposure, params.curve), 1.0));
 }
 
 void main()

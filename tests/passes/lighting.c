@@ -515,6 +515,121 @@ static int test_ao_rayquery(void)
     return 0;
 }
 
+/* shade (combine, modulate, haze and tonemap in one pass) against the chain
+ * of the four passes in the same graph, on the same inputs, with the same
+ * parameters: every channel within 1 in 255 (the chain rounds its
+ * illumination, colour and hazed colour to half floats), for settings of
+ * the parameters they share, with the optional inputs unconnected in both,
+ * and with a half-size indirect light. The views hold what each step acts
+ * on: on a floor of blocks a lamp's emitting faces, sunlit and shadowed
+ * floor, floor far enough to be hazed and the sky; on the streamed terrain
+ * (radius 1: a view radius of 16 blocks) ground between `start` (0.3) and
+ * the default 0.6 of that radius, which only `start` hazes at its edge. */
+/* the floor of blocks: a wall, a lamp, the sun at 16:00 */
+#define SHADE_BLOCKS                                                                                                             \
+    "[camera]\nposition = 6 5 6\nyaw = -135\npitch = -8\n"                                                                      \
+    "[scene]\nplugin = blocks\nbox = 0 0 0 47 0 47 white\nbox = 14 1 8 15 6 30 stone\nbox = 9 1 12 10 2 13 lamp\ntime_of_day = 16\n"
+typedef struct {
+    const char *scene;   /* [camera] and [scene] */
+    float camera[3];
+    int streamed;        /* the terrain: check the edge haze, not the lamp and shadows */
+    const char *shared;  /* haze's and tonemap's parameters, also shade's */
+    const char *combine; /* combine's, also shade's */
+    int unconnected;     /* no visibility, indirect or emission in either */
+    int half_indirect;   /* the indirect light at half size */
+} shade_setting;
+
+static void test_shade_chain(void)
+{
+    static const shade_setting settings[] = {
+        {SHADE_BLOCKS, {6, 5, 6}, 0, "density = 0.02\nexposure = 0.45\n", ""},
+        {SHADE_BLOCKS, {6, 5, 6}, 0, "density = 0.005\nexposure = 0.8\ncurve = reinhard\n", "direct_scale = 0.7\nindirect_scale = 1.6\n"},
+        {SHADE_BLOCKS, {6, 5, 6}, 0, "density = 0.05\nexposure = 0.3\ncurve = linear\n", "direct_scale = 1.3\nindirect_scale = 0.5\n"},
+        {"[camera]\nposition = 0 45 0\nyaw = -30\npitch = -40\n[scene]\nplugin = terrain\nradius = 1\nthreads = 2\ntime_of_day = 16\n",
+         {0, 45, 0}, 1, "density = 0.002\nstart = 0.3\nexposure = 0.6\n", ""},
+        {SHADE_BLOCKS, {6, 5, 6}, 0, "density = 0.02\nexposure = 0.45\n", "indirect_scale = 1.6\n", 1, 0},
+        {SHADE_BLOCKS, {6, 5, 6}, 0, "density = 0.02\nexposure = 0.45\n", "", 0, 1},
+    };
+    for (size_t s = 0; s < sizeof settings / sizeof settings[0]; s++) {
+        const shade_setting *st = &settings[s];
+        char haze_set[128] = "", tone_set[128] = "";
+        for (const char *l = st->shared; *l;) {
+            const char *e = strchr(l, '\n');
+            char *to = strncmp(l, "density", 7) == 0 || strncmp(l, "start", 5) == 0 ? haze_set : tone_set;
+            snprintf(to + strlen(to), sizeof haze_set - strlen(to), "%.*s\n", (int)(e - l), l);
+            l = e + 1;
+        }
+        const char *lights = st->unconnected ? "" : "in.visibility = sun\nin.indirect = indirect\n";
+        const char *emits = st->unconnected ? "" : "in.emission = emission\n";
+        char *text = NULL;
+        size_t len = 0;
+        append(&text, &len,
+               "[graph]\noutput = ldr\nwidth = 96\nheight = 54\n%s"
+               "[pass gbuffer]\nplugin = gbuffer\nin.world = world\nin.frame = frame\nout.emission = emission\n"
+               "[pass shadow]\nplugin = sun_shadow\nin.world = world\nin.frame = frame\nin.position = gbuffer.position\nin.normal = gbuffer.normal\n"
+               "out.visibility = sun\nrays = 1\nsun_radius = 0\n"
+               "[pass indirect]\nplugin = indirect\nin.world = world\nin.frame = frame\nin.position = gbuffer.position\nin.normal = gbuffer.normal\n"
+               "out.irradiance = indirect\nrays = 2\n%s"
+               "[pass combine]\nplugin = combine\nin.normal = gbuffer.normal\nin.frame = frame\n%s"
+               "out.illumination = illumination\n%s"
+               "[pass modulate]\nplugin = modulate\nin.illumination = illumination\nin.albedo = gbuffer.albedo\n%sout.color = color\n"
+               "[pass haze]\nplugin = haze\nin.color = color\nin.position = gbuffer.position\nin.frame = frame\nout.color = hazed\n%s"
+               "[pass tonemap]\nplugin = tonemap\nin.color = hazed\nout.ldr = ldr\n%s"
+               "[pass shade]\nplugin = shade\nin.normal = gbuffer.normal\nin.frame = frame\n%s"
+               "in.albedo = gbuffer.albedo\n%sin.position = gbuffer.position\nout.ldr = shaded\n%s%s",
+               st->scene, st->half_indirect ? "output_scale = 0.5\n" : "", lights, st->combine, emits, haze_set, tone_set, lights, emits,
+               st->shared, st->combine);
+        static const char *reads[] = {"shaded", "sun", "emission", "gbuffer.position", "indirect"};
+        vrg_graph *g = load_text(text, reads, 5);
+        free(text);
+        if (!g)
+            return;
+        vrg_image_data chain, shaded, sun, emission, pos, indirect;
+        CHECK(vrg_graph_frame(g) == 0 && vrg_graph_read(g, "ldr", &chain) == 0 && vrg_graph_read(g, "shaded", &shaded) == 0 &&
+                  vrg_graph_read(g, "sun", &sun) == 0 && vrg_graph_read(g, "emission", &emission) == 0 &&
+                  vrg_graph_read(g, "gbuffer.position", &pos) == 0 && vrg_graph_read(g, "indirect", &indirect) == 0,
+              "frame or readback failed");
+        if (failures) {
+            vrg_graph_destroy(g);
+            return;
+        }
+        int wrong = 0, lamp = 0, lit = 0, shadowed = 0, far = 0, edge = 0, sky = 0;
+        CHECK(indirect.width == (st->half_indirect ? chain.width / 2 : chain.width), "setting %zu: indirect light %ux%u", s, indirect.width,
+              indirect.height);
+        double worst = 0;
+        for (uint32_t y = 0; y < chain.height; y++)
+            for (uint32_t x = 0; x < chain.width; x++) {
+                for (int c = 0; c < 3; c++) {
+                    double d = fabs((double)px(&chain, x, y, c) - px(&shaded, x, y, c));
+                    worst = d > worst ? d : worst;
+                    wrong += d > 1.0 / 255 + 1e-6;
+                }
+                if (px(&pos, x, y, 3) == 0) {
+                    sky++;
+                    continue;
+                }
+                float dx = px(&pos, x, y, 0) - st->camera[0], dz = px(&pos, x, y, 2) - st->camera[2];
+                lamp += px(&emission, x, y, 0) > 0;
+                lit += px(&sun, x, y, 0) > 0.5f;
+                shadowed += px(&sun, x, y, 0) < 0.5f;
+                far += dx * dx + dz * dz > 30 * 30;
+                float d2 = dx * dx + dz * dz;
+                edge += d2 > 0.3f * 16 * 0.3f * 16 && d2 < 0.6f * 16 * 0.6f * 16; /* hazed by `start` 0.3, not by the default 0.6 */
+            }
+        printf("shade_chain %zu: largest difference %.5f (%d channels over 1/255); lamp %d, lit %d, shadowed %d, far %d, edge haze %d, sky %d px\n",
+               s, worst, wrong, lamp, lit, shadowed, far, edge, sky);
+        CHECK(wrong == 0, "setting %zu: %d channels differ from the chain's by more than 1/255 (largest %.4f)", s, wrong, worst);
+        if (st->streamed)
+            CHECK(edge >= 100 && sky >= 50, "setting %zu: the view does not show the edge haze: %d px between 0.3 and 0.6 of the view radius, sky %d px",
+                  s, edge, sky);
+        else
+            CHECK(lamp >= 10 && lit >= 100 && shadowed >= 50 && far >= 100 && sky >= 50,
+                  "setting %zu: the view does not show every case: lamp %d, lit %d, shadowed %d, far %d, sky %d px", s, lamp, lit, shadowed, far, sky);
+        free(chain.pixels), free(shaded.pixels), free(sun.pixels), free(emission.pixels), free(pos.pixels), free(indirect.pixels);
+        vrg_graph_destroy(g);
+    }
+}
+
 int main(int argc, char **argv)
 {
     static const test_case cases[] = {
@@ -525,6 +640,7 @@ int main(int argc, char **argv)
         {"light_penumbra", test_light_penumbra, 1},
         {"light_corner", test_light_corner, 1},
         {"light_chain", test_light_chain, 1},
+        {"shade_chain", test_shade_chain, 1},
         {"light_young", test_light_young, 1},
         {"light_stratified", test_light_stratified, 1},
         {"ao_rayquery", NULL, 1, test_ao_rayquery},
