@@ -271,6 +271,35 @@ static void check_blend(const vrg_image_data img[COUNT], int got_n, int got_pos,
         *fixed += dold > 0.1f;
 }
 
+/* Texel j (0 to 15, row by row) of the 4x4 around full pixel (x, y): its
+ * place clamped into the half image, whether it is one of the 2x2 and, if
+ * so, whether its bilinear weight is above 0, and the weight 1 / (1 + t^2)
+ * that surface_ring and orientation_fallback give it, t its offset in
+ * texels from the pixel's centre. */
+typedef struct {
+    int qx, qy, inner, weighted;
+    double ring_weight;
+} footprint_texel;
+
+static footprint_texel footprint_at(uint32_t x, uint32_t y, int j, const vrg_image_data *low)
+{
+    float fx, fy;
+    int bx = texel_below(x, &fx), by = texel_below(y, &fy), ox = j % 4 - 1, oy = j / 4 - 1;
+    footprint_texel t = {clamp_texel(bx + ox, low->width), clamp_texel(by + oy, low->height), ox >= 0 && ox <= 1 && oy >= 0 && oy <= 1, 0, 0};
+    t.weighted = t.inner && (ox ? fx : 1.0f - fx) * (oy ? fy : 1.0f - fy) > 0.0f;
+    double tx = ox - fx, ty = oy - fy;
+    t.ring_weight = 1.0 / (1.0 + tx * tx + ty * ty);
+    return t;
+}
+
+/* Adds texel t's values, weighted by its ring weight, to want and wsum. */
+static void add_ring_texel(const vrg_image_data *low, footprint_texel t, double want[3], double *wsum)
+{
+    for (int c = 0; c < 3; c++)
+        want[c] += t.ring_weight * px(low, (uint32_t)t.qx, (uint32_t)t.qy, c);
+    *wsum += t.ring_weight;
+}
+
 /* surface_ring = 1: a pixel none of whose 2x2 texels (of weight > 0) is
  * on its surface takes the ring's texels that are, weighted 1 / (1 + t^2)
  * by their offset t in texels from the pixel's centre: its own normal
@@ -290,24 +319,17 @@ static void test_upsample_ring(void)
         for (uint32_t x = 0; x < pos->width; x++) {
             if (px(pos, x, y, 3) == 0.0f)
                 continue;
-            float fx, fy;
-            int bx = texel_below(x, &fx), by = texel_below(y, &fy);
             int qualified = 0;
             double want[3] = {0, 0, 0}, wsum = 0;
             for (int j = 0; j < 16; j++) {
-                int ox = j % 4 - 1, oy = j / 4 - 1, inner = ox >= 0 && ox <= 1 && oy >= 0 && oy <= 1;
-                int qx = clamp_texel(bx + ox, low->width), qy = clamp_texel(by + oy, low->height);
+                footprint_texel t = footprint_at(x, y, j, low);
                 float dist;
-                if (!on_surface(img, x, y, qx, qy, &dist))
+                if (!on_surface(img, x, y, t.qx, t.qy, &dist))
                     continue;
-                if (inner) {
-                    qualified += (ox ? fx : 1.0f - fx) * (oy ? fy : 1.0f - fy) > 0.0f;
-                    continue;
-                }
-                double tx = ox - fx, ty = oy - fy, w = 1.0 / (1.0 + tx * tx + ty * ty);
-                for (int c = 0; c < 3; c++)
-                    want[c] += w * px(low, (uint32_t)qx, (uint32_t)qy, c);
-                wsum += w;
+                if (t.inner)
+                    qualified += t.weighted;
+                else
+                    add_ring_texel(low, t, want, &wsum);
             }
             if (qualified || wsum == 0.0) {
                 /* the 2x2 decides, or nothing on the surface in the 4x4: as without surface_ring */
@@ -339,30 +361,24 @@ static void check_facing(const vrg_image_data img[COUNT], int with_ring, int got
         for (uint32_t x = 0; x < pos->width; x++) {
             if (px(pos, x, y, 3) == 0.0f)
                 continue;
-            float fx, fy;
-            int bx = texel_below(x, &fx), by = texel_below(y, &fy);
             int qualified = 0, ring = 0;
             double want[3] = {0, 0, 0}, wsum = 0;
             for (int j = 0; j < 16; j++) {
-                int ox = j % 4 - 1, oy = j / 4 - 1, inner = ox >= 0 && ox <= 1 && oy >= 0 && oy <= 1;
-                if (!inner && !with_ring)
+                footprint_texel t = footprint_at(x, y, j, low);
+                if (!t.inner && !with_ring)
                     continue;
-                int qx = clamp_texel(bx + ox, low->width), qy = clamp_texel(by + oy, low->height);
                 float dist;
-                if (on_surface(img, x, y, qx, qy, &dist)) {
-                    qualified += inner && (ox ? fx : 1.0f - fx) * (oy ? fy : 1.0f - fy) > 0.0f;
-                    ring += !inner;
+                if (on_surface(img, x, y, t.qx, t.qy, &dist)) {
+                    qualified += t.weighted;
+                    ring += !t.inner;
                     continue;
                 }
                 float ndot = 0;
                 for (int c = 0; c < 3; c++)
-                    ndot += px(&img[HALF_N], (uint32_t)qx, (uint32_t)qy, c) * px(n, x, y, c);
-                if (px(low, (uint32_t)qx, (uint32_t)qy, 3) == 0.0f || ndot < 0.9f)
+                    ndot += px(&img[HALF_N], (uint32_t)t.qx, (uint32_t)t.qy, c) * px(n, x, y, c);
+                if (px(low, (uint32_t)t.qx, (uint32_t)t.qy, 3) == 0.0f || ndot < 0.9f)
                     continue;
-                double tx = ox - fx, ty = oy - fy, w = 1.0 / (1.0 + tx * tx + ty * ty);
-                for (int c = 0; c < 3; c++)
-                    want[c] += w * px(low, (uint32_t)qx, (uint32_t)qy, c);
-                wsum += w;
+                add_ring_texel(low, t, want, &wsum);
             }
             if (qualified || ring || wsum == 0.0) {
                 /* a texel on the surface decides, or none faces its way: as without the fallback */
