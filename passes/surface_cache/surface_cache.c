@@ -31,7 +31,9 @@
  *            image does not depend on when this pass reaches its slot);
  *   insert:  each pixel finds or claims its cell and adds its sample, in
  *            fixed point, with integer atomics: the sums do not depend on
- *            the order threads run in, so neither does the image;
+ *            the order threads run in, so neither does the image (with a
+ *            smaller signal, signal_position: one invocation per texel,
+ *            for the pixel of its footprint it was sampled at);
  *   resolve: each cell given samples this frame (listed by its first
  *            sample) blends their mean into its own with weight count / n,
  *            n = min(n_before, (max_frames - 1) * count) + count, so the
@@ -80,7 +82,7 @@
 #include <string.h>
 #include "voxrg/plugin.h"
 
-#define HEADER_WORDS 16u /* [0]: samples not cached this frame, [1]: cells listed, [2], [3]: a smaller signal's hit texels and the pixels that matched one */
+#define HEADER_WORDS 16u /* [0]: samples not cached this frame, [1]: cells listed, [2], [3]: a smaller signal's hit texels and those that found their pixel */
 
 static const vrg_param_desc params[] = {
     {"cell_pixels", VRG_PARAM_FLOAT, 2, 0.25, 64, "least side of a cell, in pixels at the point's distance"},
@@ -208,7 +210,7 @@ static const vrg_dispatch_desc dispatches[] = {
     [INSERT] = {.shader = "surface_cache.comp", .defines = "INSERT", .pixel_loop = 1,
                 .domain = "color"},
     [INSERT_SPARSE] = {.shader = "surface_cache.comp", .defines = "INSERT SPARSE", .pixel_loop = 1,
-                       .domain = "color"},
+                       .domain = "signal"}, /* a smaller signal's texels */
     [RESOLVE] = {.shader = "surface_cache.comp", .defines = "RESOLVE", .groups_x = CPU_RESOLVE_GROUPS,
                  .groups_y = 1, .groups_z = 1},
     [GATHER] = {.shader = "surface_cache.comp", .defines = "GATHER", .pixel_loop = 1,

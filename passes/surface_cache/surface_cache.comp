@@ -49,8 +49,8 @@ layout(push_constant) uniform Params {
 
 // header words
 const uint UNCACHED = 0u, LISTED = 1u, HEADER = 16u;
-// with a smaller signal (SPARSE): its hit texels this frame, and the
-// pixels that matched one (the host warns when none did)
+// with a smaller signal (SPARSE): its hit texels this frame, and those
+// that found the pixel they were sampled at (the host warns when none did)
 const uint SPARSE_TEXELS = 2u, SPARSE_MATCHED = 3u;
 // check words: a free slot, a freed one (lookups go on past it), else a cell's check value
 const uint EMPTY = 0u, FREED = 1u;
@@ -251,25 +251,8 @@ void add_sample(Cell c, uvec4 q, bool cut)
         atomicOr(out_table.words[count_word(e)], CUT);
 }
 
-void shade(ivec2 p)
+void add_pixel(ivec2 p, vec4 x, ivec2 s)
 {
-    if (any(greaterThanEqual(p, textureSize(in_position, 0))))
-        return;
-    vec4 x = texelFetch(in_position, p, 0);
-    if (x.w == 0.0)
-        return;
-#ifdef SPARSE
-    ivec2 s = vrg_pixel_in(p, textureSize(in_position, 0), textureSize(in_signal, 0));
-    vec4 sampled = texelFetch(in_signal_position, s, 0);
-    // each hit texel counted once, by the pixel vrg_pixel_in picks for it
-    if (sampled.w != 0.0 && vrg_pixel_in(s, textureSize(in_signal, 0), textureSize(in_position, 0)) == p)
-        atomicAdd(out_table.words[SPARSE_TEXELS], 1u);
-    if (sampled != x)
-        return; // this texel sampled another pixel of its footprint
-    atomicAdd(out_table.words[SPARSE_MATCHED], 1u);
-#else
-    ivec2 s = p;
-#endif
     vec3 n = texelFetch(in_normal, p, 0).xyz;
     uvec4 q = uvec4(clamp(texelFetch(in_signal, s, 0), 0.0, MAX_SAMPLE) * FIXED + 0.5);
     int level = level_of(x.xyz);
@@ -278,6 +261,47 @@ void shade(ivec2 p)
     for (int k = 1; k <= params.coarse_levels; k++)
         add_sample(cell_of(x.xyz, n, level + k), q, cut);
 }
+
+#ifdef SPARSE
+// One invocation per texel of the smaller signal, not per pixel: the
+// lanes that add samples are then not spread among the 3 in 4 pixels (at
+// half size) that have none to add, which on a CPU device ran every
+// lane's table loop for the one that had. The texel's sample goes to the
+// pixel of its footprint (the pixels vrg_pixel_in maps to it) whose
+// position it holds.
+void shade(ivec2 s)
+{
+    ivec2 small = textureSize(in_signal, 0), size = textureSize(in_position, 0);
+    if (any(greaterThanEqual(s, small)))
+        return;
+    vec4 sampled = texelFetch(in_signal_position, s, 0);
+    if (sampled.w == 0.0)
+        return;
+    atomicAdd(out_table.words[SPARSE_TEXELS], 1u);
+    // the footprint lies within these (a pixel either side of float rounding)
+    vec2 ratio = vec2(size) / vec2(small);
+    ivec2 lo = max(ifloor(vec2(s) * ratio) - 1, ivec2(0)), hi = min(ifloor(vec2(s + 1) * ratio), size - 1);
+    for (int row = lo.y; row <= hi.y; row++)
+        for (int column = lo.x; column <= hi.x; column++) {
+            ivec2 p = ivec2(column, row);
+            if (vrg_pixel_in(p, size, small) != s || texelFetch(in_position, p, 0) != sampled)
+                continue;
+            atomicAdd(out_table.words[SPARSE_MATCHED], 1u);
+            add_pixel(p, sampled, s);
+            return;
+        }
+}
+#else
+void shade(ivec2 p)
+{
+    if (any(greaterThanEqual(p, textureSize(in_position, 0))))
+        return;
+    vec4 x = texelFetch(in_position, p, 0);
+    if (x.w == 0.0)
+        return;
+    add_pixel(p, x, p);
+}
+#endif
 #endif
 
 #ifdef RESOLVE

@@ -10,23 +10,29 @@
 # there (exit 77, after the table sizes are checked).
 # GRAPH: surface-cache-4ray.ini, its indirect cache with two coarse levels
 # and its sun read at each point's own cell (the other gather), or
-# tests/graphs/cache_fallback.ini (a sun cache with a fallback).
-# usage: cache_threads.sh VOXRG GRAPH PATH OUT
+# tests/graphs/cache_fallback.ini (a sun cache with a fallback), or
+# interactive.ini (half-size samples inserted by texel, signal_position).
+# SETS: PASS.PARAM=VALUE words for every run (its caches' evict_frames=2);
+# SMALL and OTHER: the two runs' other table sizes.
+# usage: cache_threads.sh VOXRG GRAPH PATH OUT SETS SMALL OTHER
 set -e
-voxrg=$1 graph=$2 path=$3 out=$4
+voxrg=$1 graph=$2 path=$3 out=$4 sets=$5 small=$6 other=$7
 mkdir -p "$out"
 render() {
     name=$1; shift
-    "$voxrg" render "$graph" --validate --frames 12 --size 96x54 --camera "$path" --set sun_cache.evict_frames=2 \
-        --set indirect_cache.evict_frames=2 --set indirect_cache.coarse_levels=2 --set sun_cache.bilinear=0 "$@" --out "$out/$name" >"$out/$name.log" 2>&1 ||
+    args=""
+    for s in $sets "$@"; do args="$args --set $s"; done
+    # $args unquoted: one word per --set and its value
+    "$voxrg" render "$graph" --validate --frames 12 --size 96x54 --camera "$path" $args --out "$out/$name" >"$out/$name.log" 2>&1 ||
         { cat "$out/$name.log"; echo "FAIL: run $name"; exit 1; }
 }
 same() { # run: its image is run t1's
     cmp -s "$out/t1/ldr.png" "$out/$1/ldr.png" || { echo "FAIL: the image of run $1 differs from run t1's"; exit 1; }
 }
 LP_NUM_THREADS=1 render t1
-render small --set sun_cache.cells=65536 --set indirect_cache.cells=32768
-render other --set sun_cache.cells=262144
+# unquoted: one word per setting
+render small $small
+render other $other
 same small
 same other
 echo "the same image with three table sizes"

@@ -499,17 +499,20 @@ static int far_differ(const vrg_image_data *a, const vrg_image_data *b, const vr
     return differ;
 }
 
-/* interactive.ini as shipped (no neighbourhood clamp, anti-lag on): most
- * of an edit's change of indirect light shows within 8 to 12 frames
- * despite the history's alpha of 0.05; without anti-lag it lags (so the
- * case sees lag). clamp_k 1.5, the value before the sweep over the case
- * file, answers about as fast: the clamp is not what answers an edit
- * here. */
+/* The screen-space chain interactive.ini shipped with until it took a
+ * surface cache (tests/graphs/interactive-chain.ini: no neighbourhood
+ * clamp, anti-lag on): most of an edit's change of indirect light shows
+ * within 8 to 12 frames despite the history's alpha of 0.05; without
+ * anti-lag it lags (so the case sees lag). clamp_k 1.5, the value before
+ * the sweep over the case file, answers about as fast: the clamp is not
+ * what answers an edit here. (interactive.ini's cache: cache_edit_light.) */
 static void test_denoise_edit_light(void)
 {
-    static const edit_graph shipped_g = {"interactive.ini", "upsample.illumination", {"reproject.clamp_k=0", "reproject.antilag=1"}},
-                            clamped_g = {"interactive.ini", "upsample.illumination", {"reproject.clamp_k=1.5", "reproject.antilag=1"}},
-                            lagging_g = {"interactive.ini", "upsample.illumination", {"reproject.clamp_k=0", "reproject.antilag=0"}};
+#define CHAIN "../tests/graphs/interactive-chain.ini", "upsample.illumination"
+    static const edit_graph shipped_g = {CHAIN, {"reproject.clamp_k=0", "reproject.antilag=1"}},
+                            clamped_g = {CHAIN, {"reproject.clamp_k=1.5", "reproject.antilag=1"}},
+                            lagging_g = {CHAIN, {"reproject.clamp_k=0", "reproject.antilag=0"}};
+#undef CHAIN
     float p[3];
     if (edit_point(&shipped_g, p) != 0)
         return;
@@ -537,8 +540,9 @@ static void test_denoise_edit_light(void)
         free(all[i]->last.pixels), free(all[i]->last_position.pixels);
 }
 
-/* The world-space caches of surface-cache-4ray.ini and surface-cache-1ray.ini
- * after the same edit. A cell's history is worth up to max_frames (64)
+/* The world-space caches of surface-cache-4ray.ini, surface-cache-1ray.ini
+ * and interactive.ini (half-size samples read at full size) after the
+ * same edit. A cell's history is worth up to max_frames (64)
  * frames of its samples; the cells within edit_radius blocks of the blocks
  * an edit changed start over (the frame uniforms' edit box), so the
  * change shows within a few frames. Without it (edit_radius 0) it comes
@@ -550,6 +554,8 @@ static void test_cache_edit_light(void)
          {"surface-cache-4ray.ini", "indirect_cache.color", {"indirect_cache.edit_radius=0", NULL}}},
         {{"surface-cache-1ray.ini", "indirect_cache.color", {NULL, NULL}},
          {"surface-cache-1ray.ini", "indirect_cache.color", {"indirect_cache.edit_radius=0", NULL}}},
+        {{"interactive.ini", "indirect_cache.color", {NULL, NULL}},
+         {"interactive.ini", "indirect_cache.color", {"indirect_cache.edit_radius=0", NULL}}},
     };
     for (unsigned i = 0; i < sizeof graphs / sizeof graphs[0]; i++) {
         float p[3];
