@@ -20,7 +20,8 @@
  * from afar gets the light of the step faces beside it, which face the
  * same sky and ground, not that of the floor in front. Both off by
  * default so that a graph keeps its images; the sweeps that turned them
- * on in interactive.ini are in docs/denoisers.md. Sky pixels get 1, the illumination combine writes
+ * on in interactive.ini's chain (tests/graphs/interactive-chain.ini) are
+ * in docs/denoisers.md. Sky pixels get 1, the illumination combine writes
  * for sky (modulate passes the sky through).
  * mode = bilinear or nearest turn the surface test off, for comparison. */
 #include "voxrg/plugin.h"

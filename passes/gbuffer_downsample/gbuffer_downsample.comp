@@ -21,9 +21,9 @@ layout(push_constant) uniform Params {
 
 // With jitter: this frame's pixel of p's footprint, the full-size pixels
 // that vrg_pixel_in maps back to p (1 to ceil(full / size) a side, as the
-// ratio falls), so that a pass finding a pixel's texel with vrg_pixel_in
-// (surface_cache's sparse insert) finds the texel that sampled it; where
-// rounding puts the pick outside, vrg_pixel_in's own pixel.
+// ratio falls), so that the pixel a texel sampled is one that
+// vrg_pixel_in maps back to it (surface_cache's sparse insert looks for it
+// there); where rounding puts the pick outside, vrg_pixel_in's own pixel.
 ivec2 footprint_pixel(ivec2 p, ivec2 size, ivec2 full)
 {
     vec2 ratio = vec2(full) / vec2(size);

@@ -12,10 +12,14 @@
 # and its sun read at each point's own cell (the other gather), or
 # tests/graphs/cache_fallback.ini (a sun cache with a fallback), or
 # interactive.ini (half-size samples inserted by texel, signal_position).
-# SETS: PASS.PARAM=VALUE words for every run (its caches' evict_frames=2);
-# SMALL and OTHER: the two runs' other table sizes.
+# SETS: PASS.PARAM=VALUE words for every run (its caches' evict_frames,
+# scene.edits=none: no edit journal beside the graph is read); SMALL and
+# OTHER: the two runs' other table sizes.
 # usage: cache_threads.sh VOXRG GRAPH PATH OUT SETS SMALL OTHER
 set -e
+# the settings are split into words, never expanded as file names
+set -f
+[ $# -eq 7 ] && [ -n "$6" ] && [ -n "$7" ] || { echo "usage: cache_threads.sh VOXRG GRAPH PATH OUT SETS SMALL OTHER (SMALL, OTHER: not empty)"; exit 2; }
 voxrg=$1 graph=$2 path=$3 out=$4 sets=$5 small=$6 other=$7
 mkdir -p "$out"
 render() {

@@ -301,8 +301,8 @@ typedef struct {
     vrg_image_data last, last_position; /* the last frame's indirect light and positions (freed by the caller) */
 } edit_response;
 
-/* The graph measured: its file under graphs/, the image of its indirect
- * light and up to two parameter settings (NULL: none). */
+/* The graph measured: its file relative to graphs/, the image of its
+ * indirect light and up to two parameter settings (NULL: none). */
 typedef struct {
     const char *graph, *indirect, *set[2];
 } edit_graph;
