@@ -145,6 +145,10 @@ typedef struct window_state {
     vrg_view_stats stats;
     char viewer_for[160]; /* the image the viewer's settings belong to ("" none yet) */
     int viewer_reset;     /* 0: back to the output as it is */
+    /* V and C pressed while another image is on its way (Tab, a number
+     * key, or a frozen frame's next): net steps for that image, applied
+     * once it is shown, after its own view is set */
+    int pending_view, pending_channel;
     int probe_side;       /* the side under the cursor: 0 A, 1 B, -1 none */
     int probe[2][2];      /* its texel in A's and B's shown image */
     display_source shown_src[2];
@@ -473,10 +477,15 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
     else if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9) {
         w->shown = key - GLFW_KEY_0 - 1, w->shown_step = 0; /* 0: the output, 1..9: the list */
         w->viewer_reset = 1; /* the image's own view, the output as it is */
-    } else if (key == GLFW_KEY_V)
-        vrg_viewer_next_view(&w->viewer, mods & GLFW_MOD_SHIFT ? -1 : 1);
-    else if (key == GLFW_KEY_C)
-        vrg_viewer_next_channel(&w->viewer, mods & GLFW_MOD_SHIFT ? -1 : 1);
+    } else if (key == GLFW_KEY_V || key == GLFW_KEY_C) {
+        int dir = mods & GLFW_MOD_SHIFT ? -1 : 1;
+        if (w->shown_step || w->viewer_reset || w->shown_pending) /* the next image's, not this one's */
+            *(key == GLFW_KEY_V ? &w->pending_view : &w->pending_channel) += dir;
+        else if (key == GLFW_KEY_V)
+            vrg_viewer_next_view(&w->viewer, dir);
+        else
+            vrg_viewer_next_channel(&w->viewer, dir);
+    }
     else if (key == GLFW_KEY_R)
         vrg_viewer_hold_range(&w->viewer, &w->stats);
     else if ((key == GLFW_KEY_COMMA || key == GLFW_KEY_PERIOD) && (mods & GLFW_MOD_SHIFT))
@@ -1257,6 +1266,12 @@ static int choose_sources(window_state *w, vrg_graph *g, vrg_graph *gb, const ch
         snprintf(w->viewer_for, sizeof w->viewer_for, "%s", name);
         w->stats.valid = 0;
         w->viewer_reset = 0;
+    }
+    if (!w->shown_pending) {
+        for (; w->pending_view; w->pending_view -= w->pending_view > 0 ? 1 : -1)
+            vrg_viewer_next_view(&w->viewer, w->pending_view > 0 ? 1 : -1);
+        for (; w->pending_channel; w->pending_channel -= w->pending_channel > 0 ? 1 : -1)
+            vrg_viewer_next_channel(&w->viewer, w->pending_channel > 0 ? 1 : -1);
     }
     src[0].viewed = w->viewer.view != VRG_VIEW_AS_IS;
     if (gb) {

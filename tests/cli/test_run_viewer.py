@@ -11,6 +11,10 @@ gradient has a closed form (pattern: (x/39, y/23, 0.5, 1) as halves):
 - scale_bar: C and V show channel r in false colour; the bar's colour at
   t is the image's colour where r = t (the auto range is 0..1), and its
   words say what is mapped and the ends' values;
+- keys_before_switch: C and V pressed after Tab but before the gradient
+  is shown (the frame frozen, F, until G renders one) are the gradient's:
+  its bar's caption says so (they were the old image's, then lost to the
+  new image's own view);
 - inspector: I shows every image at the pixel in schedule order (gen's
   gradient, smooth's blurred, sum's final), the gradient's values exact; a
   click pins the pixel (the cursor moves, the table stays); F freezes: the
@@ -184,6 +188,18 @@ def scale_bar(d):
     win.close()
 
 
+def keys_before_switch(d):
+    win = Window(voxrg, GRAPH, d, args=ARGS)
+    xdo("key", "f")  # frozen: the image Tab asks for comes with the next frame
+    xdo("key", "Tab", "c", "v", "v")
+    xdo("key", "g")  # that frame
+    point(win, 5, 1)
+    bar_x, bar_y = 12, 252  # as in scale_bar
+    settle(win, lambda s: text_at(s, bar_x - 8 + PAD, bar_y - 4 - LINE_H) == "gradient: false colour of r, auto",
+           "C and V pressed before the gradient was shown")
+    win.close()
+
+
 def table(shot):
     """The inspector's title and rows: (title, [(pass, resource, [values])])."""
     lines = []
@@ -284,7 +300,7 @@ def ab(d):
 
 
 def main():
-    return run_cases(out, (value, scale_bar, inspector, read_twice, ab))
+    return run_cases(out, (value, scale_bar, keys_before_switch, inspector, read_twice, ab))
 
 
 if __name__ == "__main__":
