@@ -164,6 +164,15 @@ def value(d):
     win.close()
 
 
+# run.c's scale_bar_rect for a 480x288 window: 320 wide, 10 high, at (12, 252)
+BAR_X, BAR_Y, BAR_W = 12, 252, 320
+
+
+def red_false_colour(shot):
+    """The scale bar's caption says: the gradient's r in false colour."""
+    return text_at(shot, BAR_X - 8 + PAD, BAR_Y - 4 - LINE_H) == "gradient: false colour of r, auto"
+
+
 def scale_bar(d):
     win = Window(voxrg, GRAPH, d, args=ARGS)
     xdo("key", "Tab")
@@ -171,9 +180,8 @@ def scale_bar(d):
     xdo("key", "v")  # colour -> range
     xdo("key", "v")  # range -> false colour
     point(win, 5, 1)
-    # run.c's scale_bar_rect for a 480x288 window: 320 wide, 10 high, at (12, 252)
-    bar_x, bar_y, bar_w = 12, 252, 320
-    shot = settle(win, lambda s: text_at(s, bar_x - 8 + PAD, bar_y - 4 - LINE_H) == "gradient: false colour of r, auto", "the bar's caption")
+    bar_x, bar_y, bar_w = BAR_X, BAR_Y, BAR_W
+    shot = settle(win, red_false_colour, "the bar's caption")
     assert text_at(shot, bar_x, bar_y + 10 + 3).split(" ")[0] == "0", text_at(shot, bar_x, bar_y + 10 + 3)
     w, h, px = shot
     row = 12 * CELL + CELL // 2  # below the text, above the bar
@@ -194,9 +202,7 @@ def keys_before_switch(d):
     xdo("key", "Tab", "c", "v", "v")
     xdo("key", "g")  # that frame
     point(win, 5, 1)
-    bar_x, bar_y = 12, 252  # as in scale_bar
-    settle(win, lambda s: text_at(s, bar_x - 8 + PAD, bar_y - 4 - LINE_H) == "gradient: false colour of r, auto",
-           "C and V pressed before the gradient was shown")
+    settle(win, red_false_colour, "C and V pressed before the gradient was shown")
     win.close()
 
 
