@@ -14,17 +14,26 @@ layout(binding = 5, rgba16f) uniform writeonly image2D out_normal;
 layout(binding = 6, rgba16f) uniform writeonly image2D out_albedo;
 layout(binding = 7, rg32ui) uniform writeonly uimage2D out_ids;
 layout(binding = 8, rg16f) uniform writeonly image2D out_motion;
-layout(binding = 9, r16f) uniform writeonly image2D out_emission;  // with EMISSION (the output is read)
+layout(binding = 9, r16f) uniform writeonly image2D out_emission;
+// The optional outputs some pass reads (gbuffer.c): an unread one is a 1x1
+// stand-in, not written, and its stores cost nothing.
+const uint WRITE_DEPTH = 1u, WRITE_IDS = 2u, WRITE_MOTION = 4u, WRITE_EMISSION = 8u;
 layout(push_constant) uniform Params {
     float max_distance;
     int textured;
+    uint writes;  // WRITE_* bits
 } params;
 
-void store_emission(ivec2 p, float e)
+void store(ivec2 p, float depth, uvec2 ids, vec2 motion, float emission)
 {
-#ifdef EMISSION
-    imageStore(out_emission, p, vec4(e));
-#endif
+    if ((params.writes & WRITE_DEPTH) != 0u)
+        imageStore(out_depth, p, vec4(depth));
+    if ((params.writes & WRITE_IDS) != 0u)
+        imageStore(out_ids, p, uvec4(ids, 0u, 0u));
+    if ((params.writes & WRITE_MOTION) != 0u)
+        imageStore(out_motion, p, vec4(motion, 0.0, 0.0));
+    if ((params.writes & WRITE_EMISSION) != 0u)
+        imageStore(out_emission, p, vec4(emission));
 }
 
 // Where a world point (w = 1) or direction (w = 0) was on screen last frame, in pixels.
@@ -49,12 +58,9 @@ void shade(ivec2 p)
     Hit h = trace_closest(o, d, params.max_distance);
     if (!h.hit) {
         imageStore(out_position, p, vec4(0.0));
-        imageStore(out_depth, p, vec4(0.0));
         imageStore(out_normal, p, vec4(0.0));
         imageStore(out_albedo, p, vec4(frame_sky(d), 1.0));
-        imageStore(out_ids, p, uvec4(0u));
-        imageStore(out_motion, p, vec4(vec2(p) - previous_pixel(vec4(d, 0.0), vec2(size)), 0.0, 0.0));
-        store_emission(p, 0.0);
+        store(p, 0.0, uvec2(0u), vec2(p) - previous_pixel(vec4(d, 0.0), vec2(size)), 0.0);
         return;
     }
     vec3 hp = o + d * h.t;
@@ -67,12 +73,10 @@ void shade(ivec2 p)
         albedo = textureLod(atlas, world_atlas_uv(h.block, h.normal, world_face_uv(hp, h.normal)), lod).rgb;
     }
     imageStore(out_position, p, vec4(hp, 1.0));
-    imageStore(out_depth, p, vec4(h.t * dot(d, frame.camera_forward.xyz)));
     imageStore(out_normal, p, vec4(n, 0.0));
     imageStore(out_albedo, p, vec4(albedo, 1.0));
-    imageStore(out_ids, p, uvec4(h.block, uint(h.chunk) + 1u, 0u, 0u));
-    imageStore(out_motion, p, vec4(vec2(p) - previous_pixel(vec4(hp, 1.0), vec2(size)), 0.0, 0.0));
-    store_emission(p, material.w);
+    store(p, h.t * dot(d, frame.camera_forward.xyz), uvec2(h.block, uint(h.chunk) + 1u), vec2(p) - previous_pixel(vec4(hp, 1.0), vec2(size)),
+          material.w);
 }
 
 void main()

@@ -14,9 +14,13 @@ layout(binding = 4, rgba32f) uniform writeonly image2D out_position;
 layout(binding = 5, rgba16f) uniform writeonly image2D out_normal;
 layout(binding = 6, rg32ui) uniform writeonly uimage2D out_ids;
 layout(binding = 7, rg16f) uniform writeonly image2D out_motion;
+// The optional outputs some pass reads (gbuffer_downsample.c): an unread
+// one is a 1x1 stand-in, neither it nor its input touched.
+const uint WRITE_IDS = 1u, WRITE_MOTION = 2u;
 layout(push_constant) uniform Params {
     int jitter;    // pick this frame's pixel of each footprint (offset)
     int offset[2]; // this frame's pixel within the footprint, from its top left
+    uint writes;   // WRITE_* bits
 } params;
 
 // With jitter: this frame's pixel of p's footprint, the full-size pixels
@@ -40,9 +44,11 @@ void shade(ivec2 p)
     ivec2 g = params.jitter != 0 ? footprint_pixel(p, size, full) : vrg_pixel_in(p, size, full);
     imageStore(out_position, p, imageLoad(in_position, g));
     imageStore(out_normal, p, imageLoad(in_normal, g));
-    imageStore(out_ids, p, imageLoad(in_ids, g));
+    if ((params.writes & WRITE_IDS) != 0u)
+        imageStore(out_ids, p, imageLoad(in_ids, g));
     // a point that moved m full-resolution pixels moved m * size / full of these
-    imageStore(out_motion, p, vec4(imageLoad(in_motion, g).xy * vec2(size) / vec2(full), 0.0, 0.0));
+    if ((params.writes & WRITE_MOTION) != 0u)
+        imageStore(out_motion, p, vec4(imageLoad(in_motion, g).xy * vec2(size) / vec2(full), 0.0, 0.0));
 }
 
 void main()

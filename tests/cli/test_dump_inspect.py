@@ -244,8 +244,10 @@ def check_finite_clean():
             check(math.hypot(*m["vector"]) > 3, f"the motion vector {m['vector']} is too short to tell a sign error")
             motion_target(graph, turn, d, tx, ty)
         names = [i["resource"] + ("@prev" if i["prev"] else "") for i in d["images"]]
-        check(names.index("gbuffer.depth") < names.index("ldr") and "reproject.length@prev" in names,
+        check(names.index("gbuffer.position") < names.index("ldr") and "reproject.length@prev" in names,
               f"inspect's order or @prev copies: {names}")
+        # thesis.ini reads no depth: gbuffer's is an unread stand-in, not computed, not listed
+        check("gbuffer.depth" not in names, f"inspect lists gbuffer.depth, which nothing in thesis.ini reads: {names}")
 
 
 def motion_target(graph, path, d, tx, ty):

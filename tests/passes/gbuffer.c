@@ -220,12 +220,117 @@ static int test_backends_agree(void)
     return 0;
 }
 
+/* The G-buffer's scene and camera, gbuffer_downsample connected to its
+ * position and normal and, where asked, its ids and motion. */
+static vrg_graph *load_optional(int half_ids, int half_motion, const char *const *reads, uint32_t nreads)
+{
+    char *text = NULL;
+    size_t len = 0;
+    append(&text, &len,
+           "[graph]\nname = optional\noutput = gbuffer.albedo\nwidth = 96\nheight = 64\n"
+           "[camera]\nposition = 16 14 40\nyaw = 0\npitch = -25\n"
+           "[scene]\nplugin = blocks\nbox = 0 0 0 31 0 31 white\nbox = 8 1 8 23 6 8 red\nbox = 24 1 20 25 9 21 stone\n"
+           "[pass gbuffer]\nplugin = gbuffer\nin.world = world\nin.frame = frame\n"
+           "[pass half]\nplugin = gbuffer_downsample\nin.position = gbuffer.position\nin.normal = gbuffer.normal\n%s%s",
+           half_ids ? "in.ids = gbuffer.ids\n" : "", half_motion ? "in.motion = gbuffer.motion\n" : "");
+    vrg_graph *g = load_text(text, reads, nreads);
+    free(text);
+    if (!g)
+        return NULL;
+    /* two frames, the camera moved between them: motion is not zero */
+    vrg_camera cam = *vrg_graph_camera(g);
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    cam.position[0] += 1.0f;
+    cam.yaw += 2.0f;
+    vrg_graph_set_camera(g, &cam);
+    CHECK(vrg_graph_frame(g) == 0, "frame failed");
+    return g;
+}
+
+/* Whether `resource`'s line in the graph's report says it is a stand-in. */
+static int stand_in(vrg_graph *g, const char *resource)
+{
+    char *report = NULL, want[64];
+    size_t report_len = 0;
+    FILE *f = open_memstream(&report, &report_len);
+    if (!f)
+        return 0;
+    vrg_graph_report(g, f);
+    fclose(f);
+    snprintf(want, sizeof want, "  %s ", resource);
+    const char *line = strstr(report, want), *end = line ? strchr(line, '\n') : NULL;
+    const char *note = line ? strstr(line, "(unread optional output)") : NULL;
+    int yes = note && (!end || note < end);
+    free(report);
+    return yes;
+}
+
+/* gbuffer's depth, ids and motion and gbuffer_downsample's ids and motion
+ * are written only where read (an unread one is a 1x1 stand-in: a store
+ * and its arithmetic less per pixel). Read one at a time, each is what a
+ * graph reading all of them gets, bit for bit (a wrong WRITE_* bit leaves
+ * it unwritten), and the ones not read are stand-ins; gbuffer_downsample's
+ * position still copies the full pixel under it. */
+static void test_optional_outputs(void)
+{
+    static const char *const all[] = {"gbuffer.position", "gbuffer.depth", "gbuffer.ids", "gbuffer.motion", "half.position", "half.ids", "half.motion"};
+    enum { N = sizeof all / sizeof all[0] };
+    vrg_graph *g = load_optional(1, 1, all, N);
+    if (!g)
+        return;
+    vrg_image_data want[N];
+    for (int i = 0; i < N; i++)
+        if (vrg_graph_read(g, all[i], &want[i]) != 0) {
+            CHECK(0, "readback of %s failed", all[i]);
+            for (int k = 0; k < i; k++)
+                free(want[k].pixels);
+            vrg_graph_destroy(g);
+            return;
+        }
+    vrg_graph_destroy(g);
+    int moving = 0;
+    for (uint32_t i = 0; i < want[3].width * want[3].height; i++)
+        moving += fabsf(want[3].pixels[i * 4]) > 0.5f;
+    CHECK(moving > 1000, "the camera's step does not test motion: %d moving pixels", moving);
+    /* one optional output read at a time: gbuffer's (nothing connected to
+     * half's optional inputs), then half's (its input connected) */
+    for (int k = 1; k < N; k++) {
+        if (k == 4)
+            continue; /* half.position is not optional: read beside each of the others */
+        int half = k >= 5;
+        const char *reads[] = {all[0], all[4], all[k]};
+        g = load_optional(k == 5, k == 6, reads, 3);
+        if (!g)
+            break;
+        for (int r = 1; r < 3; r++) {
+            int w = r == 1 ? 4 : k;
+            vrg_image_data got;
+            if (vrg_graph_read(g, reads[r], &got) != 0) {
+                CHECK(0, "%s read alone: readback of %s failed", all[k], reads[r]);
+                continue;
+            }
+            int differ = got.width != want[w].width || got.height != want[w].height;
+            for (uint32_t i = 0; !differ && i < got.width * got.height * 4; i++)
+                differ += memcmp(&got.pixels[i], &want[w].pixels[i], sizeof(float)) != 0;
+            CHECK(!differ, "%s read alone: %s differs from the graph that reads every output", all[k], reads[r]);
+            free(got.pixels);
+        }
+        for (int u = 1; u < N; u++)
+            if (u != 4 && u != k && !(half && u == k - 3))
+                CHECK(stand_in(g, all[u]), "%s read alone: %s is not an unread stand-in", all[k], all[u]);
+        vrg_graph_destroy(g);
+    }
+    for (int i = 0; i < N; i++)
+        free(want[i].pixels);
+}
+
 int main(int argc, char **argv)
 {
     static const test_case cases[] = {
         {"gbuffer_normals", test_gbuffer_normals, 1},
         {"gbuffer_motion", test_gbuffer_motion, 1},
         {"backends_agree", NULL, 1, test_backends_agree},
+        {"gbuffer_optional_outputs", test_optional_outputs, 1},
     };
     return run_case(argc, argv, cases, sizeof cases / sizeof cases[0]);
 }

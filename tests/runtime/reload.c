@@ -309,6 +309,8 @@ static const char *reloadme_source =
     "#ifdef LONG_MESSAGES\n    char m[3001];\n    memset(m, 'm', 3000);\n    memcpy(m + 2990, \"end_of_it\", 10);\n"
     "    vrg_pass_warn_at(p, 0, \"warned %s\", m);\n    return vrg_pass_error(p, \"failed %s\", m);\n#endif\n"
     "#ifdef CHOICE_WITHOUT_LIST\n    if (vrg_param_choice(p, \"level\", NULL, 0) < 0)\n        return -1;\n#endif\n"
+    "#ifdef SAME_SIZE_TYPO\n    static const char *const names[] = {\"colour\"};\n"
+    "    if (vrg_pass_require_same_size(p, \"color\", names, 1) != 0)\n        return -1;\n#endif\n"
     "    vrg_pass_set_user(p, calloc(1, sizeof(state)));\n    return 0;\n}\n"
     "static void destroy(vrg_pass *p) { free(vrg_pass_user(p)); }\n"
     "static void execute(vrg_pass *p, VkCommandBuffer cmd) {\n"
@@ -622,6 +624,19 @@ static void test_param_choice_without_list(void)
     free(log);
 }
 
+/* vrg_pass_require_same_size given a name that is no slot of the pass (it
+ * skips unconnected optional slots, not misspelt ones): an error naming
+ * the API's misuse and the name. */
+static void test_same_size_unknown_slot(void)
+{
+    int loaded;
+    char *log = load_log_of("typo", "-DSAME_SIZE_TYPO", &loaded);
+    CHECK(!loaded, "a graph whose pass fails in create() loaded");
+    CHECK(log && strstr(log, "VRG-E062") && strstr(log, "vrg_pass_require_same_size: 'colour' names no slot of this pass"), "no misuse error: %s",
+          log ? log : "(none)");
+    free(log);
+}
+
 /* Hot reload of a rebuilt plugin: the new build runs from the next graph
  * instance on, with the old instance's state handed over (save_state ->
  * restore_state: its frame count goes on); a rebuild with another ABI
@@ -754,6 +769,7 @@ int main(int argc, char **argv)
         {"hot_reload_state_too_big", test_hot_reload_state_too_big, 1},
         {"long_plugin_messages", test_long_plugin_messages, 1},
         {"param_choice_without_list", test_param_choice_without_list, 1},
+        {"same_size_unknown_slot", test_same_size_unknown_slot, 1},
         {"save_file_errors", test_save_file_errors, 0},
     };
     return run_case(argc, argv, cases, sizeof cases / sizeof cases[0]);

@@ -521,7 +521,13 @@ int vrg_pass_require_same_size(vrg_pass *p, const char *ref, const char *const *
 {
     VkExtent2D want = vrg_res_extent(p, vrg_pass_res(p, ref));
     for (int i = 0; i < count; i++) {
-        VkExtent2D e = vrg_res_extent(p, vrg_pass_res(p, names[i]));
+        int res, prev, slot = -1;
+        if (_vrg_pass_lookup(p, names[i], &res, &prev, &slot) != 0 && slot < 0)
+            return _vrg_pass_fail(p, VRG_E_PASS_API_MISUSE, "vrg_pass_require_same_size: '%s' names no slot of this pass", names[i]);
+        vrg_res r = vrg_pass_res(p, names[i]);
+        if (!vrg_res_connected(r))
+            continue; /* an optional slot's stand-in */
+        VkExtent2D e = vrg_res_extent(p, r);
         if (e.width != want.width || e.height != want.height)
             return _vrg_pass_fail(p, VRG_E_SIZE_MISMATCH, "input '%s' is %ux%u, '%s' %ux%u: this pass needs them at one size", names[i], e.width, e.height, ref,
                                   want.width, want.height);
