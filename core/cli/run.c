@@ -75,6 +75,14 @@ typedef struct display_buffer {
     void *map;
 } display_buffer;
 
+/* One of the viewer's keys: what it changes and which way (viewer_key). */
+typedef enum { VIEWER_KEY_VIEW, VIEWER_KEY_CHANNEL, VIEWER_KEY_EXPOSE, VIEWER_KEY_HOLD, VIEWER_KEY_LOW } viewer_key_kind;
+typedef struct viewer_key_press {
+    viewer_key_kind kind;
+    int dir; /* +1 or -1 (V, C, the exposure and the low end); 0 for R */
+} viewer_key_press;
+#define PENDING_KEYS 64
+
 typedef struct window_state {
     vrg_context *ctx;
     const vrg_device *dev;
@@ -145,10 +153,12 @@ typedef struct window_state {
     vrg_view_stats stats;
     char viewer_for[160]; /* the image the viewer's settings belong to ("" none yet) */
     int viewer_reset;     /* 0: back to the output as it is */
-    /* V and C pressed while another image is on its way (Tab, a number
-     * key, or a frozen frame's next): net steps for that image, applied
-     * once it is shown, after its own view is set */
-    int pending_view, pending_channel;
+    /* The viewer's keys (V, C, R, , and .) pressed while another image is
+     * on its way (Tab, a number key, or a frozen frame's next), in order:
+     * they are for that image, applied once it is shown, after its own
+     * view is set (viewer_key) */
+    viewer_key_press pending[PENDING_KEYS];
+    int pending_count;
     int probe_side;       /* the side under the cursor: 0 A, 1 B, -1 none */
     int probe[2][2];      /* its texel in A's and B's shown image */
     display_source shown_src[2];
@@ -416,6 +426,61 @@ static void on_char(GLFWwindow *win, unsigned int codepoint)
     w->typing_began = 0;
 }
 
+/* A viewer key on the shown image: 1, or 0 where it must wait. R and
+ * Shift+, and Shift+. hold the range where the image's figures put it, and
+ * an image newly shown through the viewer has none until its first frame
+ * (shown as it is, it gets none: they apply at once, as before a frame). */
+static int apply_viewer_key(window_state *w, viewer_key_press k)
+{
+    if ((k.kind == VIEWER_KEY_HOLD || k.kind == VIEWER_KEY_LOW) && !w->stats.valid && w->viewer.view != VRG_VIEW_AS_IS)
+        return 0;
+    switch (k.kind) {
+    case VIEWER_KEY_VIEW:
+        vrg_viewer_next_view(&w->viewer, k.dir);
+        break;
+    case VIEWER_KEY_CHANNEL:
+        vrg_viewer_next_channel(&w->viewer, k.dir);
+        break;
+    case VIEWER_KEY_EXPOSE:
+        vrg_viewer_expose(&w->viewer, 0.5f * (float)k.dir);
+        break;
+    case VIEWER_KEY_HOLD:
+        vrg_viewer_hold_range(&w->viewer, &w->stats);
+        break;
+    case VIEWER_KEY_LOW:
+        vrg_viewer_move_low(&w->viewer, &w->stats, k.dir);
+        break;
+    }
+    return 1;
+}
+
+/* A viewer key pressed while another image is on its way (Tab, a number
+ * key, a frozen frame's next) is that image's: it waits, in order, with
+ * any that wait already (else the new image's own view, set when it is
+ * shown, would replace what the key did to the old one). A full queue
+ * drops the key, saying so. */
+static void viewer_key(window_state *w, viewer_key_press k)
+{
+    if (!w->shown_step && !w->viewer_reset && !w->shown_pending && !w->pending_count && apply_viewer_key(w, k))
+        return;
+    if (w->pending_count == PENDING_KEYS) {
+        fprintf(stderr, "voxrg run: a viewer key ignored: %d keys already wait for the image on its way\n", PENDING_KEYS);
+        return;
+    }
+    w->pending[w->pending_count++] = k;
+}
+
+/* The keys that waited, in order, as far as they go now (choose_sources,
+ * once the image they are for is shown with its own view). */
+static void apply_pending_keys(window_state *w)
+{
+    int done = 0;
+    while (done < w->pending_count && apply_viewer_key(w, w->pending[done]))
+        done++;
+    memmove(w->pending, w->pending + done, (size_t)(w->pending_count - done) * sizeof w->pending[0]);
+    w->pending_count -= done;
+}
+
 static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
 {
     (void)scancode;
@@ -477,21 +542,14 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
     else if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9) {
         w->shown = key - GLFW_KEY_0 - 1, w->shown_step = 0; /* 0: the output, 1..9: the list */
         w->viewer_reset = 1; /* the image's own view, the output as it is */
-    } else if (key == GLFW_KEY_V || key == GLFW_KEY_C) {
-        int dir = mods & GLFW_MOD_SHIFT ? -1 : 1;
-        if (w->shown_step || w->viewer_reset || w->shown_pending) /* the next image's, not this one's */
-            *(key == GLFW_KEY_V ? &w->pending_view : &w->pending_channel) += dir;
-        else if (key == GLFW_KEY_V)
-            vrg_viewer_next_view(&w->viewer, dir);
-        else
-            vrg_viewer_next_channel(&w->viewer, dir);
-    }
+    } else if (key == GLFW_KEY_V || key == GLFW_KEY_C)
+        viewer_key(w, (viewer_key_press){key == GLFW_KEY_V ? VIEWER_KEY_VIEW : VIEWER_KEY_CHANNEL, mods & GLFW_MOD_SHIFT ? -1 : 1});
     else if (key == GLFW_KEY_R)
-        vrg_viewer_hold_range(&w->viewer, &w->stats);
+        viewer_key(w, (viewer_key_press){VIEWER_KEY_HOLD, 0});
     else if ((key == GLFW_KEY_COMMA || key == GLFW_KEY_PERIOD) && (mods & GLFW_MOD_SHIFT))
-        vrg_viewer_move_low(&w->viewer, &w->stats, key == GLFW_KEY_PERIOD ? 1 : -1);
+        viewer_key(w, (viewer_key_press){VIEWER_KEY_LOW, key == GLFW_KEY_PERIOD ? 1 : -1});
     else if (key == GLFW_KEY_COMMA || key == GLFW_KEY_PERIOD)
-        vrg_viewer_expose(&w->viewer, key == GLFW_KEY_PERIOD ? 0.5f : -0.5f);
+        viewer_key(w, (viewer_key_press){VIEWER_KEY_EXPOSE, key == GLFW_KEY_PERIOD ? 1 : -1});
     else if (key == GLFW_KEY_I)
         w->inspect = !w->inspect, w->pinned = 0;
     else if (key == GLFW_KEY_G)
@@ -1267,12 +1325,8 @@ static int choose_sources(window_state *w, vrg_graph *g, vrg_graph *gb, const ch
         w->stats.valid = 0;
         w->viewer_reset = 0;
     }
-    if (!w->shown_pending) {
-        for (; w->pending_view; w->pending_view -= w->pending_view > 0 ? 1 : -1)
-            vrg_viewer_next_view(&w->viewer, w->pending_view > 0 ? 1 : -1);
-        for (; w->pending_channel; w->pending_channel -= w->pending_channel > 0 ? 1 : -1)
-            vrg_viewer_next_channel(&w->viewer, w->pending_channel > 0 ? 1 : -1);
-    }
+    if (!w->shown_pending)
+        apply_pending_keys(w);
     src[0].viewed = w->viewer.view != VRG_VIEW_AS_IS;
     if (gb) {
         const char *name_b = show && has_image(gb, show) ? show : vrg_graph_output(gb);

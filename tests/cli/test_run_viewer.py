@@ -15,6 +15,9 @@ gradient has a closed form (pattern: (x/39, y/23, 0.5, 1) as halves):
   is shown (the frame frozen, F, until G renders one) are the gradient's:
   its bar's caption says so (they were the old image's, then lost to the
   new image's own view);
+- range_keys_before_switch: the same with C, V, . (exposure) and R: the
+  gradient's alpha range is held where its own figures put it, and
+  exposed;
 - inspector: I shows every image at the pixel in schedule order (gen's
   gradient, smooth's blurred, sum's final), the gradient's values exact; a
   click pins the pixel (the cursor moves, the table stays); F freezes: the
@@ -206,6 +209,30 @@ def keys_before_switch(d):
     win.close()
 
 
+def range_keys_before_switch(d):
+    """Exposure (.) and R pressed with C and V before the gradient is shown:
+    the gradient's caption says its alpha's range is held and exposed, and
+    the held range is where the gradient's figures put it (alpha is 1
+    everywhere, a single value the viewer centres: 0.5..1.5, so the bar
+    starts at 0.5), not 0..1 (R applied before the gradient's first
+    figures)."""
+    win = Window(voxrg, GRAPH, d, args=ARGS)
+    xdo("key", "f")
+    xdo("key", "Tab", "c", "c", "c", "c", "v", "v", "period", "r")
+    xdo("key", "g")
+    point(win, 5, 1)
+
+    def held_alpha(shot):
+        # the caption wraps at this window's width: its two lines
+        lines = (text_at(shot, BAR_X - 8 + PAD, BAR_Y - 4 - k * LINE_H).strip() for k in (2, 1))
+        caption = " ".join(line for line in lines if line)
+        assert caption == "gradient: false colour of a, held, +0.5 EV", caption
+        return text_at(shot, BAR_X, BAR_Y + 10 + 3).split(" ")[0] == "0.5"
+
+    settle(win, held_alpha, "C, V, . and R pressed before the gradient was shown")
+    win.close()
+
+
 def table(shot):
     """The inspector's title and rows: (title, [(pass, resource, [values])])."""
     lines = []
@@ -306,7 +333,7 @@ def ab(d):
 
 
 def main():
-    return run_cases(out, (value, scale_bar, keys_before_switch, inspector, read_twice, ab))
+    return run_cases(out, (value, scale_bar, keys_before_switch, range_keys_before_switch, inspector, read_twice, ab))
 
 
 if __name__ == "__main__":
