@@ -14,7 +14,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "compare.h"
+#include "compare_files.h"
 #include "report.h"
 #include "util.h"
 #include "voxrg/output.h"
@@ -618,11 +618,11 @@ static void free_shown(vrg_cmp_result *r)
 
 /* ---- the merge ---- */
 
-static int merge_usage(const char *fmt, const char *arg)
+static int merge_usage(const char *usage, const char *fmt, const char *arg)
 {
     fprintf(stderr, "error: ");
     fprintf(stderr, fmt, arg);
-    fprintf(stderr, "\n%s", vrg_cli_compare_usage);
+    fprintf(stderr, "\n%s", usage);
     return 2;
 }
 
@@ -675,7 +675,7 @@ static int write_merged(merge *m, const char *out)
     return rc ? 1 : 0;
 }
 
-int vrg_cmp_merge(int argc, char **argv)
+int vrg_cmp_merge(int argc, char **argv, const char *usage)
 {
     const char *out = NULL;
     char **dirs = calloc((size_t)argc + 1, sizeof *dirs);
@@ -685,18 +685,18 @@ int vrg_cmp_merge(int argc, char **argv)
     for (int i = 0; i < argc && rc == 0; i++) {
         if (!strcmp(argv[i], "--merge")) {
             if (out || i + 1 == argc)
-                rc = merge_usage("--merge %s", out ? "given twice" : "needs OUT, the folder of the merged report");
+                rc = merge_usage(usage, "--merge %s", out ? "given twice" : "needs OUT, the folder of the merged report");
             else
                 out = argv[++i];
         } else if (!strcmp(argv[i], "--shard"))
-            rc = merge_usage("--shard with --merge: a shard runs tasks, the merge reads the shards' results%s", "");
+            rc = merge_usage(usage, "--shard with --merge: a shard runs tasks, the merge reads the shards' results%s", "");
         else if (argv[i][0] == '-')
-            rc = merge_usage("--merge takes OUT and the shards' folders, not '%s' (the shards' settings are in their shard.txt)", argv[i]);
+            rc = merge_usage(usage, "--merge takes OUT and the shards' folders, not '%s' (the shards' settings are in their shard.txt)", argv[i]);
         else
             dirs[n++] = argv[i];
     }
     if (rc == 0 && !n)
-        rc = merge_usage("--merge %s: no shard folder given", out);
+        rc = merge_usage(usage, "--merge %s: no shard folder given", out);
     if (rc) {
         free(dirs);
         return rc;

@@ -3,7 +3,7 @@
 /* Shards of `voxrg compare` (docs/compare.md, "On a cluster"): `--shard
  * I/N` runs a slice of the (case, candidate) tasks and writes OUT/shard.txt,
  * its results as exact numbers; `--merge OUT DIR...` reads the shards back
- * and writes the one report. The file writers are compare.c's. */
+ * and writes the one report (compare_files.c writes its files). */
 #include <stdio.h>
 #include "compare_result.h"
 
@@ -30,12 +30,7 @@ int vrg_cmp_shard_write_maps(const char *frames_dir, const vrg_cmp_result *r);
 int vrg_cmp_shard_write(const char *dir, const vrg_cmp_run *run, int shard, int shards, const char *device, const vrg_cmp_task *tasks,
                         int n);
 
-/* `voxrg compare --merge OUT DIR...`; returns the exit status. */
-int vrg_cmp_merge(int argc, char **argv);
-
-/* compare.c's, shared with the merge: metrics.csv and metrics.json in
- * dir; the summaries and verdict on stdout; a run's memory. */
-int vrg_cmp_write_metrics(const char *dir, const vrg_cmp_run *run);
-void vrg_cmp_print(const vrg_cmp_run *run);
-void vrg_cmp_run_free(vrg_cmp_run *run);
+/* `voxrg compare --merge OUT DIR...`; returns the exit status. usage:
+ * compare's, printed after an error in the arguments. */
+int vrg_cmp_merge(int argc, char **argv, const char *usage);
 #endif
