@@ -44,6 +44,18 @@ double sun_moved_degrees(double time_of_day, double day_length, double frame_s, 
     return atan2(sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]), dot) * 180.0 / 3.14159265358979323846;
 }
 
+int read_images(vrg_graph *g, const char *const *names, vrg_image_data *img, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (vrg_graph_read(g, names[i], &img[i]) != 0) {
+            CHECK(0, "readback of %s failed", names[i]);
+            for (int k = 0; k < i; k++)
+                free(img[k].pixels);
+            return -1;
+        }
+    return 0;
+}
+
 float px(const vrg_image_data *img, uint32_t x, uint32_t y, int c) { return img->pixels[((size_t)y * img->width + x) * 4 + c]; }
 
 double max_diff(const vrg_image_data *img, const float *want, int channels)

@@ -36,6 +36,9 @@ vrg_graph *load(const char *name);
 vrg_graph *load_text(const char *text, const char *const *reads, uint32_t nreads);
 
 float px(const vrg_image_data *img, uint32_t x, uint32_t y, int c);
+/* Reads names[0..n) back into img[0..n): 0, or -1 after a failed CHECK
+ * naming the image (what was read is freed). */
+int read_images(vrg_graph *g, const char *const *names, vrg_image_data *img, int n);
 /* Degrees the key light (the frame uniforms' sun_dir) moves from frame - 1
  * to frame, frame_s seconds apart, in the default sky with this start time
  * and day length: what a history's sun_span is measured against. */

@@ -9,18 +9,6 @@
 #include "harness.h"
 #include "voxrg/camera.h"
 
-static int read_images(vrg_graph *g, const char *const *names, vrg_image_data *img, int n)
-{
-    for (int i = 0; i < n; i++)
-        if (vrg_graph_read(g, names[i], &img[i]) != 0) {
-            CHECK(0, "readback of %s failed", names[i]);
-            for (int k = 0; k < i; k++)
-                free(img[k].pixels);
-            return -1;
-        }
-    return 0;
-}
-
 static void free_images(vrg_image_data *img, int n)
 {
     for (int i = 0; i < n; i++)

@@ -279,15 +279,10 @@ static void test_optional_outputs(void)
     if (!g)
         return;
     vrg_image_data want[N];
-    for (int i = 0; i < N; i++)
-        if (vrg_graph_read(g, all[i], &want[i]) != 0) {
-            CHECK(0, "readback of %s failed", all[i]);
-            for (int k = 0; k < i; k++)
-                free(want[k].pixels);
-            vrg_graph_destroy(g);
-            return;
-        }
+    int read = read_images(g, all, want, N);
     vrg_graph_destroy(g);
+    if (read != 0)
+        return;
     int moving = 0;
     for (uint32_t i = 0; i < want[3].width * want[3].height; i++)
         moving += fabsf(want[3].pixels[i * 4]) > 0.5f;

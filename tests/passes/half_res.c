@@ -44,14 +44,10 @@ static vrg_graph *render_two(vrg_image_data img[COUNT])
     cam.position[2] += 0.3f;
     vrg_graph_set_camera(g, &cam);
     CHECK(vrg_graph_frame(g) == 0, "frame failed");
-    for (int i = 0; i < COUNT; i++)
-        if (vrg_graph_read(g, reads[i], &img[i]) != 0) {
-            CHECK(0, "readback of %s failed", reads[i]);
-            for (int k = 0; k < i; k++)
-                free(img[k].pixels);
-            vrg_graph_destroy(g);
-            return NULL;
-        }
+    if (read_images(g, reads, img, COUNT) != 0) {
+        vrg_graph_destroy(g);
+        return NULL;
+    }
     return g;
 }
 

@@ -9,17 +9,7 @@
 static const char *const reads[] = {"cache.color", "ticks.color", "light", "tick.count", "gbuffer.position", "fell.color"};
 enum { CACHE, TICKS, LIGHT, TICK, POS, FELL, COUNT };
 
-static int read_all(vrg_graph *g, vrg_image_data img[COUNT])
-{
-    for (int i = 0; i < COUNT; i++)
-        if (vrg_graph_read(g, reads[i], &img[i]) != 0) {
-            CHECK(0, "readback of %s failed", reads[i]);
-            for (int k = 0; k < i; k++)
-                free(img[k].pixels);
-            return -1;
-        }
-    return 0;
-}
+static int read_all(vrg_graph *g, vrg_image_data img[COUNT]) { return read_images(g, reads, img, COUNT); }
 
 static void free_all(vrg_image_data img[COUNT])
 {

@@ -611,17 +611,23 @@ static void test_long_plugin_messages(void)
     free(log);
 }
 
+/* The test plugin built with `flags` fails in create() with the pass
+ * API's misuse (VRG-E062) and `message`. */
+static void check_misuse(const char *name, const char *flags, const char *message)
+{
+    int loaded;
+    char *log = load_log_of(name, flags, &loaded);
+    CHECK(!loaded, "%s: a graph whose pass fails in create() loaded", name);
+    CHECK(log && strstr(log, "VRG-E062") && strstr(log, message), "%s: no misuse error: %s", name, log ? log : "(none)");
+    free(log);
+}
+
 /* vrg_param_choice with no list of its own (NULL) for a string parameter
  * the plugin lists no choices for (param_choices): an error naming the
  * API's misuse. */
 static void test_param_choice_without_list(void)
 {
-    int loaded;
-    char *log = load_log_of("nochoice", "-DCHOICE_WITHOUT_LIST", &loaded);
-    CHECK(!loaded, "a graph whose pass fails in create() loaded");
-    CHECK(log && strstr(log, "VRG-E062") && strstr(log, "vrg_param_choice('level', NULL): the plugin lists no choices for it"), "no misuse error: %s",
-          log ? log : "(none)");
-    free(log);
+    check_misuse("nochoice", "-DCHOICE_WITHOUT_LIST", "vrg_param_choice('level', NULL): the plugin lists no choices for it");
 }
 
 /* vrg_pass_require_same_size given a name that is no slot of the pass (it
@@ -629,12 +635,7 @@ static void test_param_choice_without_list(void)
  * the API's misuse and the name. */
 static void test_same_size_unknown_slot(void)
 {
-    int loaded;
-    char *log = load_log_of("typo", "-DSAME_SIZE_TYPO", &loaded);
-    CHECK(!loaded, "a graph whose pass fails in create() loaded");
-    CHECK(log && strstr(log, "VRG-E062") && strstr(log, "vrg_pass_require_same_size: 'colour' names no slot of this pass"), "no misuse error: %s",
-          log ? log : "(none)");
-    free(log);
+    check_misuse("typo", "-DSAME_SIZE_TYPO", "vrg_pass_require_same_size: 'colour' names no slot of this pass");
 }
 
 /* Hot reload of a rebuilt plugin: the new build runs from the next graph
