@@ -19,7 +19,7 @@
  * and at least min_cell blocks: near the camera, where a fraction of a
  * pixel is a sliver of a block, a cell still gathers a few pixels' samples.
  * Cells sit in a hash table of `cells` slots (a power of two) found by
- * linear probing over at most 32 slots; a 32-bit check value tells cells
+ * linear probing over at most PROBES (64) slots; a 32-bit check value tells cells
  * in one slot apart. A slot is one entry of 8 or 16 words (the check value
  * first), so that each slot a lookup reads is one cache line.
  *
@@ -54,7 +54,7 @@
  *            level above, and the widest level's (or, with no coarse
  *            levels, the fine cells') on the `fallback` input where it is
  *            connected: each keeps n / young_samples of what is left.
- * A sample that finds no free slot in 32 probes is not cached (its pixel
+ * A sample that finds no free slot in PROBES probes is not cached (its pixel
  * shows the cells it reads that exist, else its own sample), and which
  * samples those are then depends on thread order; their count is read back
  * a few frames later and reported as the stat `uncached` and a warning
@@ -197,6 +197,7 @@ enum { EVICT, INSERT, RESOLVE, GATHER, EVICT_PER_SLOT, GATHER_OCCUPANCY, INSERT_
  * The images are the same either way (slot_invocations picks one; test
  * cache_slot_invocations): docs/benchmarks.md has the times. */
 #define GROUP 64u                    /* RESOLVE and EVICT's local size */
+#define PROBES 64u /* surface_cache.comp's: the longest run a lookup walks */
 #define CPU_SLOTS_PER_INVOCATION 16u /* EVICT's on a CPU: surface_cache.comp's default */
 #define EVICT_SHARES 4u              /* each frame looks at one share of the table for cells to free */
 #define CPU_RESOLVE_GROUPS 256u      /* invocations striding through the listed cells, on a CPU */
@@ -245,7 +246,7 @@ static void report_uncached(vrg_pass *pass, surface_cache_state *s, const vrg_ri
     }
     if (uncached > 0 && !s->warned) {
         s->warned = 1;
-        vrg_pass_warn_at(pass, 0, "%u samples of a frame found no free cell in 32 probes of the hash table (cells = %d): raise cells", uncached,
+        vrg_pass_warn_at(pass, 0, "%u samples of a frame found no free cell in %u probes of the hash table (cells = %d): raise cells", uncached, PROBES,
                          vrg_param_int(pass, "cells"));
     }
 }
