@@ -605,17 +605,6 @@ static int load_shown(const merge *m, int c, const char *out)
     return 0;
 }
 
-static void free_shown(vrg_cmp_result *r)
-{
-    for (int s = 0; s < VRG_CMP_MAX_SHOWN; s++) {
-        free(r->reference_shown[s]), r->reference_shown[s] = NULL;
-        for (int i = 0; i < r->count; i++) {
-            free(r->cand[i].shown[s]), free(r->cand[i].flip_map[s]);
-            r->cand[i].shown[s] = NULL, r->cand[i].flip_map[s] = NULL;
-        }
-    }
-}
-
 /* ---- the merge ---- */
 
 static int merge_usage(const char *usage, const char *fmt, const char *arg)
@@ -666,7 +655,7 @@ static int write_merged(merge *m, const char *out)
     int rc = vrg_cli_out_dir(out) != 0 || vrg_cli_out_dir(file) != 0 || !(sections = tmpfile());
     for (int c = 0; rc == 0 && c < m->run.case_count; c++) {
         rc = copy_frames(m, c, out) || load_shown(m, c, out) || vrg_cmp_report_case(sections, &m->run.cases[c]);
-        free_shown(&m->run.cases[c]);
+        vrg_cmp_free_shown(&m->run.cases[c]);
     }
     snprintf(file, sizeof file, "%s/report.html", out);
     rc = rc || vrg_cmp_judge(&m->run) || vrg_cmp_write_metrics(out, &m->run) || vrg_cmp_write_report(file, &m->run, sections);

@@ -593,14 +593,15 @@ static const char *usage_inspect =
     "                           [--set PASS.PARAM=VALUE]... [--validate] [--device NAME|INDEX]\n"
     "Renders frames 0 to N (default 0) headless, as render does (--camera: the path's\n"
     "camera at each frame), and prints pixel X,Y of every image resource the graph\n"
-    "computes after frame N (not an optional output nothing reads, such as gbuffer's\n"
-    "depth in most graphs: render --dump computes one), in schedule order: the pass that writes it, the resource, its format,\n"
-    "the texel read (X,Y scaled to the resource's size) and every channel's stored\n"
-    "value exactly (halves and floats to 17 significant digits, nan and inf as such,\n"
-    "uint as integers), each history resource followed by its @prev copy (what frame N\n"
-    "read). Where the graph has a motion image (the gbuffer's motion, in pixels), the\n"
-    "pixel of the previous frame its vector points to. --json writes the same as JSON\n"
-    "(values, and each channel's stored bits). X,Y outside the graph's size is an error.\n";
+    "computes after frame N, in schedule order: the pass that writes it, the resource,\n"
+    "its format, the texel read (X,Y scaled to the resource's size) and every channel's\n"
+    "stored value exactly (halves and floats to 17 significant digits, nan and inf as\n"
+    "such, uint as integers), each history resource followed by its @prev copy (what\n"
+    "frame N read). An optional output no pass reads (gbuffer's depth in most graphs)\n"
+    "is not computed, so not listed: render --dump NAME computes and writes it. Where\n"
+    "the graph computes a motion image (the gbuffer's motion, in pixels), the pixel of\n"
+    "the previous frame its vector points to. --json writes the same as JSON (values,\n"
+    "and each channel's stored bits). X,Y outside the graph's size is an error.\n";
 
 static int cmd_inspect(int argc, char **argv)
 {

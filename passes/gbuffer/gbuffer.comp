@@ -16,25 +16,13 @@ layout(binding = 7, rg32ui) uniform writeonly uimage2D out_ids;
 layout(binding = 8, rg16f) uniform writeonly image2D out_motion;
 layout(binding = 9, r16f) uniform writeonly image2D out_emission;
 // The optional outputs some pass reads (gbuffer.c): an unread one is a 1x1
-// stand-in, not written, and its stores cost nothing.
+// stand-in, neither computed nor written (store, below).
 const uint WRITE_DEPTH = 1u, WRITE_IDS = 2u, WRITE_MOTION = 4u, WRITE_EMISSION = 8u;
 layout(push_constant) uniform Params {
     float max_distance;
     int textured;
     uint writes;  // WRITE_* bits
 } params;
-
-void store(ivec2 p, float depth, uvec2 ids, vec2 motion, float emission)
-{
-    if ((params.writes & WRITE_DEPTH) != 0u)
-        imageStore(out_depth, p, vec4(depth));
-    if ((params.writes & WRITE_IDS) != 0u)
-        imageStore(out_ids, p, uvec4(ids, 0u, 0u));
-    if ((params.writes & WRITE_MOTION) != 0u)
-        imageStore(out_motion, p, vec4(motion, 0.0, 0.0));
-    if ((params.writes & WRITE_EMISSION) != 0u)
-        imageStore(out_emission, p, vec4(emission));
-}
 
 // Where a world point (w = 1) or direction (w = 0) was on screen last frame, in pixels.
 // Behind the previous camera (clip w <= 0) the projection would mirror it
@@ -46,6 +34,21 @@ vec2 previous_pixel(vec4 p, vec2 size)
     if (clip.w <= 1e-6)
         return vec2(-1e4);  // representable in the rg16f motion image
     return (clip.xy / clip.w * 0.5 + 0.5) * size - 0.5;
+}
+
+// The optional outputs, each computed only where its bit is set. t: the
+// hit's distance (0 on a miss), moved: the hit point (w = 1) or, on a
+// miss, the ray's direction (w = 0), for the motion vector.
+void store(ivec2 p, ivec2 size, float t, vec3 d, vec4 moved, uvec2 ids, float emission)
+{
+    if ((params.writes & WRITE_DEPTH) != 0u)
+        imageStore(out_depth, p, vec4(t * dot(d, frame.camera_forward.xyz)));
+    if ((params.writes & WRITE_IDS) != 0u)
+        imageStore(out_ids, p, uvec4(ids, 0u, 0u));
+    if ((params.writes & WRITE_MOTION) != 0u)
+        imageStore(out_motion, p, vec4(vec2(p) - previous_pixel(moved, vec2(size)), 0.0, 0.0));
+    if ((params.writes & WRITE_EMISSION) != 0u)
+        imageStore(out_emission, p, vec4(emission));
 }
 
 void shade(ivec2 p)
@@ -60,7 +63,7 @@ void shade(ivec2 p)
         imageStore(out_position, p, vec4(0.0));
         imageStore(out_normal, p, vec4(0.0));
         imageStore(out_albedo, p, vec4(frame_sky(d), 1.0));
-        store(p, 0.0, uvec2(0u), vec2(p) - previous_pixel(vec4(d, 0.0), vec2(size)), 0.0);
+        store(p, size, 0.0, d, vec4(d, 0.0), uvec2(0u), 0.0);
         return;
     }
     vec3 hp = o + d * h.t;
@@ -75,8 +78,7 @@ void shade(ivec2 p)
     imageStore(out_position, p, vec4(hp, 1.0));
     imageStore(out_normal, p, vec4(n, 0.0));
     imageStore(out_albedo, p, vec4(albedo, 1.0));
-    store(p, h.t * dot(d, frame.camera_forward.xyz), uvec2(h.block, uint(h.chunk) + 1u), vec2(p) - previous_pixel(vec4(hp, 1.0), vec2(size)),
-          material.w);
+    store(p, size, h.t, d, vec4(hp, 1.0), uvec2(h.block, uint(h.chunk) + 1u), material.w);
 }
 
 void main()

@@ -53,7 +53,10 @@ static uint32_t gcd(uint32_t a, uint32_t b) { return b ? gcd(b, a % b) : a; }
 /* The optional pairs (gbuffer_downsample.comp's WRITE_* bits, in order) */
 static const char *const optional_in[] = {"in.ids", "in.motion"}, *const optional_out[] = {"out.ids", "out.motion"};
 
-/* An output that is read needs its input: else there is nothing to copy. */
+/* An output that is read needs its input: else there is nothing to copy.
+ * In create(), not check(): which optional outputs are read is known only
+ * once every reader is (after check() runs), so `voxrg check` finds this
+ * when it creates the passes (with a device). */
 static int create(vrg_pass *pass)
 {
     for (int i = 0; i < 2; i++)

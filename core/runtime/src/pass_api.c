@@ -517,12 +517,21 @@ void _vrg_pass_free_host_buffers(vrg_pass *p)
     }
 }
 
+/* A name that is no slot (nor internal resource) of the pass: a misspelt
+ * name must not pass for an unconnected optional slot. */
+static int names_no_slot(const vrg_pass *p, const char *name)
+{
+    int res, prev, slot = -1;
+    return _vrg_pass_lookup(p, name, &res, &prev, &slot) != 0 && slot < 0;
+}
+
 int vrg_pass_require_same_size(vrg_pass *p, const char *ref, const char *const *names, int count)
 {
+    if (names_no_slot(p, ref) || !vrg_res_connected(vrg_pass_res(p, ref)))
+        return _vrg_pass_fail(p, VRG_E_PASS_API_MISUSE, "vrg_pass_require_same_size: '%s' names no connected slot of this pass", ref);
     VkExtent2D want = vrg_res_extent(p, vrg_pass_res(p, ref));
     for (int i = 0; i < count; i++) {
-        int res, prev, slot = -1;
-        if (_vrg_pass_lookup(p, names[i], &res, &prev, &slot) != 0 && slot < 0)
+        if (names_no_slot(p, names[i]))
             return _vrg_pass_fail(p, VRG_E_PASS_API_MISUSE, "vrg_pass_require_same_size: '%s' names no slot of this pass", names[i]);
         vrg_res r = vrg_pass_res(p, names[i]);
         if (!vrg_res_connected(r))

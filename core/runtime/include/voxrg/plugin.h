@@ -468,7 +468,9 @@ int vrg_pass_keep_resource(vrg_pass *pass, const char *slot);
 int vrg_res_history_valid(const vrg_pass *pass, vrg_res res);
 /* 0 when every named slot has the extent of slot `ref`; else reports the
  * first that differs ("input 'X' is WxH, 'ref' WxH: ...") and returns -1.
- * An unconnected slot (an optional one's 1x1 stand-in) is skipped. */
+ * An unconnected slot of `names` (an optional one's 1x1 stand-in) is
+ * skipped; `ref` must be connected, and a name that is no slot of the pass
+ * fails (VRG-E062, the API's misuse). */
 int vrg_pass_require_same_size(vrg_pass *pass, const char *ref, const char *const *names, int count);
 /* An image's format; a buffer's texel format (vrg_slot_desc.format). */
 VkFormat vrg_res_format(const vrg_pass *pass, vrg_res res);
