@@ -56,10 +56,10 @@ const uint SPARSE_TEXELS = 2u, SPARSE_MATCHED = 3u;
 const uint EMPTY = 0u, FREED = 1u;
 // A run of full and freed slots (freed ones keep lookups going until the
 // evict pass empties them) outgrew 32 in surface-cache-4ray.ini's sun
-// table at 640x360 (2 Mi slots half full, the longest run 69 after 40
-// frames of the walk: samples left out, their pixels then depending on
-// thread order). Lookups stop at the first empty slot, so a longer limit
-// costs only where runs are long. surface_cache.c's PROBES says the same.
+// table at 640x360 (the surface_cache README has the runs): samples were
+// left out, their pixels then depending on thread order. Lookups stop at
+// the first empty slot, so a longer limit costs only where runs are
+// long. surface_cache.c's PROBES says the same.
 const uint PROBES = 64u;
 // the count word's top bit: a sample this frame lay where an edit changed
 // the light (INSERT sets it, RESOLVE drops the cell's history)
