@@ -17,6 +17,10 @@ static const vrg_param_desc params[] = {
     VRG_SCENE_PARAMS,
 };
 
+/* traversal, VRG_SCENE_PARAMS's last: its names, for hosts and the load's check */
+static const char *const param_choices[sizeof params / sizeof params[0]] = {
+    [sizeof params / sizeof params[0] - 1] = VRG_SCENE_TRAVERSAL_CHOICES};
+
 static const vrg_slot_desc slots[] = {VRG_SCENE_SLOTS};
 
 #define MAX_EXTENT 1024 /* blocks from the origin: keeps the toroidal grid small */
@@ -147,6 +151,7 @@ static const vrg_plugin_desc desc = {
     .kind = VRG_PLUGIN_SCENE,
     .help = "a world of boxes listed in the graph (box = x0 y0 z0 x1 y1 z1 block)",
     .params = params,
+    .param_choices = param_choices,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],

@@ -46,8 +46,10 @@ static const vrg_param_desc params[] = {
 
 static const vrg_slot_desc slots[] = {VRG_SCENE_SLOTS};
 
-/* the runtime checks stream's value against these */
-static const char *const param_choices[sizeof params / sizeof params[0]] = {[STREAM_PARAM] = "wait,budget"};
+/* the runtime checks stream's and traversal's (VRG_SCENE_PARAMS's last)
+ * values against these */
+static const char *const param_choices[sizeof params / sizeof params[0]] = {
+    [STREAM_PARAM] = "wait,budget", [sizeof params / sizeof params[0] - 1] = VRG_SCENE_TRAVERSAL_CHOICES};
 
 /* The generated world and what generates it. A hot reload of a graph whose
  * world parameters are unchanged shares it with the new instance

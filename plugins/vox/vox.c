@@ -30,6 +30,10 @@ static const vrg_param_desc params[] = {
     VRG_SCENE_PARAMS,
 };
 
+/* traversal, VRG_SCENE_PARAMS's last: its names, for hosts and the load's check */
+static const char *const param_choices[sizeof params / sizeof params[0]] = {
+    [sizeof params / sizeof params[0] - 1] = VRG_SCENE_TRAVERSAL_CHOICES};
+
 static const vrg_slot_desc slots[] = {VRG_SCENE_SLOTS};
 
 #define WORLD_XZ 512     /* |x|, |z| of any block: keeps the toroidal grid (and its GPU buffer) bounded */
@@ -488,6 +492,7 @@ static const vrg_plugin_desc desc = {
     .kind = VRG_PLUGIN_SCENE,
     .help = "a MagicaVoxel model (.vox): models, palette, materials and scene graph placed in the world",
     .params = params,
+    .param_choices = param_choices,
     .param_count = sizeof params / sizeof params[0],
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],

@@ -658,6 +658,11 @@ section_plugins() { # voxrg plugins
     has "$out/stdout" "^  mode +text +default 'bilateral' +bilateral\|bilinear\|nearest " "a C pass's choices listed"
     expect_rc 0 "plugins tiles" "$voxrg" plugins tiles
     has "$out/stdout" "^  t8_channel +text +default 'rgb' +rgb\|r\|g\|b\|a\|luma " "the last tile's choices listed"
+    # the scenes' traversal (VRG_SCENE_PARAMS's last parameter), in each scene plugin
+    for scene in terrain vox blocks; do
+        expect_rc 0 "plugins $scene" "$voxrg" plugins "$scene"
+        has "$out/stdout" "^  traversal +text +default 'dda' +dda\|rayquery " "$scene's traversal choices listed"
+    done
     sed 's/^mode             = bilinear/mode             = bicubic/' "$tests/graphs/half_res.ini" >"$out/bad_choice.ini"
     expect_rc 1 "a C pass's value not among its choices" "$voxrg" check --no-device "$out/bad_choice.ini"
     line=$(grep -n '^mode             = bicubic' "$out/bad_choice.ini" | cut -d: -f1)

@@ -263,6 +263,12 @@ void vrg_scene_write_frame(vrg_pass *pass, VkCommandBuffer cmd, const char *slot
      .help = "seconds per 24-hour cycle; 0 keeps the time of day"},                                              \
     {.name = "traversal", .type = VRG_PARAM_STRING, .default_string = "dda",                                     \
      .help = "dda (voxel DDA only) or rayquery (also build BLAS/TLAS for ray queries)"}
+/* VRG_SCENE_PARAMS's traversal is the last of them: a scene's
+ * param_choices names its values at that index, so that hosts list them
+ * (from vrg_find_plugin's descriptor) and the runtime checks them at load:
+ *   static const char *const param_choices[N] = {[N - 1] = VRG_SCENE_TRAVERSAL_CHOICES};
+ * (N: the scene's parameter count, VRG_SCENE_PARAMS last) */
+#define VRG_SCENE_TRAVERSAL_CHOICES "dda,rayquery"
 
 #define VRG_SCENE_SLOTS                                                                                          \
     {.name = "world", .dir = VRG_OUT, .kind = VRG_BUFFER, .access = VRG_ACCESS_TRANSFER_DST, .size = 16,          \
