@@ -255,7 +255,8 @@ static void execute(vrg_pass *pass, VkCommandBuffer cmd)
 {
     int sparse = vrg_res_connected(vrg_pass_res(pass, "signal_position"));
     static const char *const same[] = {"position", "normal", "fallback"}, *sampled[] = {"signal_position"}, *signal[] = {"signal"};
-    if (vrg_pass_require_same_size(pass, "color", same, vrg_res_connected(vrg_pass_res(pass, "fallback")) ? 3 : 2) != 0 ||
+    /* an unconnected fallback is skipped */
+    if (vrg_pass_require_same_size(pass, "color", same, 3) != 0 ||
         vrg_pass_require_same_size(pass, sparse ? "signal" : "color", sparse ? sampled : signal, 1) != 0)
         return;
     surface_cache_state *s = vrg_pass_user(pass);
