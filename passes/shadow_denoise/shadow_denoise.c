@@ -22,6 +22,12 @@
  *              * [|N.X_q - N.X_p| <= sigma_z * |q - p| * s]
  *          (the plane test of svgf_atrous: a tap on another plane, a step or
  *          a wall, does not count). Pixels with r < 0.5 are copied.
+ * kernel = surface takes the penumbra's disc on the face instead: r in
+ * blocks (radius_scale * d tan(a)), its taps through the screen images of
+ * r along the face's two axes (an ellipse, each semi-axis at most
+ * max_radius pixels), the plane test against rho * r for a tap at rho of
+ * the radius; the ground seen at a grazing angle is then filtered over the
+ * penumbra's blocks, not a disc of pixels that spans many more of them.
  * Sky pixels pass through. sun_radius is the disc sun_shadow sampled, or,
  * given a hard shadow (sun_shadow's sun_radius 0: one exact ray, its
  * blocker's distance), the disc to spread its edge for: the penumbra's
@@ -35,7 +41,14 @@ static const vrg_param_desc params[] = {
     {"taps", VRG_PARAM_INT, 12, 4, 32, "taps per iteration"},
     {"iterations", VRG_PARAM_INT, 2, 1, 4, "filter passes, each with half the previous radius"},
     {"sigma_z", VRG_PARAM_FLOAT, 1, 0.001, 1000, "plane edge-stopping: most distance from p's plane per pixel of offset, in pixel footprints"},
+    {.name = "kernel", .type = VRG_PARAM_STRING, .default_string = "screen",
+     .help = "screen (a disc in pixels, as wide as the penumbra where the face looks at the camera) or surface (the penumbra's disc on the face, projected: foreshortened where the face is seen at a grazing angle)"},
 };
+
+/* the names kernel takes: the runtime checks the graph's value and pushes
+ * its index as the shader's `kernel` */
+static const char *const param_choices[] = {NULL, NULL, NULL, NULL, NULL, NULL, "screen,surface"};
+_Static_assert(sizeof param_choices / sizeof param_choices[0] == sizeof params / sizeof params[0], "a choice list (or NULL) per parameter");
 
 static const vrg_slot_desc slots[] = {
     {.name = "visibility", .dir = VRG_IN, .kind = VRG_IMAGE, .access = VRG_ACCESS_SAMPLED,
@@ -47,7 +60,7 @@ static const vrg_slot_desc slots[] = {
     {.name = "visibility", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16_SFLOAT,
      .help = "filtered sun visibility"},
     {.name = "radius", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16_SFLOAT,
-     .flags = VRG_SLOT_OPTIONAL, .help = "the first iteration's filter radius, pixels (written only when read)"},
+     .flags = VRG_SLOT_OPTIONAL, .help = "the first iteration's filter radius, pixels (kernel surface: the longer semi-axis; written only when read)"},
 };
 
 static int create(vrg_pass *pass)
@@ -113,6 +126,7 @@ static const vrg_plugin_desc desc = {
     .help = "sun visibility filter whose radius follows the penumbra width (occluder distance, sun radius, view depth), plane edge-stopping",
     .params = params,
     .param_count = sizeof params / sizeof params[0],
+    .param_choices = param_choices,
     .slots = slots,
     .slot_count = sizeof slots / sizeof slots[0],
     .create = create,

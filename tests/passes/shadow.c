@@ -234,6 +234,58 @@ static void test_shadow_denoise_hard(void)
     denoise_case(hard, 1, "hard ray");
 }
 
+/* shadow_grazing.ini: the ground seen 10 degrees down, a slab's penumbra
+ * on it, one hard ray spread by the filter with each kernel. A disc in
+ * pixels is as wide in pixels across the view as along it, where the
+ * ground's blocks are foreshortened, so it spreads the shadow's edges that
+ * face the camera over several penumbra widths; the disc on the face,
+ * projected, does not: its squared error against 64 rays, over the floor
+ * pixels in the slab's shadow and penumbra (x 28..47, z 12..47), must be at
+ * most 0.7 times the screen kernel's and below the unfiltered hard ray's. */
+static double grazing_mse(const char *kernel, double *hard, int *count)
+{
+    static const char *reads[] = {"gbuffer.position", "gbuffer.normal", "shadow.visibility", "ref.visibility", "denoise.visibility"};
+    char set[64];
+    snprintf(set, sizeof set, "denoise.kernel=%s", kernel);
+    const char *sets[] = {set};
+    vrg_graph *g = load_with("shadow_grazing.ini", sets, 1, reads, 5);
+    if (!g)
+        return -1;
+    vrg_image_data pos = {0}, nrm = {0}, raw = {0}, ref = {0}, den = {0};
+    double sum = 0, sum_hard = 0;
+    *count = 0;
+    if (CHECK(vrg_graph_frame(g) == 0, "kernel %s: frame failed", kernel) &&
+        CHECK(vrg_graph_read(g, "gbuffer.position", &pos) == 0 && vrg_graph_read(g, "gbuffer.normal", &nrm) == 0 &&
+                  vrg_graph_read(g, "shadow.visibility", &raw) == 0 && vrg_graph_read(g, "ref.visibility", &ref) == 0 &&
+                  vrg_graph_read(g, "denoise.visibility", &den) == 0,
+              "kernel %s: readback failed", kernel)) {
+        for (uint32_t i = 0; i < pos.width * pos.height; i++) {
+            const float *p = pos.pixels + 4 * i;
+            if (!floor_pixel(&pos, &nrm, i) || p[0] < 28 || p[2] < 12)
+                continue;
+            double d = den.pixels[4 * i] - ref.pixels[4 * i], h = raw.pixels[4 * i] - ref.pixels[4 * i];
+            sum += d * d, sum_hard += h * h;
+            (*count)++;
+        }
+    }
+    free(pos.pixels), free(nrm.pixels), free(raw.pixels), free(ref.pixels), free(den.pixels);
+    vrg_graph_destroy(g);
+    *hard = *count ? sum_hard / *count : 0;
+    return *count ? sum / *count : -1;
+}
+
+static void test_shadow_denoise_surface(void)
+{
+    int n_screen, n_surface;
+    double hard, hard2, screen = grazing_mse("screen", &hard, &n_screen), surface = grazing_mse("surface", &hard2, &n_surface);
+    if (!CHECK(n_screen > 1000 && n_surface == n_screen, "the slab's shadow is not in view (%d, %d floor pixels)", n_screen, n_surface))
+        return;
+    CHECK(surface <= 0.7 * screen, "grazing ground: squared error %.5f with the surface kernel, %.5f with the screen kernel: want at most 0.7 times", surface,
+          screen);
+    CHECK(surface < hard, "grazing ground: squared error %.5f with the surface kernel, %.5f unfiltered", surface, hard);
+    printf("grazing ground (%d px): mse hard %.5f, screen kernel %.5f, surface kernel %.5f\n", n_screen, hard, screen, surface);
+}
+
 int main(int argc, char **argv)
 {
     static const test_case cases[] = {
@@ -242,6 +294,7 @@ int main(int argc, char **argv)
         {"shadow_occluder_unread", test_shadow_occluder_unread, 1},
         {"shadow_denoise", test_shadow_denoise, 1},
         {"shadow_denoise_hard", test_shadow_denoise_hard, 1},
+        {"shadow_denoise_surface", test_shadow_denoise_surface, 1},
     };
     return run_case(argc, argv, cases, sizeof cases / sizeof cases[0]);
 }
