@@ -24,8 +24,8 @@
  *          a wall, does not count). Pixels with r < 0.5 are copied.
  * kernel = surface takes the penumbra's disc on the face instead: r in
  * blocks (radius_scale * d tan(a)), its taps through the screen images of
- * r along the face's two axes (an ellipse, each semi-axis at most
- * max_radius pixels), the plane test against rho * r for a tap at rho of
+ * r along the face's two axes (an ellipse, each of those two at most
+ * max_radius pixels, after an iteration's halving), the plane test against rho * r for a tap at rho of
  * the radius; the ground seen at a grazing angle is then filtered over the
  * penumbra's blocks, not a disc of pixels that spans many more of them.
  * Sky pixels pass through. sun_radius is the disc sun_shadow sampled, or,
@@ -40,7 +40,7 @@ static const vrg_param_desc params[] = {
     {"max_radius", VRG_PARAM_FLOAT, 16, 1, 64, "largest filter radius, pixels"},
     {"taps", VRG_PARAM_INT, 12, 4, 32, "taps per iteration"},
     {"iterations", VRG_PARAM_INT, 2, 1, 4, "filter passes, each with half the previous radius"},
-    {"sigma_z", VRG_PARAM_FLOAT, 1, 0.001, 1000, "plane edge-stopping: most distance from p's plane per pixel of offset, in pixel footprints"},
+    {"sigma_z", VRG_PARAM_FLOAT, 1, 0.001, 1000, "plane edge-stopping: most distance from p's plane per pixel of offset, in pixel footprints (kernel surface: per block of the tap's distance on the face)"},
     {.name = "kernel", .type = VRG_PARAM_STRING, .default_string = "screen",
      .help = "screen (a disc in pixels, as wide as the penumbra where the face looks at the camera) or surface (the penumbra's disc on the face, projected: foreshortened where the face is seen at a grazing angle)"},
 };
@@ -60,7 +60,7 @@ static const vrg_slot_desc slots[] = {
     {.name = "visibility", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16_SFLOAT,
      .help = "filtered sun visibility"},
     {.name = "radius", .dir = VRG_OUT, .kind = VRG_IMAGE, .access = VRG_ACCESS_STORAGE_WRITE, .format = VK_FORMAT_R16_SFLOAT,
-     .flags = VRG_SLOT_OPTIONAL, .help = "the first iteration's filter radius, pixels (kernel surface: the longer semi-axis; written only when read)"},
+     .flags = VRG_SLOT_OPTIONAL, .help = "the first iteration's filter radius, pixels (kernel surface: the longer of the disc's two projected radii; written only when read)"},
 };
 
 static int create(vrg_pass *pass)

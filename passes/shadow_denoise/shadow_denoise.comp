@@ -38,9 +38,10 @@ vec2 pixel_of(vec3 x, vec2 size)
 }
 
 // kernel surface: the disc of radius r (blocks) on the face of axis
-// `axis` at x, as the screen shows it: an ellipse whose semi-axes (pixels)
-// are the images of r along the face's two other axes, each at most
-// max_radius. Seen at a grazing angle (the ground ahead of a walker) the
+// `axis` at x, as the screen shows it: the ellipse through the images
+// e1, e2 (pixels) of r along the face's two other axes (conjugate
+// semi-diameters), each scaled down to max_radius (an iteration's r is
+// halved before the cap, so a capped reach does not halve). Seen at a grazing angle (the ground ahead of a walker) the
 // disc is foreshortened, where a disc in pixels would spread the shadow
 // over blocks far beyond the penumbra.
 void surface_ellipse(vec3 x, uint axis, float r, vec2 size, out vec2 e1, out vec2 e2)
@@ -172,7 +173,14 @@ void shade(ivec2 p)
         vec3 n = vec3(0.0);
         n[t.w >> 1] = (t.w & 1u) == 0u ? 1.0 : -1.0;
         vec3 dir = frame_ray_dir(vec2(p), vec2(size));
-        vec3 x = frame.camera_pos.xyz + dir * ((plane - dot(n, frame.camera_pos.xyz)) / dot(n, dir));
+        float facing = dot(n, dir);
+        // a face seen edge-on: no point to reconstruct (the pixel's own
+        // ray hit it, so this is rounding, not a visible face)
+        if (abs(facing) < 1e-6) {
+            store(p, t, v);
+            return;
+        }
+        vec3 x = frame.camera_pos.xyz + dir * ((plane - dot(n, frame.camera_pos.xyz)) / facing);
         surface_ellipse(x, t.w, radius, vec2(size), e1, e2);
         if (max(dot(e1, e1), dot(e2, e2)) < 0.25) {
             store(p, t, v);
