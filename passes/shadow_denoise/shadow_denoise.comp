@@ -41,9 +41,10 @@ vec2 pixel_of(vec3 x, vec2 size)
 // `axis` at x, as the screen shows it: the ellipse through the images
 // e1, e2 (pixels) of r along the face's two other axes (conjugate
 // semi-diameters), each scaled down to max_radius (an iteration's r is
-// halved before the cap, so a capped reach does not halve). Seen at a grazing angle (the ground ahead of a walker) the
-// disc is foreshortened, where a disc in pixels would spread the shadow
-// over blocks far beyond the penumbra.
+// halved before the cap, so a capped reach does not halve). Seen at a
+// grazing angle (the ground ahead of a walker) the disc is foreshortened,
+// where a disc in pixels would spread the shadow over blocks far beyond
+// the penumbra.
 void surface_ellipse(vec3 x, uint axis, float r, vec2 size, out vec2 e1, out vec2 e2)
 {
     vec3 u = vec3(0.0), v = vec3(0.0);
