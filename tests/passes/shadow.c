@@ -251,24 +251,22 @@ static double grazing_mse(const char *kernel, double *hard, int *count)
     vrg_graph *g = load_with("shadow_grazing.ini", sets, 1, reads, 5);
     if (!g)
         return -1;
-    vrg_image_data pos = {0}, nrm = {0}, raw = {0}, ref = {0}, den = {0};
+    enum { POS, NRM, RAW, REF, DEN, N };
+    vrg_image_data img[N];
     double sum = 0, sum_hard = 0;
     *count = 0;
-    if (CHECK(vrg_graph_frame(g) == 0, "kernel %s: frame failed", kernel) &&
-        CHECK(vrg_graph_read(g, "gbuffer.position", &pos) == 0 && vrg_graph_read(g, "gbuffer.normal", &nrm) == 0 &&
-                  vrg_graph_read(g, "shadow.visibility", &raw) == 0 && vrg_graph_read(g, "ref.visibility", &ref) == 0 &&
-                  vrg_graph_read(g, "denoise.visibility", &den) == 0,
-              "kernel %s: readback failed", kernel)) {
-        for (uint32_t i = 0; i < pos.width * pos.height; i++) {
-            const float *p = pos.pixels + 4 * i;
-            if (!floor_pixel(&pos, &nrm, i) || p[0] < 28 || p[2] < 12)
+    if (CHECK(vrg_graph_frame(g) == 0, "kernel %s: frame failed", kernel) && read_images(g, reads, img, N) == 0) {
+        for (uint32_t i = 0; i < img[POS].width * img[POS].height; i++) {
+            const float *p = img[POS].pixels + 4 * i;
+            if (!floor_pixel(&img[POS], &img[NRM], i) || p[0] < 28 || p[2] < 12)
                 continue;
-            double d = den.pixels[4 * i] - ref.pixels[4 * i], h = raw.pixels[4 * i] - ref.pixels[4 * i];
+            double d = img[DEN].pixels[4 * i] - img[REF].pixels[4 * i], h = img[RAW].pixels[4 * i] - img[REF].pixels[4 * i];
             sum += d * d, sum_hard += h * h;
             (*count)++;
         }
+        for (int k = 0; k < N; k++)
+            free(img[k].pixels);
     }
-    free(pos.pixels), free(nrm.pixels), free(raw.pixels), free(ref.pixels), free(den.pixels);
     vrg_graph_destroy(g);
     *hard = *count ? sum_hard / *count : 0;
     return *count ? sum / *count : -1;
